@@ -1,0 +1,28 @@
+# Two entry points: `make demo` and `make test` (both create .venv and install the package).
+PYTHON ?= python3
+VENV   ?= .venv
+BIN     = $(VENV)/bin
+SHARED ?= ../shared
+
+.PHONY: install demo test bench clean
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/pip install -q --upgrade pip
+
+install: $(BIN)/python
+	$(BIN)/pip install -q ".[test]"
+
+demo: install
+	$(BIN)/foon2asp solve --goals all
+	$(BIN)/foon2asp solve --goals all --format json --output out/demo > /dev/null
+	@echo "trees written to out/demo/"
+
+test: install
+	cd tests && ../$(BIN)/python -m pytest
+
+bench: install
+	$(BIN)/python bench/run.py --shared $(SHARED)
+
+clean:
+	rm -rf $(VENV) build *.egg-info out .pytest_cache

@@ -1,0 +1,146 @@
+"""The FOON model: objects, functional units and the network that holds them.
+
+Object identity is label + set of states + set of ingredients + container,
+independent of order.  Relations other than ``in``/``contains`` (``on``,
+``with``, ``attached to``, ...) are kept as states of the form
+``"on [plate]"`` so they take part in identity and are written back.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Iterable, Iterator
+
+
+def _norm(text: str) -> str:
+    return " ".join(str(text).split()).lower()
+
+
+@dataclass(frozen=True, order=True)
+class FoonObject:
+    """An object node; fields are normalised and sorted, so ``==`` is identity."""
+
+    label: str
+    states: tuple[str, ...] = ()
+    ingredients: tuple[str, ...] = ()
+    container: str | None = None
+
+    @classmethod
+    def make(
+        cls,
+        label: str,
+        states: Iterable[str] = (),
+        ingredients: Iterable[str] = (),
+        container: str | None = None,
+    ) -> "FoonObject":
+        container = _norm(container) if container not in (None, "") else None
+        return cls(
+            _norm(label),
+            tuple(sorted({_norm(s) for s in states if _norm(s)})),
+            tuple(sorted({_norm(i) for i in ingredients if _norm(i)})),
+            container or None,
+        )
+
+    def is_bare(self) -> bool:
+        """True for an object with no states, ingredients or container."""
+        return not self.states and not self.ingredients and self.container is None
+
+    def to_json(self) -> dict:
+        return {
+            "label": self.label,
+            "states": list(self.states),
+            "ingredients": list(self.ingredients),
+            "container": self.container,
+        }
+
+    def __str__(self) -> str:
+        parts = [self.label, *self.states]
+        if self.ingredients:
+            parts.append("contains {" + ",".join(self.ingredients) + "}")
+        if self.container:
+            parts.append(f"in [{self.container}]")
+        return ", ".join(parts)
+
+
+@dataclass(frozen=True)
+class Unit:
+    """A functional unit: inputs --motion--> outputs (objects in file order)."""
+
+    motion: str
+    inputs: tuple[FoonObject, ...]
+    outputs: tuple[FoonObject, ...]
+
+    def key(self) -> tuple:
+        """Identity used for de-duplication: motion, set of inputs, set of outputs."""
+        return (self.motion, frozenset(self.inputs), frozenset(self.outputs))
+
+    def to_json(self) -> dict:
+        return {
+            "motion": self.motion,
+            "inputs": [o.to_json() for o in self.inputs],
+            "outputs": [o.to_json() for o in self.outputs],
+        }
+
+    def __str__(self) -> str:
+        ins = "; ".join(map(str, self.inputs))
+        outs = "; ".join(map(str, self.outputs))
+        return f"{self.motion}: {ins} -> {outs}"
+
+
+@dataclass
+class Foon:
+    """A de-duplicated FOON.  Unit ids and object ids are list indices."""
+
+    units: list[Unit] = field(default_factory=list)
+    objects: list[FoonObject] = field(default_factory=list)
+    object_ids: dict[FoonObject, int] = field(default_factory=dict)
+    #: source (path, line) of each unit, for messages
+    origins: list[tuple[str, int]] = field(default_factory=list)
+    #: one-line messages about input that was skipped
+    warnings: list[str] = field(default_factory=list)
+    _keys: dict[tuple, int] = field(default_factory=dict, repr=False)
+
+    def object_id(self, obj: FoonObject) -> int:
+        """Id of ``obj``, adding it when new."""
+        oid = self.object_ids.get(obj)
+        if oid is None:
+            oid = len(self.objects)
+            self.objects.append(obj)
+            self.object_ids[obj] = oid
+        return oid
+
+    def add_unit(self, unit: Unit, origin: tuple[str, int] = ("", 0)) -> int:
+        """Add ``unit`` unless an equal one exists; return its id."""
+        key = unit.key()
+        uid = self._keys.get(key)
+        if uid is not None:
+            return uid
+        uid = len(self.units)
+        self._keys[key] = uid
+        self.units.append(unit)
+        self.origins.append(origin)
+        for obj in unit.inputs + unit.outputs:
+            self.object_id(obj)
+        return uid
+
+    def __len__(self) -> int:
+        return len(self.units)
+
+    def __iter__(self) -> Iterator[Unit]:
+        return iter(self.units)
+
+    def labels(self) -> set[str]:
+        return {o.label for o in self.objects}
+
+    def by_label(self, label: str) -> list[FoonObject]:
+        label = _norm(label)
+        return [o for o in self.objects if o.label == label]
+
+    @classmethod
+    def merged(cls, foons: Iterable["Foon"]) -> "Foon":
+        out = cls()
+        for foon in foons:
+            for unit, origin in zip(foon.units, foon.origins):
+                out.add_unit(unit, origin)
+            out.warnings.extend(foon.warnings)
+        return out
