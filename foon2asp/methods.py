@@ -1,0 +1,93 @@
+"""The one registry of methods: ASP objectives and the search baselines.
+
+A method turns (problem, options) into a *runner*: a function from a goal
+object id to a :class:`TaskTree`.  Runners are made once per problem, so a
+runner may keep state (the ASP runner keeps one grounding for all goals).
+The CLI's ``solve``, ``compare`` and ``batch`` all look methods up here.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Callable
+
+from .errors import InputError
+from .problem import Problem
+from .solver import OBJECTIVES, AspOptions, Session
+from .tree import TaskTree
+
+Runner = Callable[[int], TaskTree]
+Factory = Callable[[Problem, AspOptions], Runner]
+
+
+@dataclass(frozen=True)
+class Method:
+    name: str
+    kind: str  # "asp" or "search"
+    description: str
+    factory: Factory
+
+
+METHODS: dict[str, Method] = {}
+
+
+def register(name: str, kind: str, description: str) -> Callable[[Factory], Factory]:
+    """Decorator: register ``factory`` under ``name``."""
+
+    def deco(factory: Factory) -> Factory:
+        METHODS[name] = Method(name, kind, description, factory)
+        return factory
+
+    return deco
+
+
+def get(name: str) -> Method:
+    _load_plugins()
+    try:
+        return METHODS[name]
+    except KeyError:
+        raise InputError(f"unknown method {name!r} (have {', '.join(names())})") from None
+
+
+def names() -> list[str]:
+    _load_plugins()
+    return list(METHODS)
+
+
+def runner(name: str, problem: Problem, options: AspOptions | None = None) -> Runner:
+    return get(name).factory(problem, options or AspOptions())
+
+
+@register("asp", "asp", "answer-set programming, proven optimal for --objective (default: units)")
+def _asp(problem: Problem, options: AspOptions) -> Runner:
+    return Session(problem, options).solve
+
+
+def _fixed_objective(objective: str) -> Factory:
+    def factory(problem: Problem, options: AspOptions) -> Runner:
+        return Session(problem, replace(options, objective=(objective,))).solve
+
+    return factory
+
+
+for _name in list(OBJECTIVES):
+    register(f"asp-{_name}", "asp", f"ASP, proven optimal for the objective {_name!r}")(_fixed_objective(_name))
+
+
+_loaded = False
+
+
+def _load_plugins() -> None:
+    """Import the modules that register further methods (kept lazy to avoid cycles)."""
+    global _loaded
+    if _loaded:
+        return
+    _loaded = True
+    import importlib
+
+    for module in ("foon2asp.search",):
+        try:
+            importlib.import_module(module)
+        except ModuleNotFoundError as exc:
+            if exc.name != module:
+                raise

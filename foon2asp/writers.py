@@ -1,0 +1,67 @@
+"""Writers for task trees: readable text, FOON text and JSON."""
+
+from __future__ import annotations
+
+import json
+
+from .parser import format_units
+from .problem import Problem
+from .tree import TaskTree
+
+FORMATS = ("text", "json", "foon")
+
+
+def tree_json(problem: Problem, tree: TaskTree) -> dict:
+    """The stable JSON shape of one result."""
+    out = {
+        "goal": problem.objects[tree.goal].to_json(),
+        "method": tree.method,
+        "status": tree.status,
+        "cost": tree.cost,
+        "units": [problem.units[u].to_json() for u in tree.units],
+        "time_s": round(tree.time_s, 6),
+    }
+    for key, value in tree.extra.items():
+        if key not in out and not key.startswith("_"):
+            out[key] = value
+    return out
+
+
+def to_json(problem: Problem, trees: list[TaskTree], indent: int | None = 2) -> str:
+    return json.dumps([tree_json(problem, t) for t in trees], indent=indent)
+
+
+def _cost_text(cost: dict) -> str:
+    return ", ".join(f"{k} {v}" for k, v in cost.items())
+
+
+def tree_text(problem: Problem, tree: TaskTree) -> str:
+    goal = problem.objects[tree.goal]
+    head = f"Goal: {goal}\nMethod: {tree.method}  Status: {tree.status}"
+    if tree.cost:
+        head += f"  ({_cost_text(tree.cost)})"
+    lines = [head]
+    human = set(tree.extra.get("human_steps", []))
+    for step, u in enumerate(tree.units, 1):
+        unit = problem.units[u]
+        who = " [human]" if u in human else ""
+        lines.append(f"  {step:>3}. {unit.motion}{who}")
+        lines.append(f"       in:  {'; '.join(map(str, unit.inputs))}")
+        lines.append(f"       out: {'; '.join(map(str, unit.outputs))}")
+    if not tree.units and tree.status in ("optimal", "feasible", "found"):
+        lines.append("  (already in the kitchen: no steps)")
+    return "\n".join(lines) + "\n"
+
+
+def tree_foon(problem: Problem, tree: TaskTree) -> str:
+    goal = problem.objects[tree.goal]
+    header = f"task tree for {goal} ({tree.method}, {tree.status}, {len(tree.units)} units)"
+    return format_units((problem.units[u] for u in tree.units), header)
+
+
+def render(problem: Problem, trees: list[TaskTree], fmt: str) -> str:
+    if fmt == "json":
+        return to_json(problem, trees) + "\n"
+    if fmt == "foon":
+        return "".join(tree_foon(problem, t) for t in trees)
+    return "\n".join(tree_text(problem, t) for t in trees)
