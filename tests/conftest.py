@@ -1,0 +1,49 @@
+"""Shared fixtures: paths to ../shared and the demo data, small problem builders."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))  # for `import helpers`
+
+REPO = HERE.parent
+SHARED = REPO.parent / "shared"
+DEMO = REPO / "data"
+
+
+@pytest.fixture(scope="session")
+def shared_foon_dir() -> Path:
+    path = SHARED / "foon"
+    if not (path / "FOON.txt").is_file():
+        pytest.skip("../shared/foon is not beside the checkout")
+    return path
+
+
+@pytest.fixture(scope="session")
+def shared_111_dir() -> Path:
+    path = SHARED / "foon-111"
+    if not path.is_dir():
+        pytest.skip("../shared/foon-111 is not beside the checkout")
+    return path
+
+
+@pytest.fixture(scope="session")
+def shared_problem(shared_foon_dir):
+    from foon2asp.loaders import Dataset
+    from foon2asp.problem import Problem
+
+    data = Dataset.load(shared_foon_dir)
+    return data, Problem.from_dataset(data)
+
+
+@pytest.fixture(scope="session")
+def demo_problem():
+    from foon2asp.loaders import Dataset
+    from foon2asp.problem import Problem
+
+    data = Dataset.load(DEMO)
+    return data, Problem.from_dataset(data)

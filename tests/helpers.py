@@ -1,0 +1,61 @@
+"""Small hand-made FOONs and a brute-force oracle for tests.
+
+``build`` makes a Problem from a compact description; ``brute_force`` tries
+every subset of the goal's candidate units and keeps those the independent
+validator accepts, so tests can compare the solver with exhaustive search.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+from foon2asp.model import Foon, FoonObject, Unit
+from foon2asp.problem import Problem
+from foon2asp.tree import measures
+from foon2asp.validate import validate
+
+
+def obj(label: str, *states: str, contains=(), inside=None) -> FoonObject:
+    """obj("tomato", "chopped", inside="bowl")"""
+    return FoonObject.make(label, states, contains, inside)
+
+
+def as_obj(x) -> FoonObject:
+    return x if isinstance(x, FoonObject) else FoonObject.make(x, ["s"]) if isinstance(x, str) else obj(*x)
+
+
+def build(units, kitchen, rates=None, utensils=(), utensil_rule="starter") -> Problem:
+    """``units``: list of (motion, inputs, outputs); objects as FoonObject or
+    plain strings (a string ``"a"`` is the object labelled a with state "s")."""
+    foon = Foon()
+    for motion, ins, outs in units:
+        foon.add_unit(Unit(motion, tuple(as_obj(i) for i in ins), tuple(as_obj(o) for o in outs)))
+    return Problem(foon, [as_obj(k) for k in kitchen], dict(rates or {}), frozenset(utensils), utensil_rule)
+
+
+def goal_id(problem: Problem, x) -> int:
+    return problem.foon.object_ids[as_obj(x)]
+
+
+def brute_force(problem: Problem, goal: int, limit: int = 16) -> list[tuple[int, ...]]:
+    """Every valid tree (as a sorted tuple of unit ids) that is minimal by inclusion
+    is not required: all valid subsets of the units are returned."""
+    n = len(problem.units)
+    assert n <= limit, f"brute force over {n} units is too slow"
+    out = []
+    for k in range(n + 1):
+        for subset in itertools.combinations(range(n), k):
+            if validate(problem, goal, list(subset)).valid:
+                out.append(subset)
+    return out
+
+
+def best(problem: Problem, goal: int, key) -> tuple[float, list[tuple[int, ...]]]:
+    """The best value of ``key(measures)`` over all valid trees, and the trees reaching it."""
+    trees = brute_force(problem, goal)
+    if not trees:
+        return math.inf, []
+    scored = [(key(measures(problem, goal, list(t))), t) for t in trees]
+    top = min(s for s, _ in scored)
+    return top, [t for s, t in scored if s == top]
