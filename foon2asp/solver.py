@@ -137,7 +137,7 @@ class Session:
         self._set_goal(goal, True)
         try:
             with self.ctl.solve(on_model=record, async_=True) as handle:
-                finished = handle.wait(time_limit) if time_limit else handle.wait()
+                finished = bool(handle.wait(time_limit)) if time_limit else (handle.wait() or True)
                 if not finished:
                     handle.cancel()
                 result = handle.get()
@@ -145,8 +145,10 @@ class Session:
             self._set_goal(goal, False)
         elapsed = time.perf_counter() - t0
         if "units" in best:
-            status = "optimal" if (result.exhausted and not result.interrupted) or best["proven"] else "feasible"
-            if not finished and not best["proven"]:
+            # no cost terms at all (e.g. the goal is in the kitchen): any model is optimal
+            proven = best["proven"] or not any(best["cost"])
+            status = "optimal" if (result.exhausted and not result.interrupted) or proven else "feasible"
+            if not finished and not proven:
                 status = "feasible"
         else:
             status = "unreachable" if result.unsatisfiable else "unknown"
