@@ -1,0 +1,161 @@
+"""The command line: JSON shape, goal selection, formats, and one-line errors."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import clingo
+import pytest
+from click.testing import CliRunner
+from conftest import DEMO
+
+from foon2asp.cli import main
+from foon2asp.parser import parse_text
+
+OBJ_KEYS = {"label", "states", "ingredients", "container"}
+
+
+def run(*args, ok=True):
+    result = CliRunner().invoke(main, list(map(str, args)))
+    if ok:
+        assert result.exit_code == 0, result.output + str(result.exception)
+    return result
+
+
+def assert_one_line_error(result, *words):
+    assert result.exit_code == 2
+    err = result.stderr.strip()
+    assert len(err.splitlines()) == 1, err
+    assert err.startswith("foon2asp: error: ")
+    assert "Traceback" not in result.output
+    for w in words:
+        assert w in err, (w, err)
+
+
+def test_json_all_goals_shared(shared_foon_dir):
+    out = json.loads(run("solve", "--data", shared_foon_dir, "--goals", "all", "--format", "json").stdout)
+    assert len(out) == 25
+    for res in out:
+        assert set(res) >= {"goal", "method", "status", "cost", "units", "time_s"}
+        assert set(res["goal"]) == OBJ_KEYS
+        assert res["method"] == "asp-units"
+        if res["status"] == "optimal":
+            assert res["cost"]["units"] == len(res["units"])
+            for unit in res["units"]:
+                assert set(unit) == {"motion", "inputs", "outputs"}
+                assert all(set(o) == OBJ_KEYS for o in unit["inputs"] + unit["outputs"])
+    by_label = {r["goal"]["label"]: r for r in out}
+    assert by_label["greek salad"]["cost"]["units"] == 25
+    assert by_label["whipped cream"]["status"] == "unreachable"
+    assert by_label["whipped cream"]["units"] == []
+
+
+def test_demo_is_default():
+    out = json.loads(run("solve", "--goals", "all", "--format", "json").stdout)
+    assert [r["goal"]["label"] for r in out] == ["tomato salad", "scrambled egg", "whipped cream", "pancake"]
+    assert [r["status"] for r in out] == ["optimal", "optimal", "unreachable", "unreachable"]
+    text = run("solve", "--goal", "tomato salad").stdout
+    assert "Status: optimal" in text and "1. chop" in text
+
+
+def test_foon_format_round_trips(shared_foon_dir):
+    js = json.loads(run("solve", "--data", shared_foon_dir, "--goal", "macaroni", "--format", "json").stdout)[0]
+    text = run("solve", "--data", shared_foon_dir, "--goal", "macaroni", "--format", "foon").stdout
+    assert text.count("//") == len(js["units"]) + 1
+    foon = parse_text(text)
+    assert [u.to_json() for u in foon.units] == js["units"]
+
+
+def test_output_dir(tmp_path):
+    run("solve", "--goals", "all", "--format", "json", "--output", tmp_path)
+    files = sorted(p.name for p in tmp_path.iterdir())
+    assert len(files) == 4 and files[0].startswith("001-tomato_salad")
+    assert json.loads((tmp_path / files[0]).read_text())[0]["status"] == "optimal"
+
+
+def test_goal_from_foon_label_and_ambiguity():
+    # not in the goals file, but a unique produced object
+    out = json.loads(run("solve", "--goal", "pancake batter", "--format", "json").stdout)
+    assert out[0]["status"] == "optimal" and len(out[0]["units"]) == 1
+    res = run("solve", "--goal", "tomato", ok=False)
+    assert_one_line_error(res, "ambiguous" if "ambiguous" in res.stderr else "names", "tomato, chopped")
+
+
+def test_unknown_goal_suggests_labels():
+    res = run("solve", "--goal", "tomato salat", ok=False)
+    assert_one_line_error(res, "tomato salad")
+
+
+def test_bad_kitchen_json(tmp_path):
+    for name in ("FOON.txt", "goal_nodes.json", "motion.txt", "utensils.txt"):
+        (tmp_path / name).write_text((DEMO / name).read_text())
+    (tmp_path / "kitchen.json").write_text('[\n {"label": "knife"},\n {"label": oops}\n]\n')
+    res = run("solve", "--data", tmp_path, "--goals", "all", ok=False)
+    assert_one_line_error(res, "kitchen.json:3:", "bad JSON")
+
+
+def test_bad_foon_line(tmp_path):
+    for name in ("kitchen.json", "goal_nodes.json"):
+        (tmp_path / name).write_text((DEMO / name).read_text())
+    (tmp_path / "FOON.txt").write_text("//\nO\ttomato\nS\twhole\nQ\twhat\n")
+    res = run("solve", "--data", tmp_path, "--goals", "all", ok=False)
+    assert_one_line_error(res, "FOON.txt:4:", "unknown line type")
+
+
+def test_goal_not_in_foon(tmp_path):
+    goals = tmp_path / "goals.json"
+    goals.write_text('[\n  {"label": "tomato salad", "states": ["mixed"], "container": "bowl"},\n'
+                     '  {"label": "tomato salad", "states": ["burnt"], "container": "bowl"}\n]\n')
+    res = run("solve", "--goals", goals, ok=False)
+    assert_one_line_error(res, "goals.json:3:", "not an object of the FOON")
+
+
+def test_bad_motion_rate(tmp_path):
+    for name in ("FOON.txt", "kitchen.json", "goal_nodes.json"):
+        (tmp_path / name).write_text((DEMO / name).read_text())
+    (tmp_path / "motion.txt").write_text("chop\t0.1\nslice\tfast\n")
+    assert_one_line_error(run("solve", "--data", tmp_path, "--goals", "all", ok=False), "motion.txt:2:")
+
+
+def test_missing_data_dir(tmp_path):
+    assert_one_line_error(run("solve", "--data", tmp_path / "nope", "--goals", "all", ok=False), "nope")
+
+
+def test_facts_command(tmp_path, shared_foon_dir):
+    out = tmp_path / "facts.lp"
+    run("facts", "--data", shared_foon_dir, "-o", out)
+    ctl = clingo.Control()
+    ctl.load(str(out))
+    ctl.ground([("base", [])])
+    count = lambda name, arity: sum(1 for _ in ctl.symbolic_atoms.by_signature(name, arity))
+    assert count("unit", 1) == 2376
+    assert count("goal_node", 2) == 25
+    assert count("goal", 1) == 0
+
+
+def test_merge_command(tmp_path, shared_111_dir):
+    files = sorted(shared_111_dir.glob("*.txt"))[:5]
+    out = tmp_path / "merged.txt"
+    res = run("merge", *files, "-o", out)
+    from foon2asp.parser import read_foon, read_foons
+
+    assert read_foon(out).units == read_foons(files).units
+    assert "merged 5 file(s)" in res.stderr
+
+
+def test_module_entry_point(shared_foon_dir):
+    proc = subprocess.run(
+        [sys.executable, "-m", "foon2asp", "solve", "--data", str(shared_foon_dir), "--goal", "ice", "--format", "json"],
+        capture_output=True, text=True, timeout=120,
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)[0]["cost"]["units"] == 1
+
+
+def test_strict_turns_warnings_into_errors(tmp_path, shared_111_dir):
+    bad = shared_111_dir / "0083-pastel-fried_savory_pastry.txt"
+    res = run("merge", bad, "-o", tmp_path / "m.txt")
+    assert "warning" in res.stderr and ":517:" in res.stderr
+    assert_one_line_error(run("merge", "--strict", bad, "-o", tmp_path / "m2.txt", ok=False), ":517:")

@@ -1,0 +1,31 @@
+"""The wheel ships the encodings and the demo data (a non-editable install works)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import zipfile
+
+from conftest import REPO
+
+
+def test_wheel_contains_encodings_and_demo(tmp_path):
+    proc = subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(tmp_path), str(REPO)],
+        capture_output=True, text=True, timeout=300,
+    )
+    assert proc.returncode == 0, proc.stderr
+    wheel = next(tmp_path.glob("foon2asp-*.whl"))
+    names = set(zipfile.ZipFile(wheel).namelist())
+    encodings = {p.name for p in (REPO / "encodings").glob("*.lp")}
+    assert encodings and {f"foon2asp/encodings/{n}" for n in encodings} <= names
+    assert {f"foon2asp/demo/{n}" for n in ("FOON.txt", "kitchen.json", "goal_nodes.json")} <= names
+    assert "foon2asp/cli.py" in names
+
+
+def test_installed_package_finds_its_resources():
+    from foon2asp import programs
+
+    assert "tree" in programs.names() and "units" in programs.names()
+    assert "use(U)" in programs.encoding("tree")
+    assert (programs.demo_dir() / "FOON.txt").is_file()
