@@ -28,7 +28,6 @@ from __future__ import annotations
 import math
 from typing import Iterable
 
-import clingo
 
 from .problem import Problem
 
@@ -36,9 +35,12 @@ from .problem import Problem
 SCALE = 1000
 
 
+_ESCAPES = str.maketrans({"\\": "\\\\", '"': '\\"', "\n": "\\n", "\x00": None})
+
+
 def q(text: str) -> str:
-    """``text`` as an escaped ASP string literal."""
-    return str(clingo.String(text))
+    """``text`` as an escaped ASP string literal (same escaping as ``str(clingo.String(text))``)."""
+    return '"' + text.translate(_ESCAPES) + '"'
 
 
 def success_permille(rate: float) -> int:

@@ -6,7 +6,7 @@ import clingo
 import pytest
 from helpers import build, goal_id, obj
 
-from foon2asp.facts import facts, neglog_weight
+from foon2asp.facts import facts, neglog_weight, q
 from foon2asp.solver import Session
 
 NASTY = [
@@ -93,3 +93,11 @@ def test_required_and_products():
 @pytest.mark.parametrize("rate, weight", [(1.0, 0), (0.5, 693), (0.1, 2303), (0.9, 105)])
 def test_neglog_weights(rate, weight):
     assert neglog_weight(rate) == weight
+
+
+@pytest.mark.parametrize("text", NASTY + ["tab\there", "nul\x00byte", "cr\rlf"])
+def test_quoting_matches_clingo(text):
+    literal = q(text)
+    assert literal == str(clingo.String(text.replace("\x00", "")))
+    (atom,) = ground_atoms(f"x({literal}).")
+    assert atom.arguments[0].string == text.replace("\x00", "")
