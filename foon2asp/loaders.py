@@ -50,13 +50,16 @@ def _json_elements(text: str, path: str) -> list[tuple[object, int]]:
         raise InputError("expected a JSON list of objects", path, _line_of(text, pos))
     pos += 1
     out: list[tuple[object, int]] = []
+    line, counted = 1, 0  # lines are counted incrementally: linear in the file size
     while True:
         while pos < len(text) and text[pos] in " \t\r\n,":
             pos += 1
         if text[pos] == "]":
             return out
         value, end = dec.raw_decode(text, pos)
-        out.append((value, _line_of(text, pos)))
+        line += text.count("\n", counted, pos)
+        counted = pos
+        out.append((value, line))
         pos = end
 
 

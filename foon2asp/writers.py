@@ -21,6 +21,8 @@ def tree_json(problem: Problem, tree: TaskTree) -> dict:
         "units": [problem.units[u].to_json() for u in tree.units],
         "time_s": round(tree.time_s, 6),
     }
+    if tree.stats:
+        out["stats"] = tree.stats
     for key, value in tree.extra.items():
         if key not in out and not key.startswith("_"):
             out[key] = value
