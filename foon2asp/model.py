@@ -25,6 +25,13 @@ class FoonObject:
     ingredients: tuple[str, ...] = ()
     container: str | None = None
 
+    def __post_init__(self) -> None:
+        # objects are dictionary keys everywhere: compute the hash once
+        object.__setattr__(self, "_hash", hash((self.label, self.states, self.ingredients, self.container)))
+
+    def __hash__(self) -> int:
+        return self._hash
+
     @classmethod
     def make(
         cls,

@@ -15,6 +15,7 @@ A trailing ``*`` on a motion label is dropped.
 
 from __future__ import annotations
 
+import gc
 import re
 from pathlib import Path
 from typing import Iterable, TextIO
@@ -42,8 +43,13 @@ class _Obj:
         self.ingredients: list[str] = []
         self.container: str | None = None
 
-    def freeze(self) -> FoonObject:
-        return FoonObject.make(self.label, self.states, self.ingredients, self.container)
+    def freeze(self, memo: dict) -> FoonObject:
+        """The normalised object; ``memo`` maps raw fields to objects already made."""
+        key = (self.label, tuple(self.states), tuple(self.ingredients), self.container)
+        obj = memo.get(key)
+        if obj is None:
+            obj = memo[key] = FoonObject.make(self.label, self.states, self.ingredients, self.container)
+        return obj
 
 
 def parse_lines(
@@ -56,6 +62,17 @@ def parse_lines(
     :class:`InputError` naming the file and line.
     """
     foon = foon if foon is not None else Foon()
+    gc_enabled = gc.isenabled()
+    gc.disable()  # many small long-lived objects: collection passes only cost time here
+    try:
+        return _parse(lines, path, foon, strict)
+    finally:
+        if gc_enabled:
+            gc.enable()
+
+
+def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
+    memo: dict = {}
     inputs: list[_Obj] = []
     outputs: list[_Obj] = []
     motion: str | None = None
@@ -72,7 +89,7 @@ def parse_lines(
                 foon.warnings.append(str(err))
                 inputs, outputs, current = [], [], None
                 return
-            unit = Unit(motion, tuple(o.freeze() for o in inputs), tuple(o.freeze() for o in outputs))
+            unit = Unit(motion, tuple(o.freeze(memo) for o in inputs), tuple(o.freeze(memo) for o in outputs))
             foon.add_unit(unit, (path, start))
         inputs, outputs, motion, current = [], [], None, None
 
