@@ -27,7 +27,8 @@ def _root():
 def demo_dir() -> Path:
     """The demo data set (``data/`` in the source tree, shipped in the wheel)."""
     root = _resource("foon2asp.demo", "data", "FOON.txt")
-    return Path(str(root))
+    # an installed namespace package is a MultiplexedPath: go through one of its files
+    return Path(str(root.joinpath("FOON.txt"))).parent
 
 
 def names() -> list[str]:
