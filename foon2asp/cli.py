@@ -11,12 +11,14 @@ import click
 
 from . import goals as goals_mod
 from . import methods
+from .constraints import ConstraintSpec, unknown_names
 from .errors import InputError
 from .facts import facts as facts_text
 from .loaders import Dataset
 from .parser import read_foons, write_foon
 from .problem import UTENSIL_RULES, Problem
 from .programs import demo_dir
+from .driver import alternatives
 from .solver import OBJECTIVES, AspOptions
 from .writers import FORMATS, render
 
@@ -65,6 +67,41 @@ def goal_options(func):
     return func
 
 
+_CONSTRAINT_KEYS = ("constraint", "rule", "forbid_motion", "forbid_object", "require_motion", "require_object", "max_units")
+
+
+def constraint_options(func):
+    """--constraint FILE.lp, --rule TEXT and the convenience flags, passed on as ``constraints``
+    (a :class:`foon2asp.constraints.ConstraintSpec`; see :func:`constraint_programs`)."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        values = [kwargs.pop(k) for k in _CONSTRAINT_KEYS]
+        spec = ConstraintSpec(*(tuple(v) if isinstance(v, tuple) else v for v in values))
+        return func(*args, constraints=spec, **kwargs)
+
+    opts = [
+        click.option("--constraint", type=click.Path(), multiple=True, help="ASP file with extra rules over the vocabulary (use/1, motion/2, label/2, ...); repeatable."),
+        click.option("--rule", multiple=True, help="An extra ASP rule, e.g. ':- use(U), motion(U,\"fry\").'; repeatable."),
+        click.option("--forbid-motion", multiple=True, metavar="M", help="No unit of the tree has motion M; repeatable."),
+        click.option("--forbid-object", multiple=True, metavar="LABEL", help="No unit of the tree has an input or output labelled LABEL; repeatable."),
+        click.option("--require-motion", multiple=True, metavar="M", help="Some unit of the tree has motion M; repeatable."),
+        click.option("--require-object", multiple=True, metavar="LABEL", help="Some unit of the tree has an input or output labelled LABEL; repeatable."),
+        click.option("--max-units", type=click.IntRange(min=0), help="The tree has at most N units."),
+    ]
+    for opt in reversed(opts):
+        wrapper = opt(wrapper)
+    return wrapper
+
+
+def constraint_programs(spec: ConstraintSpec, problem: Problem | None = None) -> list[tuple[str, str]]:
+    """The (name, text) programs for AspOptions.programs; names no motion/label matches are warned about."""
+    if problem is not None:
+        for warning in unknown_names(problem, spec):
+            click.echo(f"foon2asp: warning: {warning}", err=True)
+    return spec.programs()
+
+
 def load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file=None):
     """Read the data and build the problem; warnings go to stderr."""
     if data_dir is None and not (foon and kitchen):
@@ -101,6 +138,46 @@ def _objective(value: str) -> tuple[str, ...]:
     return parts or ("units",)
 
 
+_SOLVER_KEYS = ("max_depth", "human_steps", "models", "all_optimal", "opt_strategy", "threads")
+SOLVER_DEFAULTS = {"max_depth": None, "human_steps": None, "models": 1, "all_optimal": False, "opt_strategy": None, "threads": 1}
+
+
+def _opt_strategy(ctx, param, value):
+    if value is not None and value.split(",")[0] not in ("bb", "usc"):
+        raise click.BadParameter("expected bb or usc, optionally with clingo's refinements (e.g. usc,oll or bb,hier)")
+    return value
+
+
+def solver_options(func):
+    """--max-depth, --human-steps, --models, --all-optimal, --opt-strategy, --threads, passed on
+    as ``solver_settings`` (keyword arguments of AspOptions)."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        settings = {k: kwargs.pop(k) for k in _SOLVER_KEYS}
+        if settings["models"] > 1 and settings["all_optimal"]:
+            raise click.UsageError("--models and --all-optimal exclude each other")
+        return func(*args, solver_settings=settings, **kwargs)
+
+    opts = [
+        click.option("--max-depth", type=click.IntRange(min=1), help="Only trees of at most N sequential rounds (the goal's level); with --objective depth, the search stops there."),
+        click.option("--human-steps", type=click.IntRange(min=0), help="At most M units may be done by a person (success 1.0); the solver picks them, the output marks them."),
+        click.option("--models", type=click.IntRange(min=1), default=1, show_default=True, help="The K best distinct trees per goal, best first."),
+        click.option("--all-optimal", is_flag=True, help="Every optimal tree per goal (at most 100)."),
+        click.option("--opt-strategy", callback=_opt_strategy, help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll."),
+        click.option("--threads", type=click.IntRange(min=1), default=1, show_default=True, help="clingo solver threads (parallel mode)."),
+    ]
+    for opt in reversed(opts):
+        wrapper = opt(wrapper)
+    return wrapper
+
+
+def _solver_warnings(problem: Problem, trees: list) -> None:
+    for tree in trees:
+        if "note" in tree.extra:
+            click.echo(f"foon2asp: warning: {problem.objects[tree.goal].label}: {tree.extra['note']}", err=True)
+
+
 def safe_name(index: int, label: str) -> str:
     keep = "".join(c if c.isalnum() else "_" for c in label).strip("_")[:60] or "goal"
     return f"{index:03d}-{keep}"
@@ -115,17 +192,23 @@ def main():
 @main.command()
 @data_options
 @goal_options
+@constraint_options
 @click.option("--method", default="asp", show_default=True, help="A registered method (see 'foon2asp methods').")
 @click.option("--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first.")
 @click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True)
 @click.option("--output", type=click.Path(file_okay=False), help="Also write one file per goal into this directory.")
 @click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
+@solver_options
 @guarded
-def solve(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, method, objective, fmt, output, time_limit):
+def solve(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, method, objective, fmt, output, time_limit, constraints, solver_settings):
     """Find the best task tree for each goal."""
     data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(data, problem, goal, goals)
-    options = AspOptions(objective=_objective(objective), time_limit=time_limit)
+    if constraints and methods.get(method).kind != "asp":
+        raise InputError(f"constraints apply to ASP methods only; {method!r} is a search baseline")
+    if methods.get(method).kind != "asp" and solver_settings != SOLVER_DEFAULTS:
+        raise InputError(f"solver settings apply to ASP methods only; {method!r} is a search baseline")
+    options = AspOptions(objective=_objective(objective), time_limit=time_limit, programs=constraint_programs(constraints, problem), **solver_settings)
     run = methods.runner(method, problem, options)
     trees = []
     out_dir = Path(output) if output else None
@@ -133,11 +216,13 @@ def solve(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal,
         out_dir.mkdir(parents=True, exist_ok=True)
     for index, g in enumerate(goal_ids, 1):
         tree = run(g)
-        trees.append(tree)
+        found = alternatives(tree)  # --models / --all-optimal: the further trees, best first
+        trees.extend(found)
         if out_dir:
             ext = {"text": "txt", "json": "json", "foon": "txt"}[fmt]
             name = safe_name(index, problem.objects[g].label) + ("" if fmt != "foon" else ".foon") + f".{ext}"
-            (out_dir / name).write_text(render(problem, [tree], fmt), encoding="utf-8")
+            (out_dir / name).write_text(render(problem, found, fmt), encoding="utf-8")
+    _solver_warnings(problem, trees)
     click.echo(render(problem, trees, fmt), nl=False)
 
 
@@ -185,6 +270,181 @@ def list_methods():
     for name in methods.names():
         m = methods.get(name)
         click.echo(f"{name:16} {m.kind:7} {m.description}")
+
+
+@main.command()
+@click.argument("tree", type=click.Path())
+@data_options
+@click.option("--goal", "goal", help="Goal label (default: the goal a JSON result names, else inferred from the tree).")
+@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+@click.option("--optimum/--no-optimum", default=True, show_default=True, help="Also solve the ASP optimum to compare with.")
+@guarded
+def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, fmt, optimum):
+    """Check a task tree (FOON text with // between units, or foon2asp JSON).
+
+    Exit status: 0 valid, 1 invalid, 2 bad input.
+    """
+    import json
+
+    from . import check as check_mod
+
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict)
+    reports = check_mod.check_file(data, problem, tree, goal, optimum)
+    if fmt == "json":
+        click.echo(json.dumps([check_mod.report_json(problem, r) for r in reports], indent=2))
+    else:
+        click.echo("\n".join(check_mod.report_text(problem, r) for r in reports), nl=False)
+    sys.exit(0 if all(r.valid for r in reports) else 1)
+
+
+@main.command()
+@data_options
+@goal_options
+@constraint_options
+@click.option("--methods", "method_list", default="ids,gbfs-h1,gbfs-h2,asp", show_default=True, help="Comma-separated registered methods (see 'foon2asp methods').")
+@click.option("--format", "fmt", type=click.Choice(("text", "markdown", "csv", "json")), default="text", show_default=True)
+@click.option("--time-limit", type=float, help="Seconds per goal for ASP methods.")
+@guarded
+def compare(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, method_list, fmt, time_limit, constraints):
+    """Compare methods goal by goal: units, validity, success product, depth (default: --goals all)."""
+    from . import compare as compare_mod
+
+    if not goal and not goals:
+        goals = "all"
+    names = [m.strip() for m in method_list.split(",") if m.strip()]
+    for name in names:
+        methods.get(name)  # unknown names fail before any work
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    goal_ids = goals_mod.resolve(data, problem, goal, goals)
+    programs = constraint_programs(constraints, problem)
+    search = [n for n in names if methods.get(n).kind != "asp"]
+    if programs and search:
+        click.echo(f"foon2asp: warning: constraints apply to ASP methods only; {', '.join(search)} ignore them", err=True)
+    rows = compare_mod.compare(problem, goal_ids, names, AspOptions(time_limit=time_limit, programs=programs))
+    click.echo(compare_mod.render(problem, rows, fmt), nl=False)
+
+
+def _goals_or_default(data, problem, goal, goals) -> list[int]:
+    """--goal/--goals, else every entry of the goals file, else every made object."""
+    if not goal and not goals:
+        goals = "all" if data.paths.get("goals") else "all-objects"
+    return goals_mod.resolve(data, problem, goal, goals)
+
+
+@main.command()
+@data_options
+@goal_options
+@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+@guarded
+def reachable(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt):
+    """Which goals (or objects) can be made from the kitchen at all, in one solve (default: --goals all)."""
+    import json
+
+    from . import queries
+
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    answers = queries.reachable(problem, _goals_or_default(data, problem, goal, goals))
+    if fmt == "json":
+        click.echo(json.dumps(queries.reachable_json(problem, answers), indent=2))
+    else:
+        click.echo(queries.reachable_text(problem, answers), nl=False)
+
+
+@main.command()
+@data_options
+@goal_options
+@constraint_options
+@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+@click.option("--time-limit", type=float, help="Seconds per goal; the best answer so far is reported as 'feasible'.")
+@guarded
+def missing(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, time_limit, constraints):
+    """The fewest objects to add to the kitchen so a goal can be made (proven minimal), and the tree."""
+    import json
+
+    from . import queries
+
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    goal_ids = goals_mod.resolve(data, problem, goal, goals)
+    programs = constraint_programs(constraints, problem)
+    results = [queries.missing(problem, g, programs, time_limit) for g in goal_ids]
+    if fmt == "json":
+        click.echo(json.dumps([queries.missing_json(problem, r) for r in results], indent=2))
+    else:
+        click.echo("\n".join(queries.missing_text(problem, r) for r in results), nl=False)
+
+
+@main.command()
+@click.argument("program", type=click.Path())
+@data_options
+@click.option("--goals", "goals_file", help="Goals FILE for goal_node/2 (default: goal_nodes.json of --data).")
+@click.option("--goal", "goal", help="Also add goal(O) for this goal label.")
+@click.option("--encoding", "encoding_names", multiple=True, help="Also load a shipped encoding (tree, units, reachable, missing); repeatable.")
+@click.option("--models", type=click.IntRange(min=0), default=1, show_default=True, help="Models to print (0 = all); with an objective, the optimum.")
+@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+@click.option("--time-limit", type=float, help="Seconds for the solve.")
+@guarded
+def query(program, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file, goal, encoding_names, models, fmt, time_limit):
+    """Run your ASP PROGRAM with the FOON facts; print its shown atoms with ids as readable objects.
+
+    Exit status: 0 with a model, 1 when unsatisfiable, 2 bad input.
+    """
+    import json
+
+    from . import queries
+    from .constraints import read_file
+
+    text = read_file(program)
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file)
+    path = data.paths.get("goals")
+    goal_nodes = [goals_mod.goal_id(problem, obj, path, line) for obj, line in data.goals]
+    goal_id = goals_mod.resolve_label(data, problem, goal) if goal else None
+    result = queries.query(problem, (program, text), goal_nodes, goal_id, encoding_names, models, time_limit)
+    if fmt == "json":
+        click.echo(json.dumps(queries.query_json(problem, result), indent=2))
+    else:
+        click.echo(queries.query_text(problem, result), nl=False)
+    sys.exit(1 if result.status == "unsatisfiable" else 0)
+
+
+def _method_list(values: tuple[str, ...]) -> list[str]:
+    names = [n.strip() for v in values for n in v.split(",") if n.strip()]
+    for name in names:
+        methods.get(name)
+    return list(dict.fromkeys(names)) or ["asp"]
+
+
+@main.command()
+@data_options
+@goal_options
+@click.option("--methods", "method_list", multiple=True, help="Registered methods, comma-separated or repeated (default: asp).")
+@click.option("--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first.")
+@click.option("--output", default="results.jsonl", show_default=True, type=click.Path(dir_okay=False), help="Results, one JSON line per (goal, method).")
+@click.option("--resume", is_flag=True, help="Continue OUTPUT: skip the (goal, method) pairs it already holds.")
+@click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True, help="Worker processes.")
+@click.option("--scheduler", metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra).")
+@click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
+@click.option("--opt-strategy", callback=_opt_strategy, help="clingo optimisation strategy: bb or usc (core-guided, often much faster here), e.g. usc,oll.")
+@click.option("--grounding", type=click.Choice(("whole", "per-goal")), default="whole", show_default=True, help="One grounding for all goals, or a small grounding of each goal's relevant part (very large FOONs).")
+@click.option("--shortcuts/--no-shortcuts", default=True, show_default=True, help="Answer without the solver when the answer is forced (underivable goal; no choice in the goal's part).")
+@click.option("--summary", "summary_fmt", type=click.Choice(("text", "markdown", "csv")), default="text", show_default=True, help="Format of the summary printed at the end.")
+@click.option("--progress/--no-progress", default=None, help="Progress bar (default: when stderr is a terminal).")
+@click.option("--fsync/--no-fsync", default=True, show_default=True, help="Sync each result line to disk.")
+@guarded
+def batch(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, method_list, objective, output, resume, workers, scheduler, time_limit, opt_strategy, grounding, shortcuts, summary_fmt, progress, fsync):
+    """Solve many goals with several methods; resumable JSON-lines output and a summary."""
+    from . import batch as batch_mod
+
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    goal_ids = goals_mod.resolve(data, problem, goal, goals)
+    options = AspOptions(objective=_objective(objective), time_limit=time_limit, opt_strategy=opt_strategy)
+    spec = batch_mod.BatchSpec(problem, _method_list(method_list), options, grounding, shortcuts)
+    executor = None
+    if scheduler:
+        from . import dask_runner
+
+        executor = dask_runner.executor(scheduler)
+    report = batch_mod.run_batch(spec, goal_ids, output, resume, workers, progress, fsync, executor)
+    click.echo(batch_mod.render_summary(batch_mod.summarize(report.records), summary_fmt, report), nl=False)
 
 
 if __name__ == "__main__":  # pragma: no cover

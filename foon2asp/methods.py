@@ -13,7 +13,7 @@ from typing import Callable
 
 from .errors import InputError
 from .problem import Problem
-from .solver import OBJECTIVES, AspOptions, Session
+from .solver import HEURISTICS, OBJECTIVES, AspOptions, Session
 from .tree import TaskTree
 
 Runner = Callable[[int], TaskTree]
@@ -72,6 +72,20 @@ def _fixed_objective(objective: str) -> Factory:
 
 for _name in list(OBJECTIVES):
     register(f"asp-{_name}", "asp", f"ASP, proven optimal for the objective {_name!r}")(_fixed_objective(_name))
+
+
+def _greedy(heuristic: str) -> Factory:
+    def factory(problem: Problem, options: AspOptions) -> Runner:
+        return Session(problem, replace(options, heuristic=heuristic)).solve
+
+    return factory
+
+
+_GREEDY = {"h1": "highest motion success rate", "h2": "fewest input nodes"}
+for _h in HEURISTICS:
+    register(
+        f"asp-greedy-{_h}", "asp", f"ASP first model under #heuristic {_h} ({_GREEDY[_h]}), valid by construction"
+    )(_greedy(_h))
 
 
 _loaded = False

@@ -13,14 +13,18 @@ from typing import Callable, Iterable
 
 import clingo
 
-from . import programs
+from . import objectives, programs
+from .constraints import check, clingo_error
 from .errors import InputError
 from .facts import facts
 from .problem import Problem
 from .tree import TaskTree, executable_order, measures
 
 #: objective name -> encoding that defines it (all use objective(Name,Priority))
-OBJECTIVES: dict[str, str] = {"units": "units"}
+OBJECTIVES: dict[str, str] = {"units": "units", "success": "success", "inputs": "inputs", "depth": "depth"}
+
+#: greedy retrieval inside the solver (AspOptions.heuristic -> encodings/greedy_NAME.lp)
+HEURISTICS = ("h1", "h2")
 
 
 @dataclass
@@ -36,13 +40,38 @@ class AspOptions:
     opt_strategy: str | None = None
     threads: int = 1
     clingo_args: list[str] = field(default_factory=list)
+    #: ground only these units (e.g. the goals' relevant units); None: all units
+    units: tuple[int, ...] | None = None
+    #: only trees of at most this many sequential rounds (see foon2asp.depth)
+    max_depth: int | None = None
+    #: at most this many units may be done by a person (success 1.0 for those)
+    human_steps: int | None = None
+    #: the K best distinct trees per goal, best first
+    models: int = 1
+    #: every optimal tree, at most all_optimal_cap of them
+    all_optimal: bool = False
+    all_optimal_cap: int = 100
+    #: "h1" | "h2": greedy retrieval in the solver (first model under #heuristic)
+    heuristic: str | None = None
 
     @property
     def method(self) -> str:
+        if self.heuristic:
+            return f"asp-greedy-{self.heuristic}"
         return "asp-" + ",".join(self.objective)
+
+    @property
+    def driven(self) -> bool:
+        """Does solving need foon2asp.driver (more than one plain optimisation)?"""
+        return bool(
+            self.heuristic or self.max_depth is not None or self.human_steps is not None
+            or self.models > 1 or self.all_optimal or "depth" in self.objective
+        )
 
     def args(self) -> list[str]:
         args = ["--opt-mode=opt"]
+        if self.heuristic:
+            args.append("--heuristic=Domain")
         if self.opt_strategy:
             args.append(f"--opt-strategy={self.opt_strategy}")
         if self.threads and self.threads > 1:
@@ -74,11 +103,15 @@ class Session:
         self.problem = problem
         self.options = options or AspOptions()
         self._log = _Logger()
-        self.ctl = clingo.Control(self.options.args(), logger=self._log, message_limit=20)
-        names = ["tree"] + [OBJECTIVES[o] for o in self.options.objective] + self.options.encodings
-        parts = [("facts", facts(problem, units=units))]
+        try:
+            self.ctl = clingo.Control(self.options.args(), logger=self._log, message_limit=20)
+        except RuntimeError as exc:
+            raise InputError(f"bad solver option: {' '.join(str(exc).split())}") from None
+        names = ["tree"] + objectives.encoding_names(self.options, OBJECTIVES) + self.options.encodings
+        parts = [("facts", facts(problem, units=units if units is not None else self.options.units))]
         parts += [(f"encodings/{n}.lp", programs.encoding(n)) for n in dict.fromkeys(names)]
-        parts.append(("objective", _objective_facts(self.options.objective)))
+        parts.append(("objective", _objective_facts(objectives.ranked(self.options))))
+        parts += objectives.extra_parts(problem, self.options, units if units is not None else self.options.units)
         parts.append(("goal", "#external goal(O) : object(O).\n"))
         parts += list(self.options.programs)
         t0 = time.perf_counter()
@@ -86,6 +119,7 @@ class Session:
             self._add(name, text)
         self._ground()
         self.ground_s = time.perf_counter() - t0
+        self._driver = None
         self.goal_atoms = {
             a.symbol.arguments[0].number
             for a in self.ctl.symbolic_atoms.by_signature("goal", 1)
@@ -97,13 +131,16 @@ class Session:
         try:
             self.ctl.add("base", [], text)
         except RuntimeError:
-            raise InputError(self._message(name), name) from None
+            raise clingo_error(self._log.messages, name) from None
 
     def _ground(self) -> None:
         self._log.messages.clear()
         try:
             self.ctl.ground([("base", [])])
         except RuntimeError:
+            # locate the culprit: user programs are checked one by one
+            for name, text in self.options.programs:
+                check(name, text)
             raise InputError(self._message("grounding")) from None
 
     def _message(self, name: str) -> str:
@@ -120,6 +157,13 @@ class Session:
         time_limit: float | None = None,
     ) -> TaskTree:
         """The best tree for ``goal`` (an object id), proven optimal unless time runs out."""
+        if self.options.driven:
+            # depth bounds, human steps, alternatives, greedy: see foon2asp.driver
+            if self._driver is None:
+                from .driver import Driver
+
+                self._driver = Driver(self)
+            return self._driver.solve(goal, on_model, time_limit)
         time_limit = self.options.time_limit if time_limit is None else time_limit
         t0 = time.perf_counter()
         if goal not in self.goal_atoms:
@@ -141,6 +185,7 @@ class Session:
                 if not finished:
                     handle.cancel()
                 result = handle.get()
+            stats = self.stats()
         finally:
             self._set_goal(goal, False)
         elapsed = time.perf_counter() - t0
@@ -161,7 +206,7 @@ class Session:
             units,
             cost,
             round(elapsed, 6),
-            self.stats(),
+            stats,
             {"asp_cost": best.get("cost", [])} if best else {},
         )
 

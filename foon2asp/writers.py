@@ -42,6 +42,12 @@ def tree_text(problem: Problem, tree: TaskTree) -> str:
     head = f"Goal: {goal}\nMethod: {tree.method}  Status: {tree.status}"
     if tree.cost:
         head += f"  ({_cost_text(tree.cost)})"
+    if "rank" in tree.extra:
+        head += f"  Rank: {tree.extra['rank']}"
+    if tree.extra.get("human_steps"):
+        head += f"  Human steps: {len(tree.extra['human_steps'])}"
+    if tree.extra.get("reason"):
+        head += f"  ({tree.extra['reason']})"
     lines = [head]
     human = set(tree.extra.get("human_steps", []))
     for step, u in enumerate(tree.units, 1):
