@@ -299,3 +299,19 @@ def test_combinations_are_conjunctions():
         for m1, m2 in itertools.combinations(MOTIONS, 2):
             progs = [("a", constraints.forbid_motion(m1)), ("b", constraints.forbid_motion(m2))]
             check_against(problem, goal, progs, lambda t: not ({m1, m2} & motions_of(problem, t)))
+
+
+def test_batch_applies_constraints_like_solve(tmp_path):
+    out = tmp_path / "b.jsonl"
+    args = ["--goals", "all", "--forbid-motion", "chop"]
+    res = CliRunner().invoke(main, ["batch", *args, "--output", str(out), "--no-progress"])
+    assert res.exit_code == 0, res.output
+    batch = {json.loads(l)["goal"]["label"]: json.loads(l) for l in out.read_text().splitlines()}
+    solved = json.loads(CliRunner().invoke(main, ["solve", *args, "--format", "json"]).stdout)
+    assert len(batch) == len(solved) == 4
+    for r in solved:
+        b = batch[r["goal"]["label"]]
+        assert (b["status"], b["cost"].get("units")) == (r["status"], r["cost"].get("units"))
+        assert all(u["motion"] != "chop" for u in b["units"])
+    # without chop the tomato salad takes slice + dice: one unit more than the unconstrained optimum
+    assert batch["tomato salad"]["cost"]["units"] == 5
