@@ -429,14 +429,20 @@ def _method_list(values: tuple[str, ...]) -> list[str]:
 @click.option("--summary", "summary_fmt", type=click.Choice(("text", "markdown", "csv")), default="text", show_default=True, help="Format of the summary printed at the end.")
 @click.option("--progress/--no-progress", default=None, help="Progress bar (default: when stderr is a terminal).")
 @click.option("--fsync/--no-fsync", default=True, show_default=True, help="Sync each result line to disk.")
+@constraint_options
 @guarded
-def batch(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, method_list, objective, output, resume, workers, scheduler, time_limit, opt_strategy, grounding, shortcuts, summary_fmt, progress, fsync):
+def batch(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, method_list, objective, output, resume, workers, scheduler, time_limit, opt_strategy, grounding, shortcuts, summary_fmt, progress, fsync, constraints):
     """Solve many goals with several methods; resumable JSON-lines output and a summary."""
     from . import batch as batch_mod
 
     data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(data, problem, goal, goals)
-    options = AspOptions(objective=_objective(objective), time_limit=time_limit, opt_strategy=opt_strategy)
+    options = AspOptions(
+        objective=_objective(objective),
+        time_limit=time_limit,
+        opt_strategy=opt_strategy,
+        programs=constraint_programs(constraints, problem),
+    )
     spec = batch_mod.BatchSpec(problem, _method_list(method_list), options, grounding, shortcuts)
     executor = None
     if scheduler:
