@@ -498,8 +498,7 @@ def check_file(data, problem: Problem, path: str | Path, goal_label: str | None 
         from .solver import AspOptions, Session
 
         goals = list(dict.fromkeys(r.goal for r in reports))
-        relevant = sorted({u for g in goals for u in problem.relevant_units(g)})
-        session = Session(problem, AspOptions(units=tuple(relevant)))
+        session = Session(problem, AspOptions(units=problem.units_for(goals)))
         best = {g: session.solve(g) for g in goals}
         for r in reports:
             r.optimum = best[r.goal]

@@ -208,7 +208,9 @@ def solve(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal,
         raise InputError(f"constraints apply to ASP methods only; {method!r} is a search baseline")
     if methods.get(method).kind != "asp" and solver_settings != SOLVER_DEFAULTS:
         raise InputError(f"solver settings apply to ASP methods only; {method!r} is a search baseline")
-    options = AspOptions(objective=_objective(objective), time_limit=time_limit, programs=constraint_programs(constraints, problem), **solver_settings)
+    # ASP grounds only the units a tree for these goals can use (same trees, far smaller grounding)
+    units = problem.units_for(goal_ids) if methods.get(method).kind == "asp" else None
+    options = AspOptions(objective=_objective(objective), time_limit=time_limit, programs=constraint_programs(constraints, problem), units=units, **solver_settings)
     run = methods.runner(method, problem, options)
     trees = []
     out_dir = Path(output) if output else None

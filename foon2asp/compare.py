@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 from dataclasses import dataclass, replace
 
 from . import methods
@@ -20,7 +19,7 @@ from .check import check_units
 from .problem import Problem
 from .solver import AspOptions
 from .tree import TaskTree
-from .writers import tree_json
+from .writers import json_list, tree_json
 
 DEFAULT_METHODS = ("ids", "gbfs-h1", "gbfs-h2", "asp")
 FORMATS = ("text", "markdown", "csv", "json")
@@ -59,8 +58,7 @@ def compare(
     """
     options = options or AspOptions()
     if options.units is None:
-        relevant = sorted({u for g in goals for u in problem.relevant_units(g)})
-        options = replace(options, units=tuple(relevant))
+        options = replace(options, units=problem.units_for(goals))
     runners = {name: methods.runner(name, problem, options) for name in dict.fromkeys(method_names)}
     rows = []
     for g in goals:
@@ -185,7 +183,7 @@ def render_csv(problem: Problem, rows: list[Row]) -> str:
 
 def render_json(problem: Problem, rows: list[Row]) -> str:
     """A flat list of ``solve``-shaped results, each with ``"valid"``."""
-    return json.dumps([tree_json(problem, t) for r in rows for t in r.trees.values()], indent=2) + "\n"
+    return json_list([tree_json(problem, t) for r in rows for t in r.trees.values()]) + "\n"
 
 
 def render(problem: Problem, rows: list[Row], fmt: str) -> str:

@@ -52,29 +52,40 @@ def neglog_weight(rate: float) -> int:
     return round(-math.log(success_permille(rate) / SCALE) * SCALE)
 
 
-def object_facts(problem: Problem, oid: int) -> list[str]:
+def object_facts(problem: Problem, oid: int, leave_out: frozenset[str] = frozenset()) -> list[str]:
     obj = problem.objects[oid]
-    out = [f"object({oid}).", f"label({oid},{q(obj.label)})."]
-    out += [f"state({oid},{q(s)})." for s in obj.states]
-    out += [f"ingredient({oid},{q(i)})." for i in obj.ingredients]
-    if obj.container is not None:
+    out = [f"object({oid})."]
+    if "label" not in leave_out:
+        out.append(f"label({oid},{q(obj.label)}).")
+    if "state" not in leave_out:
+        out += [f"state({oid},{q(s)})." for s in obj.states]
+    if "ingredient" not in leave_out:
+        out += [f"ingredient({oid},{q(i)})." for i in obj.ingredients]
+    if obj.container is not None and "container" not in leave_out:
         out.append(f"container({oid},{q(obj.container)}).")
     return out
 
 
-def unit_facts(problem: Problem, u: int) -> list[str]:
+def unit_facts(problem: Problem, u: int, leave_out: frozenset[str] = frozenset()) -> list[str]:
     rate = problem.rates[u]
-    out = [
-        f"unit({u}).",
-        f"motion({u},{q(problem.units[u].motion)}).",
-        f"success({u},{success_permille(rate)}).",
-        f"neglog({u},{neglog_weight(rate)}).",
-    ]
-    out += [f"input({u},{o})." for o in dict.fromkeys(problem.inputs[u])]
+    out = [f"unit({u})."]
+    if "motion" not in leave_out:
+        out.append(f"motion({u},{q(problem.units[u].motion)}).")
+    if "success" not in leave_out:
+        out.append(f"success({u},{success_permille(rate)}).")
+    if "neglog" not in leave_out:
+        out.append(f"neglog({u},{neglog_weight(rate)}).")
+    if "input" not in leave_out:
+        out += [f"input({u},{o})." for o in dict.fromkeys(problem.inputs[u])]
     out += [f"required({u},{o})." for o in problem.required[u]]
-    out += [f"output({u},{o})." for o in dict.fromkeys(problem.outputs[u])]
+    if "output" not in leave_out:
+        out += [f"output({u},{o})." for o in dict.fromkeys(problem.outputs[u])]
     out += [f"product({u},{o})." for o in problem.products[u]]
     return out
+
+
+#: predicates a solver session may leave out when no program it grounds reads them
+OPTIONAL = ("label", "state", "ingredient", "container", "motion", "success", "neglog", "input", "output")
 
 
 def facts(
@@ -82,17 +93,25 @@ def facts(
     goal_nodes: Iterable[int] = (),
     goal: int | None = None,
     units: Iterable[int] | None = None,
+    leave_out: Iterable[str] = (),
 ) -> str:
     """The facts as ASP text.
 
     ``units`` restricts the FOON part to those units (and their objects);
     ``goal_nodes`` are written as ``goal_node(N,O)``, ``goal`` as ``goal(O)``.
+    ``leave_out`` names predicates of :data:`OPTIONAL` not to write: the tree
+    encodings read none of the strings, ``input/2`` or ``output/2``, and a
+    solver session grounds faster without facts nobody reads.
     """
+    leave_out = frozenset(leave_out)
+    unknown = leave_out - set(OPTIONAL)
+    if unknown:
+        raise ValueError(f"facts cannot leave out {sorted(unknown)}")
     unit_ids = range(len(problem.units)) if units is None else sorted(set(units))
     objects: set[int] = set()
     lines = ["% units"]
     for u in unit_ids:
-        lines += unit_facts(problem, u)
+        lines += unit_facts(problem, u, leave_out)
         objects.update(problem.inputs[u])
         objects.update(problem.outputs[u])
     objects.update(o for o in problem.kitchen)
@@ -101,8 +120,11 @@ def facts(
     if goal is not None:
         objects.add(goal)
     lines.append("% objects")
-    for o in sorted(objects):
-        lines += object_facts(problem, o)
+    if leave_out.issuperset(("label", "state", "ingredient", "container")):
+        lines += [f"object({o})." for o in sorted(objects)]
+    else:
+        for o in sorted(objects):
+            lines += object_facts(problem, o, leave_out)
     lines.append("% kitchen")
     lines += [f"kitchen({o})." for o in sorted(problem.kitchen) if o in objects]
     if goal_nodes:

@@ -85,6 +85,16 @@ def read_objects(path: str | Path, what: str) -> list[FoonObject]:
     """A JSON list of objects (kitchen.json, goal_nodes.json)."""
     path = Path(path)
     text = _read_text(path, what)
+    try:
+        values = json.loads(text)
+    except json.JSONDecodeError:
+        values = None
+    if isinstance(values, list):
+        # one pass without line numbers; they are found only for a message
+        try:
+            return [object_from_json(v, str(path), 0) for v in values]
+        except InputError:
+            pass
     return [object_from_json(v, str(path), line) for v, line in _json_elements(text, str(path))]
 
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Iterable
 
 from .loaders import Dataset
 from .model import Foon, FoonObject, Unit
@@ -103,7 +104,7 @@ class Problem:
         pool = range(len(self.units)) if units is None else units
         waiting: dict[int, int] = {}
         users: dict[int, list[int]] = {}
-        obj_level: dict[int, int] = {o: 0 for o in self.kitchen}
+        obj_level: dict[int, int] = dict.fromkeys(self.kitchen, 0)
         unit_level: dict[int, int] = {}
         frontier: list[int] = []
         for u in pool:
@@ -131,6 +132,36 @@ class Problem:
                     if waiting[u] == 0:
                         frontier.append(u)
         return obj_level, unit_level
+
+    @cached_property
+    def viable_units(self) -> frozenset[int]:
+        """Units that fire in the kitchen's least fixpoint; no tree can use any other unit."""
+        return frozenset(self.derivation_levels()[1])
+
+    def units_for(self, goals: Iterable[int]) -> tuple[int, ...]:
+        """The units a tree for any of ``goals`` can use: relevant to one of them and viable.
+
+        Grounding only these gives the same trees as grounding the whole FOON
+        (one backwards walk from all goals, then :attr:`viable_units`).
+        """
+        seen = set(goals)
+        stack = list(seen)
+        units: set[int] = set()
+        kitchen, producers, required = self.kitchen, self.producers, self.required
+        while stack:
+            o = stack.pop()
+            if o in kitchen:
+                continue
+            for u in producers.get(o, ()):
+                if u in units:
+                    continue
+                units.add(u)
+                for i in required[u]:
+                    if i not in seen:
+                        seen.add(i)
+                        stack.append(i)
+        viable = self.viable_units
+        return tuple(sorted(u for u in units if u in viable))
 
     def relevant_units(self, goal: int) -> list[int]:
         """Units that can contribute to ``goal`` (backwards from it, kitchen items stop)."""

@@ -7,6 +7,7 @@ encodings once; each :meth:`Session.solve` then switches the external atom
 
 from __future__ import annotations
 
+import re
 import time
 from dataclasses import dataclass, field
 from typing import Callable, Iterable
@@ -16,7 +17,7 @@ import clingo
 from . import objectives, programs
 from .constraints import check, clingo_error
 from .errors import InputError
-from .facts import facts
+from .facts import OPTIONAL, facts
 from .problem import Problem
 from .tree import TaskTree, executable_order, measures
 
@@ -96,6 +97,15 @@ def _objective_facts(objective: Iterable[str]) -> str:
     return "".join(f"objective({name},{n - i}).\n" for i, name in enumerate(objective))
 
 
+_OPTIONAL_FACTS = re.compile(r"\b(" + "|".join((*OPTIONAL, "input_nodes")) + r")\s*\(")
+
+
+def _read_predicates(parts: list[tuple[str, str]]) -> set[str]:
+    """The optional fact predicates (facts.OPTIONAL, input_nodes) some program mentions
+    outside the part that defines them (a mention in a comment counts too: harmless)."""
+    return {m.group(1) for name, text in parts if name != "input nodes" for m in _OPTIONAL_FACTS.finditer(text)}
+
+
 class Session:
     """One grounding of ``problem`` with the tree encoding and an objective."""
 
@@ -108,12 +118,21 @@ class Session:
         except RuntimeError as exc:
             raise InputError(f"bad solver option: {' '.join(str(exc).split())}") from None
         names = ["tree"] + objectives.encoding_names(self.options, OBJECTIVES) + self.options.encodings
-        parts = [("facts", facts(problem, units=units if units is not None else self.options.units))]
-        parts += [(f"encodings/{n}.lp", programs.encoding(n)) for n in dict.fromkeys(names)]
-        parts.append(("objective", _objective_facts(objectives.ranked(self.options))))
-        parts += objectives.extra_parts(problem, self.options, units if units is not None else self.options.units)
-        parts.append(("goal", "#external goal(O) : object(O).\n"))
-        parts += list(self.options.programs)
+        if units is None:
+            units = self.options.units
+        if units is None:
+            # a unit that never fires in the kitchen's fixpoint is never a candidate
+            units = sorted(problem.viable_units)
+        rules = [(f"encodings/{n}.lp", programs.encoding(n)) for n in dict.fromkeys(names)]
+        rules.append(("objective", _objective_facts(objectives.ranked(self.options))))
+        rules += objectives.extra_parts(problem, self.options, units)
+        rules.append(("goal", "#external goal(O) : object(O).\n"))
+        rules += list(self.options.programs)
+        # facts nobody reads are left out (the strings, input/2, ...: user constraints read them)
+        read = _read_predicates(rules)
+        rules = [(name, text) for name, text in rules if name != "input nodes" or "input_nodes" in read]
+        leave_out = [p for p in OPTIONAL if p not in read]
+        parts = [("facts", facts(problem, units=units, leave_out=leave_out))] + rules
         t0 = time.perf_counter()
         for name, text in parts:
             self._add(name, text)
@@ -167,8 +186,9 @@ class Session:
         time_limit = self.options.time_limit if time_limit is None else time_limit
         t0 = time.perf_counter()
         if goal not in self.goal_atoms:
-            # the goal is not an object of the grounded facts: nothing makes it
-            return TaskTree(goal, self.options.method, "unreachable", time_s=time.perf_counter() - t0)
+            # the goal is not an object of the grounded facts: nothing makes it (no solve call)
+            stats = {"choices": 0, "conflicts": 0, "models": 0, "solve_s": 0.0}
+            return TaskTree(goal, self.options.method, "unreachable", time_s=time.perf_counter() - t0, stats=stats)
         best: dict = {}
 
         def record(model: clingo.Model) -> None:
@@ -211,18 +231,42 @@ class Session:
         )
 
     def stats(self) -> dict:
-        s = self.ctl.statistics
-        try:
-            solving = s["solving"]["solvers"]
-            summary = s["summary"]
-            return {
-                "choices": int(solving["choices"]),
-                "conflicts": int(solving["conflicts"]),
-                "models": int(summary["models"]["enumerated"]),
-                "solve_s": round(summary["times"]["solve"], 6),
-            }
-        except (KeyError, RuntimeError):
-            return {}
+        """Choices, conflicts, models and solve time of the last solve call."""
+        return _stats(_statistics_view(self.ctl))
+
+
+def _statistics_view(ctl: clingo.Control):
+    """The statistics of the last solve call, read lazily.
+
+    ``ctl.statistics`` converts the whole tree into dicts (about 1 ms on a
+    large grounding); a :class:`clingo.statistics.StatisticsMap` on the root
+    reads only the few values asked for.  Falls back to ``ctl.statistics``
+    should clingo's internals differ.
+    """
+    try:
+        from clingo._internal import _c_call, _ffi, _lib
+        from clingo.statistics import StatisticsMap
+
+        stats = _c_call("clingo_statistics_t*", _lib.clingo_control_statistics, ctl._rep)
+        root = _c_call(_ffi.new("uint64_t*"), _lib.clingo_statistics_root, stats)
+        return StatisticsMap(stats, root)
+    except (ImportError, AttributeError, TypeError):
+        return ctl.statistics
+
+
+def _stats(s) -> dict:
+    """The reported numbers from a statistics tree (a dict or a clingo StatisticsMap)."""
+    try:
+        solving = s["solving"]["solvers"]
+        summary = s["summary"]
+        return {
+            "choices": int(solving["choices"]),
+            "conflicts": int(solving["conflicts"]),
+            "models": int(summary["models"]["enumerated"]),
+            "solve_s": round(summary["times"]["solve"], 6),
+        }
+    except (KeyError, RuntimeError):
+        return {}
 
 
 def solve_goals(problem: Problem, goals: Iterable[int], options: AspOptions | None = None) -> list[TaskTree]:

@@ -29,8 +29,22 @@ def tree_json(problem: Problem, tree: TaskTree) -> dict:
     return out
 
 
+def json_list(records: list[dict], indent: int | None = 2) -> str:
+    """A JSON list with one record per line (``indent=None``: all on one line).
+
+    Each record is encoded by ``json.dumps`` without indentation, which uses
+    the C encoder; ``indent`` would switch the whole list to the much slower
+    pure-Python encoder.
+    """
+    if indent is None:
+        return json.dumps(records)
+    if not records:
+        return "[]"
+    return "[\n" + ",\n".join(json.dumps(r) for r in records) + "\n]"
+
+
 def to_json(problem: Problem, trees: list[TaskTree], indent: int | None = 2) -> str:
-    return json.dumps([tree_json(problem, t) for t in trees], indent=indent)
+    return json_list([tree_json(problem, t) for t in trees], indent)
 
 
 def _cost_text(cost: dict) -> str:
