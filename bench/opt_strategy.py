@@ -30,6 +30,7 @@ OBJECTIVES = (
     ("success",),
     ("inputs",),
     ("depth",),
+    ("depth", "success"),
     ("success", "depth"),
     ("units", "depth"),
 )

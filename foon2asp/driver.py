@@ -2,8 +2,8 @@
 features beyond a single optimisation: depth bounds (:mod:`foon2asp.depth`),
 human steps, the K best trees, all optimal trees and greedy retrieval.
 
-Every solve sets the externals it needs (``goal(G)``, ``query(t)``,
-``within(t)``, exclusion guards) and switches them off again afterwards, so
+Every solve sets the externals it needs (``goal(G)``, ``query(k)``,
+``within(k)``, exclusion guards) and switches them off again afterwards, so
 the next goal of the session starts clean; clingo proves each optimum anew
 for the current externals (tests compare with a fresh Control per goal).
 

@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from typing import Iterable
 
-from .facts import SCALE
+from .facts import SCALE, success_permille
 from .problem import Problem
 
 #: the tie-breaker appended to every objective list that lacks it
@@ -67,11 +67,52 @@ def input_node_facts(problem: Problem, units: Iterable[int] | None = None) -> st
     return "".join(f"input_nodes({u},{len(problem.inputs[u])}).\n" for u in ids)
 
 
+def greedy_key(problem: Problem, heuristic: str, unit: int) -> tuple[int, int]:
+    """The order of producers for greedy retrieval (smaller first): h1 the highest
+    success rate (in thousandths, as ``success/2``), h2 the fewest input nodes (as
+    ``input_nodes/2``); ties to the unit first in FOON file order."""
+    if heuristic == "h1":
+        return (-success_permille(problem.rates[unit]), unit)
+    if heuristic == "h2":
+        return (len(problem.inputs[unit]), unit)
+    raise ValueError(f"unknown heuristic {heuristic!r}")
+
+
+def rank_facts(problem: Problem, heuristic: str, units: Iterable[int] | None = None) -> str:
+    """``rank(O,U,R).``: U is the producer of O that greedy retrieval tries R-th (from 0),
+    among the producers in ``units`` (all units when None)."""
+    ids = range(len(problem.units)) if units is None else sorted(set(units))
+    producers: dict[int, list[int]] = {}
+    for u in ids:
+        for o in problem.products[u]:
+            producers.setdefault(o, []).append(u)
+    out = []
+    for o, us in producers.items():
+        us.sort(key=lambda u: greedy_key(problem, heuristic, u))
+        out += [f"rank({o},{u},{r}).\n" for r, u in enumerate(us)]
+    return "".join(out)
+
+
+def human_order_facts(problem: Problem, units: Iterable[int] | None = None) -> str:
+    """``human_unit(P,U).``: the units with a positive success weight, heaviest (least
+    likely) first, ties in FOON file order; a person does the first M used ones."""
+    from .facts import neglog_weight
+
+    ids = range(len(problem.units)) if units is None else sorted(set(units))
+    weighted = [(neglog_weight(problem.rates[u]), u) for u in ids]
+    order = sorted(((-w, u) for w, u in weighted if w > 0))
+    return "".join(f"human_unit({p},{u}).\n" for p, (_, u) in enumerate(order, 1))
+
+
 def extra_parts(problem: Problem, options, units: Iterable[int] | None = None) -> list[tuple[str, str]]:
     """Facts and directives the encodings of ``options`` read, as (name, text) programs."""
     parts = [("input nodes", input_node_facts(problem, units))]
+    if options.heuristic:
+        parts.append(("producer ranks", rank_facts(problem, options.heuristic, units)))
     if options.human_steps is not None:
         parts.append(("human steps", f"human_limit({int(options.human_steps)}).\n"))
+        if "success" in ranked(options) and options.human_steps > 0:
+            parts.append(("human order", human_order_facts(problem, units)))
     # distinct answers are distinct sets of units (used when enumerating)
     parts.append(("projection", "#project use/1.\n"))
     return parts

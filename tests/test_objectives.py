@@ -145,6 +145,46 @@ def test_depth_loop_reports_bound_and_proof(disagree):
     assert tree.extra["asp_cost"][0] == 2
 
 
+def test_depth_bound_raised_past_the_level_under_a_constraint(disagree):
+    """The goal's level (2, the WIDE tree) is only a lower bound: forbidding the motion
+    of WIDE makes the solver refute bound 2, and the loop goes on to the chain (3)."""
+    problem, goal = disagree
+    forbid = ("no mixing", ':- use(U), motion(U,"mix").\n')
+    tree = solve(problem, goal, objective=("depth",), programs=[forbid])
+    trees = [t for t in brute_force(problem, goal) if not any(problem.units[u].motion == "mix" for u in t)]
+    top, best = brute_best(problem, goal, ("depth",), trees)
+    assert tree.status == "optimal" and [tuple(sorted(tree.units))] == best == [CHAIN]
+    assert tree.cost["depth"] == top[0] == tree.extra["depth_bound"] == 3
+    assert tree.extra["depth_refuted"] == {"grounder": 1, "solver": 1}
+    # with a --max-depth below what is left, nothing remains
+    assert solve(problem, goal, objective=("depth",), programs=[forbid], max_depth=2).status == "unreachable"
+
+
+def test_depth_levels_and_windows(shared):
+    """The levels the depth loop starts from are Problem.derivation_levels, whether read
+    from the Problem or from the grounded atoms; every unit of an optimal tree of depth d
+    fires inside its window for d."""
+    from foon2asp.depth import Levels
+
+    problem, goals = shared
+    session = Session(problem, AspOptions(objective=("depth",)))
+    from_problem = Levels.from_problem(problem, range(len(problem.units)))
+    from_control = Levels.from_control(session.ctl)
+    obj_level, unit_level = problem.derivation_levels()
+    made = {o: lv for o, lv in obj_level.items() if o not in problem.kitchen}
+    for index in (from_problem, from_control):
+        assert index.object_level == made and index.unit_level == unit_level
+    for g in goals[1:5]:
+        tree = session.solve(g)
+        if not tree.has_tree:
+            continue
+        windows = {u: (lo, hi) for u, lo, hi in from_control.windows(g, tree.cost["depth"])}
+        assert windows == {u: (lo, hi) for u, lo, hi in from_problem.windows(g, tree.cost["depth"])}
+        assert windows and set(tree.units) <= set(windows)
+        fires = problem.derivation_levels(tree.units)[1]
+        assert all(windows[u][0] <= fires[u] for u in tree.units)
+
+
 def test_human_steps(disagree):
     problem, goal = disagree
     for m in (0, 1, 2, 3):
@@ -257,16 +297,29 @@ def test_brute_force_human_steps(seed):
     problem = random_foon(seed)
     for g in made_goals(problem):
         trees = brute_force(problem, g)
-        tree = solve(problem, g, objective=("success",), human_steps=1)
-        if not trees:
-            assert tree.status == "unreachable"
-            continue
-        # one human step: the least likely unit of the tree is done by a person
-        best = min(
-            sum(sorted((neglog_weight(problem.rates[u]) for u in t), reverse=True)[1:]) for t in trees
-        )
-        assert tree.extra["asp_cost"][0] == best
-        assert neglog_sum(problem, tree.units, tree.extra["human_steps"]) == best
+        for m in (1, 2):
+            tree = solve(problem, g, objective=("success",), human_steps=m)
+            if not trees:
+                assert tree.status == "unreachable"
+                continue
+            # m human steps: the m least likely units of the tree are done by a person
+            best = min(
+                sum(sorted((neglog_weight(problem.rates[u]) for u in t), reverse=True)[m:]) for t in trees
+            )
+            assert tree.status == "optimal"
+            assert tree.extra["asp_cost"][0] == best
+            human = tree.extra["human_steps"]
+            assert len(human) <= m and set(human) <= set(tree.units)
+            assert neglog_sum(problem, tree.units, human) == best
+
+
+def test_human_steps_without_success_objective(disagree):
+    """A human step only raises the success product: with another objective none is
+    marked, and the tree is that objective's optimum."""
+    problem, goal = disagree
+    tree = solve(problem, goal, objective=("units",), human_steps=2)
+    assert tree.status == "optimal" and sorted(tree.units) == list(CHAIN)
+    assert tree.extra["human_steps"] == []
 
 
 def kept_in_order(problem, goal, trees, objective):
