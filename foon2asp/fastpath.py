@@ -37,7 +37,7 @@ from functools import cached_property
 
 from . import methods
 from .facts import neglog_weight
-from .problem import Problem
+from .problem import Problem, walk_back
 from .solver import AspOptions
 from .tree import TaskTree, executable_order, measures
 
@@ -78,27 +78,7 @@ class Parts:
         goal and the required inputs reached, ``choice`` whether some object
         has more than one candidate producer.
         """
-        problem = self.problem
-        kitchen = problem.kitchen
-        seen = {goal}
-        stack = [goal]
-        units: set[int] = set()
-        choice = False
-        while stack:
-            obj = stack.pop()
-            if obj in kitchen:
-                continue
-            producers = self.producers.get(obj, ())
-            if len(producers) > 1:
-                choice = True
-            for u in producers:
-                if u in units:
-                    continue
-                units.add(u)
-                for i in problem.required[u]:
-                    if i not in seen:
-                        seen.add(i)
-                        stack.append(i)
+        units, seen, choice = walk_back([goal], self.problem.kitchen, self.producers, self.problem.required)
         return sorted(units), seen, choice
 
 

@@ -41,6 +41,40 @@ def required_flags(unit: Unit, utensils: frozenset[str], rule: str = "starter") 
     return flags
 
 
+def walk_back(
+    goals: Iterable[int],
+    kitchen: frozenset[int],
+    producers: dict[int, list[int]],
+    required: list[tuple[int, ...]] | dict,
+) -> tuple[set[int], set[int], bool]:
+    """Backwards from ``goals`` through ``producers`` and their required inputs.
+
+    Returns ``(units, objects, choice)``: the units reached, the objects
+    reached (the goals included), and whether some non-kitchen object reached
+    has more than one producer.  Kitchen items stop the walk.
+    """
+    seen = set(goals)
+    stack = list(seen)
+    units: set[int] = set()
+    choice = False
+    while stack:
+        o = stack.pop()
+        if o in kitchen:
+            continue
+        makers = producers.get(o, ())
+        if len(makers) > 1:
+            choice = True
+        for u in makers:
+            if u in units:
+                continue
+            units.add(u)
+            for i in required[u]:
+                if i not in seen:
+                    seen.add(i)
+                    stack.append(i)
+    return units, seen, choice
+
+
 @dataclass
 class Problem:
     """A FOON with kitchen, rates and the semantics above, as integer ids."""
@@ -144,40 +178,10 @@ class Problem:
         Grounding only these gives the same trees as grounding the whole FOON
         (one backwards walk from all goals, then :attr:`viable_units`).
         """
-        seen = set(goals)
-        stack = list(seen)
-        units: set[int] = set()
-        kitchen, producers, required = self.kitchen, self.producers, self.required
-        while stack:
-            o = stack.pop()
-            if o in kitchen:
-                continue
-            for u in producers.get(o, ()):
-                if u in units:
-                    continue
-                units.add(u)
-                for i in required[u]:
-                    if i not in seen:
-                        seen.add(i)
-                        stack.append(i)
+        units, _, _ = walk_back(goals, self.kitchen, self.producers, self.required)
         viable = self.viable_units
         return tuple(sorted(u for u in units if u in viable))
 
     def relevant_units(self, goal: int) -> list[int]:
         """Units that can contribute to ``goal`` (backwards from it, kitchen items stop)."""
-        seen_obj = {goal}
-        stack = [goal]
-        units: set[int] = set()
-        while stack:
-            o = stack.pop()
-            if o in self.kitchen:
-                continue
-            for u in self.producers.get(o, ()):
-                if u in units:
-                    continue
-                units.add(u)
-                for i in self.required[u]:
-                    if i not in seen_obj:
-                        seen_obj.add(i)
-                        stack.append(i)
-        return sorted(units)
+        return sorted(walk_back([goal], self.kitchen, self.producers, self.required)[0])
