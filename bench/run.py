@@ -32,12 +32,12 @@ sys.path.insert(0, str(ROOT))
 
 from foon2asp import goals as goals_mod  # noqa: E402
 from foon2asp import methods  # noqa: E402
-from foon2asp.facts import facts  # noqa: E402
-from foon2asp.fastpath import BatchRunner, Parts  # noqa: E402
-from foon2asp.loaders import Dataset  # noqa: E402
-from foon2asp.problem import Problem  # noqa: E402
-from foon2asp.solver import AspOptions  # noqa: E402
-from foon2asp.validate import validate  # noqa: E402
+from foon2asp.asp.facts import facts  # noqa: E402
+from foon2asp.methods.planner import BatchRunner, Parts  # noqa: E402
+from foon2asp.foon.loaders import Dataset  # noqa: E402
+from foon2asp.foon.problem import Problem  # noqa: E402
+from foon2asp.asp.session import AspOptions  # noqa: E402
+from foon2asp.tree.validate import validate  # noqa: E402
 
 
 def peak_mb() -> float:
@@ -136,7 +136,7 @@ def p2(foon_dir: Path) -> dict:
 
 def p3_one(foon_dir: Path, factor: int, sample: int, seed: int) -> dict:
     """One factor, in this process (run by p3 in a subprocess for a clean peak RSS)."""
-    from foon2asp.synth import synthesize
+    from foon2asp.foon.synth import synthesize
 
     data = Dataset.load(foon_dir)
     t = time.perf_counter()

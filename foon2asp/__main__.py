@@ -1,3 +1,3 @@
-from .cli import main
+from foon2asp.cli.main import main
 
 main(prog_name="foon2asp")

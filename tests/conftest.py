@@ -33,8 +33,8 @@ def shared_111_dir() -> Path:
 
 @pytest.fixture(scope="session")
 def shared_problem(shared_foon_dir):
-    from foon2asp.loaders import Dataset
-    from foon2asp.problem import Problem
+    from foon2asp.foon.loaders import Dataset
+    from foon2asp.foon.problem import Problem
 
     data = Dataset.load(shared_foon_dir)
     return data, Problem.from_dataset(data)
@@ -42,8 +42,8 @@ def shared_problem(shared_foon_dir):
 
 @pytest.fixture(scope="session")
 def demo_problem():
-    from foon2asp.loaders import Dataset
-    from foon2asp.problem import Problem
+    from foon2asp.foon.loaders import Dataset
+    from foon2asp.foon.problem import Problem
 
     data = Dataset.load(DEMO)
     return data, Problem.from_dataset(data)

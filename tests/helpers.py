@@ -10,10 +10,10 @@ from __future__ import annotations
 import itertools
 import math
 
-from foon2asp.model import Foon, FoonObject, Unit
-from foon2asp.problem import Problem
-from foon2asp.tree import measures
-from foon2asp.validate import validate
+from foon2asp.foon.model import Foon, FoonObject, Unit
+from foon2asp.foon.problem import Problem
+from foon2asp.tree.tasktree import measures
+from foon2asp.tree.validate import validate
 
 
 def obj(label: str, *states: str, contains=(), inside=None) -> FoonObject:

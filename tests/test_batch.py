@@ -15,15 +15,15 @@ from pathlib import Path
 import pytest
 from helpers import best, build, goal_id
 
-from foon2asp import goals as goals_mod
+from foon2asp.foon import goals as goals_mod
 from foon2asp import methods
-from foon2asp.batch import BatchSpec, read_results, render_summary, run_batch, summarize
+from foon2asp.batch.run import BatchSpec, read_results, render_summary, run_batch, summarize
 from foon2asp.errors import InputError
-from foon2asp.fastpath import BatchRunner, Parts
-from foon2asp.solver import AspOptions, Session
-from foon2asp.synth import shape, synthesize
-from foon2asp.validate import validate
-from foon2asp.writers import tree_json
+from foon2asp.methods.planner import BatchRunner, Parts
+from foon2asp.asp.session import AspOptions, Session
+from foon2asp.foon.synth import shape, synthesize
+from foon2asp.tree.validate import validate
+from foon2asp.report.trees import tree_json
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -120,8 +120,8 @@ def test_batch_equals_solve_on_shared(shared_problem, tmp_path):
 
 
 def unit_id(problem, unit_json: dict) -> int:
-    from foon2asp.loaders import object_from_json
-    from foon2asp.model import Unit
+    from foon2asp.foon.loaders import object_from_json
+    from foon2asp.foon.model import Unit
 
     unit = Unit(
         unit_json["motion"],
@@ -216,7 +216,7 @@ def test_workers_give_same_results(shared_problem, tmp_path):
 
 def test_dask_local_cluster(shared_problem, tmp_path):
     distributed = pytest.importorskip("distributed")
-    from foon2asp.dask_runner import executor
+    from foon2asp.batch.cluster import executor
 
     _, p = shared_problem
     goal_ids = _subset(p, 40)
@@ -234,8 +234,7 @@ def test_dask_local_cluster(shared_problem, tmp_path):
 def test_dask_missing_is_a_clear_error(monkeypatch):
     import builtins
 
-    from foon2asp import dask_runner
-
+    from foon2asp.batch import cluster as dask_runner
     real = builtins.__import__
 
     def fake(name, *args, **kwargs):
@@ -304,14 +303,14 @@ def test_synthetic_copy_solves_like_base(shared_problem, tmp_path):
     data, p = shared_problem
     syn = synthesize(data, 3, seed=1)
     syn.write(tmp_path / "syn")
-    from foon2asp.loaders import Dataset
-    from foon2asp.problem import Problem
+    from foon2asp.foon.loaders import Dataset
+    from foon2asp.foon.problem import Problem
 
     q = Problem.from_dataset(Dataset.load(tmp_path / "syn"))
     assert len(q.units) == len(syn.foon.units)
     base_goal = goals_mod.resolve(data, p, ("greek salad",), None)[0]
     obj = p.objects[base_goal]
-    from foon2asp.synth import _rename
+    from foon2asp.foon.synth import _rename
 
     copy_goal = q.foon.object_ids[_rename(obj, 2)]
     base_tree = Session(p).solve(base_goal)

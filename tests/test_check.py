@@ -12,12 +12,12 @@ from conftest import DEMO
 from helpers import build, goal_id, obj
 
 from foon2asp import methods
-from foon2asp.check import check_units, diagnose, read_trees
-from foon2asp.cli import main
+from foon2asp.analysis.check import check_units, diagnose, read_trees
+from foon2asp.cli.main import main
 from foon2asp.errors import InputError
-from foon2asp.goals import resolve_label
-from foon2asp.parser import format_units, unit_lines
-from foon2asp.validate import validate
+from foon2asp.foon.goals import resolve_label
+from foon2asp.foon.parser import format_units, unit_lines
+from foon2asp.tree.validate import validate
 
 
 def cli(*args):

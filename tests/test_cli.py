@@ -11,8 +11,8 @@ import pytest
 from click.testing import CliRunner
 from conftest import DEMO
 
-from foon2asp.cli import main
-from foon2asp.parser import parse_text
+from foon2asp.cli.main import main
+from foon2asp.foon.parser import parse_text
 
 OBJ_KEYS = {"label", "states", "ingredients", "container"}
 
@@ -139,7 +139,7 @@ def test_merge_command(tmp_path, shared_111_dir):
     files = sorted(shared_111_dir.glob("*.txt"))[:5]
     out = tmp_path / "merged.txt"
     res = run("merge", *files, "-o", out)
-    from foon2asp.parser import read_foon, read_foons
+    from foon2asp.foon.parser import read_foon, read_foons
 
     assert read_foon(out).units == read_foons(files).units
     assert "merged 5 file(s)" in res.stderr

@@ -12,11 +12,11 @@ from click.testing import CliRunner
 from helpers import best, build, goal_id
 
 from foon2asp import methods
-from foon2asp.cli import main
-from foon2asp.compare import DEFAULT_METHODS, compare, render
-from foon2asp.solver import Session
-from foon2asp.tree import TaskTree
-from foon2asp.validate import validate
+from foon2asp.cli.main import main
+from foon2asp.analysis.compare import DEFAULT_METHODS, compare, render
+from foon2asp.asp.session import Session
+from foon2asp.tree.tasktree import TaskTree
+from foon2asp.tree.validate import validate
 
 
 def cli(*args):

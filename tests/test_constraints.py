@@ -10,11 +10,11 @@ import pytest
 from click.testing import CliRunner
 from helpers import brute_force, build, goal_id, obj
 
-from foon2asp import constraints
-from foon2asp.cli import main
+from foon2asp.asp import constraints
+from foon2asp.cli.main import main
 from foon2asp.errors import InputError
-from foon2asp.solver import AspOptions, Session
-from foon2asp.validate import validate
+from foon2asp.asp.session import AspOptions, Session
+from foon2asp.tree.validate import validate
 
 MOTIONS = ("cut", "mix", "heat")
 LABELS = "abcdefg"
@@ -276,8 +276,7 @@ def test_cli_constraints_need_an_asp_method_and_warn_on_unknown_names():
 
 
 def test_shared_forbidding_a_used_motion(shared_problem):
-    from foon2asp import goals
-
+    from foon2asp.foon import goals
     data, problem = shared_problem
     g = goals.resolve_label(data, problem, "macaroni")
     session = Session(problem, AspOptions(), units=None)

@@ -7,8 +7,8 @@ import random
 import pytest
 from helpers import best, brute_force, build, goal_id, obj
 
-from foon2asp.solver import Session
-from foon2asp.validate import check_order, validate
+from foon2asp.asp.session import Session
+from foon2asp.tree.validate import check_order, validate
 
 
 def solve(problem, goal):

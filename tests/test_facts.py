@@ -6,8 +6,8 @@ import clingo
 import pytest
 from helpers import build, goal_id, obj
 
-from foon2asp.facts import facts, neglog_weight, q
-from foon2asp.solver import Session
+from foon2asp.asp.facts import facts, neglog_weight, q
+from foon2asp.asp.session import Session
 
 NASTY = [
     'quote " inside',

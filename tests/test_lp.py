@@ -12,8 +12,7 @@ from pathlib import Path
 import clingo
 import pytest
 
-from foon2asp import programs
-
+from foon2asp.asp import encodings
 CASES = sorted((Path(__file__).parent / "lp").glob("*.lp"))
 
 
@@ -32,7 +31,7 @@ def test_lp_case(case: Path):
     spec = header(text)
     ctl = clingo.Control(["--opt-mode=optN", "0"])
     for name in spec["encodings"].split():
-        ctl.add("base", [], programs.encoding(name))
+        ctl.add("base", [], encodings.encoding(name))
     ctl.add("base", [], text)
     ctl.ground([("base", [])])
     optimal = []

@@ -14,15 +14,15 @@ from click.testing import CliRunner
 from helpers import brute_force, build, goal_id
 
 from foon2asp import methods
-from foon2asp.cli import main
-from foon2asp.driver import alternatives
-from foon2asp.facts import neglog_weight
-from foon2asp.objectives import neglog_sum, success_product
-from foon2asp.parser import write_foon
+from foon2asp.cli.main import main
+from foon2asp.asp.multishot.driver import alternatives
+from foon2asp.asp.facts import neglog_weight
+from foon2asp.asp.objectives import neglog_sum, success_product
+from foon2asp.foon.parser import write_foon
 from foon2asp.search import gbfs, h1, h2
-from foon2asp.solver import AspOptions, Session
-from foon2asp.tree import measures
-from foon2asp.validate import validate
+from foon2asp.asp.session import AspOptions, Session
+from foon2asp.tree.tasktree import measures
+from foon2asp.tree.validate import validate
 
 # --------------------------------------------------------------------------- keys
 
@@ -164,7 +164,7 @@ def test_depth_levels_and_windows(shared):
     """The levels the depth loop starts from are Problem.derivation_levels, whether read
     from the Problem or from the grounded atoms; every unit of an optimal tree of depth d
     fires inside its window for d."""
-    from foon2asp.depth import Levels
+    from foon2asp.asp.multishot.depth import Levels
 
     problem, goals = shared
     session = Session(problem, AspOptions(objective=("depth",)))
@@ -205,7 +205,7 @@ def test_human_steps(disagree):
 
 
 def test_human_steps_marked_in_text(disagree):
-    from foon2asp.writers import render
+    from foon2asp.report.trees import render
 
     problem, goal = disagree
     tree = solve(problem, goal, objective=("success",), human_steps=1)

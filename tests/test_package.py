@@ -17,15 +17,16 @@ def test_wheel_contains_encodings_and_demo(tmp_path):
     assert proc.returncode == 0, proc.stderr
     wheel = next(tmp_path.glob("foon2asp-*.whl"))
     names = set(zipfile.ZipFile(wheel).namelist())
-    encodings = {p.name for p in (REPO / "encodings").glob("*.lp")}
-    assert encodings and {f"foon2asp/encodings/{n}" for n in encodings} <= names
+    encodings = {p.name for p in (REPO / "foon2asp" / "asp" / "encodings").glob("*.lp")}
+    assert encodings and {f"foon2asp/asp/encodings/{n}" for n in encodings} <= names
     assert {f"foon2asp/demo/{n}" for n in ("FOON.txt", "kitchen.json", "goal_nodes.json")} <= names
-    assert "foon2asp/cli.py" in names
+    assert {"foon2asp/cli/main.py", "foon2asp/py.typed"} <= names
 
 
 def test_installed_package_finds_its_resources():
-    from foon2asp import programs
+    from foon2asp.asp import encodings
+    from foon2asp.foon.demo import demo_dir
 
-    assert "tree" in programs.names() and "units" in programs.names()
-    assert "use(U)" in programs.encoding("tree")
-    assert (programs.demo_dir() / "FOON.txt").is_file()
+    assert "tree" in encodings.names() and "units" in encodings.names()
+    assert "use(U)" in encodings.encoding("tree")
+    assert (demo_dir() / "FOON.txt").is_file()

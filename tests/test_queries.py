@@ -9,12 +9,16 @@ import pytest
 from click.testing import CliRunner
 from helpers import as_obj, brute_force, build, goal_id
 
-from foon2asp import constraints, goals, queries
-from foon2asp.cli import main
+from foon2asp.asp import constraints
+
+from foon2asp.foon import goals
+
+from foon2asp.analysis import queries
+from foon2asp.cli.main import main
 from foon2asp.errors import InputError
-from foon2asp.problem import Problem
-from foon2asp.solver import AspOptions, Session
-from foon2asp.validate import validate
+from foon2asp.foon.problem import Problem
+from foon2asp.asp.session import AspOptions, Session
+from foon2asp.tree.validate import validate
 
 # ---------------------------------------------------------------- independent oracles
 

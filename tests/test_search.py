@@ -8,10 +8,10 @@ import pytest
 from helpers import best, brute_force, build, goal_id, obj
 
 from foon2asp import methods
-from foon2asp.goals import goal_id as goal_of
+from foon2asp.foon.goals import goal_id as goal_of
 from foon2asp.search import IDS, gbfs, h1, h2
-from foon2asp.tree import measures
-from foon2asp.validate import check_order, validate
+from foon2asp.tree.tasktree import measures
+from foon2asp.tree.validate import check_order, validate
 
 
 def run(problem, name, goal):
@@ -305,7 +305,7 @@ def test_solve_command_accepts_search_methods():
 
     from click.testing import CliRunner
 
-    from foon2asp.cli import main
+    from foon2asp.cli.main import main
 
     for name in ("ids", "gbfs-h1", "gbfs-h2"):
         res = CliRunner().invoke(main, ["solve", "--goal", "tomato salad", "--method", name, "--format", "json"])

@@ -1,0 +1,504 @@
+"""Checking a task tree from a file: does it exist in the FOON, is it well-founded?
+
+A tree is read either as FOON text (units closed by ``//``, the format the
+earlier search programs and ``solve --format foon`` write; a leading ``//``
+and ``#`` comment lines are fine) or as foon2asp JSON (the list ``solve
+--format json`` prints, or one such result).  Each unit is matched to a FOON
+unit by :meth:`Unit.key` (motion, set of inputs, set of outputs).
+
+The verdict comes from the independent validator (:mod:`foon2asp.validate`):
+the tree is valid iff every unit is in the FOON, every unit fires from the
+kitchen using only units of the tree, and the goal is made.  When it is not
+valid, :func:`diagnose` names the first problem found walking back from the
+goal: an unknown unit, a missing input (nothing in the tree makes it and it
+is not in the kitchen), or circular support, with the cycle spelled out as
+object -> unit -> object ... back to the start.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+from foon2asp.asp.session import AspOptions, Session
+from foon2asp.errors import InputError
+from foon2asp.foon import goals as goals_mod
+from foon2asp.foon.loaders import object_from_json
+from foon2asp.foon.model import FoonObject, Unit
+from foon2asp.foon.parser import parse_lines
+from foon2asp.foon.problem import Problem, required_flags
+from foon2asp.tree.tasktree import TaskTree, measures
+from foon2asp.tree.validate import Validation, check_order, validate
+
+
+@dataclass
+class TreeUnit:
+    """One unit as read from the tree file."""
+
+    unit: Unit
+    step: int  # 1-based position in the file
+    line: int | None  # line in the file (None when not known)
+
+
+@dataclass
+class TreeFile:
+    """One tree read from a file: its units and, when the file says, its goal."""
+
+    path: str
+    units: list[TreeUnit]
+    goal: FoonObject | None = None
+    method: str | None = None
+    line: int | None = None  # where this tree starts (JSON lists hold several)
+
+    def where(self, tu: TreeUnit) -> str:
+        return f"{self.path}:{tu.line}" if tu.line else f"{self.path} step {tu.step}"
+
+
+@dataclass
+class Finding:
+    """The first problem of an invalid tree."""
+
+    kind: str  # "unknown-unit" | "missing-input" | "cycle" | "goal-not-made"
+    message: str
+    #: for a cycle: (object, unit) pairs -- the object is made by the unit, which
+    #: needs the next pair's object; the last unit needs the first object
+    cycle: list[tuple[int, int]] = field(default_factory=list)
+    #: the object that is missing or not made (missing-input, goal-not-made)
+    obj: int | None = None
+    #: the unit that needs the missing object
+    unit: int | None = None
+
+
+@dataclass
+class Report:
+    """Everything ``foon2asp check`` says about one tree."""
+
+    tree: TreeFile
+    goal: int
+    ids: list[int | None]  # FOON unit id per tree unit (None: unknown)
+    valid: bool
+    finding: Finding | None
+    validation: Validation | None
+    order_problem: str | None  # None when the order as written is executable
+    cost: dict
+    optimum: TaskTree | None = None
+    goal_source: str = ""
+
+
+# ---------------------------------------------------------------- reading
+
+
+def _looks_like_json(text: str) -> bool:
+    return text.lstrip()[:1] in ("[", "{")
+
+
+def _read_foon_tree(text: str, path: str) -> list[TreeFile]:
+    foon = parse_lines(text.splitlines(), path, strict=True)
+    if not foon.units:
+        raise InputError("no functional units in the tree file (expected FOON text or foon2asp JSON)", path)
+    units = [TreeUnit(u, step, origin[1]) for step, (u, origin) in enumerate(zip(foon.units, foon.origins), 1)]
+    return [TreeFile(path, units)]
+
+
+def _line_of(text: str, pos: int) -> int:
+    return text.count("\n", 0, pos) + 1
+
+
+def _json_unit(value: object, path: str, line: int, step: int) -> Unit:
+    if not isinstance(value, dict) or not isinstance(value.get("motion"), str):
+        raise InputError(f"unit {step} is not an object with a 'motion' string", path, line)
+    parts = []
+    for side in ("inputs", "outputs"):
+        items = value.get(side)
+        if not isinstance(items, list):
+            raise InputError(f"unit {step} has no '{side}' list", path, line)
+        parts.append(tuple(object_from_json(o, path, line) for o in items))
+    return Unit(" ".join(value["motion"].split()).lower().rstrip("*").strip(), parts[0], parts[1])
+
+
+def _read_json_tree(text: str, path: str) -> list[TreeFile]:
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InputError(f"bad JSON: {exc.msg}", path, exc.lineno) from None
+    results = data if isinstance(data, list) else [data]
+    # the line each top-level result starts on, for messages
+    starts: list[int] = []
+    if isinstance(data, list):
+        dec = json.JSONDecoder()
+        pos = text.index("[") + 1
+        line, counted = 1, 0
+        for _ in results:
+            while text[pos] in " \t\r\n,":
+                pos += 1
+            line += text.count("\n", counted, pos)
+            counted = pos
+            starts.append(line)
+            pos = dec.raw_decode(text, pos)[1]
+    else:
+        starts.append(_line_of(text, len(text) - len(text.lstrip())))
+    trees = []
+    for result, line in zip(results, starts):
+        if not isinstance(result, dict) or not isinstance(result.get("units"), list):
+            raise InputError("expected a foon2asp result: an object with a 'units' list", path, line)
+        goal = object_from_json(result["goal"], path, line) if result.get("goal") is not None else None
+        units = [TreeUnit(_json_unit(u, path, line, i), i, None) for i, u in enumerate(result["units"], 1)]
+        method = result.get("method") if isinstance(result.get("method"), str) else None
+        trees.append(TreeFile(path, units, goal, method, line))
+    if not trees:
+        raise InputError("the JSON list holds no task tree", path, 1)
+    return trees
+
+
+def read_trees(path: str | Path) -> list[TreeFile]:
+    """The tree(s) in ``path``: FOON text (one tree) or foon2asp JSON (one or more)."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InputError("tree file not found", str(path)) from None
+    except IsADirectoryError:
+        raise InputError("tree file is a directory", str(path)) from None
+    except OSError as exc:
+        raise InputError(f"cannot read tree file: {exc.strerror or exc}", str(path)) from None
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text ({exc.reason})", str(path)) from None
+    if _looks_like_json(text):
+        return _read_json_tree(text, str(path))
+    return _read_foon_tree(text, str(path))
+
+
+# ---------------------------------------------------------------- matching
+
+
+def unit_index(problem: Problem) -> dict[tuple, int]:
+    """FOON unit id by :meth:`Unit.key`."""
+    return {u.key(): i for i, u in enumerate(problem.units)}
+
+
+def nearest_hint(problem: Problem, unit: Unit) -> str:
+    """Which objects of ``unit`` the most similar FOON unit (same motion) lacks."""
+    ins, outs = set(unit.inputs), set(unit.outputs)
+    best, best_score = None, 0
+    for i, other in enumerate(problem.units):
+        if other.motion != unit.motion:
+            continue
+        score = len(ins & set(other.inputs)) + len(outs & set(other.outputs))
+        if score > best_score:
+            best, best_score = i, score
+    if best is None:
+        known = any(u.motion == unit.motion for u in problem.units)
+        return "" if known else f"; no FOON unit has the motion {unit.motion!r}"
+    other = problem.units[best]
+    extra = [f"input {o}" for o in unit.inputs if o not in set(other.inputs)]
+    extra += [f"output {o}" for o in unit.outputs if o not in set(other.outputs)]
+    lack = [f"input {o}" for o in other.inputs if o not in ins]
+    lack += [f"output {o}" for o in other.outputs if o not in outs]
+    path, line = problem.foon.origins[best]
+    where = f"{path}:{line}" if path else f"unit {best}"
+    parts = []
+    if extra:
+        parts.append("has " + " | ".join(extra))
+    if lack:
+        parts.append("lacks " + " | ".join(lack))
+    return f"; compared with the nearest FOON unit ({where}) it " + " and ".join(parts) if parts else ""
+
+
+def infer_goal(problem: Problem, tree: TreeFile, goal_objects: list[FoonObject]) -> int:
+    """The goal of a tree file that does not name it, from the units as written.
+
+    A goals-file entry that the tree makes wins (preferring one no unit of the
+    tree needs); else the single product of the last unit that no unit needs
+    (the earlier programs write the goal's unit last); else its single product.
+    """
+    units = [tu.unit for tu in tree.units]
+    made = list(dict.fromkeys(o for u in units for o in u.outputs if not o.is_bare()))
+    needed = {
+        o
+        for u in units
+        for o, f in zip(u.inputs, required_flags(u, problem.utensils, problem.utensil_rule))
+        if f
+    }
+    tops = [o for o in made if o not in needed]
+    goal_set = set(goal_objects)
+    last = [o for o in units[-1].outputs if not o.is_bare()] if units else []
+    for pool in (
+        [o for o in tops if o in goal_set],
+        [o for o in made if o in goal_set],
+        [o for o in last if o in tops],
+        last,
+    ):
+        pool = list(dict.fromkeys(pool))
+        if len(pool) == 1 and pool[0] in problem.foon.object_ids:
+            return problem.foon.object_ids[pool[0]]
+    hint = ""
+    if len(last) == 1 and last[0] not in problem.foon.object_ids:
+        hint = f" (the last unit makes {last[0]}, which is not a FOON object)"
+    raise InputError(f"cannot tell which object is the goal of this tree{hint}; use --goal LABEL", tree.path)
+
+
+# ---------------------------------------------------------------- diagnosis
+
+
+def _had(problem: Problem, order: list[int]) -> set[int]:
+    have = set(problem.kitchen)
+    for u in order:
+        have.update(problem.products[u])
+    return have
+
+
+def describe_unit(problem: Problem, u: int, tree: TreeFile | None = None, ids: list[int | None] | None = None) -> str:
+    """``unit 12 (mix, step 3 at tree.txt:40)``."""
+    where = ""
+    if tree is not None and ids is not None and u in ids:
+        tu = tree.units[ids.index(u)]
+        where = f", step {tu.step}" + (f" at line {tu.line}" if tu.line else "")
+    return f"unit {u} ({problem.units[u].motion}{where})"
+
+
+def diagnose(
+    problem: Problem, goal: int, units: list[int], validation: Validation, name: Callable[[int], str] | None = None
+) -> Finding | None:
+    """The first problem of a tree that does not validate, walking back from the goal.
+
+    Every unit that cannot fire lacks a required input; each such input is
+    either made by no unit of the tree (a missing input) or only by units
+    that cannot fire either, and following those back must close a cycle.
+    ``name(u)`` words a unit in messages.
+    """
+    if validation.valid:
+        return None
+    name = name or (lambda u: describe_unit(problem, u))
+    have = _had(problem, validation.order)
+    makers: dict[int, list[int]] = {}
+    for u in dict.fromkeys(units):
+        for o in problem.products[u]:
+            makers.setdefault(o, []).append(u)
+
+    def missing(u: int) -> list[int]:
+        return [i for i in problem.required[u] if i not in have]
+
+    done: set[int] = set()
+
+    def edges(obj: int):
+        return iter([(u, i) for u in makers.get(obj, []) for i in missing(u)])
+
+    def walk(root: int, needed_by: int | None) -> Finding | None:
+        """Depth-first search over objects not had; an object on the path again closes a cycle."""
+        if root in done or root in have:
+            return None
+        if not makers.get(root):
+            return _missing(problem, root, needed_by, goal, name)
+        path: list[list] = [[root, None]]  # [object, unit being tried for it]
+        on_path = {root: 0}
+        stack = [edges(root)]
+        while stack:
+            step = next(stack[-1], None)
+            if step is None:
+                obj = path.pop()[0]
+                stack.pop()
+                del on_path[obj]
+                done.add(obj)
+                continue
+            u, nxt = step
+            path[-1][1] = u
+            if nxt in on_path:
+                return _cycle(problem, [(o, uu) for o, uu in path[on_path[nxt] :]], name)
+            if nxt in done:
+                continue
+            if not makers.get(nxt):
+                return _missing(problem, nxt, u, goal, name)
+            on_path[nxt] = len(path)
+            path.append([nxt, None])
+            stack.append(edges(nxt))
+        return None
+
+    if goal not in have:
+        found = walk(goal, None)
+        if found:
+            return found
+    for u in validation.stuck:
+        for i in missing(u):
+            found = walk(i, u)
+            if found:
+                return found
+    return Finding("goal-not-made", validation.problem or "the tree is not valid", obj=goal)
+
+
+def _missing(problem: Problem, obj: int, needed_by: int | None, goal: int, name: Callable[[int], str]) -> Finding:
+    if needed_by is None:
+        return Finding("goal-not-made", f"no unit of the tree makes the goal {problem.objects[goal]}", obj=goal)
+    return Finding(
+        "missing-input",
+        f"missing input: {problem.objects[obj]} is needed by {name(needed_by)} "
+        "but is not in the kitchen and no unit of the tree makes it",
+        obj=obj,
+        unit=needed_by,
+    )
+
+
+def _cycle(problem: Problem, cycle: list[tuple[int, int]], name: Callable[[int], str]) -> Finding:
+    steps = []
+    for k, (o, u) in enumerate(cycle):
+        nxt = cycle[(k + 1) % len(cycle)][0]
+        steps.append(f"[{problem.objects[o]}] is made by {name(u)}, which needs [{problem.objects[nxt]}]")
+    return Finding("cycle", "circular support: " + "; ".join(steps), list(cycle))
+
+
+def cycle_lines(problem: Problem, finding: Finding, tree: TreeFile | None = None, ids=None) -> list[str]:
+    """The cycle of ``finding`` as indented lines, one object or unit per line."""
+    lines = []
+    for o, u in finding.cycle:
+        lines.append(f"    {problem.objects[o]}")
+        lines.append(f"      is made in this tree by {describe_unit(problem, u, tree, ids)}, which needs")
+    lines.append(f"    {problem.objects[finding.cycle[0][0]]}   (back to the start)")
+    return lines
+
+
+# ---------------------------------------------------------------- checking
+
+
+def check_units(
+    problem: Problem, goal: int, units: list[int], name: Callable[[int], str] | None = None
+) -> tuple[Validation, Finding | None]:
+    """Validate FOON unit ids for ``goal`` and explain the first problem."""
+    validation = validate(problem, goal, units)
+    return validation, diagnose(problem, goal, units, validation, name)
+
+
+def check_tree(problem: Problem, tree: TreeFile, goal: int, index: dict[tuple, int] | None = None) -> Report:
+    """Match the units of ``tree`` to the FOON and judge them for ``goal``."""
+    index = index if index is not None else unit_index(problem)
+    ids = [index.get(tu.unit.key()) for tu in tree.units]
+    unknown = [tu for tu, u in zip(tree.units, ids) if u is None]
+    known = list(dict.fromkeys(u for u in ids if u is not None))
+    if unknown:
+        tu = unknown[0]
+        more = f" ({len(unknown)} units are unknown)" if len(unknown) > 1 else ""
+        finding = Finding(
+            "unknown-unit",
+            f"unknown unit: step {tu.step} at {tree.where(tu)} ({tu.unit.motion}) is not in the FOON"
+            f"{nearest_hint(problem, tu.unit)}{more}",
+        )
+        validation = validate(problem, goal, known)
+        return Report(tree, goal, ids, False, finding, validation, None, measures(problem, goal, known))
+    validation, finding = check_units(problem, goal, known, lambda u: describe_unit(problem, u, tree, ids))
+    order_problem = check_order(problem, goal, known)
+    return Report(tree, goal, ids, validation.valid, finding, validation, order_problem, measures(problem, goal, known))
+
+
+# ---------------------------------------------------------------- output
+
+
+def _cost_text(cost: dict) -> str:
+    depth = cost.get("depth")
+    return (
+        f"{cost.get('units')} units, success {cost.get('success'):.4g}, "
+        f"depth {depth if depth is not None else '- (goal not made)'}"
+    )
+
+
+def report_text(problem: Problem, report: Report) -> str:
+    """The human-readable report of one tree."""
+    tree, ids = report.tree, report.ids
+    head = f"Tree: {tree.path}" + (f" (line {tree.line})" if tree.line and tree.line > 1 else "")
+    if tree.method:
+        head += f"  method {tree.method}"
+    source = f"  ({report.goal_source})" if report.goal_source else ""
+    lines = [head, f"Goal: {problem.objects[report.goal]}{source}"]
+    n_known = sum(u is not None for u in ids)
+    lines.append(f"Units: {len(ids)} read, {n_known} found in the FOON, {len(ids) - n_known} unknown")
+    lines.append(f"Verdict: {'VALID' if report.valid else 'INVALID'}")
+    if report.finding:
+        f = report.finding
+        if f.kind == "cycle":
+            lines.append("Problem: circular support -- these units need each other and nothing starts the cycle:")
+            lines += cycle_lines(problem, f, tree, ids)
+        else:
+            lines.append(f"Problem: {f.message}")
+    v = report.validation
+    if v is not None:
+        if report.valid:
+            if report.order_problem is None:
+                lines.append("Order: the steps as written are executable")
+            else:
+                lines.append(f"Order: not executable as written ({report.order_problem})")
+                lines.append("Executable order (steps): " + " ".join(_steps(v.order, ids)))
+        else:
+            lines.append(f"Units that can fire (in order, steps): {' '.join(_steps(v.order, ids)) or '-'}")
+            if v.stuck:
+                lines.append(f"Units that never fire (steps): {' '.join(_steps(v.stuck, ids))}")
+    lines.append(f"Size: {_cost_text(report.cost)}")
+    opt = report.optimum
+    if opt is not None:
+        if opt.has_tree:
+            diff = report.cost["units"] - opt.cost["units"]
+            rel = "the optimum" if report.valid and diff == 0 else f"{diff:+d} units vs optimum" if report.valid else ""
+            lines.append(f"ASP optimum: {_cost_text(opt.cost)} ({opt.status})" + (f"; this tree is {rel}" if rel else ""))
+        else:
+            why = ": no well-founded tree exists for this goal" if opt.status == "unreachable" else ""
+            lines.append(f"ASP optimum: none ({opt.status}{why})")
+    return "\n".join(lines) + "\n"
+
+
+def _steps(units: list[int], ids: list[int | None]) -> list[str]:
+    return [str(ids.index(u) + 1) for u in units]
+
+
+def report_json(problem: Problem, report: Report) -> dict:
+    """The report as plain data (``check --format json``)."""
+    v = report.validation
+    out = {
+        "tree": report.tree.path,
+        "goal": problem.objects[report.goal].to_json(),
+        "goal_source": report.goal_source,
+        "method": report.tree.method,
+        "valid": report.valid,
+        "problem": report.finding.kind if report.finding else None,
+        "message": report.finding.message if report.finding else None,
+        "cycle": [
+            {"object": problem.objects[o].to_json(), "unit": u, "motion": problem.units[u].motion}
+            for o, u in (report.finding.cycle if report.finding else [])
+        ],
+        "unknown_steps": [tu.step for tu, u in zip(report.tree.units, report.ids) if u is None],
+        "order_as_written_ok": report.order_problem is None if v is not None and report.valid else None,
+        "executable_order_steps": [int(s) for s in _steps(v.order, report.ids)] if v is not None else [],
+        "cost": report.cost,
+    }
+    if report.optimum is not None:
+        out["optimum"] = {"status": report.optimum.status, "cost": report.optimum.cost}
+    return out
+
+
+# ---------------------------------------------------------------- a whole file
+
+
+def resolve_goal(data, problem: Problem, tree: TreeFile, goal_label: str | None) -> tuple[int, str]:
+    """The goal and where it came from: ``--goal``, the JSON result, or inferred from the units."""
+    if goal_label:
+        return goals_mod.resolve_label(data, problem, goal_label), "--goal"
+    if tree.goal is not None:
+        return goals_mod.goal_id(problem, tree.goal, tree.path, tree.line), "named in the file"
+    return infer_goal(problem, tree, [obj for obj, _ in data.goals]), "inferred from the units"
+
+
+def check_file(data, problem: Problem, path: str | Path, goal_label: str | None = None, optimum: bool = True) -> list[Report]:
+    """Check every tree in ``path``; with ``optimum`` the ASP optimum is solved for each goal."""
+    trees = read_trees(path)
+    index = unit_index(problem)
+    reports = []
+    for tree in trees:
+        goal, source = resolve_goal(data, problem, tree, goal_label)
+        report = check_tree(problem, tree, goal, index)
+        report.goal_source = source
+        reports.append(report)
+    if optimum and reports:
+
+        goals = list(dict.fromkeys(r.goal for r in reports))
+        session = Session(problem, AspOptions(units=problem.units_for(goals)))
+        best = {g: session.solve(g) for g in goals}
+        for r in reports:
+            r.optimum = best[r.goal]
+    return reports

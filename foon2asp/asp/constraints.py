@@ -1,0 +1,223 @@
+"""User constraints: ASP files, rule texts and convenience flags as programs.
+
+Everything here becomes a list of ``(name, text)`` programs for
+:attr:`foon2asp.solver.AspOptions.programs`.  The convenience flags
+(``--forbid-motion`` and friends) are generated ASP text in which every motion
+or label is written with :func:`foon2asp.facts.q`, so a label is always a
+string constant and can never add code.  Files and ``--rule`` texts are the
+user's own code; they are checked on their own first, so a syntax error or an
+unsafe variable is reported as one line naming the file (or rule) and line.
+
+The rules speak the vocabulary of docs/vocabulary.md: ``use(U)`` is a unit of
+the tree, ``motion(U,M)``, ``input(U,O)``, ``output(U,O)``, ``label(O,L)``.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Iterable
+
+import clingo
+
+from foon2asp.errors import InputError
+from foon2asp.asp.facts import q
+
+#: ``<block>:LINE:COL[-COL]: error: text`` or ``FILE:LINE:...`` as clingo writes them
+_LOCATION = re.compile(r"^(?P<where>.*?):(?P<line>\d+):(?P<col>\d+)(?:-\d+(?::\d+)?)?: (?P<kind>\w+): (?P<text>.*)$")
+
+
+def normalise(text: str) -> str:
+    """Labels and motions as the FOON model stores them: single spaces, lower case."""
+    return " ".join(str(text).split()).lower()
+
+
+def _motion(text: str) -> str:
+    text = normalise(text)
+    return text[:-1].rstrip() if text.endswith("*") else text
+
+
+def forbid_motion(motion: str) -> str:
+    """No unit of the tree has motion ``motion``."""
+    return f":- use(U), motion(U,{q(_motion(motion))}).\n"
+
+
+def forbid_object(label: str) -> str:
+    """No unit of the tree has an input or output labelled ``label``."""
+    lab = q(normalise(label))
+    return f":- use(U), input(U,O), label(O,{lab}).\n:- use(U), output(U,O), label(O,{lab}).\n"
+
+
+def require_motion(motion: str) -> str:
+    """Some unit of the tree has motion ``motion``."""
+    return f":- #count {{ U : use(U), motion(U,{q(_motion(motion))}) }} = 0.\n"
+
+
+def require_object(label: str) -> str:
+    """Some unit of the tree has an input or output labelled ``label``."""
+    lab = q(normalise(label))
+    return (
+        f":- #count {{ U : use(U), input(U,O), label(O,{lab}); "
+        f"U : use(U), output(U,O), label(O,{lab}) }} = 0.\n"
+    )
+
+
+def max_units(n: int) -> str:
+    """The tree has at most ``n`` units."""
+    if not isinstance(n, int) or n < 0:
+        raise InputError(f"--max-units must be a whole number >= 0, not {n!r}")
+    return f":- #count {{ U : use(U) }} > {n}.\n"
+
+
+def _clean(text: str) -> str:
+    text = text.replace("[#inc_base];", "").replace("[#inc_base]", "")
+    return " ".join(text.split())
+
+
+def _entries(messages: list[str]) -> list[tuple[re.Match | None, str]]:
+    """clingo messages split into entries (location match, full text)."""
+    entries: list[list] = []
+    for message in messages:
+        for line in message.splitlines():
+            m = _LOCATION.match(line.strip())
+            if m or not entries:
+                entries.append([m, line.strip()])
+            else:
+                entries[-1][1] += " " + line.strip()
+    return [(m, text) for m, text in entries]
+
+
+def clingo_error(messages: list[str], name: str) -> InputError:
+    """One-line InputError for clingo's messages about program ``name``.
+
+    ``<block>:3:5-6: error: syntax error, unexpected .`` becomes
+    ``NAME:3: syntax error, unexpected . (column 5)``; notes such as
+    ``'X' is unsafe`` are appended.
+    """
+    entries = _entries(messages)
+    if not entries:
+        return InputError("clingo rejected the program", name)
+    first, whole = entries[0]
+    if first is None:
+        return InputError(_clean(whole), name)
+    text = _clean(whole[first.start("text"):])
+    notes = [_clean(t[m.start("text"):]) for m, t in entries[1:] if m and m["kind"] == "note"]
+    if notes:
+        text += " (" + "; ".join(notes) + ")"
+    return InputError(f"{text} (column {first['col']})", name, int(first["line"]))
+
+
+def check(name: str, text: str) -> None:
+    """Parse and ground ``text`` alone; raise a located InputError if clingo rejects it.
+
+    Grounding alone catches unsafe variables, which clingo reports only at
+    grounding time.  The user's rules meet no facts here, so this is cheap.
+    """
+    messages: list[str] = []
+    ctl = clingo.Control(["--warn=none"], logger=lambda code, msg: messages.append(msg), message_limit=20)
+    try:
+        ctl.add("base", [], text)
+        ctl.ground([("base", [])])
+    except RuntimeError:
+        err = clingo_error(messages, name)
+        last = max(1, len(text.splitlines()))
+        if err.line is not None and err.line > last:
+            err.line = last  # clingo places an error at the end of the text on the line after it
+            err.message = re.sub(r" \(column \d+\)$", " (at the end)", err.message)
+        if "unexpected EOF" in err.message:
+            err.message += "; is a '.' missing at the end?"
+        raise err from None
+
+
+@dataclass
+class ConstraintSpec:
+    """The values of the constraint options of a command."""
+
+    files: tuple[str, ...] = ()
+    rules: tuple[str, ...] = ()
+    forbid_motion: tuple[str, ...] = ()
+    forbid_object: tuple[str, ...] = ()
+    require_motion: tuple[str, ...] = ()
+    require_object: tuple[str, ...] = ()
+    max_units: int | None = None
+    #: programs given directly as (name, text)
+    extra: list[tuple[str, str]] = field(default_factory=list)
+
+    def __bool__(self) -> bool:
+        return bool(
+            self.files or self.rules or self.forbid_motion or self.forbid_object
+            or self.require_motion or self.require_object or self.max_units is not None or self.extra
+        )
+
+    def programs(self) -> list[tuple[str, str]]:
+        """The (name, text) programs, user files and rules checked for errors."""
+        return programs(
+            self.files, self.rules, self.forbid_motion, self.forbid_object,
+            self.require_motion, self.require_object, self.max_units,
+        ) + list(self.extra)
+
+    def names(self) -> tuple[list[str], list[str]]:
+        """Motions and object labels the convenience flags mention (normalised)."""
+        motions = [_motion(m) for m in (*self.forbid_motion, *self.require_motion)]
+        labels = [normalise(x) for x in (*self.forbid_object, *self.require_object)]
+        return motions, labels
+
+
+def read_file(path: str) -> str:
+    p = Path(path)
+    if not p.is_file():
+        raise InputError("constraint file not found", path)
+    try:
+        return p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"cannot read constraint file: {exc}", path) from None
+
+
+def programs(
+    files: Iterable[str] = (),
+    rules: Iterable[str] = (),
+    forbid_motions: Iterable[str] = (),
+    forbid_objects: Iterable[str] = (),
+    require_motions: Iterable[str] = (),
+    require_objects: Iterable[str] = (),
+    max_unit_count: int | None = None,
+) -> list[tuple[str, str]]:
+    """All constraints as (name, text) programs for ``AspOptions.programs``.
+
+    User files are named by their path and rules ``--rule #N`` (from 1), so
+    errors point at them; generated programs are named after their flag.
+    """
+    out: list[tuple[str, str]] = []
+    for path in files:
+        text = read_file(path)
+        check(str(path), text)
+        out.append((str(path), text))
+    for n, rule in enumerate(rules, 1):
+        name = f"--rule #{n}"
+        check(name, rule)
+        out.append((name, rule))
+    generated = [
+        ("--forbid-motion", forbid_motion, forbid_motions),
+        ("--forbid-object", forbid_object, forbid_objects),
+        ("--require-motion", require_motion, require_motions),
+        ("--require-object", require_object, require_objects),
+    ]
+    for flag, make, values in generated:
+        for value in values:
+            if not normalise(value):
+                raise InputError(f"{flag} needs a non-empty name")
+            out.append((f"{flag} {value}", make(value)))
+    if max_unit_count is not None:
+        out.append(("--max-units", max_units(max_unit_count)))
+    return out
+
+
+def unknown_names(problem, spec: ConstraintSpec) -> list[str]:
+    """Warnings for flag values that match no motion or object label of the FOON."""
+    motions, labels = spec.names()
+    have_m = {u.motion for u in problem.units}
+    have_l = problem.foon.labels()
+    out = [f"no unit has motion {m!r}" for m in motions if m not in have_m]
+    out += [f"no object is labelled {lab!r}" for lab in labels if lab not in have_l]
+    return out

@@ -1,0 +1,293 @@
+"""Depth bounds by multi-shot solving on one clingo Control.
+
+``encodings/depth.lp`` has a ``#program bound(k,g,d)`` part: the rounds of
+the used units for goal ``g`` under depth bound ``d`` (``had_at(k,O,t)``), an
+external ``query(k)`` (the goal must be had after ``d`` rounds) and an
+external ``within(k)`` (the rounds count towards the depth cost).  The loop
+lives here, in Python (``python -m clingo`` would ignore an embedded incmode
+script): a block is grounded once, when a goal first needs that bound, and
+kept on the Control.
+
+What is grounded is cut down by the least fixpoint (:class:`Levels`): unit
+``U`` cannot fire before its level ``L`` (the level in
+:meth:`Problem.derivation_levels` over all the session's units), and it
+cannot help the goal after round ``d - dist``, where ``dist`` is the least
+number of rounds between U's products and the goal.  So the block grounds
+``fire_at(k,U,t)`` for ``L <= t <= d - dist`` only, for the units that can
+contribute to ``g`` at all.
+
+* depth first (``--objective depth[,…]``): the least fixpoint also gives the
+  minimum depth over all trees: no tree is shallower than the goal's level
+  (levels only grow when units are left out), and the producers that give
+  each object its level form a tree of exactly that depth.  So the bounds
+  below the goal's level are refuted without solving, and the loop starts at
+  the level; it raises the bound only when the solve is unsatisfiable
+  (user constraints, trees excluded for ``--models``).  The first satisfiable
+  bound is the minimum depth, proven; the same solve optimises the remaining
+  objectives (at least units) within it.
+* depth later in the list (``--objective units,depth``): solve with the depth
+  cost switched off; the depth d of that tree bounds the depth of the
+  lexicographic optimum (which is optimal on the earlier objectives too), so
+  a second solve with bound d and the depth cost on is the proven optimum.
+  When d is already the goal's level, no tree is shallower and the first
+  tree is the optimum (no second solve).
+* ``--max-depth N`` alone: one solve with the bound N: units (etc.) within N.
+
+The depth of a tree is the level of the goal in
+:meth:`Problem.derivation_levels` over the tree's units, which is what
+:func:`foon2asp.tree.measures` reports; ``had_at(k,O,t)`` is "level of O <= t".
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from typing import Callable
+
+import clingo
+
+from foon2asp.errors import InputError
+
+
+class Levels:
+    """The least fixpoint of the session's facts, for depth windows.
+
+    ``required`` (facts only) gives the levels, ``required_any`` (every
+    ``required`` atom) the distances: facts that could only lower a level or a
+    distance are taken generously, so levels and distances stay lower bounds
+    and the windows never cut a round that matters.
+    """
+
+    def __init__(
+        self,
+        kitchen: set[int],
+        required: dict[int, list[int]],
+        products: dict[int, list[int]],
+        required_any: dict[int, list[int]] | None = None,
+    ):
+        self.kitchen = kitchen
+        self.required = {u: [o for o in dict.fromkeys(req) if o not in kitchen] for u, req in required.items()}
+        self.required_any = (
+            self.required
+            if required_any is None
+            else {u: [o for o in dict.fromkeys(req) if o not in kitchen] for u, req in required_any.items()}
+        )
+        self.products = {u: [o for o in dict.fromkeys(prods) if o not in kitchen] for u, prods in products.items()}
+        self.producers: dict[int, list[int]] = {}
+        for u, prods in self.products.items():
+            for o in prods:
+                self.producers.setdefault(o, []).append(u)
+        self.object_level, self.unit_level = self._fixpoint()
+
+    @classmethod
+    def from_problem(cls, problem, units) -> "Levels":
+        """From the Problem, for a session whose facts are exactly ``units`` of it."""
+        units = list(units)
+        return cls(
+            set(problem.kitchen),
+            {u: list(problem.required[u]) for u in units},
+            {u: list(problem.products[u]) for u in units},
+        )
+
+    @classmethod
+    def from_control(cls, ctl: clingo.Control) -> "Levels":
+        """From the grounded atoms (user programs may add facts)."""
+        atoms = ctl.symbolic_atoms
+
+        def numbers(name: str, arity: int, facts_only: bool = False) -> list[tuple[int, ...]]:
+            out = []
+            for a in atoms.by_signature(name, arity):
+                args = a.symbol.arguments
+                if (a.is_fact or not facts_only) and all(x.type == clingo.SymbolType.Number for x in args):
+                    out.append(tuple(x.number for x in args))
+            return out
+
+        kitchen = {o for (o,) in numbers("kitchen", 1)}
+        units = [u for (u,) in numbers("unit", 1)]
+        required: dict[int, list[int]] = {u: [] for u in units}
+        required_any: dict[int, list[int]] = {u: [] for u in units}
+        products: dict[int, list[int]] = {u: [] for u in units}
+        for table, name, facts_only in (
+            (required, "required", True),
+            (required_any, "required", False),
+            (products, "product", False),
+        ):
+            for u, o in numbers(name, 2, facts_only):
+                if u in table:
+                    table[u].append(o)
+        return cls(kitchen, required, products, required_any)
+
+    def _fixpoint(self) -> tuple[dict[int, int], dict[int, int]]:
+        """Levels as in :meth:`Problem.derivation_levels` (kitchen items are level 0)."""
+        waiting = {u: len(req) for u, req in self.required.items()}
+        users: dict[int, list[int]] = {}
+        for u, req in self.required.items():
+            for o in req:
+                users.setdefault(o, []).append(u)
+        obj_level: dict[int, int] = {}
+        unit_level: dict[int, int] = {}
+        frontier = [u for u, n in waiting.items() if n == 0]
+        level = 0
+        while frontier:
+            level += 1
+            new_objects = []
+            for u in frontier:
+                unit_level[u] = level
+                for o in self.products[u]:
+                    if o not in obj_level:
+                        obj_level[o] = level
+                        new_objects.append(o)
+            frontier = []
+            for o in new_objects:
+                for u in users.get(o, ()):
+                    waiting[u] -= 1
+                    if waiting[u] == 0:
+                        frontier.append(u)
+        return obj_level, unit_level
+
+    def level(self, goal: int) -> int | None:
+        """The least depth of any tree for ``goal`` (0 in the kitchen, None: no tree)."""
+        return 0 if goal in self.kitchen else self.object_level.get(goal)
+
+    def windows(self, goal: int, bound: int) -> list[tuple[int, int, int]]:
+        """``(unit, first, last)``: the rounds in which a unit's firing can matter for
+        having ``goal`` within ``bound`` rounds (units that can fire only)."""
+        dist = {goal: 0}
+        queue = deque([goal])
+        unit_dist: dict[int, int] = {}
+        while queue:
+            o = queue.popleft()
+            d = dist[o]
+            for u in self.producers.get(o, ()):
+                if u in unit_dist or u not in self.unit_level:
+                    continue
+                unit_dist[u] = d  # breadth first: the first visit is the least distance
+                for i in self.required_any[u]:
+                    if i not in dist:
+                        dist[i] = d + 1
+                        queue.append(i)
+        out = []
+        for u, d in unit_dist.items():
+            first, last = self.unit_level[u], bound - d
+            if first <= last:
+                out.append((u, first, last))
+        return sorted(out)
+
+
+def levels(session) -> Levels:
+    """The session's :class:`Levels` (computed once)."""
+    index = getattr(session, "depth_levels", None)
+    if index is None:
+        options = session.options
+        if options.programs or options.encodings:
+            # user programs may add facts: read what was grounded
+            index = Levels.from_control(session.ctl)
+        else:
+            units = [a.symbol.arguments[0].number for a in session.ctl.symbolic_atoms.by_signature("unit", 1)]
+            index = Levels.from_problem(session.problem, units)
+        session.depth_levels = index
+    return index
+
+
+def block(session, goal: int, bound: int) -> int:
+    """Ground the block for ``goal`` and ``bound`` (once) and return its id ``k``."""
+    blocks = session.__dict__.setdefault("depth_blocks", {})
+    if (goal, bound) in blocks:
+        return blocks[(goal, bound)]
+    k = len(blocks) + 1
+    windows = levels(session).windows(goal, bound)
+    name = f"depth_windows_{k}"
+    text = "".join(f"window({k},{u},{lo},{hi}).\n" for u, lo, hi in windows)
+    num = clingo.Number
+    try:
+        session.ctl.add(name, [], text)
+        session.ctl.ground([(name, []), ("bound", [num(k), num(goal), num(bound)])])
+    except RuntimeError:
+        raise InputError(session._message("grounding the depth rounds")) from None
+    blocks[(goal, bound)] = k
+    return k
+
+
+def bound_externals(session, goal: int, bound: int, count_depth: bool) -> dict[clingo.Symbol, bool]:
+    """The externals for depth bound ``bound`` of ``goal``: query(k), and within(k) when
+    the depth cost is counted (the block is grounded if need be)."""
+    k = clingo.Number(block(session, goal, bound))
+    out = {clingo.Function("query", [k]): True}
+    if count_depth:
+        out[clingo.Function("within", [k])] = True
+    return out
+
+
+def depth_mode(options, ranked: tuple[str, ...]) -> str:
+    """``first`` | ``later`` (depth is an objective at that place) | ``bound`` (only --max-depth) | ``none``."""
+    if "depth" in ranked:
+        return "first" if ranked[0] == "depth" else "later"
+    return "bound" if options.max_depth is not None else "none"
+
+
+def solve_depth(
+    session,
+    goal: int,
+    shot: Callable[[dict, str | None], object],
+    tree_depth: Callable[[object], int],
+    mode: str,
+    state: dict,
+    single: bool = True,
+):
+    """Run the depth strategy ``mode`` for ``goal`` with ``shot(externals, solve_mode)``.
+
+    ``shot`` solves once with the given externals switched on (``solve_mode``
+    None: as configured; "opt": one optimum; "first": the first model) and
+    returns a result with ``answers``, ``unsat`` and ``finished``;
+    ``tree_depth(answer)`` is the depth of an answer's tree.  ``state``
+    persists across calls for the same goal: ``bound`` is the least bound not
+    yet refuted, ``refuted`` lists ``(bound, how)`` with how = "grounder" (the
+    least fixpoint, which the grounder computes too, puts the goal higher:
+    refuted without solving) or "solver" (unsatisfiable).
+    ``single``: one optimum is wanted (not all trees of the optimal cost).
+    Returns ``(result, bound)``.
+    """
+    max_depth = session.options.max_depth
+    least = levels(session).level(goal)
+    if mode == "bound":
+        return shot(bound_externals(session, goal, max_depth, False), None), max_depth
+    limit = {}
+    if max_depth is not None:
+        limit = bound_externals(session, goal, max_depth, False)
+    if mode == "later":
+        # the tree optimal without the depth cost bounds the optimum's depth
+        first = shot(limit, "opt")
+        if not first.answers:
+            return first, max_depth
+        bound = tree_depth(first.answers[0])
+        if single and (bound <= 1 or (least is not None and bound <= least)):
+            # no tree is shallower than the goal's level: a tree already that shallow is
+            # optimal for depth too (and for what follows)
+            state["shortcut"] = True
+            return first, bound
+        return shot(bound_externals(session, goal, bound, True), None), bound
+    # depth first: raise the bound from the goal's level until the goal is derivable within it
+    refuted = state.setdefault("refuted", [])
+    if "bound" not in state:
+        start = max(1, least or 1)
+        refuted.extend((t, "grounder") for t in range(1, start))
+        state["bound"] = start
+    bound = state["bound"]
+    ceiling = None  # the depth of some remaining tree, once a bound fails
+    while True:
+        if max_depth is not None and bound > max_depth:
+            return shot(limit, "first"), max_depth  # unsatisfiable: nothing within --max-depth
+        result = shot(bound_externals(session, goal, bound, True), None)
+        if result.answers or not result.finished:
+            state["bound"] = bound
+            return result, bound
+        refuted.append((bound, "solver"))
+        if ceiling is None or bound >= ceiling:
+            # constraints or excluded trees removed the shallow trees: any remaining
+            # tree bounds the search (none left: done)
+            feasible = shot(limit, "first")
+            if not feasible.answers:
+                return feasible, max_depth
+            ceiling = tree_depth(feasible.answers[0])
+        bound += 1
+        state["bound"] = bound
+

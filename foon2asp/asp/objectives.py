@@ -1,0 +1,129 @@
+"""Objectives and solver features: which encodings and extra facts a session needs.
+
+Objectives (``--objective``, most important first) are lexicographic: the
+wrapper writes ``objective(Name,Priority)`` and each ``encodings/NAME.lp``
+minimises at that priority.  ``units`` is always the last tie-breaker (added
+when it is not listed), so an optimal tree never carries a superfluous unit.
+
+=========== ========================================================== ==============
+objective   minimises                                                   encoding
+=========== ========================================================== ==============
+``units``   number of functional units                                  units.lp
+``success`` sum of round(-1000 ln p) over the robot's units, i.e. the    success.lp
+            greatest product of motion success rates (see PRECISION)
+``inputs``  total number of input nodes of the tree's units             inputs.lp
+``depth``   sequential rounds to make the goal (multi-shot, depth.py)   depth.lp
+=========== ========================================================== ==============
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Iterable
+
+from foon2asp.asp.facts import SCALE, neglog_weight, success_permille
+from foon2asp.foon.problem import Problem
+
+#: the tie-breaker appended to every objective list that lacks it
+TIE_BREAK = "units"
+
+#: how exact the success objective is, in words (also in docs/objectives.md)
+PRECISION = (
+    f"success rates are used to 1/{SCALE} and each unit weighs round(-{SCALE} ln p); "
+    f"the rounding is at most 0.5/{SCALE} per unit, so a tree of n units is ranked by a product "
+    f"that is off by a factor of at most exp(n/{2 * SCALE}) (under 1.3% for 25 units)"
+)
+
+
+def ranked(options) -> tuple[str, ...]:
+    """The objective list the solver optimises: the user's, then ``units`` as tie-breaker."""
+    if options.heuristic:
+        return ()
+    objective = tuple(dict.fromkeys(options.objective))
+    return objective if TIE_BREAK in objective else objective + (TIE_BREAK,)
+
+
+def uses_depth(options) -> bool:
+    """Does the session need the step-indexed depth encoding?"""
+    return options.max_depth is not None or "depth" in ranked(options)
+
+
+def encoding_names(options, registry: dict[str, str]) -> list[str]:
+    """The encodings (beside tree.lp) a session with ``options`` loads."""
+    if options.heuristic:
+        names = ["greedy", f"greedy_{options.heuristic}"]
+    else:
+        names = [registry[o] for o in ranked(options) if o in registry]
+    if uses_depth(options) and "depth" not in names:
+        names.append("depth")
+    if options.human_steps is not None:
+        names.append("human")
+    return names
+
+
+def input_node_facts(problem: Problem, units: Iterable[int] | None = None) -> str:
+    """``input_nodes(U,N).``: N input nodes as the FOON lists them (what measures() counts)."""
+    ids = range(len(problem.units)) if units is None else sorted(set(units))
+    return "".join(f"input_nodes({u},{len(problem.inputs[u])}).\n" for u in ids)
+
+
+def greedy_key(problem: Problem, heuristic: str, unit: int) -> tuple[int, int]:
+    """The order of producers for greedy retrieval (smaller first): h1 the highest
+    success rate (in thousandths, as ``success/2``), h2 the fewest input nodes (as
+    ``input_nodes/2``); ties to the unit first in FOON file order."""
+    if heuristic == "h1":
+        return (-success_permille(problem.rates[unit]), unit)
+    if heuristic == "h2":
+        return (len(problem.inputs[unit]), unit)
+    raise ValueError(f"unknown heuristic {heuristic!r}")
+
+
+def rank_facts(problem: Problem, heuristic: str, units: Iterable[int] | None = None) -> str:
+    """``rank(O,U,R).``: U is the producer of O that greedy retrieval tries R-th (from 0),
+    among the producers in ``units`` (all units when None)."""
+    ids = range(len(problem.units)) if units is None else sorted(set(units))
+    producers: dict[int, list[int]] = {}
+    for u in ids:
+        for o in problem.products[u]:
+            producers.setdefault(o, []).append(u)
+    out = []
+    for o, us in producers.items():
+        us.sort(key=lambda u: greedy_key(problem, heuristic, u))
+        out += [f"rank({o},{u},{r}).\n" for r, u in enumerate(us)]
+    return "".join(out)
+
+
+def human_order_facts(problem: Problem, units: Iterable[int] | None = None) -> str:
+    """``human_unit(P,U).``: the units with a positive success weight, heaviest (least
+    likely) first, ties in FOON file order; a person does the first M used ones."""
+    ids = range(len(problem.units)) if units is None else sorted(set(units))
+    weighted = [(neglog_weight(problem.rates[u]), u) for u in ids]
+    order = sorted(((-w, u) for w, u in weighted if w > 0))
+    return "".join(f"human_unit({p},{u}).\n" for p, (_, u) in enumerate(order, 1))
+
+
+def extra_parts(problem: Problem, options, units: Iterable[int] | None = None) -> list[tuple[str, str]]:
+    """Facts and directives the encodings of ``options`` read, as (name, text) programs."""
+    parts = [("input nodes", input_node_facts(problem, units))]
+    if options.heuristic:
+        parts.append(("producer ranks", rank_facts(problem, options.heuristic, units)))
+    if options.human_steps is not None:
+        parts.append(("human steps", f"human_limit({int(options.human_steps)}).\n"))
+        if "success" in ranked(options) and options.human_steps > 0:
+            parts.append(("human order", human_order_facts(problem, units)))
+    # distinct answers are distinct sets of units (used when enumerating)
+    parts.append(("projection", "#project use/1.\n"))
+    return parts
+
+
+def success_product(problem: Problem, units: Iterable[int], human: Iterable[int] = ()) -> float:
+    """The real product of the motion success rates; human steps count as 1.0."""
+    skip = set(human)
+    product = math.prod(problem.rates[u] for u in units if u not in skip)
+    return float(f"{product:.6g}")
+
+
+def neglog_sum(problem: Problem, units: Iterable[int], human: Iterable[int] = ()) -> int:
+    """The integer success cost the solver minimises (sum of the neglog weights)."""
+    skip = set(human)
+    return sum(neglog_weight(problem.rates[u]) for u in units if u not in skip)

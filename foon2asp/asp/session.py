@@ -1,0 +1,257 @@
+"""Ground and solve with the clingo Python API; decode models into task trees.
+
+A :class:`Session` grounds the facts of a whole problem together with the
+encodings once; each :meth:`Session.solve` then switches the external atom
+``goal(G)`` on for one goal, so many goals reuse one grounding.
+"""
+
+from __future__ import annotations
+
+import re
+import time
+from dataclasses import dataclass, field
+from typing import Callable, Iterable
+
+import clingo
+
+from foon2asp.asp import objectives
+
+from foon2asp.asp import encodings
+from foon2asp.asp.constraints import check, clingo_error
+from foon2asp.asp.multishot.driver import Driver
+from foon2asp.errors import InputError
+from foon2asp.asp.facts import OPTIONAL, facts
+from foon2asp.foon.problem import Problem
+from foon2asp.tree.tasktree import TaskTree, executable_order, measures
+
+#: objective name -> encoding that defines it (all use objective(Name,Priority))
+OBJECTIVES: dict[str, str] = {"units": "units", "success": "success", "inputs": "inputs", "depth": "depth"}
+
+#: greedy retrieval inside the solver (AspOptions.heuristic -> encodings/greedy_NAME.lp)
+HEURISTICS = ("h1", "h2")
+
+
+@dataclass
+class AspOptions:
+    """How to solve: objectives (lexicographic, first = most important) and solver settings."""
+
+    objective: tuple[str, ...] = ("units",)
+    #: extra ASP programs as (name, text): user constraints and the like
+    programs: list[tuple[str, str]] = field(default_factory=list)
+    #: extra encodings (names in encodings/) to load
+    encodings: list[str] = field(default_factory=list)
+    time_limit: float | None = None
+    opt_strategy: str | None = None
+    threads: int = 1
+    clingo_args: list[str] = field(default_factory=list)
+    #: ground only these units (e.g. the goals' relevant units); None: all units
+    units: tuple[int, ...] | None = None
+    #: only trees of at most this many sequential rounds (see foon2asp.depth)
+    max_depth: int | None = None
+    #: at most this many units may be done by a person (success 1.0 for those)
+    human_steps: int | None = None
+    #: the K best distinct trees per goal, best first
+    models: int = 1
+    #: every optimal tree, at most all_optimal_cap of them
+    all_optimal: bool = False
+    all_optimal_cap: int = 100
+    #: "h1" | "h2": greedy retrieval in the solver (first model under #heuristic)
+    heuristic: str | None = None
+
+    @property
+    def method(self) -> str:
+        if self.heuristic:
+            return f"asp-greedy-{self.heuristic}"
+        return "asp-" + ",".join(self.objective)
+
+    @property
+    def driven(self) -> bool:
+        """Does solving need foon2asp.driver (more than one plain optimisation)?"""
+        return bool(
+            self.heuristic or self.max_depth is not None or self.human_steps is not None
+            or self.models > 1 or self.all_optimal or "depth" in self.objective
+        )
+
+    def args(self) -> list[str]:
+        args = ["--opt-mode=opt"]
+        if self.heuristic:
+            args.append("--heuristic=Domain")
+        if self.opt_strategy:
+            args.append(f"--opt-strategy={self.opt_strategy}")
+        if self.threads and self.threads > 1:
+            args.append(f"--parallel-mode={self.threads}")
+        return args + list(self.clingo_args)
+
+
+class _Logger:
+    def __init__(self) -> None:
+        self.messages: list[str] = []
+
+    def __call__(self, code: clingo.MessageCode, message: str) -> None:
+        self.messages.append(" ".join(message.split()))
+
+
+def _objective_facts(objective: Iterable[str]) -> str:
+    objective = list(objective)
+    for name in objective:
+        if name not in OBJECTIVES:
+            raise InputError(f"unknown objective {name!r} (have {', '.join(sorted(OBJECTIVES))})")
+    n = len(objective)
+    return "".join(f"objective({name},{n - i}).\n" for i, name in enumerate(objective))
+
+
+_OPTIONAL_FACTS = re.compile(r"\b(" + "|".join((*OPTIONAL, "input_nodes")) + r")\s*\(")
+
+
+def _read_predicates(parts: list[tuple[str, str]]) -> set[str]:
+    """The optional fact predicates (facts.OPTIONAL, input_nodes) some program mentions
+    outside the part that defines them (a mention in a comment counts too: harmless)."""
+    return {m.group(1) for name, text in parts if name != "input nodes" for m in _OPTIONAL_FACTS.finditer(text)}
+
+
+class Session:
+    """One grounding of ``problem`` with the tree encoding and an objective."""
+
+    def __init__(self, problem: Problem, options: AspOptions | None = None, units: Iterable[int] | None = None):
+        self.problem = problem
+        self.options = options or AspOptions()
+        self._log = _Logger()
+        try:
+            self.ctl = clingo.Control(self.options.args(), logger=self._log, message_limit=20)
+        except RuntimeError as exc:
+            raise InputError(f"bad solver option: {' '.join(str(exc).split())}") from None
+        names = ["tree"] + objectives.encoding_names(self.options, OBJECTIVES) + self.options.encodings
+        if units is None:
+            units = self.options.units
+        if units is None:
+            # a unit that never fires in the kitchen's fixpoint is never a candidate
+            units = sorted(problem.viable_units)
+        rules = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(names)]
+        rules.append(("objective", _objective_facts(objectives.ranked(self.options))))
+        rules += objectives.extra_parts(problem, self.options, units)
+        rules.append(("goal", "#external goal(O) : object(O).\n"))
+        rules += list(self.options.programs)
+        # facts nobody reads are left out (the strings, input/2, ...: user constraints read them)
+        read = _read_predicates(rules)
+        rules = [(name, text) for name, text in rules if name != "input nodes" or "input_nodes" in read]
+        leave_out = [p for p in OPTIONAL if p not in read]
+        parts = [("facts", facts(problem, units=units, leave_out=leave_out))] + rules
+        t0 = time.perf_counter()
+        for name, text in parts:
+            self._add(name, text)
+        self._ground()
+        self.ground_s = time.perf_counter() - t0
+        self._driver = None
+        self.goal_atoms = {
+            a.symbol.arguments[0].number
+            for a in self.ctl.symbolic_atoms.by_signature("goal", 1)
+            if a.is_external
+        }
+
+    def _add(self, name: str, text: str) -> None:
+        self._log.messages.clear()
+        try:
+            self.ctl.add("base", [], text)
+        except RuntimeError:
+            raise clingo_error(self._log.messages, name) from None
+
+    def _ground(self) -> None:
+        self._log.messages.clear()
+        try:
+            self.ctl.ground([("base", [])])
+        except RuntimeError:
+            # locate the culprit: user programs are checked one by one
+            for name, text in self.options.programs:
+                check(name, text)
+            raise InputError(self._message("grounding")) from None
+
+    def _message(self, name: str) -> str:
+        msg = self._log.messages[0] if self._log.messages else "error"
+        return msg.replace("<block>", name)
+
+    def _set_goal(self, goal: int, value: bool) -> None:
+        self.ctl.assign_external(clingo.Function("goal", [clingo.Number(goal)]), value)
+
+    def solve(
+        self,
+        goal: int,
+        on_model: Callable[[clingo.Model], None] | None = None,
+        time_limit: float | None = None,
+    ) -> TaskTree:
+        """The best tree for ``goal`` (an object id), proven optimal unless time runs out."""
+        if self.options.driven:
+            # depth bounds, human steps, alternatives, greedy: see foon2asp.driver
+            if self._driver is None:
+                self._driver = Driver(self)
+            return self._driver.solve(goal, on_model, time_limit)
+        time_limit = self.options.time_limit if time_limit is None else time_limit
+        t0 = time.perf_counter()
+        if goal not in self.goal_atoms:
+            # the goal is not an object of the grounded facts: nothing makes it (no solve call)
+            stats = {"choices": 0, "conflicts": 0, "models": 0, "solve_s": 0.0}
+            return TaskTree(goal, self.options.method, "unreachable", time_s=time.perf_counter() - t0, stats=stats)
+        best: dict = {}
+
+        def record(model: clingo.Model) -> None:
+            best["units"] = [s.arguments[0].number for s in model.symbols(shown=True) if s.name == "use"]
+            best["cost"] = list(model.cost)
+            best["proven"] = model.optimality_proven
+            if on_model is not None:
+                on_model(model)
+
+        self._set_goal(goal, True)
+        try:
+            with self.ctl.solve(on_model=record, async_=True) as handle:
+                finished = bool(handle.wait(time_limit)) if time_limit else (handle.wait() or True)
+                if not finished:
+                    handle.cancel()
+                result = handle.get()
+            stats = self.stats()
+        finally:
+            self._set_goal(goal, False)
+        elapsed = time.perf_counter() - t0
+        if "units" in best:
+            # no cost terms at all (e.g. the goal is in the kitchen): any model is optimal
+            proven = best["proven"] or not any(best["cost"])
+            status = "optimal" if (result.exhausted and not result.interrupted) or proven else "feasible"
+            if not finished and not proven:
+                status = "feasible"
+        else:
+            status = "unreachable" if result.unsatisfiable else "unknown"
+        units = executable_order(self.problem, best.get("units", []))
+        cost = measures(self.problem, goal, units) if status in ("optimal", "feasible") else {}
+        return TaskTree(
+            goal,
+            self.options.method,
+            status,
+            units,
+            cost,
+            round(elapsed, 6),
+            stats,
+            {"asp_cost": best.get("cost", [])} if best else {},
+        )
+
+    def stats(self) -> dict:
+        """Choices, conflicts, models and solve time of the last solve call."""
+        return _stats(self.ctl.statistics)
+
+
+def _stats(s) -> dict:
+    """The reported numbers from clingo's statistics of the last solve call."""
+    try:
+        solving = s["solving"]["solvers"]
+        summary = s["summary"]
+        return {
+            "choices": int(solving["choices"]),
+            "conflicts": int(solving["conflicts"]),
+            "models": int(summary["models"]["enumerated"]),
+            "solve_s": round(summary["times"]["solve"], 6),
+        }
+    except (KeyError, RuntimeError):
+        return {}
+
+
+def solve_goals(problem: Problem, goals: Iterable[int], options: AspOptions | None = None) -> list[TaskTree]:
+    """Solve each goal in turn on one grounding."""
+    session = Session(problem, options)
+    return [session.solve(g) for g in goals]

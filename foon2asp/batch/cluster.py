@@ -1,0 +1,70 @@
+"""Run a batch on a Dask cluster (the optional extra ``dask``: ``pip install 'foon2asp[dask]'``).
+
+The batch spec (problem, methods, options) is scattered to every worker
+once; each worker process builds its runners once (cached per thread, since
+a clingo control is not shared between threads) and answers chunks of
+(goal, method) pairs.  Results come back as they finish and the client
+writes them exactly as a local batch does, so ``--resume`` works the same.
+"""
+
+from __future__ import annotations
+
+import threading
+import uuid
+from typing import Callable, Iterator
+
+from foon2asp.batch.run import BatchSpec, Worker
+from foon2asp.errors import InputError
+
+_LOCAL = threading.local()
+
+
+def _require():
+    try:
+        import distributed  # noqa: F401
+    except ModuleNotFoundError:
+        raise InputError(
+            "--scheduler needs Dask: install the extra with  pip install 'foon2asp[dask]'  (dask[distributed])"
+        ) from None
+    return distributed
+
+
+def _run_chunk(token: str, spec: BatchSpec, tasks: list[tuple[int, str]]) -> list[tuple[int, str, str]]:
+    """On a Dask worker: the results of ``tasks`` (runners built once per thread and spec)."""
+    cache = getattr(_LOCAL, "workers", None)
+    if cache is None:
+        cache = _LOCAL.workers = {}
+    worker = cache.get(token)
+    if worker is None:
+        cache.clear()
+        worker = cache[token] = Worker(spec)
+    return worker.run_many(tasks)
+
+
+def executor(scheduler, chunk: int = 8) -> Callable[[BatchSpec, list[tuple[int, str]]], Iterator[tuple[int, str, str]]]:
+    """A batch executor for :func:`foon2asp.batch.run_batch` on ``scheduler``
+    (an address such as ``tcp://host:8786`` or a ``distributed.Client``)."""
+    distributed = _require()
+
+    def run(spec: BatchSpec, tasks: list[tuple[int, str]]) -> Iterator[tuple[int, str, str]]:
+        if not tasks:
+            return
+        own = not isinstance(scheduler, distributed.Client)
+        try:
+            client = distributed.Client(scheduler) if own else scheduler
+        except OSError as exc:
+            raise InputError(f"cannot reach the Dask scheduler {scheduler}: {exc}") from None
+        try:
+            token = uuid.uuid4().hex
+            [shared] = client.scatter([spec], broadcast=True)
+            futures = [
+                client.submit(_run_chunk, token, shared, tasks[i : i + chunk], pure=False)
+                for i in range(0, len(tasks), chunk)
+            ]
+            for future in distributed.as_completed(futures):
+                yield from future.result()
+        finally:
+            if own:
+                client.close()
+
+    return run

@@ -1,0 +1,5 @@
+"""The ``foon2asp`` command line: a thin layer over :mod:`foon2asp.api`."""
+
+from foon2asp.cli.main import main
+
+__all__ = ["main"]

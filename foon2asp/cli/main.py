@@ -1,0 +1,444 @@
+"""The ``foon2asp`` command line (one module; subcommands share the loaders)."""
+
+from __future__ import annotations
+
+import functools
+import json
+import sys
+import time
+from pathlib import Path
+
+import click
+
+from foon2asp.analysis import check as check_mod
+from foon2asp.analysis import compare as compare_mod
+from foon2asp.analysis import queries
+from foon2asp.asp.constraints import read_file
+from foon2asp.batch import cluster as dask_runner
+from foon2asp.batch import run as batch_mod
+from foon2asp.foon import goals as goals_mod
+from foon2asp import methods
+from foon2asp.asp.constraints import ConstraintSpec, unknown_names
+from foon2asp.errors import InputError
+from foon2asp.asp.facts import facts as facts_text
+from foon2asp.foon.loaders import Dataset
+from foon2asp.foon.parser import read_foons, write_foon
+from foon2asp.foon.problem import UTENSIL_RULES, Problem
+from foon2asp.foon.demo import demo_dir
+from foon2asp.asp.multishot.driver import alternatives
+from foon2asp.asp.session import OBJECTIVES, AspOptions
+from foon2asp.report.trees import FORMATS, render
+
+
+def fail(message: str, code: int = 2) -> None:
+    click.echo(f"foon2asp: error: {message}", err=True)
+    sys.exit(code)
+
+
+def guarded(func):
+    """Run a command; bad input becomes one line on stderr and exit code 2."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        try:
+            return func(*args, **kwargs)
+        except InputError as exc:
+            fail(str(exc))
+        except KeyboardInterrupt:
+            fail("interrupted", 130)
+        except BrokenPipeError:
+            sys.exit(0)
+
+    return wrapper
+
+
+def data_options(func):
+    """--data DIR and the per-file overrides, plus --utensil-rule and --strict."""
+    opts = [
+        click.option("--data", "data_dir", type=click.Path(), help="Directory with FOON.txt, kitchen.json, goal_nodes.json, motion.txt, utensils.txt (default: the demo data)."),
+        click.option("--foon", "foon", type=click.Path(), multiple=True, help="FOON file(s); several are merged."),
+        click.option("--kitchen", type=click.Path(), help="kitchen.json"),
+        click.option("--motion", type=click.Path(), help="motion.txt (motion TAB success rate)"),
+        click.option("--utensils", type=click.Path(), help="utensils.txt"),
+        click.option("--utensil-rule", type=click.Choice(UTENSIL_RULES), default="starter", show_default=True, help="When a utensil holding one ingredient is not a required input."),
+        click.option("--strict", is_flag=True, help="Treat skipped FOON units (warnings) as errors."),
+    ]
+    for opt in reversed(opts):
+        func = opt(func)
+    return func
+
+
+def goal_options(func):
+    func = click.option("--goals", "goals", help="FILE of goal objects, 'all' (the goals file) or 'all-objects'.")(func)
+    func = click.option("--goal", "goal", multiple=True, help="Goal label (goals-file entry, else a unique FOON object).")(func)
+    return func
+
+
+_CONSTRAINT_KEYS = ("constraint", "rule", "forbid_motion", "forbid_object", "require_motion", "require_object", "max_units")
+
+
+def constraint_options(func):
+    """--constraint FILE.lp, --rule TEXT and the convenience flags, passed on as ``constraints``
+    (a :class:`foon2asp.constraints.ConstraintSpec`; see :func:`constraint_programs`)."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        values = [kwargs.pop(k) for k in _CONSTRAINT_KEYS]
+        spec = ConstraintSpec(*(tuple(v) if isinstance(v, tuple) else v for v in values))
+        return func(*args, constraints=spec, **kwargs)
+
+    opts = [
+        click.option("--constraint", type=click.Path(), multiple=True, help="ASP file with extra rules over the vocabulary (use/1, motion/2, label/2, ...); repeatable."),
+        click.option("--rule", multiple=True, help="An extra ASP rule, e.g. ':- use(U), motion(U,\"fry\").'; repeatable."),
+        click.option("--forbid-motion", multiple=True, metavar="M", help="No unit of the tree has motion M; repeatable."),
+        click.option("--forbid-object", multiple=True, metavar="LABEL", help="No unit of the tree has an input or output labelled LABEL; repeatable."),
+        click.option("--require-motion", multiple=True, metavar="M", help="Some unit of the tree has motion M; repeatable."),
+        click.option("--require-object", multiple=True, metavar="LABEL", help="Some unit of the tree has an input or output labelled LABEL; repeatable."),
+        click.option("--max-units", type=click.IntRange(min=0), help="The tree has at most N units."),
+    ]
+    for opt in reversed(opts):
+        wrapper = opt(wrapper)
+    return wrapper
+
+
+def constraint_programs(spec: ConstraintSpec, problem: Problem | None = None) -> list[tuple[str, str]]:
+    """The (name, text) programs for AspOptions.programs; names no motion/label matches are warned about."""
+    if problem is not None:
+        for warning in unknown_names(problem, spec):
+            click.echo(f"foon2asp: warning: {warning}", err=True)
+    return spec.programs()
+
+
+def load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file=None):
+    """Read the data and build the problem; warnings go to stderr."""
+    if data_dir is None and not (foon and kitchen):
+        data_dir = str(demo_dir())
+    goals_path = goals_file if goals_file not in (None, "all", "all-objects") else None
+    data = Dataset.load(
+        data_dir,
+        foon=list(foon) if foon else None,
+        kitchen=kitchen,
+        goals=goals_path,
+        motion=motion,
+        utensils=utensils,
+        strict=strict,
+    )
+    for warning in data.foon.warnings:
+        click.echo(f"foon2asp: warning: {warning}", err=True)
+    problem = Problem.from_dataset(data, utensil_rule)
+    if data.motion:
+        unknown = problem.unknown_motions()
+        if unknown:
+            click.echo(
+                f"foon2asp: warning: {len(unknown)} motion(s) not in {data.paths.get('motion')} "
+                f"get success rate 0.5: {', '.join(unknown[:5])}",
+                err=True,
+            )
+    return data, problem
+
+
+def _objective(value: str) -> tuple[str, ...]:
+    parts = tuple(p.strip() for p in value.split(",") if p.strip())
+    for p in parts:
+        if p not in OBJECTIVES:
+            raise InputError(f"unknown objective {p!r} (have {', '.join(OBJECTIVES)})")
+    return parts or ("units",)
+
+
+_SOLVER_KEYS = ("max_depth", "human_steps", "models", "all_optimal", "opt_strategy", "threads")
+SOLVER_DEFAULTS = {"max_depth": None, "human_steps": None, "models": 1, "all_optimal": False, "opt_strategy": None, "threads": 1}
+
+
+def _opt_strategy(ctx, param, value):
+    if value is not None and value.split(",")[0] not in ("bb", "usc"):
+        raise click.BadParameter("expected bb or usc, optionally with clingo's refinements (e.g. usc,oll or bb,hier)")
+    return value
+
+
+def solver_options(func):
+    """--max-depth, --human-steps, --models, --all-optimal, --opt-strategy, --threads, passed on
+    as ``solver_settings`` (keyword arguments of AspOptions)."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        settings = {k: kwargs.pop(k) for k in _SOLVER_KEYS}
+        if settings["models"] > 1 and settings["all_optimal"]:
+            raise click.UsageError("--models and --all-optimal exclude each other")
+        return func(*args, solver_settings=settings, **kwargs)
+
+    opts = [
+        click.option("--max-depth", type=click.IntRange(min=1), help="Only trees of at most N sequential rounds (the goal's level); with --objective depth, the search stops there."),
+        click.option("--human-steps", type=click.IntRange(min=0), help="At most M units may be done by a person (success 1.0); the solver picks them, the output marks them."),
+        click.option("--models", type=click.IntRange(min=1), default=1, show_default=True, help="The K best distinct trees per goal, best first."),
+        click.option("--all-optimal", is_flag=True, help="Every optimal tree per goal (at most 100)."),
+        click.option("--opt-strategy", callback=_opt_strategy, help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll."),
+        click.option("--threads", type=click.IntRange(min=1), default=1, show_default=True, help="clingo solver threads (parallel mode)."),
+    ]
+    for opt in reversed(opts):
+        wrapper = opt(wrapper)
+    return wrapper
+
+
+def _solver_warnings(problem: Problem, trees: list) -> None:
+    for tree in trees:
+        if "note" in tree.extra:
+            click.echo(f"foon2asp: warning: {problem.objects[tree.goal].label}: {tree.extra['note']}", err=True)
+
+
+def safe_name(index: int, label: str) -> str:
+    keep = "".join(c if c.isalnum() else "_" for c in label).strip("_")[:60] or "goal"
+    return f"{index:03d}-{keep}"
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="foon2asp")
+def main():
+    """foon2asp: minimal, well-founded FOON task trees with answer-set programming."""
+
+
+@main.command()
+@data_options
+@goal_options
+@constraint_options
+@click.option("--method", default="asp", show_default=True, help="A registered method (see 'foon2asp methods').")
+@click.option("--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first.")
+@click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True)
+@click.option("--output", type=click.Path(file_okay=False), help="Also write one file per goal into this directory.")
+@click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
+@solver_options
+@guarded
+def solve(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, method, objective, fmt, output, time_limit, constraints, solver_settings):
+    """Find the best task tree for each goal."""
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    goal_ids = goals_mod.resolve(data, problem, goal, goals)
+    if constraints and methods.get(method).kind != "asp":
+        raise InputError(f"constraints apply to ASP methods only; {method!r} is a search baseline")
+    if methods.get(method).kind != "asp" and solver_settings != SOLVER_DEFAULTS:
+        raise InputError(f"solver settings apply to ASP methods only; {method!r} is a search baseline")
+    # ASP grounds only the units a tree for these goals can use (same trees, far smaller grounding)
+    units = problem.units_for(goal_ids) if methods.get(method).kind == "asp" else None
+    options = AspOptions(objective=_objective(objective), time_limit=time_limit, programs=constraint_programs(constraints, problem), units=units, **solver_settings)
+    run = methods.runner(method, problem, options)
+    trees = []
+    out_dir = Path(output) if output else None
+    if out_dir:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    for index, g in enumerate(goal_ids, 1):
+        tree = run(g)
+        found = alternatives(tree)  # --models / --all-optimal: the further trees, best first
+        trees.extend(found)
+        if out_dir:
+            ext = {"text": "txt", "json": "json", "foon": "txt"}[fmt]
+            name = safe_name(index, problem.objects[g].label) + ("" if fmt != "foon" else ".foon") + f".{ext}"
+            (out_dir / name).write_text(render(problem, found, fmt), encoding="utf-8")
+    _solver_warnings(problem, trees)
+    click.echo(render(problem, trees, fmt), nl=False)
+
+
+@main.command()
+@data_options
+@click.option("--goals", "goals_file", help="Goals FILE (default: goal_nodes.json of --data).")
+@click.option("--goal", "goal", multiple=True, help="Also fix goal(O) for this label.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the facts here (default: stdout).")
+@guarded
+def facts(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file, goal, output):
+    """Write the FOON, kitchen and goals as ASP facts."""
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file)
+    goal_nodes = [goals_mod.goal_id(problem, obj, data.paths.get("goals"), line) for obj, line in data.goals]
+    fixed = goals_mod.resolve(data, problem, goal, None) if goal else []
+    text = facts_text(problem, goal_nodes=goal_nodes)
+    text += "".join(f"goal({g}).\n" for g in fixed)
+    if output:
+        Path(output).write_text(text, encoding="utf-8")
+        click.echo(f"wrote {len(text.splitlines())} lines to {output}", err=True)
+    else:
+        click.echo(text, nl=False)
+
+
+@main.command()
+@click.argument("files", nargs=-1, required=True, type=click.Path())
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="The merged FOON file.")
+@click.option("--strict", is_flag=True, help="Treat skipped units (warnings) as errors.")
+@guarded
+def merge(files, output, strict):
+    """Merge FOON subgraphs into one universal FOON (duplicate units merged)."""
+    for f in files:
+        if not Path(f).is_file():
+            raise InputError("FOON file not found", f)
+    foon = read_foons(files, strict)
+    for warning in foon.warnings:
+        click.echo(f"foon2asp: warning: {warning}", err=True)
+    with open(output, "w", encoding="utf-8") as fh:
+        write_foon(foon, fh, header=f"merged by foon2asp from {len(files)} file(s)")
+    click.echo(f"merged {len(files)} file(s): {len(foon.units)} units, {len(foon.objects)} objects -> {output}", err=True)
+
+
+@main.command("methods")
+def list_methods():
+    """List the registered methods."""
+    for name in methods.names():
+        m = methods.get(name)
+        click.echo(f"{name:16} {m.kind:7} {m.description}")
+
+
+@main.command()
+@click.argument("tree", type=click.Path())
+@data_options
+@click.option("--goal", "goal", help="Goal label (default: the goal a JSON result names, else inferred from the tree).")
+@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+@click.option("--optimum/--no-optimum", default=True, show_default=True, help="Also solve the ASP optimum to compare with.")
+@guarded
+def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, fmt, optimum):
+    """Check a task tree (FOON text with // between units, or foon2asp JSON).
+
+    Exit status: 0 valid, 1 invalid, 2 bad input.
+    """
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict)
+    reports = check_mod.check_file(data, problem, tree, goal, optimum)
+    if fmt == "json":
+        click.echo(json.dumps([check_mod.report_json(problem, r) for r in reports], indent=2))
+    else:
+        click.echo("\n".join(check_mod.report_text(problem, r) for r in reports), nl=False)
+    sys.exit(0 if all(r.valid for r in reports) else 1)
+
+
+@main.command()
+@data_options
+@goal_options
+@constraint_options
+@click.option("--methods", "method_list", default="ids,gbfs-h1,gbfs-h2,asp", show_default=True, help="Comma-separated registered methods (see 'foon2asp methods').")
+@click.option("--format", "fmt", type=click.Choice(("text", "markdown", "csv", "json")), default="text", show_default=True)
+@click.option("--time-limit", type=float, help="Seconds per goal for ASP methods.")
+@guarded
+def compare(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, method_list, fmt, time_limit, constraints):
+    """Compare methods goal by goal: units, validity, success product, depth (default: --goals all)."""
+    if not goal and not goals:
+        goals = "all"
+    names = [m.strip() for m in method_list.split(",") if m.strip()]
+    for name in names:
+        methods.get(name)  # unknown names fail before any work
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    goal_ids = goals_mod.resolve(data, problem, goal, goals)
+    programs = constraint_programs(constraints, problem)
+    search = [n for n in names if methods.get(n).kind != "asp"]
+    if programs and search:
+        click.echo(f"foon2asp: warning: constraints apply to ASP methods only; {', '.join(search)} ignore them", err=True)
+    rows = compare_mod.compare(problem, goal_ids, names, AspOptions(time_limit=time_limit, programs=programs))
+    click.echo(compare_mod.render(problem, rows, fmt), nl=False)
+
+
+def _goals_or_default(data, problem, goal, goals) -> list[int]:
+    """--goal/--goals, else every entry of the goals file, else every made object."""
+    if not goal and not goals:
+        goals = "all" if data.paths.get("goals") else "all-objects"
+    return goals_mod.resolve(data, problem, goal, goals)
+
+
+@main.command()
+@data_options
+@goal_options
+@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+@guarded
+def reachable(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt):
+    """Which goals (or objects) can be made from the kitchen at all, in one solve (default: --goals all)."""
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    answers = queries.reachable(problem, _goals_or_default(data, problem, goal, goals))
+    if fmt == "json":
+        click.echo(json.dumps(queries.reachable_json(problem, answers), indent=2))
+    else:
+        click.echo(queries.reachable_text(problem, answers), nl=False)
+
+
+@main.command()
+@data_options
+@goal_options
+@constraint_options
+@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+@click.option("--time-limit", type=float, help="Seconds per goal; the best answer so far is reported as 'feasible'.")
+@guarded
+def missing(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, time_limit, constraints):
+    """The fewest objects to add to the kitchen so a goal can be made (proven minimal), and the tree."""
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    goal_ids = goals_mod.resolve(data, problem, goal, goals)
+    programs = constraint_programs(constraints, problem)
+    results = [queries.missing(problem, g, programs, time_limit) for g in goal_ids]
+    if fmt == "json":
+        click.echo(json.dumps([queries.missing_json(problem, r) for r in results], indent=2))
+    else:
+        click.echo("\n".join(queries.missing_text(problem, r) for r in results), nl=False)
+
+
+@main.command()
+@click.argument("program", type=click.Path())
+@data_options
+@click.option("--goals", "goals_file", help="Goals FILE for goal_node/2 (default: goal_nodes.json of --data).")
+@click.option("--goal", "goal", help="Also add goal(O) for this goal label.")
+@click.option("--encoding", "encoding_names", multiple=True, help="Also load a shipped encoding (tree, units, reachable, missing); repeatable.")
+@click.option("--models", type=click.IntRange(min=0), default=1, show_default=True, help="Models to print (0 = all); with an objective, the optimum.")
+@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+@click.option("--time-limit", type=float, help="Seconds for the solve.")
+@guarded
+def query(program, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file, goal, encoding_names, models, fmt, time_limit):
+    """Run your ASP PROGRAM with the FOON facts; print its shown atoms with ids as readable objects.
+
+    Exit status: 0 with a model, 1 when unsatisfiable, 2 bad input.
+    """
+
+    text = read_file(program)
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file)
+    path = data.paths.get("goals")
+    goal_nodes = [goals_mod.goal_id(problem, obj, path, line) for obj, line in data.goals]
+    goal_id = goals_mod.resolve_label(data, problem, goal) if goal else None
+    result = queries.query(problem, (program, text), goal_nodes, goal_id, encoding_names, models, time_limit)
+    if fmt == "json":
+        click.echo(json.dumps(queries.query_json(problem, result), indent=2))
+    else:
+        click.echo(queries.query_text(problem, result), nl=False)
+    sys.exit(1 if result.status == "unsatisfiable" else 0)
+
+
+def _method_list(values: tuple[str, ...]) -> list[str]:
+    names = [n.strip() for v in values for n in v.split(",") if n.strip()]
+    for name in names:
+        methods.get(name)
+    return list(dict.fromkeys(names)) or ["asp"]
+
+
+@main.command()
+@data_options
+@goal_options
+@click.option("--methods", "method_list", multiple=True, help="Registered methods, comma-separated or repeated (default: asp).")
+@click.option("--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first.")
+@click.option("--output", default="results.jsonl", show_default=True, type=click.Path(dir_okay=False), help="Results, one JSON line per (goal, method).")
+@click.option("--resume", is_flag=True, help="Continue OUTPUT: skip the (goal, method) pairs it already holds.")
+@click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True, help="Worker processes.")
+@click.option("--scheduler", metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra).")
+@click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
+@click.option("--opt-strategy", callback=_opt_strategy, help="clingo optimisation strategy: bb or usc (core-guided, often much faster here), e.g. usc,oll.")
+@click.option("--grounding", type=click.Choice(("whole", "per-goal")), default="whole", show_default=True, help="One grounding for all goals, or a small grounding of each goal's relevant part (very large FOONs).")
+@click.option("--shortcuts/--no-shortcuts", default=True, show_default=True, help="Answer without the solver when the answer is forced (underivable goal; no choice in the goal's part).")
+@click.option("--summary", "summary_fmt", type=click.Choice(("text", "markdown", "csv")), default="text", show_default=True, help="Format of the summary printed at the end.")
+@click.option("--progress/--no-progress", default=None, help="Progress bar (default: when stderr is a terminal).")
+@click.option("--fsync/--no-fsync", default=True, show_default=True, help="Sync each result line to disk.")
+@constraint_options
+@guarded
+def batch(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, method_list, objective, output, resume, workers, scheduler, time_limit, opt_strategy, grounding, shortcuts, summary_fmt, progress, fsync, constraints):
+    """Solve many goals with several methods; resumable JSON-lines output and a summary."""
+    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    goal_ids = goals_mod.resolve(data, problem, goal, goals)
+    options = AspOptions(
+        objective=_objective(objective),
+        time_limit=time_limit,
+        opt_strategy=opt_strategy,
+        programs=constraint_programs(constraints, problem),
+    )
+    spec = batch_mod.BatchSpec(problem, _method_list(method_list), options, grounding, shortcuts)
+    executor = None
+    if scheduler:
+        executor = dask_runner.executor(scheduler)
+    report = batch_mod.run_batch(spec, goal_ids, output, resume, workers, progress, fsync, executor)
+    click.echo(batch_mod.render_summary(batch_mod.summarize(report.records), summary_fmt, report), nl=False)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

@@ -1,0 +1,75 @@
+"""Turning what the user names (a label, a goals file, ``all``) into object ids."""
+
+from __future__ import annotations
+
+import difflib
+
+from foon2asp.errors import InputError
+from foon2asp.foon.loaders import Dataset, read_goals
+from foon2asp.foon.problem import Problem
+
+
+def _closest(problem: Problem, label: str) -> str:
+    close = difflib.get_close_matches(label, sorted(problem.foon.labels()), n=5, cutoff=0.5)
+    return f"; closest labels: {', '.join(close)}" if close else ""
+
+
+def goal_id(problem: Problem, obj, path: str | None = None, line: int | None = None) -> int:
+    """Object id of a goal object, or an error suggesting close labels."""
+    oid = problem.foon.object_ids.get(obj)
+    if oid is None:
+        same = problem.foon.by_label(obj.label)
+        hint = f"; objects labelled {obj.label!r} exist with other states" if same else _closest(problem, obj.label)
+        raise InputError(f"goal {obj} is not an object of the FOON{hint}", path, line)
+    return oid
+
+
+def resolve_label(data: Dataset, problem: Problem, label: str) -> int:
+    """``--goal LABEL``: the goals-file entry with that label, else the unique FOON object."""
+    norm = " ".join(label.split()).lower()
+    path = data.paths.get("goals")
+    entries = [(obj, line) for obj, line in data.goals if obj.label == norm]
+    if len(entries) == 1:
+        return goal_id(problem, entries[0][0], path, entries[0][1])
+    if len(entries) > 1:
+        listing = " | ".join(str(o) for o, _ in entries)
+        raise InputError(f"goal label {label!r} is ambiguous in the goals file: {listing}", path)
+    candidates = [problem.foon.object_ids[o] for o in problem.foon.by_label(norm)]
+    produced = [o for o in candidates if o in problem.producers] or candidates
+    if len(produced) == 1:
+        return produced[0]
+    if not produced:
+        raise InputError(f"no goal or FOON object labelled {label!r}{_closest(problem, norm)}")
+    listing = " | ".join(str(problem.objects[o]) for o in produced[:10])
+    more = f" (+{len(produced) - 10} more)" if len(produced) > 10 else ""
+    raise InputError(
+        f"label {label!r} names {len(produced)} FOON objects; put the one you mean in a goals file: {listing}{more}"
+    )
+
+
+def goals_from_file(problem: Problem, path: str) -> list[int]:
+    return [goal_id(problem, obj, path, line) for obj, line in read_goals(path)]
+
+
+def all_objects(problem: Problem) -> list[int]:
+    """Every object some unit produces that is not in the kitchen."""
+    return sorted(o for o in problem.producers if o not in problem.kitchen)
+
+
+def resolve(data: Dataset, problem: Problem, goal: tuple[str, ...] | None, goals: str | None) -> list[int]:
+    """Goal ids for ``--goal LABEL`` (repeatable) or ``--goals FILE|all|all-objects``."""
+    out: list[int] = []
+    for label in goal or ():
+        out.append(resolve_label(data, problem, label))
+    if goals == "all":
+        path = data.paths.get("goals")
+        if path is None:
+            raise InputError("--goals all needs a goals file (goal_nodes.json in --data DIR, or --goals FILE)")
+        out += [goal_id(problem, obj, path, line) for obj, line in data.goals]
+    elif goals == "all-objects":
+        out += all_objects(problem)
+    elif goals:
+        out += goals_from_file(problem, goals)
+    if not out:
+        raise InputError("no goal given: use --goal LABEL or --goals FILE|all")
+    return out

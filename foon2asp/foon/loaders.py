@@ -1,0 +1,195 @@
+"""Loaders for the files beside a FOON: kitchen, goals, motion rates, utensils.
+
+A data directory holds ``FOON.txt``, ``kitchen.json``, ``goal_nodes.json``,
+``motion.txt`` and ``utensils.txt``; :class:`Dataset` bundles what was read.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from foon2asp.errors import InputError
+from foon2asp.foon.model import Foon, FoonObject
+from foon2asp.foon.parser import read_foons
+
+FILE_NAMES = {
+    "foon": "FOON.txt",
+    "kitchen": "kitchen.json",
+    "goals": "goal_nodes.json",
+    "motion": "motion.txt",
+    "utensils": "utensils.txt",
+}
+
+
+def _read_text(path: Path, what: str) -> str:
+    try:
+        return path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InputError(f"{what} file not found", str(path)) from None
+    except OSError as exc:
+        raise InputError(f"cannot read {what} file: {exc.strerror or exc}", str(path)) from None
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text ({exc.reason})", str(path)) from None
+
+
+def _line_of(text: str, pos: int) -> int:
+    return text.count("\n", 0, pos) + 1
+
+
+def _json_elements(text: str, path: str) -> list[tuple[object, int]]:
+    """Elements of a top-level JSON list, each with the line it starts on."""
+    dec = json.JSONDecoder()
+    try:
+        json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InputError(f"bad JSON: {exc.msg}", path, exc.lineno) from None
+    pos = len(text) - len(text.lstrip())
+    if text[pos : pos + 1] != "[":
+        raise InputError("expected a JSON list of objects", path, _line_of(text, pos))
+    pos += 1
+    out: list[tuple[object, int]] = []
+    line, counted = 1, 0  # lines are counted incrementally: linear in the file size
+    while True:
+        while pos < len(text) and text[pos] in " \t\r\n,":
+            pos += 1
+        if text[pos] == "]":
+            return out
+        value, end = dec.raw_decode(text, pos)
+        line += text.count("\n", counted, pos)
+        counted = pos
+        out.append((value, line))
+        pos = end
+
+
+def object_from_json(value: object, path: str, line: int) -> FoonObject:
+    """An object from ``{label, states, ingredients, container}``."""
+    if not isinstance(value, dict):
+        raise InputError("expected an object {label, states, ingredients, container}", path, line)
+    label = value.get("label")
+    if not isinstance(label, str) or not label.strip():
+        raise InputError("object without a 'label' string", path, line)
+    states = value.get("states") or []
+    ingredients = value.get("ingredients") or []
+    container = value.get("container")
+    for name, items in (("states", states), ("ingredients", ingredients)):
+        if not isinstance(items, list) or not all(isinstance(x, str) for x in items):
+            raise InputError(f"'{name}' of {label!r} must be a list of strings", path, line)
+    if container is not None and not isinstance(container, str):
+        raise InputError(f"'container' of {label!r} must be a string or null", path, line)
+    return FoonObject.make(label, states, ingredients, container)
+
+
+def read_objects(path: str | Path, what: str) -> list[FoonObject]:
+    """A JSON list of objects (kitchen.json, goal_nodes.json)."""
+    path = Path(path)
+    text = _read_text(path, what)
+    try:
+        values = json.loads(text)
+    except json.JSONDecodeError:
+        values = None
+    if isinstance(values, list):
+        # one pass without line numbers; they are found only for a message
+        try:
+            return [object_from_json(v, str(path), 0) for v in values]
+        except InputError:
+            pass
+    return [object_from_json(v, str(path), line) for v, line in _json_elements(text, str(path))]
+
+
+def read_kitchen(path: str | Path) -> list[FoonObject]:
+    return read_objects(path, "kitchen")
+
+
+def read_goals(path: str | Path) -> list[tuple[FoonObject, int]]:
+    """Goals with the line each entry starts on (for messages)."""
+    path = Path(path)
+    text = _read_text(path, "goals")
+    return [(object_from_json(v, str(path), line), line) for v, line in _json_elements(text, str(path))]
+
+
+def read_motion(path: str | Path) -> dict[str, float]:
+    """``motion TAB success-rate`` per line; rates must lie in (0, 1]."""
+    path = Path(path)
+    rates: dict[str, float] = {}
+    for lineno, line in enumerate(_read_text(path, "motion").splitlines(), 1):
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        parts = line.rsplit("\t", 1) if "\t" in line else line.rsplit(None, 1)
+        if len(parts) != 2:
+            raise InputError(f"expected 'motion<TAB>rate', got {line.strip()!r}", str(path), lineno)
+        try:
+            rate = float(parts[1])
+        except ValueError:
+            raise InputError(f"success rate {parts[1].strip()!r} is not a number", str(path), lineno) from None
+        if not 0.0 < rate <= 1.0:
+            raise InputError(f"success rate {rate} is not in (0, 1]", str(path), lineno)
+        rates[" ".join(parts[0].split()).lower()] = rate
+    return rates
+
+
+def read_utensils(path: str | Path) -> frozenset[str]:
+    """One utensil label per line."""
+    path = Path(path)
+    text = _read_text(path, "utensils")
+    return frozenset(
+        " ".join(line.split()).lower() for line in text.splitlines() if line.strip() and not line.startswith("#")
+    )
+
+
+@dataclass
+class Dataset:
+    """Everything read from a data directory (or individual files)."""
+
+    foon: Foon
+    kitchen: list[FoonObject]
+    goals: list[tuple[FoonObject, int]] = field(default_factory=list)
+    motion: dict[str, float] = field(default_factory=dict)
+    utensils: frozenset[str] = frozenset()
+    paths: dict[str, str] = field(default_factory=dict)
+
+    @classmethod
+    def load(
+        cls,
+        data_dir: str | Path | None = None,
+        *,
+        foon: str | Path | list | None = None,
+        kitchen: str | Path | None = None,
+        goals: str | Path | None = None,
+        motion: str | Path | None = None,
+        utensils: str | Path | None = None,
+        strict: bool = False,
+    ) -> "Dataset":
+        """Read a data directory; explicit file arguments override its files.
+
+        ``goals``, ``motion`` and ``utensils`` are optional when absent from
+        the directory; ``FOON.txt`` and ``kitchen.json`` are required.
+        """
+        base = Path(data_dir) if data_dir is not None else None
+        given = {"foon": foon, "kitchen": kitchen, "goals": goals, "motion": motion, "utensils": utensils}
+        paths: dict[str, str] = {}
+        for key, value in given.items():
+            if value is not None:
+                paths[key] = value if isinstance(value, list) else str(value)
+            elif base is not None:
+                candidate = base / FILE_NAMES[key]
+                if candidate.exists() or key in ("foon", "kitchen"):
+                    paths[key] = str(candidate)
+        if base is not None and not base.is_dir():
+            raise InputError("data directory not found", str(base))
+        for key in ("foon", "kitchen"):
+            if key not in paths:
+                raise InputError(f"no {FILE_NAMES[key]} given (use --data DIR or --{key} FILE)")
+        foon_paths = paths["foon"] if isinstance(paths["foon"], list) else [paths["foon"]]
+        for p in foon_paths:
+            if not Path(p).is_file():
+                raise InputError("FOON file not found", str(p))
+        return cls(
+            foon=read_foons(foon_paths, strict),
+            kitchen=read_kitchen(paths["kitchen"]),
+            goals=read_goals(paths["goals"]) if "goals" in paths else [],
+            motion=read_motion(paths["motion"]) if "motion" in paths else {},
+            utensils=read_utensils(paths["utensils"]) if "utensils" in paths else frozenset(),
+            paths={k: (",".join(v) if isinstance(v, list) else v) for k, v in paths.items()},
+        )

@@ -1,0 +1,219 @@
+"""Read and write FOON text files.
+
+Two dialects are read, line by line, so files may even mix them:
+
+* the ID-less format of the universal FOON (``O\\tlabel``, ``S\\tstate``,
+  ``S\\tcontains\\t{a,b}``, ``S\\tin\\t[c]``, ``M\\tmotion``);
+* the official subgraph format (``O<id>\\tlabel\\t<0|1>``, ``S<id>\\t...``,
+  ``M<id>\\tmotion\\t<start>\\t<end>``, CRLF, ``# Source:`` lines).
+
+``//`` ends a unit; ``#`` starts a comment line; blank lines are ignored.
+``in`` sets the container, ``contains`` the ingredients; any other relation
+(``on``, ``with``, ``attached to``, ...) is kept as the state ``"rel [arg]"``.
+A trailing ``*`` on a motion label is dropped.
+"""
+
+from __future__ import annotations
+
+import gc
+import re
+from pathlib import Path
+from typing import Iterable, TextIO
+
+from foon2asp.errors import InputError
+from foon2asp.foon.model import Foon, FoonObject, Unit
+
+_LINE = re.compile(r"^([OSM])(\d*)\t(.*)$")  # the line shape _parse checks by hand
+_KINDS = frozenset("OSM")
+_RELATION_STATE = re.compile(r"^(.+?) ([\[{].*[\]}])$")
+
+
+def _strip_brackets(arg: str) -> str:
+    arg = arg.strip()
+    if arg[:1] in "[{" and arg[-1:] in "]}":
+        arg = arg[1:-1]
+    return arg.strip()
+
+
+class _Obj:
+    """An object being read (mutable until the unit ends)."""
+
+    def __init__(self, label: str):
+        self.label = label
+        self.states: list[str] = []
+        self.ingredients: list[str] = []
+        self.container: str | None = None
+
+    def freeze(self, memo: dict) -> FoonObject:
+        """The normalised object; ``memo`` maps raw fields to objects already made."""
+        key = (self.label, tuple(self.states), tuple(self.ingredients), self.container)
+        obj = memo.get(key)
+        if obj is None:
+            obj = memo[key] = FoonObject.make(self.label, self.states, self.ingredients, self.container)
+        return obj
+
+
+def parse_lines(
+    lines: Iterable[str], path: str = "<string>", foon: Foon | None = None, strict: bool = False
+) -> Foon:
+    """Parse FOON text from ``lines`` into ``foon`` (a new one by default).
+
+    A unit without a motion line cannot be used; it is skipped with a warning
+    in ``foon.warnings`` (an error when ``strict``).  Other problems raise
+    :class:`InputError` naming the file and line.
+    """
+    foon = foon if foon is not None else Foon()
+    gc_enabled = gc.isenabled()
+    gc.disable()  # many small long-lived objects: collection passes only cost time here
+    try:
+        return _parse(lines, path, foon, strict)
+    finally:
+        if gc_enabled:
+            gc.enable()
+
+
+def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
+    memo: dict = {}
+    inputs: list[_Obj] = []
+    outputs: list[_Obj] = []
+    motion: str | None = None
+    start = 0
+    current: _Obj | None = None
+
+    def finish(lineno: int) -> None:
+        nonlocal inputs, outputs, motion, current, start
+        if inputs or outputs or motion is not None:
+            if motion is None:
+                err = InputError("functional unit has no motion (M) line; unit skipped", path, start)
+                if strict:
+                    raise err
+                foon.warnings.append(str(err))
+                inputs, outputs, current = [], [], None
+                return
+            unit = Unit(motion, tuple(o.freeze(memo) for o in inputs), tuple(o.freeze(memo) for o in outputs))
+            foon.add_unit(unit, (path, start))
+        inputs, outputs, motion, current = [], [], None, None
+
+    lineno = 0
+    for lineno, raw in enumerate(lines, 1):
+        line = raw.rstrip("\r\n")
+        kind = line[:1]
+        # the common lines first, without a regular expression (same as _LINE)
+        tab = line.find("\t") if kind in _KINDS else -1
+        if tab < 0 or (tab > 1 and not line[1:tab].isdecimal()):
+            if not line.strip():
+                continue
+            if line.startswith("//"):
+                finish(lineno)
+                continue
+            if line.startswith("#"):
+                continue
+            if kind in "OSM" and "\t" not in line:
+                raise InputError(f"expected a TAB after '{line.split()[0]}' in {line.strip()!r}", path, lineno)
+            raise InputError(
+                f"unknown line type {line.strip()[:40]!r} (expected O, S, M, // or #)", path, lineno
+            )
+        rest = line[tab + 1 :]
+        fields = [f.strip() for f in rest.split("\t")] if "\t" in rest else [rest.strip()]
+        if kind == "O":
+            if not fields[0]:
+                raise InputError("object line with an empty label", path, lineno)
+            if not (inputs or outputs or motion is not None):
+                start = lineno
+            current = _Obj(fields[0])
+            (outputs if motion is not None else inputs).append(current)
+        elif kind == "S":
+            if current is None:
+                raise InputError("state (S) line before any object (O) line", path, lineno)
+            name = fields[0]
+            if not name:
+                raise InputError("state line with an empty state", path, lineno)
+            arg = fields[1] if len(fields) > 1 and fields[1] else None
+            if arg is None:
+                current.states.append(name)
+            elif name.lower() in ("contains", "ingredients"):
+                current.ingredients.extend(i for i in _strip_brackets(arg).split(","))
+            elif name.lower() == "in":
+                container = _strip_brackets(arg)
+                if current.container is not None and current.container != container:
+                    raise InputError(
+                        f"object {current.label!r} is in two containers "
+                        f"[{current.container}] and [{container}]",
+                        path,
+                        lineno,
+                    )
+                current.container = container
+            else:
+                current.states.append(f"{name} {arg}")
+        else:  # M
+            if motion is not None:
+                raise InputError("second motion (M) line in one functional unit", path, lineno)
+            if not inputs:
+                raise InputError("motion (M) line before any input object", path, lineno)
+            label = fields[0].rstrip("*").strip()
+            if not label:
+                raise InputError("motion line with an empty motion", path, lineno)
+            motion = label.lower()
+            current = None
+    finish(lineno + 1)
+    return foon
+
+
+def read_foon(path: str | Path, foon: Foon | None = None, strict: bool = False) -> Foon:
+    """Read one FOON file (either dialect)."""
+    path = Path(path)
+    try:
+        with open(path, encoding="utf-8", newline="") as fh:
+            return parse_lines(fh, str(path), foon, strict)
+    except OSError as exc:
+        raise InputError(f"cannot read FOON file: {exc.strerror or exc}", str(path)) from None
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text ({exc.reason})", str(path)) from None
+
+
+def read_foons(paths: Iterable[str | Path], strict: bool = False) -> Foon:
+    """Read several FOON files into one merged, de-duplicated FOON."""
+    foon = Foon()
+    for path in paths:
+        read_foon(path, foon, strict)
+    return foon
+
+
+def parse_text(text: str, path: str = "<string>", strict: bool = False) -> Foon:
+    return parse_lines(text.splitlines(), path, strict=strict)
+
+
+def object_lines(obj: FoonObject) -> list[str]:
+    lines = [f"O\t{obj.label}"]
+    for state in obj.states:
+        m = _RELATION_STATE.match(state)
+        lines.append(f"S\t{m.group(1)}\t{m.group(2)}" if m else f"S\t{state}")
+    if obj.ingredients:
+        lines.append("S\tcontains\t{" + ",".join(obj.ingredients) + "}")
+    if obj.container:
+        lines.append(f"S\tin\t[{obj.container}]")
+    return lines
+
+
+def unit_lines(unit: Unit) -> list[str]:
+    lines: list[str] = []
+    for obj in unit.inputs:
+        lines += object_lines(obj)
+    lines.append(f"M\t{unit.motion}")
+    for obj in unit.outputs:
+        lines += object_lines(obj)
+    lines.append("//")
+    return lines
+
+
+def format_units(units: Iterable[Unit], header: str | None = None) -> str:
+    """FOON text (ID-less format) for ``units``, each closed by ``//``."""
+    lines = [f"# {header}"] if header else []
+    lines.append("//")
+    for unit in units:
+        lines += unit_lines(unit)
+    return "\n".join(lines) + "\n"
+
+
+def write_foon(foon: Foon, out: TextIO, header: str | None = None) -> None:
+    out.write(format_units(foon.units, header))

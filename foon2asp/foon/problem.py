@@ -1,0 +1,196 @@
+"""The planning problem in integer form: required inputs, products, kitchen.
+
+This is where the default semantics live (see README, "Semantics"):
+
+* an object is *available* iff it equals a kitchen item on label, states,
+  ingredients and container;
+* utensil rule ``starter``: an input is not required when it is a utensil
+  holding exactly one ingredient and another input of the same unit is that
+  ingredient inside that utensil (``off`` makes every input required);
+* an output with no states, ingredients or container is not a product.
+
+Everything downstream (facts, search methods, validator) reads this class,
+so the semantics are stated exactly once.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Iterable, Protocol
+
+from foon2asp.foon.model import Foon, FoonObject, Unit
+
+UTENSIL_RULES = ("starter", "off")
+
+
+class DataLike(Protocol):
+    """What :meth:`Problem.from_dataset` reads (a :class:`foon2asp.foon.loaders.Dataset`)."""
+
+    foon: Foon
+    kitchen: list[FoonObject]
+    motion: dict[str, float]
+    utensils: frozenset[str]
+
+#: success rate of a motion that motion.txt does not list
+DEFAULT_RATE = 0.5
+
+
+def required_flags(unit: Unit, utensils: frozenset[str], rule: str = "starter") -> list[bool]:
+    """For each input of ``unit``: is it required?"""
+    flags = []
+    for obj in unit.inputs:
+        skip = (
+            rule == "starter"
+            and obj.label in utensils
+            and len(obj.ingredients) == 1
+            and any(o.label == obj.ingredients[0] and o.container == obj.label for o in unit.inputs)
+        )
+        flags.append(not skip)
+    return flags
+
+
+def walk_back(
+    goals: Iterable[int],
+    kitchen: frozenset[int],
+    producers: dict[int, list[int]],
+    required: list[tuple[int, ...]] | dict,
+) -> tuple[set[int], set[int], bool]:
+    """Backwards from ``goals`` through ``producers`` and their required inputs.
+
+    Returns ``(units, objects, choice)``: the units reached, the objects
+    reached (the goals included), and whether some non-kitchen object reached
+    has more than one producer.  Kitchen items stop the walk.
+    """
+    seen = set(goals)
+    stack = list(seen)
+    units: set[int] = set()
+    choice = False
+    while stack:
+        o = stack.pop()
+        if o in kitchen:
+            continue
+        makers = producers.get(o, ())
+        if len(makers) > 1:
+            choice = True
+        for u in makers:
+            if u in units:
+                continue
+            units.add(u)
+            for i in required[u]:
+                if i not in seen:
+                    seen.add(i)
+                    stack.append(i)
+    return units, seen, choice
+
+
+@dataclass
+class Problem:
+    """A FOON with kitchen, rates and the semantics above, as integer ids."""
+
+    foon: Foon
+    kitchen_items: list[FoonObject]
+    motion_rates: dict[str, float] = field(default_factory=dict)
+    utensils: frozenset[str] = frozenset()
+    utensil_rule: str = "starter"
+
+    def __post_init__(self) -> None:
+        if self.utensil_rule not in UTENSIL_RULES:
+            raise ValueError(f"unknown utensil rule {self.utensil_rule!r}")
+        oid = self.foon.object_ids
+        self.inputs: list[tuple[int, ...]] = []
+        self.required: list[tuple[int, ...]] = []
+        self.products: list[tuple[int, ...]] = []
+        self.outputs: list[tuple[int, ...]] = []
+        for unit in self.foon.units:
+            ins = tuple(oid[o] for o in unit.inputs)
+            flags = required_flags(unit, self.utensils, self.utensil_rule)
+            self.inputs.append(ins)
+            self.required.append(tuple(dict.fromkeys(i for i, f in zip(ins, flags) if f)))
+            self.outputs.append(tuple(oid[o] for o in unit.outputs))
+            self.products.append(tuple(dict.fromkeys(oid[o] for o in unit.outputs if not o.is_bare())))
+        self.producers: dict[int, list[int]] = {}
+        for u, prods in enumerate(self.products):
+            for o in prods:
+                self.producers.setdefault(o, []).append(u)
+        self.kitchen: frozenset[int] = frozenset(oid[o] for o in self.kitchen_items if o in oid)
+        self.rates: list[float] = [self.motion_rates.get(u.motion, DEFAULT_RATE) for u in self.foon.units]
+
+    @classmethod
+    def from_dataset(cls, data: DataLike, utensil_rule: str = "starter") -> "Problem":
+        return cls(data.foon, data.kitchen, data.motion, data.utensils, utensil_rule)
+
+    @property
+    def units(self) -> list[Unit]:
+        return self.foon.units
+
+    @property
+    def objects(self) -> list[FoonObject]:
+        return self.foon.objects
+
+    def unknown_motions(self) -> list[str]:
+        return sorted({u.motion for u in self.foon.units} - set(self.motion_rates))
+
+    @cached_property
+    def derivable(self) -> frozenset[int]:
+        """Objects derivable from the kitchen using any units (least fixpoint)."""
+        return frozenset(self.derivation_levels()[0])
+
+    def derivation_levels(self, units: list[int] | None = None) -> tuple[dict[int, int], dict[int, int]]:
+        """Least fixpoint from the kitchen, with levels.
+
+        Returns ``(object_level, unit_level)``: kitchen objects have level 0;
+        a unit fires at level 1 + max level of its required inputs; its
+        products get the unit's level (the minimum over producers).  Only
+        ``units`` are used when given.
+        """
+        pool = range(len(self.units)) if units is None else units
+        waiting: dict[int, int] = {}
+        users: dict[int, list[int]] = {}
+        obj_level: dict[int, int] = dict.fromkeys(self.kitchen, 0)
+        unit_level: dict[int, int] = {}
+        frontier: list[int] = []
+        for u in pool:
+            req = self.required[u]
+            waiting[u] = sum(1 for o in req if o not in obj_level)
+            for o in req:
+                if o not in obj_level:
+                    users.setdefault(o, []).append(u)
+            if waiting[u] == 0:
+                frontier.append(u)
+        level = 0
+        while frontier:
+            level += 1
+            new_objects = []
+            for u in frontier:
+                unit_level[u] = level
+                for o in self.products[u]:
+                    if o not in obj_level:
+                        obj_level[o] = level
+                        new_objects.append(o)
+            frontier = []
+            for o in new_objects:
+                for u in users.get(o, ()):
+                    waiting[u] -= 1
+                    if waiting[u] == 0:
+                        frontier.append(u)
+        return obj_level, unit_level
+
+    @cached_property
+    def viable_units(self) -> frozenset[int]:
+        """Units that fire in the kitchen's least fixpoint; no tree can use any other unit."""
+        return frozenset(self.derivation_levels()[1])
+
+    def units_for(self, goals: Iterable[int]) -> tuple[int, ...]:
+        """The units a tree for any of ``goals`` can use: relevant to one of them and viable.
+
+        Grounding only these gives the same trees as grounding the whole FOON
+        (one backwards walk from all goals, then :attr:`viable_units`).
+        """
+        units, _, _ = walk_back(goals, self.kitchen, self.producers, self.required)
+        viable = self.viable_units
+        return tuple(sorted(u for u in units if u in viable))
+
+    def relevant_units(self, goal: int) -> list[int]:
+        """Units that can contribute to ``goal`` (backwards from it, kitchen items stop)."""
+        return sorted(walk_back([goal], self.kitchen, self.producers, self.required)[0])

@@ -1,0 +1,99 @@
+"""The one registry of methods: ASP objectives and the search baselines.
+
+A method turns (problem, options) into a *runner*: a function from a goal
+object id to a :class:`TaskTree`.  Runners are made once per problem, so a
+runner may keep state (the ASP runner keeps one grounding for all goals).
+The CLI's ``solve``, ``compare`` and ``batch`` all look methods up here.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Callable
+
+from foon2asp.errors import InputError
+from foon2asp.foon.problem import Problem
+from foon2asp.asp.session import HEURISTICS, OBJECTIVES, AspOptions, Session
+from foon2asp.search import IDS, gbfs, h1, h2
+from foon2asp.tree.tasktree import TaskTree
+
+Runner = Callable[[int], TaskTree]
+Factory = Callable[[Problem, AspOptions], Runner]
+
+
+@dataclass(frozen=True)
+class Method:
+    name: str
+    kind: str  # "asp" or "search"
+    description: str
+    factory: Factory
+
+
+METHODS: dict[str, Method] = {}
+
+
+def register(name: str, kind: str, description: str) -> Callable[[Factory], Factory]:
+    """Decorator: register ``factory`` under ``name``."""
+
+    def deco(factory: Factory) -> Factory:
+        METHODS[name] = Method(name, kind, description, factory)
+        return factory
+
+    return deco
+
+
+def get(name: str) -> Method:
+    try:
+        return METHODS[name]
+    except KeyError:
+        raise InputError(f"unknown method {name!r} (have {', '.join(names())})") from None
+
+
+def names() -> list[str]:
+    return list(METHODS)
+
+
+def runner(name: str, problem: Problem, options: AspOptions | None = None) -> Runner:
+    return get(name).factory(problem, options or AspOptions())
+
+
+@register("asp", "asp", "answer-set programming, proven optimal for --objective (default: units)")
+def _asp(problem: Problem, options: AspOptions) -> Runner:
+    return Session(problem, options).solve
+
+
+def _fixed_objective(objective: str) -> Factory:
+    def factory(problem: Problem, options: AspOptions) -> Runner:
+        return Session(problem, replace(options, objective=(objective,))).solve
+
+    return factory
+
+
+for _name in list(OBJECTIVES):
+    register(f"asp-{_name}", "asp", f"ASP, proven optimal for the objective {_name!r}")(_fixed_objective(_name))
+
+
+def _greedy(heuristic: str) -> Factory:
+    def factory(problem: Problem, options: AspOptions) -> Runner:
+        return Session(problem, replace(options, heuristic=heuristic)).solve
+
+    return factory
+
+
+_GREEDY = {"h1": "highest motion success rate", "h2": "fewest input nodes"}
+for _h in HEURISTICS:
+    register(
+        f"asp-greedy-{_h}", "asp", f"ASP first model under #heuristic {_h} ({_GREEDY[_h]}), valid by construction"
+    )(_greedy(_h))
+
+
+# the search baselines (foon2asp.search knows nothing of this registry)
+register("ids", "search", "iterative deepening search (first producer in FOON order per depth; not optimal)")(
+    lambda problem, options: IDS(problem)
+)
+register("gbfs-h1", "search", "greedy best-first, h1: highest motion success rate (no cycle check)")(
+    lambda problem, options: lambda goal: gbfs(problem, goal, h1, "gbfs-h1")
+)
+register("gbfs-h2", "search", "greedy best-first, h2: fewest input nodes (no cycle check)")(
+    lambda problem, options: lambda goal: gbfs(problem, goal, h2, "gbfs-h2")
+)
