@@ -20,9 +20,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from foon2asp.asp.session import AspOptions, Session  # noqa: E402
 from foon2asp.foon.loaders import Dataset  # noqa: E402
 from foon2asp.foon.problem import Problem  # noqa: E402
-from foon2asp.asp.session import AspOptions, Session  # noqa: E402
 
 STRATEGIES = ("bb", "bb,hier", "usc", "usc,oll")
 OBJECTIVES = (

@@ -33,10 +33,10 @@ sys.path.insert(0, str(ROOT))
 from foon2asp import goals as goals_mod  # noqa: E402
 from foon2asp import methods  # noqa: E402
 from foon2asp.asp.facts import facts  # noqa: E402
-from foon2asp.methods.planner import BatchRunner, Parts  # noqa: E402
+from foon2asp.asp.session import AspOptions  # noqa: E402
 from foon2asp.foon.loaders import Dataset  # noqa: E402
 from foon2asp.foon.problem import Problem  # noqa: E402
-from foon2asp.asp.session import AspOptions  # noqa: E402
+from foon2asp.methods.planner import BatchRunner, Parts  # noqa: E402
 from foon2asp.tree.validate import validate  # noqa: E402
 
 
@@ -159,13 +159,24 @@ def p3_one(foon_dir: Path, factor: int, sample: int, seed: int) -> dict:
     parts = Parts(problem)
     candidates = [g for g in goals_mod.all_objects(problem) if g in problem.derivable]
     goal_ids = rng.sample(candidates, min(sample, len(candidates)))
-    row = {"factor": factor, "units": len(problem.units), "objects": len(problem.objects), "generate_s": gen,
-           "parse_s": parse, "problem_s": build, "facts_s": facts_s}
+    row = {
+        "factor": factor,
+        "units": len(problem.units),
+        "objects": len(problem.objects),
+        "generate_s": gen,
+        "parse_s": parse,
+        "problem_s": build,
+        "facts_s": facts_s,
+    }
     # per-goal groundings: query time includes the goal's own grounding
     runner = BatchRunner("asp", problem, AspOptions(opt_strategy="usc"), "per-goal", True, parts)
     _, times, res = _time_runner(runner, goal_ids)
-    row["per_goal"] = {"median_s": statistics.median(times), "max_s": max(times), "counts": dict(runner.counts),
-                       "optimal": sum(r.status == "optimal" for r in res.values())}
+    row["per_goal"] = {
+        "median_s": statistics.median(times),
+        "max_s": max(times),
+        "counts": dict(runner.counts),
+        "optimal": sum(r.status == "optimal" for r in res.values()),
+    }
     row["rss_after_per_goal_mb"] = peak_mb()
     # the whole grounding (viable units), then the same goals on it
     t = time.perf_counter()
@@ -183,7 +194,16 @@ def p3_one(foon_dir: Path, factor: int, sample: int, seed: int) -> dict:
 def p3(foon_dir: Path, factors: list[int], sample: int) -> list[dict]:
     rows = []
     for factor in factors:
-        cmd = [sys.executable, __file__, "--shared", str(foon_dir.parent), "--p3-factor", str(factor), "--sample", str(sample)]
+        cmd = [
+            sys.executable,
+            __file__,
+            "--shared",
+            str(foon_dir.parent),
+            "--p3-factor",
+            str(factor),
+            "--sample",
+            str(sample),
+        ]
         done = subprocess.run(cmd, capture_output=True, text=True)
         if done.returncode != 0:
             print(f"P3  {factor}x failed: {done.stderr.strip().splitlines()[-1:]}")

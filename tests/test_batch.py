@@ -13,17 +13,18 @@ import time
 from pathlib import Path
 
 import pytest
-from helpers import best, build, goal_id
 
-from foon2asp.foon import goals as goals_mod
 from foon2asp import methods
-from foon2asp.batch.run import BatchSpec, read_results, render_summary, run_batch, summarize
-from foon2asp.errors import InputError
-from foon2asp.methods.planner import BatchRunner, Parts
 from foon2asp.asp.session import AspOptions, Session
+from foon2asp.batch.run import BatchSpec, read_results, run_batch, summarize
+from foon2asp.errors import InputError
+from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.synth import shape, synthesize
+from foon2asp.methods.planner import BatchRunner
+from foon2asp.report.summary import render_summary
+from foon2asp.tree.serialize import tree_json
 from foon2asp.tree.validate import validate
-from foon2asp.report.trees import tree_json
+from helpers import best, build, goal_id
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -141,8 +142,19 @@ def test_resume_after_kill_loses_and_repeats_nothing(shared_foon_dir, shared_pro
     goals_file.write_text(json.dumps([p.objects[o].to_json() for o in objects]))
     out = tmp_path / "r.jsonl"
     cmd = [
-        sys.executable, "-m", "foon2asp", "batch", "--data", str(shared_foon_dir), "--goals", str(goals_file),
-        "--methods", "asp,gbfs-h1", "--no-shortcuts", "--output", str(out),
+        sys.executable,
+        "-m",
+        "foon2asp",
+        "batch",
+        "--data",
+        str(shared_foon_dir),
+        "--goals",
+        str(goals_file),
+        "--methods",
+        "asp,gbfs-h1",
+        "--no-shortcuts",
+        "--output",
+        str(out),
     ]
     env = dict(os.environ, PYTHONPATH=str(REPO))
     proc = subprocess.Popen(cmd, cwd=REPO, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
@@ -224,7 +236,9 @@ def test_dask_local_cluster(shared_problem, tmp_path):
     local = run_batch(spec, goal_ids, tmp_path / "local.jsonl", progress=False)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None, processes=True) as cluster:
         with distributed.Client(cluster) as client:
-            remote = run_batch(spec, goal_ids, tmp_path / "dask.jsonl", progress=False, executor=executor(client, chunk=5))
+            remote = run_batch(
+                spec, goal_ids, tmp_path / "dask.jsonl", progress=False, executor=executor(client, chunk=5)
+            )
     assert remote.done == local.done == 80
     a = {key(r): outcome(r) for r in read_results(tmp_path / "local.jsonl")}
     b = {key(r): outcome(r) for r in read_results(tmp_path / "dask.jsonl")}
@@ -235,6 +249,7 @@ def test_dask_missing_is_a_clear_error(monkeypatch):
     import builtins
 
     from foon2asp.batch import cluster as dask_runner
+
     real = builtins.__import__
 
     def fake(name, *args, **kwargs):

@@ -8,9 +8,8 @@ import random
 
 import pytest
 from click.testing import CliRunner
-from conftest import DEMO
-from helpers import build, goal_id, obj
 
+from conftest import DEMO
 from foon2asp import methods
 from foon2asp.analysis.check import check_units, diagnose, read_trees
 from foon2asp.cli.main import main
@@ -18,6 +17,7 @@ from foon2asp.errors import InputError
 from foon2asp.foon.goals import resolve_label
 from foon2asp.foon.parser import format_units, unit_lines
 from foon2asp.tree.validate import validate
+from helpers import build, goal_id, obj
 
 
 def cli(*args):
@@ -239,7 +239,14 @@ def test_check_order_as_written(tmp_path, demo_problem):
     data, problem = demo_problem
     g = resolve_label(data, problem, "tomato salad")
     units = methods.runner("asp", problem)(g).units
-    res = cli("check", write_tree(tmp_path, "rev.txt", problem, list(reversed(units))), "--data", DEMO, "--goal", "tomato salad")
+    res = cli(
+        "check",
+        write_tree(tmp_path, "rev.txt", problem, list(reversed(units))),
+        "--data",
+        DEMO,
+        "--goal",
+        "tomato salad",
+    )
     assert res.exit_code == 0  # the set is judged; the order is reported
     assert "not executable as written" in res.stdout
 
@@ -251,7 +258,10 @@ def test_check_order_as_written(tmp_path, demo_problem):
 def shared_trees(shared_problem, tmp_path_factory):
     data, problem = shared_problem
     out = tmp_path_factory.mktemp("trees")
-    goals = {label: resolve_label(data, problem, label) for label in ("greek salad", "whipped cream", "fried rice", "macaroni")}
+    goals = {
+        label: resolve_label(data, problem, label)
+        for label in ("greek salad", "whipped cream", "fried rice", "macaroni")
+    }
     paths = {}
     for name in ("asp", "gbfs-h1", "gbfs-h2"):
         run = methods.runner(name, problem)

@@ -7,10 +7,9 @@ import subprocess
 import sys
 
 import clingo
-import pytest
 from click.testing import CliRunner
-from conftest import DEMO
 
+from conftest import DEMO
 from foon2asp.cli.main import main
 from foon2asp.foon.parser import parse_text
 
@@ -106,8 +105,10 @@ def test_bad_foon_line(tmp_path):
 
 def test_goal_not_in_foon(tmp_path):
     goals = tmp_path / "goals.json"
-    goals.write_text('[\n  {"label": "tomato salad", "states": ["mixed"], "container": "bowl"},\n'
-                     '  {"label": "tomato salad", "states": ["burnt"], "container": "bowl"}\n]\n')
+    goals.write_text(
+        '[\n  {"label": "tomato salad", "states": ["mixed"], "container": "bowl"},\n'
+        '  {"label": "tomato salad", "states": ["burnt"], "container": "bowl"}\n]\n'
+    )
     res = run("solve", "--goals", goals, ok=False)
     assert_one_line_error(res, "goals.json:3:", "not an object of the FOON")
 
@@ -129,7 +130,10 @@ def test_facts_command(tmp_path, shared_foon_dir):
     ctl = clingo.Control()
     ctl.load(str(out))
     ctl.ground([("base", [])])
-    count = lambda name, arity: sum(1 for _ in ctl.symbolic_atoms.by_signature(name, arity))
+
+    def count(name, arity):
+        return sum(1 for _ in ctl.symbolic_atoms.by_signature(name, arity))
+
     assert count("unit", 1) == 2376
     assert count("goal_node", 2) == 25
     assert count("goal", 1) == 0
@@ -147,8 +151,21 @@ def test_merge_command(tmp_path, shared_111_dir):
 
 def test_module_entry_point(shared_foon_dir):
     proc = subprocess.run(
-        [sys.executable, "-m", "foon2asp", "solve", "--data", str(shared_foon_dir), "--goal", "ice", "--format", "json"],
-        capture_output=True, text=True, timeout=120,
+        [
+            sys.executable,
+            "-m",
+            "foon2asp",
+            "solve",
+            "--data",
+            str(shared_foon_dir),
+            "--goal",
+            "ice",
+            "--format",
+            "json",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
     )
     assert proc.returncode == 0, proc.stderr
     assert json.loads(proc.stdout)[0]["cost"]["units"] == 1

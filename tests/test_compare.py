@@ -9,14 +9,15 @@ import random
 
 import pytest
 from click.testing import CliRunner
-from helpers import best, build, goal_id
 
 from foon2asp import methods
-from foon2asp.cli.main import main
-from foon2asp.analysis.compare import DEFAULT_METHODS, compare, render
+from foon2asp.analysis.compare import DEFAULT_METHODS, compare
 from foon2asp.asp.session import Session
+from foon2asp.cli.main import main
+from foon2asp.report.compare import render
 from foon2asp.tree.tasktree import TaskTree
 from foon2asp.tree.validate import validate
+from helpers import best, build, goal_id
 
 
 def cli(*args):
@@ -70,7 +71,7 @@ def test_asp_column_is_the_brute_force_optimum(seed):
         assert asp.status == "unreachable" and asp.extra["valid"] is False
         return
     assert asp.status == "optimal" and len(asp.units) == smallest and asp.extra["valid"]
-    for name, tree in row.trees.items():
+    for _name, tree in row.trees.items():
         if tree.extra["valid"]:
             assert len(tree.units) >= smallest
 
@@ -190,6 +191,8 @@ def test_shared_text_csv_markdown(shared_foon_dir, shared_json):
     rows = list(csv.DictReader(io.StringIO(cli("compare", "--data", shared_foon_dir, "--format", "csv").stdout)))
     assert len(rows) == 100
     assert [r["valid"] == "true" for r in rows] == [r["valid"] for r in shared_json]
-    md = cli("compare", "--data", shared_foon_dir, "--goal", "macaroni", "--methods", "gbfs-h2,asp", "--format", "markdown").stdout
+    md = cli(
+        "compare", "--data", shared_foon_dir, "--goal", "macaroni", "--methods", "gbfs-h2,asp", "--format", "markdown"
+    ).stdout
     assert "| goal | gbfs-h2 | asp optimum |" in md
     assert "| macaroni |" in md

@@ -8,13 +8,13 @@ import random
 
 import pytest
 from click.testing import CliRunner
-from helpers import brute_force, build, goal_id, obj
 
 from foon2asp.asp import constraints
+from foon2asp.asp.session import AspOptions, Session
 from foon2asp.cli.main import main
 from foon2asp.errors import InputError
-from foon2asp.asp.session import AspOptions, Session
 from foon2asp.tree.validate import validate
+from helpers import brute_force, build, goal_id, obj
 
 MOTIONS = ("cut", "mix", "heat")
 LABELS = "abcdefg"
@@ -101,7 +101,9 @@ def test_forbid_object_and_max_units_vs_brute_force(case):
     for lab in LABELS[:4]:
         if lab == problem.objects[goal].label:
             continue
-        check_against(problem, goal, [("f", constraints.forbid_object(lab))], lambda t: lab not in labels_of(problem, t))
+        check_against(
+            problem, goal, [("f", constraints.forbid_object(lab))], lambda t: lab not in labels_of(problem, t)
+        )
     for n in range(4):
         check_against(problem, goal, [("m", constraints.max_units(n))], lambda t: len(t) <= n)
 
@@ -113,12 +115,16 @@ def test_require_motion_and_object_vs_brute_force(case):
     cand = candidates(problem, goal)
     for m in MOTIONS:
         check_against(
-            problem, goal, [("r", constraints.require_motion(m))],
+            problem,
+            goal,
+            [("r", constraints.require_motion(m))],
             lambda t: set(t) <= cand and m in motions_of(problem, t),
         )
     for lab in LABELS[:3]:
         check_against(
-            problem, goal, [("r", constraints.require_object(lab))],
+            problem,
+            goal,
+            [("r", constraints.require_object(lab))],
             lambda t: set(t) <= cand and lab in labels_of(problem, t),
         )
 
@@ -156,7 +162,11 @@ def test_constraints_that_make_the_goal_impossible_give_unreachable():
 def test_labels_are_data_in_generated_rules():
     evil = 'x"). #show y/0. y. :- use(U'
     p = build(
-        [("chop", ["tomato", obj(evil)], ["chopped"]), ("slice", ["tomato", "knife"], ["sliced"]), ("dice", ["sliced", "knife"], ["chopped"])],
+        [
+            ("chop", ["tomato", obj(evil)], ["chopped"]),
+            ("slice", ["tomato", "knife"], ["sliced"]),
+            ("dice", ["sliced", "knife"], ["chopped"]),
+        ],
         ["tomato", "knife", obj(evil)],
     )
     g = goal_id(p, "chopped")
@@ -258,7 +268,7 @@ def test_cli_max_units_makes_unreachable_and_rule_file(tmp_path):
 
 def test_cli_syntax_error_is_one_clean_line(tmp_path):
     f = tmp_path / "bad.lp"
-    f.write_text("% comment\n\n:- use(U) motion(U,\"chop\").\n")
+    f.write_text('% comment\n\n:- use(U) motion(U,"chop").\n')
     r = run("solve", "--goal", "tomato salad", "--constraint", str(f))
     assert r.exit_code == 2
     lines = r.stderr.strip().splitlines()
@@ -277,6 +287,7 @@ def test_cli_constraints_need_an_asp_method_and_warn_on_unknown_names():
 
 def test_shared_forbidding_a_used_motion(shared_problem):
     from foon2asp.foon import goals
+
     data, problem = shared_problem
     g = goals.resolve_label(data, problem, "macaroni")
     session = Session(problem, AspOptions(), units=None)

@@ -5,10 +5,10 @@ from __future__ import annotations
 import random
 
 import pytest
-from helpers import best, brute_force, build, goal_id, obj
 
 from foon2asp.asp.session import Session
 from foon2asp.tree.validate import check_order, validate
+from helpers import best, brute_force, build, goal_id, obj
 
 
 def solve(problem, goal):
@@ -70,7 +70,13 @@ def test_goal_in_kitchen_needs_no_units():
 def test_shared_intermediate_counted_once():
     # g needs a and b; both need c; c costs two units
     p = build(
-        [("f", ["k"], ["c0"]), ("f", ["c0"], ["c"]), ("f", ["c"], ["a"]), ("f", ["c"], ["b"]), ("f", ["a", "b"], ["g"])],
+        [
+            ("f", ["k"], ["c0"]),
+            ("f", ["c0"], ["c"]),
+            ("f", ["c"], ["a"]),
+            ("f", ["c"], ["b"]),
+            ("f", ["a", "b"], ["g"]),
+        ],
         ["k"],
     )
     tree = solve(p, goal_id(p, "g"))

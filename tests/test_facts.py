@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import clingo
 import pytest
-from helpers import build, goal_id, obj
 
 from foon2asp.asp.facts import facts, neglog_weight, q
 from foon2asp.asp.session import Session
+from helpers import build, obj
 
 NASTY = [
     'quote " inside',
@@ -21,9 +21,22 @@ NASTY = [
 ]
 
 VOCABULARY = {
-    ("unit", 1), ("motion", 2), ("success", 2), ("neglog", 2), ("input", 2), ("required", 2),
-    ("output", 2), ("product", 2), ("object", 1), ("label", 2), ("state", 2), ("ingredient", 2),
-    ("container", 2), ("kitchen", 1), ("goal_node", 2), ("goal", 1),
+    ("unit", 1),
+    ("motion", 2),
+    ("success", 2),
+    ("neglog", 2),
+    ("input", 2),
+    ("required", 2),
+    ("output", 2),
+    ("product", 2),
+    ("object", 1),
+    ("label", 2),
+    ("state", 2),
+    ("ingredient", 2),
+    ("container", 2),
+    ("kitchen", 1),
+    ("goal_node", 2),
+    ("goal", 1),
 }
 
 
@@ -32,7 +45,7 @@ def nasty_problem():
     kitchen = [obj("knife")]
     prev = obj("start", "raw")
     kitchen.append(prev)
-    for i, text in enumerate(NASTY):
+    for _i, text in enumerate(NASTY):
         nxt = obj(text, text, contains=[text], inside=text)
         units.append((text, [prev, obj("knife")], [nxt]))
         prev = nxt

@@ -7,14 +7,14 @@ import json
 import re
 
 import pytest
-from helpers import best, build, goal_id
 
-from foon2asp.foon import goals as goals_mod
 from foon2asp.asp.facts import OPTIONAL, facts
-from foon2asp.foon.parser import parse_text
 from foon2asp.asp.session import AspOptions, Session
+from foon2asp.foon import goals as goals_mod
+from foon2asp.foon.parser import parse_text
+from foon2asp.tree.serialize import json_list
 from foon2asp.tree.validate import validate
-from foon2asp.report.trees import json_list
+from helpers import best, build, goal_id
 
 
 def _units_for_by_definition(problem, goals):

@@ -13,6 +13,7 @@ import clingo
 import pytest
 
 from foon2asp.asp import encodings
+
 CASES = sorted((Path(__file__).parent / "lp").glob("*.lp"))
 
 

@@ -11,18 +11,18 @@ import random
 
 import pytest
 from click.testing import CliRunner
-from helpers import brute_force, build, goal_id
 
 from foon2asp import methods
-from foon2asp.cli.main import main
-from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.facts import neglog_weight
+from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.objectives import neglog_sum, success_product
+from foon2asp.asp.session import AspOptions, Session
+from foon2asp.cli.main import main
 from foon2asp.foon.parser import write_foon
 from foon2asp.search import gbfs, h1, h2
-from foon2asp.asp.session import AspOptions, Session
 from foon2asp.tree.tasktree import measures
 from foon2asp.tree.validate import validate
+from helpers import brute_force, build, goal_id
 
 # --------------------------------------------------------------------------- keys
 
@@ -192,9 +192,7 @@ def test_human_steps(disagree):
         human = tree.extra["human_steps"]
         assert len(human) <= m and set(human) <= set(tree.units)
         # brute force: every tree, a person does its m least likely units
-        best = max(
-            math.prod(sorted(problem.rates[u] for u in t)[m:]) for t in brute_force(problem, goal)
-        )
+        best = max(math.prod(sorted(problem.rates[u] for u in t)[m:]) for t in brute_force(problem, goal))
         assert tree.cost["success"] == pytest.approx(best, rel=1e-5)
         assert tree.cost["success"] == pytest.approx(success_product(problem, tree.units, human))
     # with 2 human steps the safe tree still wins (0.9**3 > 0.5), with 3 the chain does (1 > 0.81)
@@ -303,9 +301,7 @@ def test_brute_force_human_steps(seed):
                 assert tree.status == "unreachable"
                 continue
             # m human steps: the m least likely units of the tree are done by a person
-            best = min(
-                sum(sorted((neglog_weight(problem.rates[u]) for u in t), reverse=True)[m:]) for t in trees
-            )
+            best = min(sum(sorted((neglog_weight(problem.rates[u]) for u in t), reverse=True)[m:]) for t in trees)
             assert tree.status == "optimal"
             assert tree.extra["asp_cost"][0] == best
             human = tree.extra["human_steps"]
@@ -537,7 +533,9 @@ def run(*args):
 
 
 def test_cli_objectives_and_options(shared_foon_dir):
-    result = run("solve", "--data", shared_foon_dir, "--goal", "macaroni", "--objective", "depth,success", "--format", "json")
+    result = run(
+        "solve", "--data", shared_foon_dir, "--goal", "macaroni", "--objective", "depth,success", "--format", "json"
+    )
     assert result.exit_code == 0, result.output
     (tree,) = json.loads(result.stdout)
     assert tree["method"] == "asp-depth,success" and tree["status"] == "optimal"
@@ -548,9 +546,13 @@ def test_cli_objectives_and_options(shared_foon_dir):
     assert len({json.dumps(t["units"]) for t in out}) == 3
     result = run("solve", "--data", shared_foon_dir, "--goal", "greek salad", "--max-depth", "12")
     assert result.exit_code == 0 and "unreachable" in result.stdout
-    result = run("solve", "--data", shared_foon_dir, "--goal", "macaroni", "--objective", "success", "--human-steps", "1")
+    result = run(
+        "solve", "--data", shared_foon_dir, "--goal", "macaroni", "--objective", "success", "--human-steps", "1"
+    )
     assert result.stdout.count("[human]") == 1
-    result = run("solve", "--data", shared_foon_dir, "--goal", "macaroni", "--method", "asp-greedy-h2", "--format", "json")
+    result = run(
+        "solve", "--data", shared_foon_dir, "--goal", "macaroni", "--method", "asp-greedy-h2", "--format", "json"
+    )
     assert json.loads(result.stdout)[0]["status"] == "found"
 
 
@@ -586,6 +588,7 @@ def test_opt_strategies_agree(disagree):
     problem, goal = disagree
     for objective in (("success",), ("depth",), ("inputs", "units")):
         costs = {
-            s: solve(problem, goal, objective=objective, opt_strategy=s).extra["asp_cost"] for s in ("bb", "usc", "usc,oll")
+            s: solve(problem, goal, objective=objective, opt_strategy=s).extra["asp_cost"]
+            for s in ("bb", "usc", "usc,oll")
         }
         assert len({tuple(c) for c in costs.values()}) == 1, costs

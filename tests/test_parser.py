@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from foon2asp.errors import InputError
-from foon2asp.foon.model import Foon, FoonObject, Unit
+from foon2asp.foon.model import Foon, FoonObject
 from foon2asp.foon.parser import format_units, parse_text, read_foon, read_foons
 
 IDLESS = """# a comment

@@ -7,18 +7,17 @@ import json
 
 import pytest
 from click.testing import CliRunner
-from helpers import as_obj, brute_force, build, goal_id
-
-from foon2asp.asp import constraints
-
-from foon2asp.foon import goals
 
 from foon2asp.analysis import queries
+from foon2asp.asp import constraints
+from foon2asp.asp.session import AspOptions, Session
 from foon2asp.cli.main import main
 from foon2asp.errors import InputError
+from foon2asp.foon import goals
 from foon2asp.foon.problem import Problem
-from foon2asp.asp.session import AspOptions, Session
+from foon2asp.report import queries as report_queries
 from foon2asp.tree.validate import validate
+from helpers import as_obj, brute_force, build, goal_id
 
 # ---------------------------------------------------------------- independent oracles
 
@@ -54,7 +53,8 @@ def bring_in_only(problem: Problem, goal: int) -> set[int]:
                     changed = True
     used = {o for u in range(n) for o in problem.required[u]}
     return {
-        o for o in used
+        o
+        for o in used
         if o not in problem.kitchen and o != goal and all(o in needs[u] for u in problem.producers.get(o, ()))
     }
 
@@ -101,7 +101,10 @@ def test_cli_reachable_json_and_text():
     assert r.exit_code == 0, r.output
     out = json.loads(r.stdout)
     assert [(x["goal"]["label"], x["reachable"]) for x in out] == [
-        ("tomato salad", True), ("scrambled egg", True), ("whipped cream", False), ("pancake", False)
+        ("tomato salad", True),
+        ("scrambled egg", True),
+        ("whipped cream", False),
+        ("pancake", False),
     ]
     assert set(out[0]) == {"goal", "reachable"}
     r = CliRunner().invoke(main, ["reachable", "--goal", "pancake"])
@@ -205,9 +208,9 @@ def test_missing_names_the_blocking_cycle():
         assert o in p.products[u] and nxt in p.required[u]
         assert not derivable(p, nxt)
     assert {p.objects[o].label for o, _ in r.cycle} in ({"a", "b"}, {"a", "c"})
-    data = queries.missing_json(p, r)
+    data = report_queries.missing_json(p, r)
     assert data["status"] == "unreachable" and len(data["cycle"]) == 2 and data["missing"] == []
-    text = queries.missing_text(p, r)
+    text = report_queries.missing_text(p, r)
     assert "the cycle:" in text and "back to the start" in text
 
 
@@ -215,7 +218,7 @@ def test_missing_goal_in_kitchen_and_unmade_goal():
     p = build([("m", ["a"], ["b"])], ["a"])
     r = queries.missing(p, goal_id(p, "a"))
     assert r.status == "optimal" and r.units == [] and r.missing == []
-    assert "in the kitchen" in queries.missing_text(p, r)
+    assert "in the kitchen" in report_queries.missing_text(p, r)
     p = build([("m", ["a"], ["b"]), ("m", ["z"], ["a"])], [])
     r = queries.missing(p, goal_id(p, "z"))
     assert r.status == "unreachable" and "no unit" in r.reason
@@ -279,7 +282,9 @@ def test_missing_reachable_goals_on_shared_equal_solve(shared_problem):
 
 
 def test_cli_missing_json_shape(shared_foon_dir):
-    r = CliRunner().invoke(main, ["missing", "--data", str(shared_foon_dir), "--goal", "fried rice", "--format", "json"])
+    r = CliRunner().invoke(
+        main, ["missing", "--data", str(shared_foon_dir), "--goal", "fried rice", "--format", "json"]
+    )
     assert r.exit_code == 0, r.output
     (out,) = json.loads(r.stdout)
     assert {"goal", "status", "missing", "units"} <= set(out)
@@ -304,7 +309,7 @@ def test_query_decodes_objects_and_units(tmp_path, demo_problem):
         "% which units chop, and what can be made\n"
         "#show chops/1.\n"
         'chops(U) :- motion(U,"chop").\n'
-        "#show can(object(O)) : reach(O), label(O,\"tomato salad\").\n"
+        '#show can(object(O)) : reach(O), label(O,"tomato salad").\n'
     )
     r = CliRunner().invoke(main, ["query", str(prog), "--encoding", "tree"])
     assert r.exit_code == 0, r.output
@@ -324,7 +329,7 @@ def test_query_with_tree_and_objective(demo_problem):
     (answer,) = res.answers
     used = [s.arguments[0].number for s in answer.symbols]
     assert validate(problem, g, used).valid and len(used) == 4 == answer.cost[0]
-    text = queries.query_text(problem, res)
+    text = report_queries.query_text(problem, res)
     assert "use(<chop: tomato, whole; knife -> tomato, chopped; knife>)" in text
 
 

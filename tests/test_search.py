@@ -5,13 +5,13 @@ from __future__ import annotations
 import random
 
 import pytest
-from helpers import best, brute_force, build, goal_id, obj
 
 from foon2asp import methods
 from foon2asp.foon.goals import goal_id as goal_of
 from foon2asp.search import IDS, gbfs, h1, h2
 from foon2asp.tree.tasktree import measures
 from foon2asp.tree.validate import check_order, validate
+from helpers import best, brute_force, build, goal_id, obj
 
 
 def run(problem, name, goal):
@@ -96,8 +96,8 @@ def test_ids_memo_keeps_it_polynomial():
     n = 40
     units = [("s", ["k"], ["a0"]), ("s", ["k"], ["b0"])]
     for k in range(1, n + 1):
-        units.append(("m", [f"a{k-1}", f"b{k-1}"], [f"a{k}"]))
-        units.append(("m", [f"a{k-1}", f"b{k-1}"], [f"b{k}"]))
+        units.append(("m", [f"a{k - 1}", f"b{k - 1}"], [f"a{k}"]))
+        units.append(("m", [f"a{k - 1}", f"b{k - 1}"], [f"b{k}"]))
     p = build(units, kitchen=["k"])
     search = IDS(p)
     g = goal_id(p, f"a{n}")

@@ -12,29 +12,21 @@
 from __future__ import annotations
 
 import time
+from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Iterable
 
 import clingo
 
 from foon2asp.asp import encodings
-from foon2asp.asp.constraints import check, clingo_error
-from foon2asp.errors import InputError
+from foon2asp.asp.constraints import check
+from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import facts
+from foon2asp.asp.options import OBJECTIVES
+from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
-from foon2asp.asp.session import OBJECTIVES
-from foon2asp.tree.tasktree import TaskTree, executable_order, measures
-from foon2asp.report.trees import tree_text
+from foon2asp.tree.tasktree import executable_order, measures
 
 # --------------------------------------------------------------------------- running
-
-
-@dataclass
-class Answer:
-    """One model: its shown symbols and its cost."""
-
-    symbols: list[clingo.Symbol]
-    cost: list[int] = field(default_factory=list)
 
 
 @dataclass
@@ -51,33 +43,18 @@ class Outcome:
 
 
 class Program:
-    """One clingo control: add named parts, ground once, solve once."""
+    """One :class:`~foon2asp.asp.control.Control`: add named parts, ground once, solve once."""
 
     def __init__(self, parts: Iterable[tuple[str, str]], args: Iterable[str] = ()) -> None:
-        self._messages: list[str] = []
-        self.ctl = clingo.Control(list(args), logger=self._log, message_limit=20)
+        self.control = Control(list(args))
+        self.ctl = self.control.ctl
         self.parts = list(parts)
-        for name, text in self.parts:
-            self._messages.clear()
-            try:
-                self.ctl.add("base", [], text)
-            except RuntimeError:
-                raise clingo_error(self._messages, name) from None
-        self._messages.clear()
-        try:
-            self.ctl.ground([("base", [])])
-        except RuntimeError:
-            for name, text in self.parts:
-                if name != "facts":
-                    check(name, text)
-            raise clingo_error(self._messages, "program") from None
-
-    def _log(self, code: clingo.MessageCode, message: str) -> None:
-        self._messages.append(message)
+        self.control.add_all(self.parts, user=[name for name, _ in self.parts if name != "facts"])
+        self.control.ground()
 
     def facts_of(self, name: str, arity: int) -> set[clingo.Symbol]:
         """Atoms of ``name/arity`` the grounder derived as facts."""
-        return {a.symbol for a in self.ctl.symbolic_atoms.by_signature(name, arity) if a.is_fact}
+        return self.control.facts_of(name, arity)
 
     def solve(self, time_limit: float | None = None, limit: int = 1) -> Outcome:
         """Solve.  When optimising, keep the best model; else stop after ``limit`` models (0 = all).
@@ -89,7 +66,7 @@ class Program:
         proven = [False]
 
         def on_model(model: clingo.Model) -> bool:
-            answer = Answer(list(model.symbols(shown=True)), list(model.cost))
+            answer = Answer(symbols=list(model.symbols(shown=True)), cost=tuple(model.cost))
             if answer.cost:
                 answers[:] = [answer]
                 proven[0] = model.optimality_proven
@@ -97,13 +74,8 @@ class Program:
             answers.append(answer)
             return not (limit and len(answers) >= limit)
 
-        t0 = time.perf_counter()
-        with self.ctl.solve(on_model=on_model, async_=True) as handle:
-            finished = handle.wait(time_limit) if time_limit else handle.wait()
-            if not finished:
-                handle.cancel()
-            result = handle.get()
-        elapsed = time.perf_counter() - t0
+        result = self.control.solve(on_model, time_limit or None)
+        finished, elapsed = result.finished, result.time_s
         optimising = any(a.cost for a in answers)
         if not answers:
             status = "unsatisfiable" if result.unsatisfiable and finished else "unknown"
@@ -372,117 +344,4 @@ def decode(problem: Problem, sym: clingo.Symbol) -> dict:
     }
 
 
-def _text(problem: Problem, value) -> str:
-    if isinstance(value, dict) and "object" in value:
-        return f"<{problem.objects[value['object']]}>"
-    if isinstance(value, dict) and "unit" in value:
-        return f"<{problem.units[value['unit']]}>"
-    if isinstance(value, str):
-        return clingo.String(value).__str__()
-    return str(value)
-
-
-def atom_text(problem: Problem, sym: clingo.Symbol) -> str:
-    """An atom with objects as ``<label, states>`` and units as ``<motion: in -> out>``."""
-    d = decode(problem, sym)
-    if d["predicate"] is None:
-        return d["atom"]
-    if not d["arguments"]:
-        return d["predicate"]
-    return f"{d['predicate']}(" + ", ".join(_text(problem, a) for a in d["arguments"]) + ")"
-
-
 # --------------------------------------------------------------------------- output
-
-
-def reachable_json(problem: Problem, answers: dict[int, bool]) -> list[dict]:
-    """``[{"goal": OBJ, "reachable": bool}, ...]`` in the order asked."""
-    return [{"goal": problem.objects[o].to_json(), "reachable": ok} for o, ok in answers.items()]
-
-
-def reachable_text(problem: Problem, answers: dict[int, bool]) -> str:
-    lines = [f"{'yes' if ok else 'no ':3}  {problem.objects[o]}" for o, ok in answers.items()]
-    n = sum(answers.values())
-    lines.append(f"{n} of {len(answers)} reachable from the kitchen")
-    return "\n".join(lines) + "\n"
-
-
-def _cycle_json(problem: Problem, pairs: list[tuple[int, int]]) -> list[dict]:
-    return [{"object": problem.objects[o].to_json(), "made_by": problem.units[u].to_json()} for o, u in pairs]
-
-
-def missing_json(problem: Problem, result: MissingResult) -> dict:
-    """``{"goal", "status", "missing", "units", "cost", "time_s"}`` (+ ``reason``, ``path``, ``cycle``)."""
-    out = {
-        "goal": problem.objects[result.goal].to_json(),
-        "status": result.status,
-        "missing": [problem.objects[o].to_json() for o in result.missing],
-        "units": [problem.units[u].to_json() for u in result.units],
-        "cost": result.cost,
-        "time_s": result.time_s,
-    }
-    if result.reason:
-        out["reason"] = result.reason
-    if result.cycle:
-        out["path"] = _cycle_json(problem, result.path)
-        out["cycle"] = _cycle_json(problem, result.cycle)
-    return out
-
-
-def _needs(problem: Problem, o: int, u: int, nxt: int) -> str:
-    return f"    {problem.objects[o]}\n      is made by '{problem.units[u].motion}', which needs {problem.objects[nxt]}"
-
-
-def missing_text(problem: Problem, result: MissingResult) -> str:
-    goal = problem.objects[result.goal]
-    if not result.has_tree:
-        lines = [f"Goal: {goal}", f"Status: {result.status}: {result.reason or 'no tree'}"]
-        if result.cycle:
-            chain = result.path + result.cycle
-            if result.path:
-                lines.append("  on the way:")
-                for k, (o, u) in enumerate(result.path):
-                    lines.append(_needs(problem, o, u, chain[k + 1][0]))
-            lines.append("  the cycle:")
-            for k, (o, u) in enumerate(result.cycle):
-                nxt = result.cycle[(k + 1) % len(result.cycle)][0]
-                lines.append(_needs(problem, o, u, nxt) + (" (back to the start)" if k == len(result.cycle) - 1 else ""))
-        return "\n".join(lines) + "\n"
-    tree = TaskTree(result.goal, "missing", result.status, result.units, result.cost, result.time_s)
-    body = tree_text(problem, tree).splitlines()
-    if result.missing:
-        add = [f"  Missing {len(result.missing)} object(s); add to the kitchen:"]
-        add += [f"    + {problem.objects[o]}" for o in result.missing]
-        add.append("  Then:")
-    elif result.goal in problem.kitchen:
-        add = ["  Nothing is missing: the goal is in the kitchen."]
-    else:
-        add = ["  Nothing is missing: the goal can be made from the kitchen."]
-    return "\n".join(body[:2] + add + body[2:]) + "\n"
-
-
-def _ordered(symbols: list[clingo.Symbol]) -> list[clingo.Symbol]:
-    """Grouped by predicate name, then in clingo's order."""
-    return sorted(symbols, key=lambda s: (s.name if s.type == clingo.SymbolType.Function else "", s))
-
-
-def query_json(problem: Problem, result: QueryResult) -> dict:
-    """``{"status", "time_s", "models": [{"cost", "atoms": [decoded atom, ...]}]}``."""
-    return {
-        "status": result.status,
-        "time_s": result.time_s,
-        "models": [
-            {"cost": a.cost, "atoms": [decode(problem, s) for s in _ordered(a.symbols)]} for a in result.answers
-        ],
-    }
-
-
-def query_text(problem: Problem, result: QueryResult) -> str:
-    lines = [f"Status: {result.status}"]
-    for n, answer in enumerate(result.answers, 1):
-        cost = f"  (cost {' '.join(map(str, answer.cost))})" if answer.cost else ""
-        if len(result.answers) > 1 or cost:
-            lines.append(f"Model {n}{cost}:")
-        atoms = [atom_text(problem, s) for s in _ordered(answer.symbols)]
-        lines += [f"  {a}" for a in atoms] or ["  (no shown atoms)"]
-    return "\n".join(lines) + "\n"

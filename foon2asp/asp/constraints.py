@@ -15,14 +15,14 @@ the tree, ``motion(U,M)``, ``input(U,O)``, ``output(U,O)``, ``label(O,L)``.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterable
 
 import clingo
 
-from foon2asp.errors import InputError
 from foon2asp.asp.facts import q
+from foon2asp.errors import InputError
 
 #: ``<block>:LINE:COL[-COL]: error: text`` or ``FILE:LINE:...`` as clingo writes them
 _LOCATION = re.compile(r"^(?P<where>.*?):(?P<line>\d+):(?P<col>\d+)(?:-\d+(?::\d+)?)?: (?P<kind>\w+): (?P<text>.*)$")
@@ -57,10 +57,7 @@ def require_motion(motion: str) -> str:
 def require_object(label: str) -> str:
     """Some unit of the tree has an input or output labelled ``label``."""
     lab = q(normalise(label))
-    return (
-        f":- #count {{ U : use(U), input(U,O), label(O,{lab}); "
-        f"U : use(U), output(U,O), label(O,{lab}) }} = 0.\n"
-    )
+    return f":- #count {{ U : use(U), input(U,O), label(O,{lab}); U : use(U), output(U,O), label(O,{lab}) }} = 0.\n"
 
 
 def max_units(n: int) -> str:
@@ -101,8 +98,8 @@ def clingo_error(messages: list[str], name: str) -> InputError:
     first, whole = entries[0]
     if first is None:
         return InputError(_clean(whole), name)
-    text = _clean(whole[first.start("text"):])
-    notes = [_clean(t[m.start("text"):]) for m, t in entries[1:] if m and m["kind"] == "note"]
+    text = _clean(whole[first.start("text") :])
+    notes = [_clean(t[m.start("text") :]) for m, t in entries[1:] if m and m["kind"] == "note"]
     if notes:
         text += " (" + "; ".join(notes) + ")"
     return InputError(f"{text} (column {first['col']})", name, int(first["line"]))
@@ -146,15 +143,26 @@ class ConstraintSpec:
 
     def __bool__(self) -> bool:
         return bool(
-            self.files or self.rules or self.forbid_motion or self.forbid_object
-            or self.require_motion or self.require_object or self.max_units is not None or self.extra
+            self.files
+            or self.rules
+            or self.forbid_motion
+            or self.forbid_object
+            or self.require_motion
+            or self.require_object
+            or self.max_units is not None
+            or self.extra
         )
 
     def programs(self) -> list[tuple[str, str]]:
         """The (name, text) programs, user files and rules checked for errors."""
         return programs(
-            self.files, self.rules, self.forbid_motion, self.forbid_object,
-            self.require_motion, self.require_object, self.max_units,
+            self.files,
+            self.rules,
+            self.forbid_motion,
+            self.forbid_object,
+            self.require_motion,
+            self.require_object,
+            self.max_units,
         ) + list(self.extra)
 
     def names(self) -> tuple[list[str], list[str]]:

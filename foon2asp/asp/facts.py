@@ -26,8 +26,7 @@ Vocabulary (stable, documented in docs/vocabulary.md):
 from __future__ import annotations
 
 import math
-from typing import Iterable
-
+from collections.abc import Iterable
 
 from foon2asp.foon.problem import Problem
 

@@ -19,7 +19,7 @@ objective   minimises                                                   encoding
 from __future__ import annotations
 
 import math
-from typing import Iterable
+from collections.abc import Iterable
 
 from foon2asp.asp.facts import SCALE, neglog_weight, success_permille
 from foon2asp.foon.problem import Problem

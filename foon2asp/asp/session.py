@@ -9,86 +9,18 @@ from __future__ import annotations
 
 import re
 import time
-from dataclasses import dataclass, field
-from typing import Callable, Iterable
+from collections.abc import Callable, Iterable
 
 import clingo
 
-from foon2asp.asp import objectives
-
-from foon2asp.asp import encodings
-from foon2asp.asp.constraints import check, clingo_error
-from foon2asp.asp.multishot.driver import Driver
-from foon2asp.errors import InputError
+from foon2asp.asp import encodings, objectives
+from foon2asp.asp.control import Control
 from foon2asp.asp.facts import OPTIONAL, facts
+from foon2asp.asp.multishot.driver import Driver
+from foon2asp.asp.options import OBJECTIVES, AspOptions
+from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.tasktree import TaskTree, executable_order, measures
-
-#: objective name -> encoding that defines it (all use objective(Name,Priority))
-OBJECTIVES: dict[str, str] = {"units": "units", "success": "success", "inputs": "inputs", "depth": "depth"}
-
-#: greedy retrieval inside the solver (AspOptions.heuristic -> encodings/greedy_NAME.lp)
-HEURISTICS = ("h1", "h2")
-
-
-@dataclass
-class AspOptions:
-    """How to solve: objectives (lexicographic, first = most important) and solver settings."""
-
-    objective: tuple[str, ...] = ("units",)
-    #: extra ASP programs as (name, text): user constraints and the like
-    programs: list[tuple[str, str]] = field(default_factory=list)
-    #: extra encodings (names in encodings/) to load
-    encodings: list[str] = field(default_factory=list)
-    time_limit: float | None = None
-    opt_strategy: str | None = None
-    threads: int = 1
-    clingo_args: list[str] = field(default_factory=list)
-    #: ground only these units (e.g. the goals' relevant units); None: all units
-    units: tuple[int, ...] | None = None
-    #: only trees of at most this many sequential rounds (see foon2asp.depth)
-    max_depth: int | None = None
-    #: at most this many units may be done by a person (success 1.0 for those)
-    human_steps: int | None = None
-    #: the K best distinct trees per goal, best first
-    models: int = 1
-    #: every optimal tree, at most all_optimal_cap of them
-    all_optimal: bool = False
-    all_optimal_cap: int = 100
-    #: "h1" | "h2": greedy retrieval in the solver (first model under #heuristic)
-    heuristic: str | None = None
-
-    @property
-    def method(self) -> str:
-        if self.heuristic:
-            return f"asp-greedy-{self.heuristic}"
-        return "asp-" + ",".join(self.objective)
-
-    @property
-    def driven(self) -> bool:
-        """Does solving need foon2asp.driver (more than one plain optimisation)?"""
-        return bool(
-            self.heuristic or self.max_depth is not None or self.human_steps is not None
-            or self.models > 1 or self.all_optimal or "depth" in self.objective
-        )
-
-    def args(self) -> list[str]:
-        args = ["--opt-mode=opt"]
-        if self.heuristic:
-            args.append("--heuristic=Domain")
-        if self.opt_strategy:
-            args.append(f"--opt-strategy={self.opt_strategy}")
-        if self.threads and self.threads > 1:
-            args.append(f"--parallel-mode={self.threads}")
-        return args + list(self.clingo_args)
-
-
-class _Logger:
-    def __init__(self) -> None:
-        self.messages: list[str] = []
-
-    def __call__(self, code: clingo.MessageCode, message: str) -> None:
-        self.messages.append(" ".join(message.split()))
 
 
 def _objective_facts(objective: Iterable[str]) -> str:
@@ -115,11 +47,8 @@ class Session:
     def __init__(self, problem: Problem, options: AspOptions | None = None, units: Iterable[int] | None = None):
         self.problem = problem
         self.options = options or AspOptions()
-        self._log = _Logger()
-        try:
-            self.ctl = clingo.Control(self.options.args(), logger=self._log, message_limit=20)
-        except RuntimeError as exc:
-            raise InputError(f"bad solver option: {' '.join(str(exc).split())}") from None
+        self.control = Control(self.options.args())
+        self.ctl = self.control.ctl
         names = ["tree"] + objectives.encoding_names(self.options, OBJECTIVES) + self.options.encodings
         if units is None:
             units = self.options.units
@@ -137,37 +66,13 @@ class Session:
         leave_out = [p for p in OPTIONAL if p not in read]
         parts = [("facts", facts(problem, units=units, leave_out=leave_out))] + rules
         t0 = time.perf_counter()
-        for name, text in parts:
-            self._add(name, text)
-        self._ground()
+        self.control.add_all(parts, user=[name for name, _ in self.options.programs])
+        self.control.ground()
         self.ground_s = time.perf_counter() - t0
         self._driver = None
         self.goal_atoms = {
-            a.symbol.arguments[0].number
-            for a in self.ctl.symbolic_atoms.by_signature("goal", 1)
-            if a.is_external
+            a.symbol.arguments[0].number for a in self.ctl.symbolic_atoms.by_signature("goal", 1) if a.is_external
         }
-
-    def _add(self, name: str, text: str) -> None:
-        self._log.messages.clear()
-        try:
-            self.ctl.add("base", [], text)
-        except RuntimeError:
-            raise clingo_error(self._log.messages, name) from None
-
-    def _ground(self) -> None:
-        self._log.messages.clear()
-        try:
-            self.ctl.ground([("base", [])])
-        except RuntimeError:
-            # locate the culprit: user programs are checked one by one
-            for name, text in self.options.programs:
-                check(name, text)
-            raise InputError(self._message("grounding")) from None
-
-    def _message(self, name: str) -> str:
-        msg = self._log.messages[0] if self._log.messages else "error"
-        return msg.replace("<block>", name)
 
     def _set_goal(self, goal: int, value: bool) -> None:
         self.ctl.assign_external(clingo.Function("goal", [clingo.Number(goal)]), value)
@@ -201,11 +106,7 @@ class Session:
 
         self._set_goal(goal, True)
         try:
-            with self.ctl.solve(on_model=record, async_=True) as handle:
-                finished = bool(handle.wait(time_limit)) if time_limit else (handle.wait() or True)
-                if not finished:
-                    handle.cancel()
-                result = handle.get()
+            result = self.control.solve(record, time_limit or None)
             stats = self.stats()
         finally:
             self._set_goal(goal, False)
@@ -213,9 +114,7 @@ class Session:
         if "units" in best:
             # no cost terms at all (e.g. the goal is in the kitchen): any model is optimal
             proven = best["proven"] or not any(best["cost"])
-            status = "optimal" if (result.exhausted and not result.interrupted) or proven else "feasible"
-            if not finished and not proven:
-                status = "feasible"
+            status = "optimal" if result.finished or proven else "feasible"
         else:
             status = "unreachable" if result.unsatisfiable else "unknown"
         units = executable_order(self.problem, best.get("units", []))
@@ -233,22 +132,7 @@ class Session:
 
     def stats(self) -> dict:
         """Choices, conflicts, models and solve time of the last solve call."""
-        return _stats(self.ctl.statistics)
-
-
-def _stats(s) -> dict:
-    """The reported numbers from clingo's statistics of the last solve call."""
-    try:
-        solving = s["solving"]["solvers"]
-        summary = s["summary"]
-        return {
-            "choices": int(solving["choices"]),
-            "conflicts": int(solving["conflicts"]),
-            "models": int(summary["models"]["enumerated"]),
-            "solve_s": round(summary["times"]["solve"], 6),
-        }
-    except (KeyError, RuntimeError):
-        return {}
+        return self.control.stats()
 
 
 def solve_goals(problem: Problem, goals: Iterable[int], options: AspOptions | None = None) -> list[TaskTree]:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import threading
 import uuid
-from typing import Callable, Iterator
+from collections.abc import Callable, Iterator
 
 from foon2asp.batch.run import BatchSpec, Worker
 from foon2asp.errors import InputError

@@ -16,30 +16,26 @@ Dask cluster.
 
 from __future__ import annotations
 
-import csv
-import multiprocessing
-import io
 import json
+import multiprocessing
 import os
 import statistics
 import sys
 import time
+from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable, Iterable, Iterator
 
 from tqdm import tqdm
 
 from foon2asp import methods as methods_mod
+from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
-from foon2asp.methods.planner import BatchRunner, Parts
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
-from foon2asp.asp.session import AspOptions
-from foon2asp.report.trees import tree_json
-
-SUMMARY_FORMATS = ("text", "markdown", "csv")
+from foon2asp.methods.planner import BatchRunner, Parts
+from foon2asp.tree.serialize import tree_json
 
 
 @dataclass
@@ -159,7 +155,7 @@ class ResultFile:
     def close(self) -> None:
         os.close(self.fd)
 
-    def __enter__(self) -> "ResultFile":
+    def __enter__(self) -> ResultFile:
         return self
 
     def __exit__(self, *exc) -> None:
@@ -181,7 +177,9 @@ class BatchReport:
     output: str | None
 
 
-def pending_tasks(problem: Problem, goals: list[int], method_names: list[str], previous: list[dict]) -> tuple[list[tuple[int, str]], int]:
+def pending_tasks(
+    problem: Problem, goals: list[int], method_names: list[str], previous: list[dict]
+) -> tuple[list[tuple[int, str]], int]:
     """The (goal, method) pairs not yet in ``previous``, and how many were skipped."""
     have = set()
     for record in previous:
@@ -325,44 +323,3 @@ def summarize(records: list[dict]) -> list[dict]:
             }
         )
     return rows
-
-
-_COLUMNS = ["method", "results", "statuses", "trees", "units_min", "units_median", "units_mean", "units_max", "time_total_s", "time_median_ms"]
-
-
-def _cell(value) -> str:
-    if value is None:
-        return "-"
-    if isinstance(value, dict):
-        return " ".join(f"{k}={v}" for k, v in value.items())
-    return str(value)
-
-
-def render_summary(rows: list[dict], fmt: str = "text", report: BatchReport | None = None) -> str:
-    """The summary as aligned text, a Markdown table or CSV."""
-    if fmt not in SUMMARY_FORMATS:
-        raise ValueError(f"unknown summary format {fmt!r}")
-    if fmt == "csv":
-        buf = io.StringIO()
-        writer = csv.writer(buf, lineterminator="\n")
-        writer.writerow(_COLUMNS)
-        for row in rows:
-            writer.writerow([_cell(row[c]) for c in _COLUMNS])
-        return buf.getvalue()
-    table = [[_cell(row[c]) for c in _COLUMNS] for row in rows]
-    head = ""
-    if report is not None:
-        head = (
-            f"{report.done} new result(s), {report.skipped} already done, "
-            f"{report.elapsed_s:.2f} s with {report.workers} worker(s)"
-            + (f"; results in {report.output}" if report.output else "")
-            + "\n"
-        )
-    if fmt == "markdown":
-        lines = ["| " + " | ".join(_COLUMNS) + " |", "|" + "---|" * len(_COLUMNS)]
-        lines += ["| " + " | ".join(r) + " |" for r in table]
-        return (head + "\n" if head else "") + "\n".join(lines) + "\n"
-    widths = [max(len(c), *(len(r[i]) for r in table)) if table else len(c) for i, c in enumerate(_COLUMNS)]
-    lines = ["  ".join(c.ljust(w) for c, w in zip(_COLUMNS, widths)).rstrip()]
-    lines += ["  ".join(v.ljust(w) for v, w in zip(r, widths)).rstrip() for r in table]
-    return head + "\n".join(lines) + "\n"

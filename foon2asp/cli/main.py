@@ -3,31 +3,28 @@
 from __future__ import annotations
 
 import functools
-import json
 import sys
-import time
 from pathlib import Path
 
 import click
 
+from foon2asp import methods, report
 from foon2asp.analysis import check as check_mod
 from foon2asp.analysis import compare as compare_mod
 from foon2asp.analysis import queries
-from foon2asp.asp.constraints import read_file
+from foon2asp.asp.constraints import ConstraintSpec, read_file, unknown_names
+from foon2asp.asp.facts import facts as facts_text
+from foon2asp.asp.multishot.driver import alternatives
+from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.batch import cluster as dask_runner
 from foon2asp.batch import run as batch_mod
-from foon2asp.foon import goals as goals_mod
-from foon2asp import methods
-from foon2asp.asp.constraints import ConstraintSpec, unknown_names
 from foon2asp.errors import InputError
-from foon2asp.asp.facts import facts as facts_text
+from foon2asp.foon import goals as goals_mod
+from foon2asp.foon.demo import demo_dir
 from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.parser import read_foons, write_foon
 from foon2asp.foon.problem import UTENSIL_RULES, Problem
-from foon2asp.foon.demo import demo_dir
-from foon2asp.asp.multishot.driver import alternatives
-from foon2asp.asp.session import OBJECTIVES, AspOptions
-from foon2asp.report.trees import FORMATS, render
+from foon2asp.report.trees import render
 
 
 def fail(message: str, code: int = 2) -> None:
@@ -55,12 +52,23 @@ def guarded(func):
 def data_options(func):
     """--data DIR and the per-file overrides, plus --utensil-rule and --strict."""
     opts = [
-        click.option("--data", "data_dir", type=click.Path(), help="Directory with FOON.txt, kitchen.json, goal_nodes.json, motion.txt, utensils.txt (default: the demo data)."),
+        click.option(
+            "--data",
+            "data_dir",
+            type=click.Path(),
+            help="Directory with FOON.txt, kitchen.json, goal_nodes.json, motion.txt, utensils.txt (default: the demo data).",
+        ),
         click.option("--foon", "foon", type=click.Path(), multiple=True, help="FOON file(s); several are merged."),
         click.option("--kitchen", type=click.Path(), help="kitchen.json"),
         click.option("--motion", type=click.Path(), help="motion.txt (motion TAB success rate)"),
         click.option("--utensils", type=click.Path(), help="utensils.txt"),
-        click.option("--utensil-rule", type=click.Choice(UTENSIL_RULES), default="starter", show_default=True, help="When a utensil holding one ingredient is not a required input."),
+        click.option(
+            "--utensil-rule",
+            type=click.Choice(UTENSIL_RULES),
+            default="starter",
+            show_default=True,
+            help="When a utensil holding one ingredient is not a required input.",
+        ),
         click.option("--strict", is_flag=True, help="Treat skipped FOON units (warnings) as errors."),
     ]
     for opt in reversed(opts):
@@ -70,11 +78,21 @@ def data_options(func):
 
 def goal_options(func):
     func = click.option("--goals", "goals", help="FILE of goal objects, 'all' (the goals file) or 'all-objects'.")(func)
-    func = click.option("--goal", "goal", multiple=True, help="Goal label (goals-file entry, else a unique FOON object).")(func)
+    func = click.option(
+        "--goal", "goal", multiple=True, help="Goal label (goals-file entry, else a unique FOON object)."
+    )(func)
     return func
 
 
-_CONSTRAINT_KEYS = ("constraint", "rule", "forbid_motion", "forbid_object", "require_motion", "require_object", "max_units")
+_CONSTRAINT_KEYS = (
+    "constraint",
+    "rule",
+    "forbid_motion",
+    "forbid_object",
+    "require_motion",
+    "require_object",
+    "max_units",
+)
 
 
 def constraint_options(func):
@@ -88,12 +106,33 @@ def constraint_options(func):
         return func(*args, constraints=spec, **kwargs)
 
     opts = [
-        click.option("--constraint", type=click.Path(), multiple=True, help="ASP file with extra rules over the vocabulary (use/1, motion/2, label/2, ...); repeatable."),
-        click.option("--rule", multiple=True, help="An extra ASP rule, e.g. ':- use(U), motion(U,\"fry\").'; repeatable."),
-        click.option("--forbid-motion", multiple=True, metavar="M", help="No unit of the tree has motion M; repeatable."),
-        click.option("--forbid-object", multiple=True, metavar="LABEL", help="No unit of the tree has an input or output labelled LABEL; repeatable."),
-        click.option("--require-motion", multiple=True, metavar="M", help="Some unit of the tree has motion M; repeatable."),
-        click.option("--require-object", multiple=True, metavar="LABEL", help="Some unit of the tree has an input or output labelled LABEL; repeatable."),
+        click.option(
+            "--constraint",
+            type=click.Path(),
+            multiple=True,
+            help="ASP file with extra rules over the vocabulary (use/1, motion/2, label/2, ...); repeatable.",
+        ),
+        click.option(
+            "--rule", multiple=True, help="An extra ASP rule, e.g. ':- use(U), motion(U,\"fry\").'; repeatable."
+        ),
+        click.option(
+            "--forbid-motion", multiple=True, metavar="M", help="No unit of the tree has motion M; repeatable."
+        ),
+        click.option(
+            "--forbid-object",
+            multiple=True,
+            metavar="LABEL",
+            help="No unit of the tree has an input or output labelled LABEL; repeatable.",
+        ),
+        click.option(
+            "--require-motion", multiple=True, metavar="M", help="Some unit of the tree has motion M; repeatable."
+        ),
+        click.option(
+            "--require-object",
+            multiple=True,
+            metavar="LABEL",
+            help="Some unit of the tree has an input or output labelled LABEL; repeatable.",
+        ),
         click.option("--max-units", type=click.IntRange(min=0), help="The tree has at most N units."),
     ]
     for opt in reversed(opts):
@@ -146,7 +185,14 @@ def _objective(value: str) -> tuple[str, ...]:
 
 
 _SOLVER_KEYS = ("max_depth", "human_steps", "models", "all_optimal", "opt_strategy", "threads")
-SOLVER_DEFAULTS = {"max_depth": None, "human_steps": None, "models": 1, "all_optimal": False, "opt_strategy": None, "threads": 1}
+SOLVER_DEFAULTS = {
+    "max_depth": None,
+    "human_steps": None,
+    "models": 1,
+    "all_optimal": False,
+    "opt_strategy": None,
+    "threads": 1,
+}
 
 
 def _opt_strategy(ctx, param, value):
@@ -167,12 +213,36 @@ def solver_options(func):
         return func(*args, solver_settings=settings, **kwargs)
 
     opts = [
-        click.option("--max-depth", type=click.IntRange(min=1), help="Only trees of at most N sequential rounds (the goal's level); with --objective depth, the search stops there."),
-        click.option("--human-steps", type=click.IntRange(min=0), help="At most M units may be done by a person (success 1.0); the solver picks them, the output marks them."),
-        click.option("--models", type=click.IntRange(min=1), default=1, show_default=True, help="The K best distinct trees per goal, best first."),
+        click.option(
+            "--max-depth",
+            type=click.IntRange(min=1),
+            help="Only trees of at most N sequential rounds (the goal's level); with --objective depth, the search stops there.",
+        ),
+        click.option(
+            "--human-steps",
+            type=click.IntRange(min=0),
+            help="At most M units may be done by a person (success 1.0); the solver picks them, the output marks them.",
+        ),
+        click.option(
+            "--models",
+            type=click.IntRange(min=1),
+            default=1,
+            show_default=True,
+            help="The K best distinct trees per goal, best first.",
+        ),
         click.option("--all-optimal", is_flag=True, help="Every optimal tree per goal (at most 100)."),
-        click.option("--opt-strategy", callback=_opt_strategy, help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll."),
-        click.option("--threads", type=click.IntRange(min=1), default=1, show_default=True, help="clingo solver threads (parallel mode)."),
+        click.option(
+            "--opt-strategy",
+            callback=_opt_strategy,
+            help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll.",
+        ),
+        click.option(
+            "--threads",
+            type=click.IntRange(min=1),
+            default=1,
+            show_default=True,
+            help="clingo solver threads (parallel mode).",
+        ),
     ]
     for opt in reversed(opts):
         wrapper = opt(wrapper)
@@ -201,13 +271,32 @@ def main():
 @goal_options
 @constraint_options
 @click.option("--method", default="asp", show_default=True, help="A registered method (see 'foon2asp methods').")
-@click.option("--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first.")
-@click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True)
+@click.option(
+    "--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first."
+)
+@click.option("--format", "fmt", type=click.Choice(report.names("trees")), default="text", show_default=True)
 @click.option("--output", type=click.Path(file_okay=False), help="Also write one file per goal into this directory.")
 @click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
 @solver_options
 @guarded
-def solve(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, method, objective, fmt, output, time_limit, constraints, solver_settings):
+def solve(
+    data_dir,
+    foon,
+    kitchen,
+    motion,
+    utensils,
+    utensil_rule,
+    strict,
+    goal,
+    goals,
+    method,
+    objective,
+    fmt,
+    output,
+    time_limit,
+    constraints,
+    solver_settings,
+):
     """Find the best task tree for each goal."""
     data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(data, problem, goal, goals)
@@ -217,7 +306,13 @@ def solve(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal,
         raise InputError(f"solver settings apply to ASP methods only; {method!r} is a search baseline")
     # ASP grounds only the units a tree for these goals can use (same trees, far smaller grounding)
     units = problem.units_for(goal_ids) if methods.get(method).kind == "asp" else None
-    options = AspOptions(objective=_objective(objective), time_limit=time_limit, programs=constraint_programs(constraints, problem), units=units, **solver_settings)
+    options = AspOptions(
+        objective=_objective(objective),
+        time_limit=time_limit,
+        programs=constraint_programs(constraints, problem),
+        units=units,
+        **solver_settings,
+    )
     run = methods.runner(method, problem, options)
     trees = []
     out_dir = Path(output) if output else None
@@ -228,8 +323,8 @@ def solve(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal,
         found = alternatives(tree)  # --models / --all-optimal: the further trees, best first
         trees.extend(found)
         if out_dir:
-            ext = {"text": "txt", "json": "json", "foon": "txt"}[fmt]
-            name = safe_name(index, problem.objects[g].label) + ("" if fmt != "foon" else ".foon") + f".{ext}"
+            ext = report.get("trees", fmt).extension
+            name = f"{safe_name(index, problem.objects[g].label)}.{ext}"
             (out_dir / name).write_text(render(problem, found, fmt), encoding="utf-8")
     _solver_warnings(problem, trees)
     click.echo(render(problem, trees, fmt), nl=False)
@@ -270,7 +365,9 @@ def merge(files, output, strict):
         click.echo(f"foon2asp: warning: {warning}", err=True)
     with open(output, "w", encoding="utf-8") as fh:
         write_foon(foon, fh, header=f"merged by foon2asp from {len(files)} file(s)")
-    click.echo(f"merged {len(files)} file(s): {len(foon.units)} units, {len(foon.objects)} objects -> {output}", err=True)
+    click.echo(
+        f"merged {len(files)} file(s): {len(foon.units)} units, {len(foon.objects)} objects -> {output}", err=True
+    )
 
 
 @main.command("methods")
@@ -285,8 +382,10 @@ def list_methods():
 @click.argument("tree", type=click.Path())
 @data_options
 @click.option("--goal", "goal", help="Goal label (default: the goal a JSON result names, else inferred from the tree).")
-@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
-@click.option("--optimum/--no-optimum", default=True, show_default=True, help="Also solve the ASP optimum to compare with.")
+@click.option("--format", "fmt", type=click.Choice(report.names("check")), default="text", show_default=True)
+@click.option(
+    "--optimum/--no-optimum", default=True, show_default=True, help="Also solve the ASP optimum to compare with."
+)
 @guarded
 def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, fmt, optimum):
     """Check a task tree (FOON text with // between units, or foon2asp JSON).
@@ -296,9 +395,9 @@ def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict,
     data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict)
     reports = check_mod.check_file(data, problem, tree, goal, optimum)
     if fmt == "json":
-        click.echo(json.dumps([check_mod.report_json(problem, r) for r in reports], indent=2))
+        click.echo(report.render("check", "json", problem, reports), nl=False)
     else:
-        click.echo("\n".join(check_mod.report_text(problem, r) for r in reports), nl=False)
+        click.echo(report.render("check", "text", problem, reports), nl=False)
     sys.exit(0 if all(r.valid for r in reports) else 1)
 
 
@@ -306,11 +405,31 @@ def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict,
 @data_options
 @goal_options
 @constraint_options
-@click.option("--methods", "method_list", default="ids,gbfs-h1,gbfs-h2,asp", show_default=True, help="Comma-separated registered methods (see 'foon2asp methods').")
-@click.option("--format", "fmt", type=click.Choice(("text", "markdown", "csv", "json")), default="text", show_default=True)
+@click.option(
+    "--methods",
+    "method_list",
+    default="ids,gbfs-h1,gbfs-h2,asp",
+    show_default=True,
+    help="Comma-separated registered methods (see 'foon2asp methods').",
+)
+@click.option("--format", "fmt", type=click.Choice(report.names("compare")), default="text", show_default=True)
 @click.option("--time-limit", type=float, help="Seconds per goal for ASP methods.")
 @guarded
-def compare(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, method_list, fmt, time_limit, constraints):
+def compare(
+    data_dir,
+    foon,
+    kitchen,
+    motion,
+    utensils,
+    utensil_rule,
+    strict,
+    goal,
+    goals,
+    method_list,
+    fmt,
+    time_limit,
+    constraints,
+):
     """Compare methods goal by goal: units, validity, success product, depth (default: --goals all)."""
     if not goal and not goals:
         goals = "all"
@@ -322,9 +441,11 @@ def compare(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goa
     programs = constraint_programs(constraints, problem)
     search = [n for n in names if methods.get(n).kind != "asp"]
     if programs and search:
-        click.echo(f"foon2asp: warning: constraints apply to ASP methods only; {', '.join(search)} ignore them", err=True)
+        click.echo(
+            f"foon2asp: warning: constraints apply to ASP methods only; {', '.join(search)} ignore them", err=True
+        )
     rows = compare_mod.compare(problem, goal_ids, names, AspOptions(time_limit=time_limit, programs=programs))
-    click.echo(compare_mod.render(problem, rows, fmt), nl=False)
+    click.echo(report.render("compare", fmt, problem, rows), nl=False)
 
 
 def _goals_or_default(data, problem, goal, goals) -> list[int]:
@@ -337,23 +458,23 @@ def _goals_or_default(data, problem, goal, goals) -> list[int]:
 @main.command()
 @data_options
 @goal_options
-@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+@click.option("--format", "fmt", type=click.Choice(report.names("reachable")), default="text", show_default=True)
 @guarded
 def reachable(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt):
     """Which goals (or objects) can be made from the kitchen at all, in one solve (default: --goals all)."""
     data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     answers = queries.reachable(problem, _goals_or_default(data, problem, goal, goals))
     if fmt == "json":
-        click.echo(json.dumps(queries.reachable_json(problem, answers), indent=2))
+        click.echo(report.render("reachable", "json", problem, answers), nl=False)
     else:
-        click.echo(queries.reachable_text(problem, answers), nl=False)
+        click.echo(report.render("reachable", "text", problem, answers), nl=False)
 
 
 @main.command()
 @data_options
 @goal_options
 @constraint_options
-@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+@click.option("--format", "fmt", type=click.Choice(report.names("missing")), default="text", show_default=True)
 @click.option("--time-limit", type=float, help="Seconds per goal; the best answer so far is reported as 'feasible'.")
 @guarded
 def missing(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, time_limit, constraints):
@@ -363,9 +484,9 @@ def missing(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goa
     programs = constraint_programs(constraints, problem)
     results = [queries.missing(problem, g, programs, time_limit) for g in goal_ids]
     if fmt == "json":
-        click.echo(json.dumps([queries.missing_json(problem, r) for r in results], indent=2))
+        click.echo(report.render("missing", "json", problem, results), nl=False)
     else:
-        click.echo("\n".join(queries.missing_text(problem, r) for r in results), nl=False)
+        click.echo(report.render("missing", "text", problem, results), nl=False)
 
 
 @main.command()
@@ -373,12 +494,38 @@ def missing(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goa
 @data_options
 @click.option("--goals", "goals_file", help="Goals FILE for goal_node/2 (default: goal_nodes.json of --data).")
 @click.option("--goal", "goal", help="Also add goal(O) for this goal label.")
-@click.option("--encoding", "encoding_names", multiple=True, help="Also load a shipped encoding (tree, units, reachable, missing); repeatable.")
-@click.option("--models", type=click.IntRange(min=0), default=1, show_default=True, help="Models to print (0 = all); with an objective, the optimum.")
-@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+@click.option(
+    "--encoding",
+    "encoding_names",
+    multiple=True,
+    help="Also load a shipped encoding (tree, units, reachable, missing); repeatable.",
+)
+@click.option(
+    "--models",
+    type=click.IntRange(min=0),
+    default=1,
+    show_default=True,
+    help="Models to print (0 = all); with an objective, the optimum.",
+)
+@click.option("--format", "fmt", type=click.Choice(report.names("query")), default="text", show_default=True)
 @click.option("--time-limit", type=float, help="Seconds for the solve.")
 @guarded
-def query(program, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file, goal, encoding_names, models, fmt, time_limit):
+def query(
+    program,
+    data_dir,
+    foon,
+    kitchen,
+    motion,
+    utensils,
+    utensil_rule,
+    strict,
+    goals_file,
+    goal,
+    encoding_names,
+    models,
+    fmt,
+    time_limit,
+):
     """Run your ASP PROGRAM with the FOON facts; print its shown atoms with ids as readable objects.
 
     Exit status: 0 with a model, 1 when unsatisfiable, 2 bad input.
@@ -391,9 +538,9 @@ def query(program, data_dir, foon, kitchen, motion, utensils, utensil_rule, stri
     goal_id = goals_mod.resolve_label(data, problem, goal) if goal else None
     result = queries.query(problem, (program, text), goal_nodes, goal_id, encoding_names, models, time_limit)
     if fmt == "json":
-        click.echo(json.dumps(queries.query_json(problem, result), indent=2))
+        click.echo(report.render("query", "json", problem, result), nl=False)
     else:
-        click.echo(queries.query_text(problem, result), nl=False)
+        click.echo(report.render("query", "text", problem, result), nl=False)
     sys.exit(1 if result.status == "unsatisfiable" else 0)
 
 
@@ -407,22 +554,78 @@ def _method_list(values: tuple[str, ...]) -> list[str]:
 @main.command()
 @data_options
 @goal_options
-@click.option("--methods", "method_list", multiple=True, help="Registered methods, comma-separated or repeated (default: asp).")
-@click.option("--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first.")
-@click.option("--output", default="results.jsonl", show_default=True, type=click.Path(dir_okay=False), help="Results, one JSON line per (goal, method).")
+@click.option(
+    "--methods", "method_list", multiple=True, help="Registered methods, comma-separated or repeated (default: asp)."
+)
+@click.option(
+    "--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first."
+)
+@click.option(
+    "--output",
+    default="results.jsonl",
+    show_default=True,
+    type=click.Path(dir_okay=False),
+    help="Results, one JSON line per (goal, method).",
+)
 @click.option("--resume", is_flag=True, help="Continue OUTPUT: skip the (goal, method) pairs it already holds.")
 @click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True, help="Worker processes.")
 @click.option("--scheduler", metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra).")
 @click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
-@click.option("--opt-strategy", callback=_opt_strategy, help="clingo optimisation strategy: bb or usc (core-guided, often much faster here), e.g. usc,oll.")
-@click.option("--grounding", type=click.Choice(("whole", "per-goal")), default="whole", show_default=True, help="One grounding for all goals, or a small grounding of each goal's relevant part (very large FOONs).")
-@click.option("--shortcuts/--no-shortcuts", default=True, show_default=True, help="Answer without the solver when the answer is forced (underivable goal; no choice in the goal's part).")
-@click.option("--summary", "summary_fmt", type=click.Choice(("text", "markdown", "csv")), default="text", show_default=True, help="Format of the summary printed at the end.")
+@click.option(
+    "--opt-strategy",
+    callback=_opt_strategy,
+    help="clingo optimisation strategy: bb or usc (core-guided, often much faster here), e.g. usc,oll.",
+)
+@click.option(
+    "--grounding",
+    type=click.Choice(("whole", "per-goal")),
+    default="whole",
+    show_default=True,
+    help="One grounding for all goals, or a small grounding of each goal's relevant part (very large FOONs).",
+)
+@click.option(
+    "--shortcuts/--no-shortcuts",
+    default=True,
+    show_default=True,
+    help="Answer without the solver when the answer is forced (underivable goal; no choice in the goal's part).",
+)
+@click.option(
+    "--summary",
+    "summary_fmt",
+    type=click.Choice(report.names("summary")),
+    default="text",
+    show_default=True,
+    help="Format of the summary printed at the end.",
+)
 @click.option("--progress/--no-progress", default=None, help="Progress bar (default: when stderr is a terminal).")
 @click.option("--fsync/--no-fsync", default=True, show_default=True, help="Sync each result line to disk.")
 @constraint_options
 @guarded
-def batch(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, method_list, objective, output, resume, workers, scheduler, time_limit, opt_strategy, grounding, shortcuts, summary_fmt, progress, fsync, constraints):
+def batch(
+    data_dir,
+    foon,
+    kitchen,
+    motion,
+    utensils,
+    utensil_rule,
+    strict,
+    goal,
+    goals,
+    method_list,
+    objective,
+    output,
+    resume,
+    workers,
+    scheduler,
+    time_limit,
+    opt_strategy,
+    grounding,
+    shortcuts,
+    summary_fmt,
+    progress,
+    fsync,
+    constraints,
+):
     """Solve many goals with several methods; resumable JSON-lines output and a summary."""
     data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(data, problem, goal, goals)
@@ -436,8 +639,8 @@ def batch(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal,
     executor = None
     if scheduler:
         executor = dask_runner.executor(scheduler)
-    report = batch_mod.run_batch(spec, goal_ids, output, resume, workers, progress, fsync, executor)
-    click.echo(batch_mod.render_summary(batch_mod.summarize(report.records), summary_fmt, report), nl=False)
+    outcome = batch_mod.run_batch(spec, goal_ids, output, resume, workers, progress, fsync, executor)
+    click.echo(report.render("summary", summary_fmt, batch_mod.summarize(outcome.records), outcome), nl=False)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -160,7 +160,7 @@ class Dataset:
         motion: str | Path | None = None,
         utensils: str | Path | None = None,
         strict: bool = False,
-    ) -> "Dataset":
+    ) -> Dataset:
         """Read a data directory; explicit file arguments override its files.
 
         ``goals``, ``motion`` and ``utensils`` are optional when absent from

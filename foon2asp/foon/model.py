@@ -8,8 +8,8 @@ independent of order.  Relations other than ``in``/``contains`` (``on``,
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
-from typing import Iterable, Iterator
 
 
 def _norm(text: str) -> str:
@@ -39,7 +39,7 @@ class FoonObject:
         states: Iterable[str] = (),
         ingredients: Iterable[str] = (),
         container: str | None = None,
-    ) -> "FoonObject":
+    ) -> FoonObject:
         container = _norm(container) if container not in (None, "") else None
         return cls(
             _norm(label),
@@ -144,7 +144,7 @@ class Foon:
         return [o for o in self.objects if o.label == label]
 
     @classmethod
-    def merged(cls, foons: Iterable["Foon"]) -> "Foon":
+    def merged(cls, foons: Iterable[Foon]) -> Foon:
         out = cls()
         for foon in foons:
             for unit, origin in zip(foon.units, foon.origins):

@@ -17,8 +17,9 @@ from __future__ import annotations
 
 import gc
 import re
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Iterable, TextIO
+from typing import TextIO
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject, Unit
@@ -53,9 +54,7 @@ class _Obj:
         return obj
 
 
-def parse_lines(
-    lines: Iterable[str], path: str = "<string>", foon: Foon | None = None, strict: bool = False
-) -> Foon:
+def parse_lines(lines: Iterable[str], path: str = "<string>", foon: Foon | None = None, strict: bool = False) -> Foon:
     """Parse FOON text from ``lines`` into ``foon`` (a new one by default).
 
     A unit without a motion line cannot be used; it is skipped with a warning
@@ -110,9 +109,7 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
                 continue
             if kind in "OSM" and "\t" not in line:
                 raise InputError(f"expected a TAB after '{line.split()[0]}' in {line.strip()!r}", path, lineno)
-            raise InputError(
-                f"unknown line type {line.strip()[:40]!r} (expected O, S, M, // or #)", path, lineno
-            )
+            raise InputError(f"unknown line type {line.strip()[:40]!r} (expected O, S, M, // or #)", path, lineno)
         rest = line[tab + 1 :]
         fields = [f.strip() for f in rest.split("\t")] if "\t" in rest else [rest.strip()]
         if kind == "O":
@@ -137,8 +134,7 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
                 container = _strip_brackets(arg)
                 if current.container is not None and current.container != container:
                     raise InputError(
-                        f"object {current.label!r} is in two containers "
-                        f"[{current.container}] and [{container}]",
+                        f"object {current.label!r} is in two containers [{current.container}] and [{container}]",
                         path,
                         lineno,
                     )

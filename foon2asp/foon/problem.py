@@ -15,9 +15,10 @@ so the semantics are stated exactly once.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Iterable, Protocol
+from typing import Protocol
 
 from foon2asp.foon.model import Foon, FoonObject, Unit
 
@@ -31,6 +32,7 @@ class DataLike(Protocol):
     kitchen: list[FoonObject]
     motion: dict[str, float]
     utensils: frozenset[str]
+
 
 #: success rate of a motion that motion.txt does not list
 DEFAULT_RATE = 0.5
@@ -117,7 +119,7 @@ class Problem:
         self.rates: list[float] = [self.motion_rates.get(u.motion, DEFAULT_RATE) for u in self.foon.units]
 
     @classmethod
-    def from_dataset(cls, data: DataLike, utensil_rule: str = "starter") -> "Problem":
+    def from_dataset(cls, data: DataLike, utensil_rule: str = "starter") -> Problem:
         return cls(data.foon, data.kitchen, data.motion, data.utensils, utensil_rule)
 
     @property

@@ -37,7 +37,9 @@ def _rename(obj: FoonObject, copy: int) -> FoonObject:
 
 
 def _unit(unit: Unit, copy: int) -> Unit:
-    return Unit(unit.motion, tuple(_rename(o, copy) for o in unit.inputs), tuple(_rename(o, copy) for o in unit.outputs))
+    return Unit(
+        unit.motion, tuple(_rename(o, copy) for o in unit.inputs), tuple(_rename(o, copy) for o in unit.outputs)
+    )
 
 
 @dataclass
@@ -61,7 +63,9 @@ class Synthetic:
             write_foon(self.foon, fh, header=f"synthetic FOON: {len(self.foon.units)} units")
         (out / "kitchen.json").write_text(json.dumps([o.to_json() for o in self.kitchen], indent=1), encoding="utf-8")
         (out / "goal_nodes.json").write_text(json.dumps([o.to_json() for o in self.goals], indent=1), encoding="utf-8")
-        (out / "motion.txt").write_text("".join(f"{m}\t{r}\n" for m, r in sorted(self.motion.items())), encoding="utf-8")
+        (out / "motion.txt").write_text(
+            "".join(f"{m}\t{r}\n" for m, r in sorted(self.motion.items())), encoding="utf-8"
+        )
         (out / "utensils.txt").write_text("".join(f"{u}\n" for u in sorted(self.utensils)), encoding="utf-8")
         return out
 

@@ -38,8 +38,8 @@ from functools import cached_property
 from foon2asp import methods
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.objectives import ranked
+from foon2asp.asp.options import AspOptions
 from foon2asp.foon.problem import Problem, walk_back
-from foon2asp.asp.session import AspOptions
 from foon2asp.tree.tasktree import TaskTree, executable_order, measures
 
 GROUNDINGS = ("whole", "per-goal")
@@ -155,7 +155,11 @@ class BatchRunner:
         if goal not in self.parts.derivable:
             self.counts["unreachable"] += 1
             return TaskTree(
-                goal, self._label, "unreachable", time_s=round(time.perf_counter() - t0, 6), stats={"shortcut": "unreachable"}
+                goal,
+                self._label,
+                "unreachable",
+                time_s=round(time.perf_counter() - t0, 6),
+                stats={"shortcut": "unreachable"},
             )
         units, _, choice = self.parts.relevant(goal)
         if choice:

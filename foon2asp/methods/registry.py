@@ -8,12 +8,13 @@ The CLI's ``solve``, ``compare`` and ``batch`` all look methods up here.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import Callable
 
+from foon2asp.asp.options import HEURISTICS, OBJECTIVES, AspOptions
+from foon2asp.asp.session import Session
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
-from foon2asp.asp.session import HEURISTICS, OBJECTIVES, AspOptions, Session
 from foon2asp.search import IDS, gbfs, h1, h2
 from foon2asp.tree.tasktree import TaskTree
 

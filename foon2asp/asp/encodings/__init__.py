@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 from importlib import resources
 
 
@@ -12,7 +12,7 @@ def names() -> list[str]:
     return sorted(p.name[:-3] for p in root.iterdir() if p.name.endswith(".lp"))
 
 
-@lru_cache(maxsize=None)
+@cache
 def encoding(name: str) -> str:
     """The text of ``NAME.lp``."""
     path = resources.files(__name__).joinpath(f"{name}.lp")

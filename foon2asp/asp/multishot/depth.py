@@ -41,7 +41,7 @@ The depth of a tree is the level of the goal in
 from __future__ import annotations
 
 from collections import deque
-from typing import Callable
+from collections.abc import Callable
 
 import clingo
 
@@ -79,7 +79,7 @@ class Levels:
         self.object_level, self.unit_level = self._fixpoint()
 
     @classmethod
-    def from_problem(cls, problem, units) -> "Levels":
+    def from_problem(cls, problem, units) -> Levels:
         """From the Problem, for a session whose facts are exactly ``units`` of it."""
         units = list(units)
         return cls(
@@ -89,7 +89,7 @@ class Levels:
         )
 
     @classmethod
-    def from_control(cls, ctl: clingo.Control) -> "Levels":
+    def from_control(cls, ctl: clingo.Control) -> Levels:
         """From the grounded atoms (user programs may add facts)."""
         atoms = ctl.symbolic_atoms
 
@@ -290,4 +290,3 @@ def solve_depth(
             ceiling = tree_depth(feasible.answers[0])
         bound += 1
         state["bound"] = bound
-

@@ -18,24 +18,15 @@ trees come best first and no tree merely adds units to an earlier one.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 import clingo
 
-from foon2asp.asp.multishot import depth as depth_mod
 from foon2asp.asp import objectives
+from foon2asp.asp.control import Answer
+from foon2asp.asp.multishot import depth as depth_mod
 from foon2asp.tree.tasktree import TaskTree, executable_order, measures
-
-
-@dataclass
-class Answer:
-    """One model: the tree's units (sorted), its ASP cost vector and human steps."""
-
-    units: tuple[int, ...]
-    cost: tuple[int, ...]
-    proven: bool
-    human: tuple[int, ...] = ()
 
 
 @dataclass
@@ -102,17 +93,13 @@ class Driver:
             ctl.assign_external(atom, value)
         self.solves += 1
         try:
-            with ctl.solve(on_model=record, async_=True) as handle:
-                remaining = None if deadline is None else max(0.0, deadline - time.perf_counter())
-                finished = handle.wait(remaining) if remaining is not None else handle.wait()
-                if not finished:
-                    handle.cancel()
-                result = handle.get()
+            remaining = None if deadline is None else max(0.0, deadline - time.perf_counter())
+            result = self.session.control.solve(record, remaining)
             self.last_stats = self.session.stats()  # before the externals change: that resets them
         finally:
             for atom in switched:
                 ctl.assign_external(atom, False)
-        finished = finished and not result.interrupted
+        finished = result.finished
         if mode == "optN":
             found = list(answers.values()) or ([] if finished else last)
         else:
@@ -249,9 +236,7 @@ class Driver:
         if bound is not None and self.depth_mode == "first":
             extra["depth_bound"] = bound
             refuted = self._state.get("refuted", [])
-            extra["depth_refuted"] = {
-                how: sum(1 for _, h in refuted if h == how) for how in ("grounder", "solver")
-            }
+            extra["depth_refuted"] = {how: sum(1 for _, h in refuted if h == how) for how in ("grounder", "solver")}
         stats = dict(self.last_stats, solves=self.solves)
         return TaskTree(goal, method, status, units, cost, elapsed, stats, extra)
 

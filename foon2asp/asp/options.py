@@ -1,0 +1,67 @@
+"""How to solve: objectives, extra programs, bounds and solver settings (:class:`AspOptions`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+#: objective name -> encoding that defines it (all use objective(Name,Priority))
+OBJECTIVES: dict[str, str] = {"units": "units", "success": "success", "inputs": "inputs", "depth": "depth"}
+
+#: greedy retrieval inside the solver (AspOptions.heuristic -> encodings/greedy_NAME.lp)
+HEURISTICS = ("h1", "h2")
+
+
+@dataclass
+class AspOptions:
+    """How to solve: objectives (lexicographic, first = most important) and solver settings."""
+
+    objective: tuple[str, ...] = ("units",)
+    #: extra ASP programs as (name, text): user constraints and the like
+    programs: list[tuple[str, str]] = field(default_factory=list)
+    #: extra encodings (names in encodings/) to load
+    encodings: list[str] = field(default_factory=list)
+    time_limit: float | None = None
+    opt_strategy: str | None = None
+    threads: int = 1
+    clingo_args: list[str] = field(default_factory=list)
+    #: ground only these units (e.g. the goals' relevant units); None: all units
+    units: tuple[int, ...] | None = None
+    #: only trees of at most this many sequential rounds (see foon2asp.depth)
+    max_depth: int | None = None
+    #: at most this many units may be done by a person (success 1.0 for those)
+    human_steps: int | None = None
+    #: the K best distinct trees per goal, best first
+    models: int = 1
+    #: every optimal tree, at most all_optimal_cap of them
+    all_optimal: bool = False
+    all_optimal_cap: int = 100
+    #: "h1" | "h2": greedy retrieval in the solver (first model under #heuristic)
+    heuristic: str | None = None
+
+    @property
+    def method(self) -> str:
+        if self.heuristic:
+            return f"asp-greedy-{self.heuristic}"
+        return "asp-" + ",".join(self.objective)
+
+    @property
+    def driven(self) -> bool:
+        """Does solving need foon2asp.driver (more than one plain optimisation)?"""
+        return bool(
+            self.heuristic
+            or self.max_depth is not None
+            or self.human_steps is not None
+            or self.models > 1
+            or self.all_optimal
+            or "depth" in self.objective
+        )
+
+    def args(self) -> list[str]:
+        args = ["--opt-mode=opt"]
+        if self.heuristic:
+            args.append("--heuristic=Domain")
+        if self.opt_strategy:
+            args.append(f"--opt-strategy={self.opt_strategy}")
+        if self.threads and self.threads > 1:
+            args.append(f"--parallel-mode={self.threads}")
+        return args + list(self.clingo_args)
