@@ -4,7 +4,7 @@ VENV   ?= .venv
 BIN     = $(VENV)/bin
 SHARED ?= ../shared
 
-.PHONY: install demo test bench clean
+.PHONY: install install-demo demo test lint shell bench clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -13,13 +13,29 @@ $(BIN)/python:
 install: $(BIN)/python
 	$(BIN)/pip install -q ".[test]"
 
-demo: install
+# the demo needs only the package itself
+install-demo: $(BIN)/python
+	$(BIN)/pip install -q .
+
+demo: install-demo
 	$(BIN)/foon2asp solve --goals all
 	$(BIN)/foon2asp solve --goals all --format json --output out/demo > /dev/null
-	@echo "trees written to out/demo/"
+	@echo "trees written to out/demo/; run '. $(BIN)/activate' (or 'make shell') to use foon2asp"
 
-test: install
+test: install lint
 	cd tests && ../$(BIN)/python -m pytest
+
+# lint, format check, types and the import-layer contract (pyproject.toml)
+lint: install
+	$(BIN)/ruff check foon2asp tests bench
+	$(BIN)/ruff format --check foon2asp tests bench
+	$(BIN)/mypy
+	$(BIN)/lint-imports
+
+# a shell with the environment active
+shell: install-demo
+	@echo "foon2asp is on PATH in this shell; 'exit' to leave"
+	@. $(BIN)/activate && exec $${SHELL:-bash}
 
 bench: install
 	$(BIN)/python bench/run.py --shared $(SHARED)

@@ -1,3 +1,37 @@
-"""foon2asp: minimal, well-founded FOON task trees with answer-set programming."""
+"""foon2asp: minimal, well-founded FOON task trees with answer-set programming.
 
-__version__ = "0.1.0"
+>>> import foon2asp
+>>> kb = foon2asp.load("demo")
+>>> kb.solve("tomato salad").cost["units"]
+1
+
+See :mod:`foon2asp.api` and docs/api.md.
+"""
+
+__version__ = "0.2.0"
+
+from foon2asp.api import (  # noqa: E402
+    CheckReport,
+    Comparison,
+    Constraints,
+    KnowledgeBase,
+    Missing,
+    Tree,
+    load,
+)
+from foon2asp.errors import InputError  # noqa: E402
+from foon2asp.foon.model import FoonObject, Unit  # noqa: E402
+
+__all__ = [
+    "__version__",
+    "load",
+    "KnowledgeBase",
+    "Tree",
+    "CheckReport",
+    "Comparison",
+    "Missing",
+    "Constraints",
+    "FoonObject",
+    "Unit",
+    "InputError",
+]

@@ -22,13 +22,14 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from foon2asp.asp.session import AspOptions, Session
+from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.loaders import object_from_json
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.parser import parse_lines
 from foon2asp.foon.problem import Problem, required_flags
+from foon2asp.methods.planner import solve_goals
 from foon2asp.tree.tasktree import TaskTree, measures
 from foon2asp.tree.validate import Validation, check_order, validate
 
@@ -381,9 +382,9 @@ def check_tree(problem: Problem, tree: TreeFile, goal: int, index: dict[tuple, i
         )
         validation = validate(problem, goal, known)
         return Report(tree, goal, ids, False, finding, validation, None, measures(problem, goal, known))
-    validation, finding = check_units(problem, goal, known, lambda u: describe_unit(problem, u, tree, ids))
+    validation, found = check_units(problem, goal, known, lambda u: describe_unit(problem, u, tree, ids))
     order_problem = check_order(problem, goal, known)
-    return Report(tree, goal, ids, validation.valid, finding, validation, order_problem, measures(problem, goal, known))
+    return Report(tree, goal, ids, validation.valid, found, validation, order_problem, measures(problem, goal, known))
 
 
 # ---------------------------------------------------------------- output
@@ -395,7 +396,7 @@ def check_tree(problem: Problem, tree: TreeFile, goal: int, index: dict[tuple, i
 def resolve_goal(data, problem: Problem, tree: TreeFile, goal_label: str | None) -> tuple[int, str]:
     """The goal and where it came from: ``--goal``, the JSON result, or inferred from the units."""
     if goal_label:
-        return goals_mod.resolve_label(data, problem, goal_label), "--goal"
+        return goals_mod.resolve_goal(data, problem, goal_label), "--goal"
     if tree.goal is not None:
         return goals_mod.goal_id(problem, tree.goal, tree.path, tree.line), "named in the file"
     return infer_goal(problem, tree, [obj for obj, _ in data.goals]), "inferred from the units"
@@ -415,8 +416,7 @@ def check_file(
         reports.append(report)
     if optimum and reports:
         goals = list(dict.fromkeys(r.goal for r in reports))
-        session = Session(problem, AspOptions(units=problem.units_for(goals)))
-        best = {g: session.solve(g) for g in goals}
+        best = dict(zip(goals, solve_goals(problem, goals, "asp", AspOptions())))
         for r in reports:
             r.optimum = best[r.goal]
     return reports

@@ -12,10 +12,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-from foon2asp import methods
 from foon2asp.analysis.check import check_units
 from foon2asp.asp.options import AspOptions
 from foon2asp.foon.problem import Problem
+from foon2asp.methods.planner import BatchRunner
 from foon2asp.tree.tasktree import TaskTree
 
 DEFAULT_METHODS = ("ids", "gbfs-h1", "gbfs-h2", "asp")
@@ -55,7 +55,7 @@ def compare(
     options = options or AspOptions()
     if options.units is None:
         options = replace(options, units=problem.units_for(goals))
-    runners = {name: methods.runner(name, problem, options) for name in dict.fromkeys(method_names)}
+    runners = {name: BatchRunner(name, problem, options) for name in dict.fromkeys(method_names)}
     rows = []
     for g in goals:
         trees = {name: judge(problem, run(g)) for name, run in runners.items()}

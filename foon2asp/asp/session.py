@@ -69,7 +69,7 @@ class Session:
         self.control.add_all(parts, user=[name for name, _ in self.options.programs])
         self.control.ground()
         self.ground_s = time.perf_counter() - t0
-        self._driver = None
+        self._driver: Driver | None = None
         self.goal_atoms = {
             a.symbol.arguments[0].number for a in self.ctl.symbolic_atoms.by_signature("goal", 1) if a.is_external
         }

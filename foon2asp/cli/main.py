@@ -8,20 +8,16 @@ from pathlib import Path
 
 import click
 
-from foon2asp import methods, report
-from foon2asp.analysis import check as check_mod
-from foon2asp.analysis import compare as compare_mod
+from foon2asp import api, methods, report
 from foon2asp.analysis import queries
 from foon2asp.asp.constraints import ConstraintSpec, read_file, unknown_names
 from foon2asp.asp.facts import facts as facts_text
 from foon2asp.asp.multishot.driver import alternatives
-from foon2asp.asp.options import OBJECTIVES, AspOptions
-from foon2asp.batch import cluster as dask_runner
+from foon2asp.asp.options import OBJECTIVES
 from foon2asp.batch import run as batch_mod
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.demo import demo_dir
-from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.parser import read_foons, write_foon
 from foon2asp.foon.problem import UTENSIL_RULES, Problem
 from foon2asp.report.trees import render
@@ -102,7 +98,7 @@ def constraint_options(func):
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         values = [kwargs.pop(k) for k in _CONSTRAINT_KEYS]
-        spec = ConstraintSpec(*(tuple(v) if isinstance(v, tuple) else v for v in values))
+        spec = ConstraintSpec(*(tuple(v) if isinstance(v, tuple) else v for v in values))  # type: ignore[arg-type]
         return func(*args, constraints=spec, **kwargs)
 
     opts = [
@@ -148,32 +144,41 @@ def constraint_programs(spec: ConstraintSpec, problem: Problem | None = None) ->
     return spec.programs()
 
 
-def load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file=None):
-    """Read the data and build the problem; warnings go to stderr."""
+def load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file=None) -> api.KnowledgeBase:
+    """Read the data through the library; warnings go to stderr."""
     if data_dir is None and not (foon and kitchen):
         data_dir = str(demo_dir())
     goals_path = goals_file if goals_file not in (None, "all", "all-objects") else None
-    data = Dataset.load(
+    kb = api.load(
         data_dir,
         foon=list(foon) if foon else None,
         kitchen=kitchen,
         goals=goals_path,
         motion=motion,
         utensils=utensils,
+        utensil_rule=utensil_rule,
         strict=strict,
     )
-    for warning in data.foon.warnings:
+    _warn(kb)
+    return kb
+
+
+def _warn(kb: api.KnowledgeBase) -> None:
+    for warning in kb.warnings:
         click.echo(f"foon2asp: warning: {warning}", err=True)
-    problem = Problem.from_dataset(data, utensil_rule)
-    if data.motion:
-        unknown = problem.unknown_motions()
-        if unknown:
-            click.echo(
-                f"foon2asp: warning: {len(unknown)} motion(s) not in {data.paths.get('motion')} "
-                f"get success rate 0.5: {', '.join(unknown[:5])}",
-                err=True,
-            )
-    return data, problem
+    kb.warnings.clear()
+
+
+def _constraints(spec: ConstraintSpec) -> api.Constraints:
+    return api.Constraints(
+        spec.forbid_motion,
+        spec.forbid_object,
+        spec.require_motion,
+        spec.require_object,
+        spec.max_units,
+        spec.rules,
+        spec.files,
+    )
 
 
 def _objective(value: str) -> tuple[str, ...]:
@@ -298,33 +303,23 @@ def solve(
     solver_settings,
 ):
     """Find the best task tree for each goal."""
-    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
-    goal_ids = goals_mod.resolve(data, problem, goal, goals)
-    if constraints and methods.get(method).kind != "asp":
-        raise InputError(f"constraints apply to ASP methods only; {method!r} is a search baseline")
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
     if methods.get(method).kind != "asp" and solver_settings != SOLVER_DEFAULTS:
         raise InputError(f"solver settings apply to ASP methods only; {method!r} is a search baseline")
-    # ASP grounds only the units a tree for these goals can use (same trees, far smaller grounding)
-    units = problem.units_for(goal_ids) if methods.get(method).kind == "asp" else None
-    options = AspOptions(
-        objective=_objective(objective),
-        time_limit=time_limit,
-        programs=constraint_programs(constraints, problem),
-        units=units,
-        **solver_settings,
-    )
-    run = methods.runner(method, problem, options)
+    options = kb.options(objective, time_limit, _constraints(constraints), **solver_settings)
+    _warn(kb)
+    problem = kb.problem
     trees = []
     out_dir = Path(output) if output else None
     if out_dir:
         out_dir.mkdir(parents=True, exist_ok=True)
-    for index, g in enumerate(goal_ids, 1):
-        tree = run(g)
-        found = alternatives(tree)  # --models / --all-optimal: the further trees, best first
+    for index, tree in enumerate(kb.solve_iter(goal_ids, method, options), 1):
+        found = alternatives(tree.raw)  # --models / --all-optimal: the further trees, best first
         trees.extend(found)
         if out_dir:
             ext = report.get("trees", fmt).extension
-            name = f"{safe_name(index, problem.objects[g].label)}.{ext}"
+            name = f"{safe_name(index, tree.goal.label)}.{ext}"
             (out_dir / name).write_text(render(problem, found, fmt), encoding="utf-8")
     _solver_warnings(problem, trees)
     click.echo(render(problem, trees, fmt), nl=False)
@@ -338,7 +333,8 @@ def solve(
 @guarded
 def facts(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file, goal, output):
     """Write the FOON, kitchen and goals as ASP facts."""
-    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file)
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file)
+    data, problem = kb.data, kb.problem
     goal_nodes = [goals_mod.goal_id(problem, obj, data.paths.get("goals"), line) for obj, line in data.goals]
     fixed = goals_mod.resolve(data, problem, goal, None) if goal else []
     text = facts_text(problem, goal_nodes=goal_nodes)
@@ -392,12 +388,10 @@ def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict,
 
     Exit status: 0 valid, 1 invalid, 2 bad input.
     """
-    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict)
-    reports = check_mod.check_file(data, problem, tree, goal, optimum)
-    if fmt == "json":
-        click.echo(report.render("check", "json", problem, reports), nl=False)
-    else:
-        click.echo(report.render("check", "text", problem, reports), nl=False)
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict)
+    reports = kb.check(tree, goal, optimum)
+    assert isinstance(reports, list)
+    click.echo(report.render("check", fmt, kb.problem, [r.raw for r in reports]), nl=False)
     sys.exit(0 if all(r.valid for r in reports) else 1)
 
 
@@ -411,6 +405,9 @@ def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict,
     default="ids,gbfs-h1,gbfs-h2,asp",
     show_default=True,
     help="Comma-separated registered methods (see 'foon2asp methods').",
+)
+@click.option(
+    "--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first."
 )
 @click.option("--format", "fmt", type=click.Choice(report.names("compare")), default="text", show_default=True)
 @click.option("--time-limit", type=float, help="Seconds per goal for ASP methods.")
@@ -426,6 +423,7 @@ def compare(
     goal,
     goals,
     method_list,
+    objective,
     fmt,
     time_limit,
     constraints,
@@ -436,16 +434,18 @@ def compare(
     names = [m.strip() for m in method_list.split(",") if m.strip()]
     for name in names:
         methods.get(name)  # unknown names fail before any work
-    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
-    goal_ids = goals_mod.resolve(data, problem, goal, goals)
-    programs = constraint_programs(constraints, problem)
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
     search = [n for n in names if methods.get(n).kind != "asp"]
-    if programs and search:
+    if constraints and search:
         click.echo(
             f"foon2asp: warning: constraints apply to ASP methods only; {', '.join(search)} ignore them", err=True
         )
-    rows = compare_mod.compare(problem, goal_ids, names, AspOptions(time_limit=time_limit, programs=programs))
-    click.echo(report.render("compare", fmt, problem, rows), nl=False)
+    comparison = kb.compare(
+        goal_ids, names, objective=objective, time_limit=time_limit, constraints=_constraints(constraints)
+    )
+    _warn(kb)
+    click.echo(comparison.render(fmt), nl=False)
 
 
 def _goals_or_default(data, problem, goal, goals) -> list[int]:
@@ -462,12 +462,10 @@ def _goals_or_default(data, problem, goal, goals) -> list[int]:
 @guarded
 def reachable(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt):
     """Which goals (or objects) can be made from the kitchen at all, in one solve (default: --goals all)."""
-    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
-    answers = queries.reachable(problem, _goals_or_default(data, problem, goal, goals))
-    if fmt == "json":
-        click.echo(report.render("reachable", "json", problem, answers), nl=False)
-    else:
-        click.echo(report.render("reachable", "text", problem, answers), nl=False)
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    goal_ids = _goals_or_default(kb.data, kb.problem, goal, goals)
+    answers = queries.reachable(kb.problem, goal_ids)
+    click.echo(report.render("reachable", fmt, kb.problem, answers), nl=False)
 
 
 @main.command()
@@ -479,14 +477,11 @@ def reachable(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, g
 @guarded
 def missing(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, time_limit, constraints):
     """The fewest objects to add to the kitchen so a goal can be made (proven minimal), and the tree."""
-    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
-    goal_ids = goals_mod.resolve(data, problem, goal, goals)
-    programs = constraint_programs(constraints, problem)
-    results = [queries.missing(problem, g, programs, time_limit) for g in goal_ids]
-    if fmt == "json":
-        click.echo(report.render("missing", "json", problem, results), nl=False)
-    else:
-        click.echo(report.render("missing", "text", problem, results), nl=False)
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
+    results = [kb.missing(g, time_limit=time_limit, constraints=_constraints(constraints)).raw for g in goal_ids]
+    _warn(kb)
+    click.echo(report.render("missing", fmt, kb.problem, results), nl=False)
 
 
 @main.command()
@@ -532,15 +527,11 @@ def query(
     """
 
     text = read_file(program)
-    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file)
-    path = data.paths.get("goals")
-    goal_nodes = [goals_mod.goal_id(problem, obj, path, line) for obj, line in data.goals]
-    goal_id = goals_mod.resolve_label(data, problem, goal) if goal else None
-    result = queries.query(problem, (program, text), goal_nodes, goal_id, encoding_names, models, time_limit)
-    if fmt == "json":
-        click.echo(report.render("query", "json", problem, result), nl=False)
-    else:
-        click.echo(report.render("query", "text", problem, result), nl=False)
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file)
+    result = kb.query(
+        text, goal=goal or None, encodings=encoding_names, models=models, time_limit=time_limit, name=program
+    )
+    click.echo(report.render("query", fmt, kb.problem, result), nl=False)
     sys.exit(1 if result.status == "unsatisfiable" else 0)
 
 
@@ -627,19 +618,24 @@ def batch(
     constraints,
 ):
     """Solve many goals with several methods; resumable JSON-lines output and a summary."""
-    data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
-    goal_ids = goals_mod.resolve(data, problem, goal, goals)
-    options = AspOptions(
-        objective=_objective(objective),
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
+    outcome = kb.batch(
+        goal_ids,
+        output,
+        methods=_method_list(method_list),
+        workers=workers,
+        resume=resume,
+        objective=objective,
         time_limit=time_limit,
+        constraints=_constraints(constraints),
         opt_strategy=opt_strategy,
-        programs=constraint_programs(constraints, problem),
+        grounding=grounding,
+        shortcuts=shortcuts,
+        progress=progress,
+        fsync=fsync,
+        scheduler=scheduler,
     )
-    spec = batch_mod.BatchSpec(problem, _method_list(method_list), options, grounding, shortcuts)
-    executor = None
-    if scheduler:
-        executor = dask_runner.executor(scheduler)
-    outcome = batch_mod.run_batch(spec, goal_ids, output, resume, workers, progress, fsync, executor)
     click.echo(report.render("summary", summary_fmt, batch_mod.summarize(outcome.records), outcome), nl=False)
 
 

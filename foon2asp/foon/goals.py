@@ -6,6 +6,7 @@ import difflib
 
 from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset, read_goals
+from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
 
 
@@ -24,6 +25,59 @@ def goal_id(problem: Problem, obj, path: str | None = None, line: int | None = N
     return oid
 
 
+def _split_text(text: str) -> list[str]:
+    """Top-level comma-separated parts of an object's text (commas inside {} or [] stay)."""
+    parts: list[str] = []
+    cur: list[str] = []
+    depth = 0
+    for ch in text:
+        if ch in "{[":
+            depth += 1
+        elif ch in "}]":
+            depth = max(0, depth - 1)
+        if ch == "," and depth == 0:
+            parts.append("".join(cur))
+            cur = []
+        else:
+            cur.append(ch)
+    parts.append("".join(cur))
+    return [p.strip() for p in parts]
+
+
+def parse_object_text(text: str) -> FoonObject | None:
+    """The object an object's text names, as foon2asp prints it (``label, state, ...,
+    contains {a,b}, in [c]``; states in any order), or None when ``text`` has no comma."""
+    parts = _split_text(text)
+    if len(parts) < 2:
+        return None
+    states, ingredients, container = [], [], None
+    for part in parts[1:]:
+        if part.startswith("contains {") and part.endswith("}"):
+            ingredients += [i for i in part[len("contains {") : -1].split(",")]
+        elif part.startswith("in [") and part.endswith("]"):
+            container = part[len("in [") : -1]
+        elif part:
+            states.append(part)
+    return FoonObject.make(parts[0], states, ingredients, container)
+
+
+def resolve_goal(data: Dataset, problem: Problem, text: str) -> int:
+    """``--goal``: ``#ID`` (an object id as ``foon2asp objects`` lists it), an object's
+    text as foon2asp prints it, or a label (see :func:`resolve_label`)."""
+    stripped = text.strip()
+    if stripped.startswith("#") and stripped[1:].isdigit():
+        oid = int(stripped[1:])
+        if oid >= len(problem.objects):
+            raise InputError(f"no object #{oid}: ids run from #0 to #{len(problem.objects) - 1}")
+        return oid
+    obj = parse_object_text(stripped)
+    if obj is not None:
+        found = problem.foon.object_ids.get(obj)
+        if found is not None:
+            return found
+    return resolve_label(data, problem, stripped)
+
+
 def resolve_label(data: Dataset, problem: Problem, label: str) -> int:
     """``--goal LABEL``: the goals-file entry with that label, else the unique FOON object."""
     norm = " ".join(label.split()).lower()
@@ -40,10 +94,14 @@ def resolve_label(data: Dataset, problem: Problem, label: str) -> int:
         return produced[0]
     if not produced:
         raise InputError(f"no goal or FOON object labelled {label!r}{_closest(problem, norm)}")
-    listing = " | ".join(str(problem.objects[o]) for o in produced[:10])
-    more = f" (+{len(produced) - 10} more)" if len(produced) > 10 else ""
+    if len(produced) <= 20:
+        listing = " | ".join(f"#{o} {problem.objects[o]}" for o in produced)
+        raise InputError(
+            f"label {label!r} names {len(produced)} FOON objects; give one as --goal with its text or #ID: {listing}"
+        )
     raise InputError(
-        f"label {label!r} names {len(produced)} FOON objects; put the one you mean in a goals file: {listing}{more}"
+        f"label {label!r} names {len(produced)} FOON objects; list them with: foon2asp objects {norm!r}"
+        " (then give one as --goal with its text or #ID)"
     )
 
 
@@ -60,7 +118,7 @@ def resolve(data: Dataset, problem: Problem, goal: tuple[str, ...] | None, goals
     """Goal ids for ``--goal LABEL`` (repeatable) or ``--goals FILE|all|all-objects``."""
     out: list[int] = []
     for label in goal or ():
-        out.append(resolve_label(data, problem, label))
+        out.append(resolve_goal(data, problem, label))
     if goals == "all":
         path = data.paths.get("goals")
         if path is None:

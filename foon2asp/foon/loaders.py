@@ -168,7 +168,7 @@ class Dataset:
         """
         base = Path(data_dir) if data_dir is not None else None
         given = {"foon": foon, "kitchen": kitchen, "goals": goals, "motion": motion, "utensils": utensils}
-        paths: dict[str, str] = {}
+        paths: dict[str, str | list] = {}
         for key, value in given.items():
             if value is not None:
                 paths[key] = value if isinstance(value, list) else str(value)
@@ -185,11 +185,12 @@ class Dataset:
         for p in foon_paths:
             if not Path(p).is_file():
                 raise InputError("FOON file not found", str(p))
+        one = {k: str(v) for k, v in paths.items() if k != "foon"}
         return cls(
             foon=read_foons(foon_paths, strict),
-            kitchen=read_kitchen(paths["kitchen"]),
-            goals=read_goals(paths["goals"]) if "goals" in paths else [],
-            motion=read_motion(paths["motion"]) if "motion" in paths else {},
-            utensils=read_utensils(paths["utensils"]) if "utensils" in paths else frozenset(),
+            kitchen=read_kitchen(one["kitchen"]),
+            goals=read_goals(one["goals"]) if "goals" in one else [],
+            motion=read_motion(one["motion"]) if "motion" in one else {},
+            utensils=read_utensils(one["utensils"]) if "utensils" in one else frozenset(),
             paths={k: (",".join(v) if isinstance(v, list) else v) for k, v in paths.items()},
         )

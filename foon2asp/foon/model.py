@@ -30,7 +30,7 @@ class FoonObject:
         object.__setattr__(self, "_hash", hash((self.label, self.states, self.ingredients, self.container)))
 
     def __hash__(self) -> int:
-        return self._hash
+        return self._hash  # type: ignore[attr-defined]
 
     @classmethod
     def make(
@@ -47,6 +47,11 @@ class FoonObject:
             tuple(sorted({_norm(i) for i in ingredients if _norm(i)})),
             container or None,
         )
+
+    @property
+    def text(self) -> str:
+        """The object as foon2asp prints it: ``label, state, ..., contains {a,b}, in [c]``."""
+        return str(self)
 
     def is_bare(self) -> bool:
         """True for an object with no states, ingredients or container."""

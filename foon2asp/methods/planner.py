@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import copy
 import time
+from collections.abc import Iterable, Iterator
 from dataclasses import replace
 from functools import cached_property
 
@@ -177,3 +178,25 @@ class BatchRunner:
             {"shortcut": "no-choice"},
             {"asp_cost": asp_cost},
         )
+
+
+def solve_goals(
+    problem: Problem,
+    goals: Iterable[int],
+    method: str = "asp",
+    options: AspOptions | None = None,
+    grounding: str = "whole",
+    shortcuts: bool = True,
+) -> Iterator[TaskTree]:
+    """The one path from goals to trees that ``solve``, ``compare``, ``check`` and the library take.
+
+    ASP methods ground only the units a tree for one of ``goals`` can use
+    (:meth:`Problem.units_for`) unless ``options.units`` says otherwise.
+    """
+    options = options or AspOptions()
+    goals = list(goals)
+    if methods.get(method).kind == "asp" and options.units is None:
+        options = replace(options, units=problem.units_for(goals))
+    runner = BatchRunner(method, problem, options, grounding, shortcuts)
+    for goal in goals:
+        yield runner(goal)

@@ -42,6 +42,7 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Callable
+from typing import Any
 
 import clingo
 
@@ -227,8 +228,8 @@ def depth_mode(options, ranked: tuple[str, ...]) -> str:
 def solve_depth(
     session,
     goal: int,
-    shot: Callable[[dict, str | None], object],
-    tree_depth: Callable[[object], int],
+    shot: Callable[[dict, str | None], Any],
+    tree_depth: Callable[[Any], int],
     mode: str,
     state: dict,
     single: bool = True,

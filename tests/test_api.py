@@ -1,0 +1,99 @@
+"""The library API: the contract names, the same answers as the CLI, docs/api.md executed."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+
+import pytest
+from click.testing import CliRunner
+
+import foon2asp
+from conftest import REPO, SHARED
+from foon2asp.cli.main import main
+
+
+@pytest.fixture(scope="module")
+def kb(shared_foon_dir):
+    return foon2asp.load(shared_foon_dir)
+
+
+def test_contract_answers(kb):
+    t = kb.solve("greek salad")
+    assert (t.status, t.cost["units"], len(t.units)) == ("optimal", 25, 25)
+    assert kb.check(t).valid
+    assert kb.solve("macaroni", objective="success").cost["success"] == 0.02187
+    w = kb.missing("whipped cream")
+    assert w.status == "optimal" and len(w.missing) == 1
+    assert sum(kb.reachable().values()) == 23
+    comparison = kb.compare(goals="all")
+    assert sum(1 for x in comparison.trees if x.method == "gbfs-h1" and x.valid is False) == 10
+    assert len(kb.goals) == 25 and len(kb.objects("scrambled egg")) == 15
+
+
+def test_units_are_in_executable_order(kb):
+    t = kb.solve("macaroni and cheese")
+    had = set(kb.problem.kitchen)
+    for u in t.unit_ids:
+        assert all(i in had for i in kb.problem.required[u])
+        had.update(kb.problem.products[u])
+    assert t.goal_id in had
+
+
+def test_to_dict_is_the_cli_json(kb, shared_foon_dir):
+    res = CliRunner().invoke(main, ["solve", "--data", str(shared_foon_dir), "--goals", "all", "--format", "json"])
+    assert res.exit_code == 0, res.output
+    cli = json.loads(res.output)
+    lib = [t.to_dict() for t in kb.solve("all")]
+    strip = lambda d: {k: v for k, v in d.items() if k not in ("time_s", "stats")}  # noqa: E731
+    assert [strip(d) for d in cli] == [strip(d) for d in lib]
+
+
+def test_goal_forms_name_the_same_object(kb):
+    egg = kb.objects("scrambled egg")[3]
+    oid = kb.object_id(egg)
+    assert kb.object_id(str(egg)) == oid == kb.object_id(f"#{oid}") == kb.object_id(oid)
+    with pytest.raises(foon2asp.InputError, match="scrambled egg"):
+        kb.object_id("scrambled egg")
+
+
+def test_several_goals_give_a_list(kb):
+    trees = kb.solve(["greek salad", "ice"])
+    assert isinstance(trees, list) and [t.cost["units"] for t in trees] == [25, 1]
+
+
+def test_bad_input_is_input_error(tmp_path):
+    with pytest.raises(foon2asp.InputError):
+        foon2asp.load(tmp_path / "nowhere")
+    with pytest.raises(foon2asp.InputError):
+        foon2asp.load("demo").solve("tomato salad", objective="fastest")
+
+
+def test_docs_api_examples_run(shared_foon_dir, monkeypatch):
+    """Every python block of docs/api.md runs, in order, from the repository root."""
+    assert SHARED.is_dir()
+    text = (REPO / "docs" / "api.md").read_text(encoding="utf-8")
+    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
+    assert len(blocks) >= 4
+    monkeypatch.chdir(REPO)
+    namespace: dict = {}
+    for block in blocks:
+        exec(compile(block, "docs/api.md", "exec"), namespace)  # noqa: S102
+    assert namespace["t"].status == "optimal"
+
+
+def test_readme_python_example_runs(shared_foon_dir, monkeypatch):
+    text = (REPO / "README.md").read_text(encoding="utf-8")
+    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
+    assert blocks, "README has a Python API example"
+    monkeypatch.chdir(REPO)
+    namespace: dict = {}
+    for block in blocks:
+        exec(compile(block, "README.md", "exec"), namespace)  # noqa: S102
+
+
+def test_version_in_one_place():
+    from importlib.metadata import version
+
+    assert foon2asp.__version__ == version("foon2asp") or os.environ.get("PYTHONPATH")
