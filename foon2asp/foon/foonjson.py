@@ -228,6 +228,10 @@ def parse_json(text: str, path: str = "<string>", foon: Foon | None = None) -> F
         raise InputError(f"bad JSON: {exc.msg}", path, exc.lineno) from None
     if isinstance(data, dict) and "functional_units" in data:
         return _read_official(data, path, foon)
+    if isinstance(data, list) and data and all(isinstance(d, dict) and "functional_units" in d for d in data):
+        for doc in data:  # several trees (solve --format foon-json with several goals)
+            _read_official(doc, path, foon)
+        return foon
     units = _lab_units(data)
     if units is None:
         raise InputError(

@@ -24,7 +24,7 @@ from pathlib import Path
 
 import graphviz
 
-from foon2asp.analysis.check import Finding, check_units
+from foon2asp.analysis.check import Finding, TreeFile, check_tree, check_units, read_trees, resolve_goal
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem
@@ -206,6 +206,50 @@ def trees_graph(problem: Problem, trees: list[TaskTree]) -> graphviz.Digraph:
         sub = build_graph([problem.units[u] for u in t.units], tree_marks(problem, t), f"cluster_{k}", f"t{k}_")
         g.subgraph(sub)
     return g
+
+
+def _top_product(units: list[Unit]) -> FoonObject | None:
+    """Without data: the one product of the last unit that no unit of the tree needs."""
+    if not units:
+        return None
+    needed = {o for u in units for o in u.inputs}
+    tops = [o for o in dict.fromkeys(units[-1].outputs) if not o.is_bare() and o not in needed]
+    return tops[0] if len(tops) == 1 else None
+
+
+def tree_file_marks(tree: TreeFile, data=None, problem: Problem | None = None, goal: str | None = None) -> Marks:
+    """Marks of a tree read from a file; with ``problem`` it is checked: goal, kitchen items, cycle."""
+    units = [tu.unit for tu in tree.units]
+    if problem is None:
+        top = tree.goal or _top_product(units)
+        return Marks(title=f"{top if top else tree.path} -- {len(units)} units", goal=top)
+    goal_id, _ = resolve_goal(data, problem, tree, goal)
+    rep = check_tree(problem, tree, goal_id)
+    position = {u: k for k, u in enumerate(rep.ids) if u is not None}
+    kitchen = frozenset(o for u in units for o in u.inputs if problem.foon.object_ids.get(o) in problem.kitchen)
+    verdict = "valid" if rep.valid else "INVALID"
+    return Marks(
+        title=f"{problem.objects[goal_id]} -- {len(units)} units, {verdict}",
+        goal=problem.objects[goal_id],
+        kitchen=kitchen,
+        note=rep.finding.message if rep.finding is not None else "",
+        **cycle_marks(problem, rep.finding, position),
+    )
+
+
+def file_graph(
+    path: str | Path, data=None, problem: Problem | None = None, goal: str | None = None
+) -> tuple[graphviz.Digraph, int]:
+    """The drawing of every tree in a tree file (one cluster per tree when there are several)."""
+    trees = read_trees(path)
+    if len(trees) == 1:
+        t = trees[0]
+        return build_graph([tu.unit for tu in t.units], tree_file_marks(t, data, problem, goal)), 1
+    g = graphviz.Digraph("task_trees")
+    for k, t in enumerate(trees, 1):
+        units = [tu.unit for tu in t.units]
+        g.subgraph(build_graph(units, tree_file_marks(t, data, problem, goal), f"cluster_{k}", f"t{k}_"))
+    return g, len(trees)
 
 
 # ---------------------------------------------------------------- rendering
