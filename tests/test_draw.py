@@ -69,7 +69,13 @@ def test_svg_of_every_reachable_goal(shared_foon_dir, shared_problem, tmp_path):
     for f, r in zip(files, results):
         counts = svg_nodes(f.read_text())
         units = [tuple(o.values()) for u in r["units"] for o in u["inputs"] + u["outputs"]]
-        distinct = len({(o["label"], tuple(o["states"]), tuple(o["ingredients"]), o["container"]) for u in r["units"] for o in u["inputs"] + u["outputs"]})
+        distinct = len(
+            {
+                (o["label"], tuple(o["states"]), tuple(o["ingredients"]), o["container"])
+                for u in r["units"]
+                for o in u["inputs"] + u["outputs"]
+            }
+        )
         assert counts.get("unit", 0) == len(r["units"]), f
         assert counts.get("object", 0) == distinct, f
         if r["units"]:
@@ -80,7 +86,19 @@ def test_svg_of_every_reachable_goal(shared_foon_dir, shared_problem, tmp_path):
 @needs_dot
 def test_invalid_tree_shows_its_cycle_in_red(shared_foon_dir, tmp_path):
     out = tmp_path / "wc.txt"
-    out.write_text(cli("solve", "--data", str(shared_foon_dir), "--goal", "whipped cream", "--method", "gbfs-h1", "--format", "foon").output)
+    out.write_text(
+        cli(
+            "solve",
+            "--data",
+            str(shared_foon_dir),
+            "--goal",
+            "whipped cream",
+            "--method",
+            "gbfs-h1",
+            "--format",
+            "foon",
+        ).output
+    )
     svg = tmp_path / "wc.svg"
     res = cli("draw", str(out), "--data", str(shared_foon_dir), "-o", str(svg))
     assert res.exit_code == 0, res.output
@@ -167,7 +185,11 @@ def test_html_report_has_the_table_and_every_drawing(html_report, shared_foon_di
     assert text.count('<tr><td><a href="#goal-') == 25
     figures = re.findall(r'<figure class="tree (valid|invalid)" data-method="([^"]+)" data-units="(\d+)">', text)
     csv = cli("compare", "--data", str(shared_foon_dir), "--format", "csv").output.splitlines()[1:]
-    with_tree = [line for line in csv if line.split(",")[-6:-5] != [""] and ",not-found," not in line and ",unreachable," not in line]
+    with_tree = [
+        line
+        for line in csv
+        if line.split(",")[-6:-5] != [""] and ",not-found," not in line and ",unreachable," not in line
+    ]
     assert len(figures) == len(with_tree) == 96
     assert text.count("<svg") == 96
     assert sum(1 for f in figures if f[0] == "invalid") == 16  # 10 gbfs-h1 + 6 gbfs-h2

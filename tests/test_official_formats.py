@@ -97,7 +97,11 @@ def _obj(label, *states, contains=(), inside=None):
 
 
 SAMPLE = [
-    Unit("slice", (_obj("tomato", "whole", inside="cutting board"), _obj("knife")), (_obj("tomato", "sliced", inside="cutting board"), _obj("knife"))),
+    Unit(
+        "slice",
+        (_obj("tomato", "whole", inside="cutting board"), _obj("knife")),
+        (_obj("tomato", "sliced", inside="cutting board"), _obj("knife")),
+    ),
     Unit(
         "pour",
         (_obj("bowl", contains=["onion"]), _obj("onion", "chopped", inside="bowl"), _obj("pot", "on [stove]")),
@@ -205,7 +209,11 @@ def test_foon_json_contains_in_and_relations():
     bowl = doc["input_nodes"][0]
     assert bowl["ingredients"] == ["onion"] and [s["state_label"] for s in bowl["object_states"]] == ["contains"]
     onion = doc["input_nodes"][1]
-    assert {"state_id": onion["object_states"][-1]["state_id"], "state_label": "in", "relative_object": "bowl"} in onion["object_states"]
+    assert {
+        "state_id": onion["object_states"][-1]["state_id"],
+        "state_label": "in",
+        "relative_object": "bowl",
+    } in onion["object_states"]
     pot = doc["input_nodes"][2]
     assert pot["object_states"][0]["state_label"] == "on" and pot["object_states"][0]["relative_object"] == "stove"
     assert doc["motion_node"]["start_time"] == doc["motion_node"]["end_time"] == "Assumed"
@@ -224,7 +232,9 @@ def test_lab_json_units_read_as_a_foon(tmp_path, demo_problem):
 
 def test_foon_json_as_input_solves_the_same(shared_foon_dir, tmp_path):
     merged = tmp_path / "foon.json"
-    res = CliRunner().invoke(main, ["merge", str(shared_foon_dir / "FOON.txt"), "-o", str(merged), "--format", "foon-json"])
+    res = CliRunner().invoke(
+        main, ["merge", str(shared_foon_dir / "FOON.txt"), "-o", str(merged), "--format", "foon-json"]
+    )
     assert res.exit_code == 0, res.output
     args = ["--kitchen", str(shared_foon_dir / "kitchen.json"), "--goals", str(shared_foon_dir / "goal_nodes.json")]
     out = CliRunner().invoke(main, ["solve", "--foon", str(merged), *args, "--goal", "greek salad"]).output

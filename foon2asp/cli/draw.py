@@ -12,10 +12,14 @@ from foon2asp.report import draw as draw_mod
 
 @main.command()
 @click.argument("tree", type=click.Path())
-@click.option("--data", "data_dir", type=click.Path(), help="Data directory: marks kitchen items, the goal and a blocking cycle.")
+@click.option(
+    "--data", "data_dir", type=click.Path(), help="Data directory: marks kitchen items, the goal and a blocking cycle."
+)
 @click.option("--goal", "goal", help="Goal label (default: the goal a JSON result names, else inferred from the tree).")
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="FILE.svg, .png, .pdf or .dot")
-@click.option("--format", "fmt", type=click.Choice(draw_mod.FORMATS), help="Drawing format (default: from the extension).")
+@click.option(
+    "--format", "fmt", type=click.Choice(draw_mod.FORMATS), help="Drawing format (default: from the extension)."
+)
 @guarded
 def draw(tree, data_dir, goal, output, fmt):
     """Draw a task tree file: FOON text (either dialect), FOON JSON or foon2asp JSON.

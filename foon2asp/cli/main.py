@@ -19,10 +19,10 @@ from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.batch import cluster as dask_runner
 from foon2asp.batch import run as batch_mod
 from foon2asp.errors import InputError
+from foon2asp.foon import foonjson
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.demo import demo_dir
 from foon2asp.foon.loaders import Dataset
-from foon2asp.foon import foonjson
 from foon2asp.foon.parser import id_map, read_foons, write_foon
 from foon2asp.foon.problem import UTENSIL_RULES, Problem
 from foon2asp.report import draw

@@ -283,7 +283,9 @@ def unit_lines(unit: Unit, ids: IdMap | None = None) -> list[str]:
     lines: list[str] = []
     for obj in unit.inputs:
         lines += object_lines(obj, ids)
-    lines.append(f"M\t{unit.motion}" if ids is None else f"M{ids.get('M', unit.motion)}\t{unit.motion}\tAssumed\tAssumed")
+    lines.append(
+        f"M\t{unit.motion}" if ids is None else f"M{ids.get('M', unit.motion)}\t{unit.motion}\tAssumed\tAssumed"
+    )
     for obj in unit.outputs:
         lines += object_lines(obj, ids)
     lines.append("//")

@@ -86,7 +86,9 @@ def compare_html(problem: Problem, rows: list[Row]) -> str:
         body.append('<div class="trees">')
         for n, t in r.trees.items():
             if not t.has_tree:
-                body.append(f'<figure class="tree none"><figcaption><b>{_esc(n)}</b>: {_esc(t.status)}</figcaption></figure>')
+                body.append(
+                    f'<figure class="tree none"><figcaption><b>{_esc(n)}</b>: {_esc(t.status)}</figcaption></figure>'
+                )
                 continue
             valid = bool(t.extra.get("valid"))
             caption = f"<b>{_esc(n)}</b>: {len(t.units)} units, " + ("valid" if valid else "<b>INVALID</b>")
@@ -107,9 +109,13 @@ def summary_html(rows: list[dict], report: BatchReport | None = None) -> str:
     if report is not None:
         body.append(
             f"<p>{report.done} new result(s), {report.skipped} already done, {report.elapsed_s:.2f} s "
-            f"with {report.workers} worker(s)" + (f"; results in {_esc(report.output)}" if report.output else "") + "</p>"
+            f"with {report.workers} worker(s)"
+            + (f"; results in {_esc(report.output)}" if report.output else "")
+            + "</p>"
         )
-    body.append('<table id="summary"><thead><tr>' + "".join(f"<th>{_esc(c)}</th>" for c in _COLUMNS) + "</tr></thead><tbody>")
+    body.append(
+        '<table id="summary"><thead><tr>' + "".join(f"<th>{_esc(c)}</th>" for c in _COLUMNS) + "</tr></thead><tbody>"
+    )
     for row in rows:
         body.append("<tr>" + "".join(f"<td>{_esc(_cell(row[c]))}</td>" for c in _COLUMNS) + "</tr>")
     body.append("</tbody></table>")
@@ -123,7 +129,9 @@ def summary_html(rows: list[dict], report: BatchReport | None = None) -> str:
         goal = r.get("goal") or {}
         method = r.get("requested_method", r.get("method", "?"))
         top = draw._top_product(units)
-        marks = draw.Marks(title=f"{goal.get('label', '?')} -- {method}, {r.get('status')}, {len(units)} units", goal=top)
+        marks = draw.Marks(
+            title=f"{goal.get('label', '?')} -- {method}, {r.get('status')}, {len(units)} units", goal=top
+        )
         svg = draw.inline_svg(draw.svg_text(draw.build_graph(units, marks)), f"r{k}-")
         body.append(
             f'<figure class="tree" data-method="{_esc(method)}" data-units="{len(units)}">'
