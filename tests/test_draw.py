@@ -230,3 +230,30 @@ def test_html_report_in_headless_chromium(html_report, tmp_path):
     assert dom.count('<tr><td><a href="#goal-') == 25
     assert len(re.findall(r"<svg\b", dom)) == 96
     assert 'id="units"' in dom
+
+
+@needs_dot
+def test_batch_summary_html(tmp_path):
+    out = tmp_path / "r.jsonl"
+    res = cli(
+        "batch",
+        "--goals",
+        "all",
+        "--methods",
+        "asp,gbfs-h1",
+        "--output",
+        str(out),
+        "--summary",
+        "html",
+        "--no-progress",
+    )
+    assert res.exit_code == 0, res.output
+    import json
+
+    records = [json.loads(line) for line in out.read_text().splitlines()]
+    with_tree = [r for r in records if r["status"] in ("optimal", "found") and r["units"]]
+    text = res.output
+    assert '<table id="summary">' in text
+    assert text.count("<svg") == len(with_tree) == 5
+    units = sorted(int(u) for u in re.findall(r'data-units="(\d+)"', text))
+    assert units == sorted(len(r["units"]) for r in with_tree)
