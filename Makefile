@@ -12,6 +12,9 @@ $(BIN)/python:
 
 install: $(BIN)/python
 	$(BIN)/pip install -q ".[test]"
+	@# Graphviz draws trees, Chromium checks the HTML report; installed when root with apt-get, else tests skip
+	@command -v dot >/dev/null || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && apt-get update -qq && apt-get install -y -qq graphviz; } || true
+	@command -v chromium >/dev/null || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && { apt-get install -y -qq chromium || { apt-get update -qq && apt-get install -y -qq chromium; }; }; } || true
 
 # the demo needs only the package itself
 install-demo: $(BIN)/python

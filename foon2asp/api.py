@@ -37,6 +37,7 @@ from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.planner import solve_goals
+from foon2asp.report import draw
 from foon2asp.tree.serialize import tree_foon, tree_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
 
@@ -152,8 +153,16 @@ class Tree:
         return tree_foon(self.kb.problem, self.raw)
 
     def render(self, fmt: str) -> str:
-        """The tree in any ``trees`` format of :mod:`foon2asp.report`."""
+        """The tree in any text format of ``solve --format`` (:mod:`foon2asp.report`)."""
         return report.render("trees", fmt, self.kb.problem, [self.raw])
+
+    def draw(self, path: str | Path) -> Path:
+        """Draw the tree into ``path``; the format follows the extension (.svg, .png, .pdf, .dot)."""
+        return draw.draw_tree(self.kb.problem, self.raw, path)
+
+    def _repr_svg_(self) -> str:
+        """The drawing, for Jupyter."""
+        return draw.tree_svg(self.kb.problem, self.raw)
 
     def __repr__(self) -> str:
         return f"<Tree {self.goal} {self.method} {self.status} {self.cost}>"

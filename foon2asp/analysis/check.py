@@ -1,9 +1,11 @@
 """Checking a task tree from a file: does it exist in the FOON, is it well-founded?
 
-A tree is read either as FOON text (units closed by ``//``, the format the
-earlier search programs and ``solve --format foon`` write; a leading ``//``
-and ``#`` comment lines are fine) or as foon2asp JSON (the list ``solve
---format json`` prints, or one such result).  Each unit is matched to a FOON
+A tree is read as FOON text (units closed by ``//``, in the official dialect
+with ids or the ID-less one, as ``solve --format foon|foon-plain`` and the
+earlier search programs write; a leading ``//`` and ``#`` comment lines are
+fine), as FOON JSON (foon_api's ``{"functional_units": [...]}``, ``solve
+--format foon-json``) or as foon2asp JSON (the list ``solve --format json``
+prints, or one such result).  Each unit is matched to a FOON
 unit by :meth:`Unit.key` (motion, set of inputs, set of outputs).
 
 The verdict comes from the independent validator (:mod:`foon2asp.validate`):
@@ -24,6 +26,7 @@ from pathlib import Path
 
 from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
+from foon2asp.foon import foonjson
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.loaders import object_from_json
 from foon2asp.foon.model import FoonObject, Unit
@@ -119,11 +122,29 @@ def _json_unit(value: object, path: str, line: int, step: int) -> Unit:
     return Unit(" ".join(value["motion"].split()).lower().rstrip("*").strip(), parts[0], parts[1])
 
 
+def _is_foon_json(data: object) -> bool:
+    return isinstance(data, dict) and "functional_units" in data
+
+
+def _read_foon_json_trees(data: object, path: str) -> list[TreeFile]:
+    """FOON JSON (foon_api's schema): one tree, or a list of trees."""
+    trees = []
+    for doc in data if isinstance(data, list) else [data]:
+        foon = foonjson.parse_json(json.dumps(doc), path)
+        if not foon.units:
+            raise InputError("no functional units in the tree file", path)
+        units = [TreeUnit(u, step, None) for step, u in enumerate(foon.units, 1)]
+        trees.append(TreeFile(path, units))
+    return trees
+
+
 def _read_json_tree(text: str, path: str) -> list[TreeFile]:
     try:
         data = json.loads(text)
     except json.JSONDecodeError as exc:
         raise InputError(f"bad JSON: {exc.msg}", path, exc.lineno) from None
+    if _is_foon_json(data) or (isinstance(data, list) and data and all(_is_foon_json(d) for d in data)):
+        return _read_foon_json_trees(data, path)
     results = data if isinstance(data, list) else [data]
     # the line each top-level result starts on, for messages
     starts: list[int] = []

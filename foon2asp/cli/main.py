@@ -16,11 +16,13 @@ from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.options import OBJECTIVES
 from foon2asp.batch import run as batch_mod
 from foon2asp.errors import InputError
+from foon2asp.foon import foonjson
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.demo import demo_dir
-from foon2asp.foon.parser import read_foons, write_foon
+from foon2asp.foon.parser import id_map, read_foons, write_foon
 from foon2asp.foon.problem import UTENSIL_RULES, Problem
-from foon2asp.report.trees import render
+from foon2asp.report import draw
+from foon2asp.report.trees import render, render_bytes
 
 
 def fail(message: str, code: int = 2) -> None:
@@ -310,6 +312,9 @@ def solve(
     options = kb.options(objective, time_limit, _constraints(constraints), **solver_settings)
     _warn(kb)
     problem = kb.problem
+    binary = report.get("trees", fmt).binary
+    if fmt in draw.FORMATS and fmt != "dot":
+        draw.require_dot()  # before solving, not after
     trees = []
     out_dir = Path(output) if output else None
     if out_dir:
@@ -320,9 +325,14 @@ def solve(
         if out_dir:
             ext = report.get("trees", fmt).extension
             name = f"{safe_name(index, tree.goal.label)}.{ext}"
-            (out_dir / name).write_text(render(problem, found, fmt), encoding="utf-8")
+            (out_dir / name).write_bytes(render_bytes(problem, found, fmt))
     _solver_warnings(problem, trees)
-    click.echo(render(problem, trees, fmt), nl=False)
+    if binary and out_dir:
+        click.echo(f"wrote {len(goal_ids)} {fmt} file(s) to {out_dir}", err=True)
+    elif binary:
+        sys.stdout.buffer.write(render_bytes(problem, trees, fmt))
+    else:
+        click.echo(render(problem, trees, fmt), nl=False)
 
 
 @main.command()
@@ -350,8 +360,16 @@ def facts(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals
 @click.argument("files", nargs=-1, required=True, type=click.Path())
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="The merged FOON file.")
 @click.option("--strict", is_flag=True, help="Treat skipped units (warnings) as errors.")
+@click.option(
+    "--format",
+    "fmt",
+    type=click.Choice(("foon", "foon-plain", "foon-json")),
+    default="foon",
+    show_default=True,
+    help="foon: official dialect with ids; foon-plain: without ids; foon-json: foon_api's JSON.",
+)
 @guarded
-def merge(files, output, strict):
+def merge(files, output, strict, fmt):
     """Merge FOON subgraphs into one universal FOON (duplicate units merged)."""
     for f in files:
         if not Path(f).is_file():
@@ -359,8 +377,12 @@ def merge(files, output, strict):
     foon = read_foons(files, strict)
     for warning in foon.warnings:
         click.echo(f"foon2asp: warning: {warning}", err=True)
+    header = f"merged by foon2asp from {len(files)} file(s)"
     with open(output, "w", encoding="utf-8") as fh:
-        write_foon(foon, fh, header=f"merged by foon2asp from {len(files)} file(s)")
+        if fmt == "foon-json":
+            fh.write(foonjson.dumps(foon.units, id_map(foon), header))
+        else:
+            write_foon(foon, fh, header=header, dialect="plain" if fmt == "foon-plain" else "official")
     click.echo(
         f"merged {len(files)} file(s): {len(foon.units)} units, {len(foon.objects)} objects -> {output}", err=True
     )

@@ -16,6 +16,11 @@ def _norm(text: str) -> str:
     return " ".join(str(text).split()).lower()
 
 
+def norm(text: str) -> str:
+    """Text as objects hold it: case-folded, runs of white space as one space."""
+    return _norm(text)
+
+
 @dataclass(frozen=True, order=True)
 class FoonObject:
     """An object node; fields are normalised and sorted, so ``==`` is identity."""
@@ -110,6 +115,11 @@ class Foon:
     origins: list[tuple[str, int]] = field(default_factory=list)
     #: one-line messages about input that was skipped
     warnings: list[str] = field(default_factory=list)
+    #: ids read from official files: kind ("O" object label, "S" state name,
+    #: "M" motion) -> normalised text -> id (the first id seen wins)
+    ids: dict[str, dict[str, int]] = field(default_factory=lambda: {"O": {}, "S": {}, "M": {}})
+    #: the complete ids for writing (see :func:`foon2asp.foon.parser.id_map`)
+    id_cache: tuple | None = field(default=None, repr=False, compare=False)
     _keys: dict[tuple, int] = field(default_factory=dict, repr=False)
 
     def object_id(self, obj: FoonObject) -> int:
@@ -155,4 +165,8 @@ class Foon:
             for unit, origin in zip(foon.units, foon.origins):
                 out.add_unit(unit, origin)
             out.warnings.extend(foon.warnings)
+            for kind, table in foon.ids.items():
+                mine = out.ids.setdefault(kind, {})
+                for text, i in table.items():
+                    mine.setdefault(text, i)
         return out

@@ -11,6 +11,13 @@ Two dialects are read, line by line, so files may even mix them:
 ``in`` sets the container, ``contains`` the ingredients; any other relation
 (``on``, ``with``, ``attached to``, ...) is kept as the state ``"rel [arg]"``.
 A trailing ``*`` on a motion label is dropped.
+
+The ids of official files are kept on the FOON (:attr:`Foon.ids`: one id per
+object label, state name and motion) so that writing the official dialect
+reuses them; :func:`id_map` completes them deterministically for the labels
+that came without one.  Two dialects are written: ``official`` (what FOON_view
+and foon_api load: ``O<id>\tlabel\t0``, ``S<id>\t...``,
+``M<id>\tmotion\tAssumed\tAssumed``) and ``plain`` (the ID-less one).
 """
 
 from __future__ import annotations
@@ -22,7 +29,8 @@ from pathlib import Path
 from typing import TextIO
 
 from foon2asp.errors import InputError
-from foon2asp.foon.model import Foon, FoonObject, Unit
+from foon2asp.foon.foonjson import looks_like_json, parse_json
+from foon2asp.foon.model import Foon, FoonObject, Unit, norm
 
 _LINE = re.compile(r"^([OSM])(\d*)\t(.*)$")  # the line shape _parse checks by hand
 _KINDS = frozenset("OSM")
@@ -78,6 +86,7 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
     motion: str | None = None
     start = 0
     current: _Obj | None = None
+    ids = foon.ids
 
     def finish(lineno: int) -> None:
         nonlocal inputs, outputs, motion, current, start
@@ -112,6 +121,9 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
             raise InputError(f"unknown line type {line.strip()[:40]!r} (expected O, S, M, // or #)", path, lineno)
         rest = line[tab + 1 :]
         fields = [f.strip() for f in rest.split("\t")] if "\t" in rest else [rest.strip()]
+        if tab > 1 and fields[0]:  # an official line: keep the id of its label
+            name = fields[0].rstrip("*") if kind == "M" else fields[0]
+            ids[kind].setdefault(norm(name), int(line[1:tab]))
         if kind == "O":
             if not fields[0]:
                 raise InputError("object line with an empty label", path, lineno)
@@ -156,10 +168,14 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
 
 
 def read_foon(path: str | Path, foon: Foon | None = None, strict: bool = False) -> Foon:
-    """Read one FOON file (either dialect)."""
+    """Read one FOON file: FOON text (either dialect) or FOON JSON (``.json``, or text starting with ``{``/``[``)."""
     path = Path(path)
     try:
         with open(path, encoding="utf-8", newline="") as fh:
+            head = fh.read(64)
+            if looks_like_json(path, head):
+                return parse_json(head + fh.read(), str(path), foon)
+            fh.seek(0)
             return parse_lines(fh, str(path), foon, strict)
     except OSError as exc:
         raise InputError(f"cannot read FOON file: {exc.strerror or exc}", str(path)) from None
@@ -179,37 +195,112 @@ def parse_text(text: str, path: str = "<string>", strict: bool = False) -> Foon:
     return parse_lines(text.splitlines(), path, strict=strict)
 
 
-def object_lines(obj: FoonObject) -> list[str]:
-    lines = [f"O\t{obj.label}"]
-    for state in obj.states:
-        m = _RELATION_STATE.match(state)
-        lines.append(f"S\t{m.group(1)}\t{m.group(2)}" if m else f"S\t{state}")
+DIALECTS = ("official", "plain")
+
+
+def state_parts(state: str) -> tuple[str, str | None]:
+    """``"on [plate]"`` -> ``("on", "[plate]")``; a plain state -> ``(state, None)``."""
+    m = _RELATION_STATE.match(state)
+    return (m.group(1), m.group(2)) if m else (state, None)
+
+
+def object_fields(obj: FoonObject) -> list[tuple[str, str | None]]:
+    """The state lines of ``obj`` as (state name, argument): states, then contents, then container."""
+    fields = [state_parts(s) for s in obj.states]
     if obj.ingredients:
-        lines.append("S\tcontains\t{" + ",".join(obj.ingredients) + "}")
+        fields.append(("contains", "{" + ",".join(obj.ingredients) + "}"))
     if obj.container:
-        lines.append(f"S\tin\t[{obj.container}]")
+        fields.append(("in", f"[{obj.container}]"))
+    return fields
+
+
+class IdMap:
+    """One id per object label, state name and motion, for the official dialect.
+
+    Ids read from official files are reused (the first id of a label wins; a
+    label whose id another label already holds gets a fresh one); every other
+    label gets a fresh id, from one above the largest id in use, in sorted
+    order of the labels -- so the same FOON always gets the same ids.
+    """
+
+    def __init__(self, known: dict[str, dict[str, int]], labels: dict[str, set[str]]):
+        self.table: dict[str, dict[str, int]] = {}
+        for kind in ("O", "S", "M"):
+            table: dict[str, int] = {}
+            taken: set[int] = set()
+            for text, i in known.get(kind, {}).items():
+                if i not in taken and text not in table:
+                    table[text] = i
+                    taken.add(i)
+            nxt = max(taken, default=0) + 1
+            for text in sorted(labels.get(kind, set()) - table.keys()):
+                table[text] = nxt
+                nxt += 1
+            self.table[kind] = table
+
+    def get(self, kind: str, text: str) -> int:
+        """The id of ``text`` (a new one, above all others, for text not seen before)."""
+        table = self.table[kind]
+        text = norm(text)
+        i = table.get(text)
+        if i is None:
+            i = table[text] = max(table.values(), default=0) + 1
+        return i
+
+
+def foon_labels(foon: Foon) -> dict[str, set[str]]:
+    """The object labels, state names and motions of ``foon``."""
+    states: set[str] = set()
+    for obj in foon.objects:
+        states.update(name for name, _ in object_fields(obj))
+    return {"O": {o.label for o in foon.objects}, "S": states, "M": {u.motion for u in foon.units}}
+
+
+def id_map(foon: Foon) -> IdMap:
+    """The ids of ``foon`` for the official dialect (cached until the FOON grows)."""
+    key = (len(foon.units), len(foon.objects), sum(len(t) for t in foon.ids.values()))
+    cached = foon.id_cache
+    if cached is None or cached[0] != key:
+        cached = foon.id_cache = (key, IdMap(foon.ids, foon_labels(foon)))
+    return cached[1]
+
+
+def object_lines(obj: FoonObject, ids: IdMap | None = None) -> list[str]:
+    """The O and S lines of ``obj``: official with ``ids``, else ID-less."""
+    if ids is None:
+        lines = [f"O\t{obj.label}"]
+        lines += [f"S\t{name}\t{arg}" if arg else f"S\t{name}" for name, arg in object_fields(obj)]
+        return lines
+    lines = [f"O{ids.get('O', obj.label)}\t{obj.label}\t0"]
+    for name, arg in object_fields(obj):
+        sid = ids.get("S", name)
+        lines.append(f"S{sid}\t{name}\t{arg}" if arg else f"S{sid}\t{name}")
     return lines
 
 
-def unit_lines(unit: Unit) -> list[str]:
+def unit_lines(unit: Unit, ids: IdMap | None = None) -> list[str]:
+    """The lines of ``unit``, closed by ``//`` (official with ``ids``, else ID-less)."""
     lines: list[str] = []
     for obj in unit.inputs:
-        lines += object_lines(obj)
-    lines.append(f"M\t{unit.motion}")
+        lines += object_lines(obj, ids)
+    lines.append(
+        f"M\t{unit.motion}" if ids is None else f"M{ids.get('M', unit.motion)}\t{unit.motion}\tAssumed\tAssumed"
+    )
     for obj in unit.outputs:
-        lines += object_lines(obj)
+        lines += object_lines(obj, ids)
     lines.append("//")
     return lines
 
 
-def format_units(units: Iterable[Unit], header: str | None = None) -> str:
-    """FOON text (ID-less format) for ``units``, each closed by ``//``."""
+def format_units(units: Iterable[Unit], header: str | None = None, ids: IdMap | None = None) -> str:
+    """FOON text for ``units``, each closed by ``//``: the official dialect with ``ids``, else ID-less."""
     lines = [f"# {header}"] if header else []
     lines.append("//")
     for unit in units:
-        lines += unit_lines(unit)
+        lines += unit_lines(unit, ids)
     return "\n".join(lines) + "\n"
 
 
-def write_foon(foon: Foon, out: TextIO, header: str | None = None) -> None:
-    out.write(format_units(foon.units, header))
+def write_foon(foon: Foon, out: TextIO, header: str | None = None, dialect: str = "official") -> None:
+    """Write ``foon`` in ``dialect`` (``official``: with the ids of :func:`id_map`; ``plain``: ID-less)."""
+    out.write(format_units(foon.units, header, id_map(foon) if dialect == "official" else None))

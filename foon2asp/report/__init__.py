@@ -3,7 +3,22 @@
 Importing this package registers the formats of every kind of answer.
 """
 
-from foon2asp.report import check, compare, queries, summary, trees
-from foon2asp.report.registry import FORMATS, Format, get, names, register, render
+from foon2asp.report import check, compare, draw, html, queries, summary, trees
+from foon2asp.report.registry import FORMATS, Format, get, names, register, render, render_bytes
 
-__all__ = ["FORMATS", "Format", "get", "names", "register", "render", "check", "compare", "queries", "summary", "trees"]
+__all__ = [
+    "FORMATS",
+    "Format",
+    "get",
+    "names",
+    "register",
+    "render",
+    "render_bytes",
+    "check",
+    "compare",
+    "draw",
+    "html",
+    "queries",
+    "summary",
+    "trees",
+]

@@ -7,7 +7,8 @@ import io
 
 from foon2asp.analysis.compare import Row
 from foon2asp.foon.problem import Problem
-from foon2asp.report.registry import get, register
+from foon2asp.report import registry
+from foon2asp.report.registry import register
 from foon2asp.tree.serialize import json_list, tree_json
 from foon2asp.tree.tasktree import TaskTree
 
@@ -138,4 +139,4 @@ register("compare", "json", "json", "solve-shaped results, each with valid")(ren
 
 
 def render(problem: Problem, rows: list[Row], fmt: str) -> str:
-    return get("compare", fmt).render(problem, rows)
+    return registry.render("compare", fmt, problem, rows)

@@ -2,8 +2,9 @@
 
 A format renders one kind of answer -- ``trees`` (solve), ``compare``,
 ``check``, ``reachable``, ``missing``, ``query``, ``summary`` (batch) -- to
-text.  Every command and the library look formats up here, so a new format
-is one registration.
+text, or to bytes for a ``binary`` format (the PNG and PDF drawings).  Every
+command and the library look formats up here, so a new format is one
+registration.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from dataclasses import dataclass
 
 from foon2asp.errors import InputError
 
-Renderer = Callable[..., str]
+Renderer = Callable[..., str] | Callable[..., bytes]
 
 
 @dataclass(frozen=True)
@@ -24,16 +25,20 @@ class Format:
     #: file name extension when written to a folder
     extension: str
     description: str
+    #: renders bytes (write them to a file or to stdout.buffer), not text
+    binary: bool = False
 
 
 FORMATS: dict[tuple[str, str], Format] = {}
 
 
-def register(kind: str, name: str, extension: str, description: str) -> Callable[[Renderer], Renderer]:
-    """Decorator: ``render`` is format ``name`` of answers of ``kind``."""
+def register(
+    kind: str, name: str, extension: str, description: str, binary: bool = False
+) -> Callable[[Renderer], Renderer]:
+    """Decorator: ``render`` is format ``name`` of answers of ``kind`` (``binary``: it returns bytes)."""
 
     def deco(render: Renderer) -> Renderer:
-        FORMATS[(kind, name)] = Format(kind, name, render, extension, description)
+        FORMATS[(kind, name)] = Format(kind, name, render, extension, description, binary)
         return render
 
     return deco
@@ -52,5 +57,16 @@ def get(kind: str, name: str) -> Format:
 
 
 def render(kind: str, name: str, *args: object) -> str:
-    """Render an answer of ``kind`` in format ``name``."""
-    return get(kind, name).render(*args)
+    """Render an answer of ``kind`` in the text format ``name``."""
+    fmt = get(kind, name)
+    if fmt.binary:
+        raise InputError(f"{kind} format {name!r} is binary: write it to a file (--output)")
+    out = fmt.render(*args)
+    assert isinstance(out, str)
+    return out
+
+
+def render_bytes(kind: str, name: str, *args: object) -> bytes:
+    """Render an answer of ``kind`` in format ``name`` as bytes (text formats as UTF-8)."""
+    out = get(kind, name).render(*args)
+    return out.encode("utf-8") if isinstance(out, str) else out

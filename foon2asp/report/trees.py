@@ -1,10 +1,13 @@
-"""Task trees as text, JSON or FOON text (the formats of ``solve --format``)."""
+"""Task trees as text, JSON, FOON text or JSON, and drawings (the formats of ``solve --format``)."""
 
 from __future__ import annotations
 
+import json
+
 from foon2asp.foon.problem import Problem
+from foon2asp.report import draw
 from foon2asp.report.registry import get, register
-from foon2asp.tree.serialize import to_json, tree_foon, tree_text
+from foon2asp.tree.serialize import to_json, tree_foon, tree_foon_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
 
 
@@ -18,11 +21,48 @@ def trees_json(problem: Problem, trees: list[TaskTree]) -> str:
     return to_json(problem, trees) + "\n"
 
 
-@register("trees", "foon", "foon.txt", "FOON text, units separated by //")
+@register("trees", "foon", "foon.txt", "FOON text in the official dialect (ids), as FOON_view and foon_api load it")
 def trees_foon(problem: Problem, trees: list[TaskTree]) -> str:
     return "".join(tree_foon(problem, t) for t in trees)
 
 
+@register("trees", "foon-plain", "foon.txt", "FOON text without ids (the earlier course programs' dialect)")
+def trees_foon_plain(problem: Problem, trees: list[TaskTree]) -> str:
+    return "".join(tree_foon(problem, t, "plain") for t in trees)
+
+
+@register("trees", "foon-json", "foon.json", "FOON JSON (foon_api's schema); a list when there are several trees")
+def trees_foon_json(problem: Problem, trees: list[TaskTree]) -> str:
+    docs = [tree_foon_json(problem, t) for t in trees]
+    return json.dumps(docs[0] if len(docs) == 1 else docs, indent=1) + "\n"
+
+
+def _drawing(fmt: str):
+    def render_drawing(problem: Problem, trees: list[TaskTree]) -> str | bytes:
+        out = draw.render(draw.trees_graph(problem, trees), fmt)
+        return out if fmt in draw.BINARY else out.decode("utf-8")
+
+    return render_drawing
+
+
+for _fmt, _what in (
+    ("dot", "Graphviz DOT source of the drawing"),
+    ("svg", "the drawing as SVG (needs Graphviz 'dot')"),
+    ("png", "the drawing as PNG (needs Graphviz 'dot')"),
+    ("pdf", "the drawing as PDF (needs Graphviz 'dot')"),
+):
+    register("trees", _fmt, _fmt, _what, binary=_fmt in draw.BINARY)(_drawing(_fmt))
+
+
 def render(problem: Problem, trees: list[TaskTree], fmt: str) -> str:
-    """``trees`` in format ``fmt`` (a name of :func:`foon2asp.report.names` ``("trees")``)."""
-    return get("trees", fmt).render(problem, trees)
+    """``trees`` in the text format ``fmt`` (a name of :func:`foon2asp.report.names` ``("trees")``)."""
+    out = get("trees", fmt).render(problem, trees)
+    if not isinstance(out, str):
+        raise TypeError(f"trees format {fmt!r} is binary; use render_bytes")
+    return out
+
+
+def render_bytes(problem: Problem, trees: list[TaskTree], fmt: str) -> bytes:
+    """``trees`` in format ``fmt`` as bytes (text formats as UTF-8)."""
+    out = get("trees", fmt).render(problem, trees)
+    return out.encode("utf-8") if isinstance(out, str) else out

@@ -1,10 +1,11 @@
-"""Writers for task trees: readable text, FOON text and JSON."""
+"""Writers for task trees: readable text, FOON text (official or ID-less), FOON JSON and JSON."""
 
 from __future__ import annotations
 
 import json
 
-from foon2asp.foon.parser import format_units
+from foon2asp.foon import foonjson
+from foon2asp.foon.parser import format_units, id_map
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.tasktree import TaskTree
 
@@ -73,7 +74,19 @@ def tree_text(problem: Problem, tree: TaskTree) -> str:
     return "\n".join(lines) + "\n"
 
 
-def tree_foon(problem: Problem, tree: TaskTree) -> str:
+def tree_header(problem: Problem, tree: TaskTree) -> str:
+    """``task tree for <goal> (<method>, <status>, <n> units)``: the comment line a FOON file starts with."""
     goal = problem.objects[tree.goal]
-    header = f"task tree for {goal} ({tree.method}, {tree.status}, {len(tree.units)} units)"
-    return format_units((problem.units[u] for u in tree.units), header)
+    return f"task tree for {goal} ({tree.method}, {tree.status}, {len(tree.units)} units)"
+
+
+def tree_foon(problem: Problem, tree: TaskTree, dialect: str = "official") -> str:
+    """The tree as FOON text: ``official`` (ids of the FOON, as FOON_view and foon_api load it) or ``plain``."""
+    ids = id_map(problem.foon) if dialect == "official" else None
+    return format_units((problem.units[u] for u in tree.units), tree_header(problem, tree), ids)
+
+
+def tree_foon_json(problem: Problem, tree: TaskTree) -> dict:
+    """The tree in foon_api's JSON schema (``{"comment", "functional_units"}``)."""
+    units = (problem.units[u] for u in tree.units)
+    return foonjson.to_foon_json(units, id_map(problem.foon), tree_header(problem, tree))

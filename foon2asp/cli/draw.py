@@ -1,0 +1,39 @@
+"""``foon2asp draw TREE -o FILE``: the picture of any task tree file."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from foon2asp.cli.main import guarded, load, main
+from foon2asp.report import draw as draw_mod
+
+
+@main.command()
+@click.argument("tree", type=click.Path())
+@click.option(
+    "--data", "data_dir", type=click.Path(), help="Data directory: marks kitchen items, the goal and a blocking cycle."
+)
+@click.option("--goal", "goal", help="Goal label (default: the goal a JSON result names, else inferred from the tree).")
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="FILE.svg, .png, .pdf or .dot")
+@click.option(
+    "--format", "fmt", type=click.Choice(draw_mod.FORMATS), help="Drawing format (default: from the extension)."
+)
+@guarded
+def draw(tree, data_dir, goal, output, fmt):
+    """Draw a task tree file: FOON text (either dialect), FOON JSON or foon2asp JSON.
+
+    Objects are ellipses, functional units boxes; with --data the goal is gold,
+    kitchen items green, and the cycle that blocks an invalid tree red.
+    """
+    fmt = fmt or draw_mod.format_of(output)
+    if fmt != "dot":
+        draw_mod.require_dot()
+    problem = data = None
+    if data_dir is not None:
+        kb = load(data_dir, (), None, None, None, "starter", False)
+        data, problem = kb.data, kb.problem
+    graph, count = draw_mod.file_graph(tree, data, problem, goal)
+    Path(output).write_bytes(draw_mod.render(graph, fmt))
+    click.echo(f"drew {count} tree(s) from {tree} -> {output}", err=True)

@@ -1,0 +1,315 @@
+"""Task trees as pictures, in FOON's own drawing conventions.
+
+Objects are ellipses showing their label (bold), states, ingredients
+(``{a,b}``) and container (``[bowl]``); functional units are boxes showing
+their step and motion; edges run input -> motion -> output.  There is one
+node per distinct object and one per unit.  The goal is gold with a double
+outline, kitchen items are green, units done by a person are orange and
+marked ``[human]``, and for an invalid tree the cycle that blocks it (its
+objects, units and edges) is red.
+
+The graph is built in pure Python as DOT source with the ``graphviz``
+package; rendering it to SVG, PNG or PDF runs Graphviz's ``dot`` (Debian
+package ``graphviz``).
+"""
+
+from __future__ import annotations
+
+import html
+import re
+import shutil
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import graphviz
+
+from foon2asp.analysis.check import Finding, TreeFile, check_tree, check_units, read_trees, resolve_goal
+from foon2asp.errors import InputError
+from foon2asp.foon.model import FoonObject, Unit
+from foon2asp.foon.problem import Problem
+from foon2asp.tree.tasktree import TaskTree
+
+#: drawing formats and what ``dot`` calls them
+FORMATS = ("dot", "svg", "png", "pdf")
+BINARY = ("png", "pdf")
+
+GOAL_FILL = "#ffd966"
+KITCHEN_FILL = "#d9ead3"
+UNIT_FILL = "#cfe2f3"
+HUMAN_FILL = "#f9cb9c"
+CYCLE = "#cc0000"
+
+LEGEND = "gold: goal · green: in the kitchen · box: functional unit · orange: human step · red: blocking cycle"
+
+
+@dataclass
+class Marks:
+    """What a drawing highlights (unit positions index the drawn list of units)."""
+
+    title: str = ""
+    goal: FoonObject | None = None
+    kitchen: frozenset[FoonObject] = frozenset()
+    human: frozenset[int] = frozenset()
+    cycle_objects: frozenset[FoonObject] = frozenset()
+    cycle_units: frozenset[int] = frozenset()
+    #: (position of the unit, object): the unit makes the object, on the cycle
+    cycle_made: frozenset[tuple[int, FoonObject]] = field(default_factory=frozenset)
+    #: (object, position of the unit): the unit needs the object, on the cycle
+    cycle_needed: frozenset[tuple[FoonObject, int]] = field(default_factory=frozenset)
+    #: one line under the title (e.g. the problem of an invalid tree)
+    note: str = ""
+
+
+def _esc(text: str) -> str:
+    return html.escape(text, quote=True)
+
+
+def object_label(obj: FoonObject) -> str:
+    """An HTML-like Graphviz label: the label in bold, then states, ingredients, container."""
+    rows = [f"<B>{_esc(obj.label)}</B>"]
+    rows += [_esc(s) for s in obj.states]
+    if obj.ingredients:
+        rows.append(_esc("{" + ", ".join(obj.ingredients) + "}"))
+    if obj.container:
+        rows.append(_esc(f"[{obj.container}]"))
+    return "<" + "<BR/>".join(rows) + ">"
+
+
+def _wrap(text: str, width: int = 90) -> list[str]:
+    words, lines, line = text.split(), [], ""
+    for w in words:
+        if line and len(line) + 1 + len(w) > width:
+            lines.append(line)
+            line = w
+        else:
+            line = f"{line} {w}" if line else w
+    return lines + ([line] if line else [])
+
+
+def build_graph(
+    units: list[Unit], marks: Marks | None = None, name: str = "task_tree", prefix: str = ""
+) -> graphviz.Digraph:
+    """The drawing of ``units`` (in executable order) as a Graphviz graph (node names start with ``prefix``)."""
+    marks = marks or Marks()
+    g = graphviz.Digraph(name)
+    g.attr(rankdir="TB", fontname="Helvetica", fontsize="12", labelloc="t", nodesep="0.25", ranksep="0.35")
+    title = [_esc(marks.title)] if marks.title else []
+    title += [f'<FONT COLOR="{CYCLE}">{_esc(line)}</FONT>' for line in _wrap(marks.note)] if marks.note else []
+    title.append(f'<FONT POINT-SIZE="9">{_esc(LEGEND)}</FONT>')
+    g.attr(label="<" + "<BR/>".join(title) + ">")
+    g.attr("node", fontname="Helvetica", fontsize="10")
+    g.attr("edge", arrowsize="0.6")
+    ids: dict[FoonObject, str] = {}
+    for unit in units:
+        for obj in unit.inputs + unit.outputs:
+            if obj not in ids:
+                ids[obj] = f"{prefix}o{len(ids) + 1}"
+    for obj, node in ids.items():
+        attrs = {"shape": "ellipse", "style": "filled", "fillcolor": "white", "margin": "0.05,0.02"}
+        classes = ["object"]
+        if obj in marks.kitchen:
+            attrs["fillcolor"] = KITCHEN_FILL
+            classes.append("kitchen")
+        if obj == marks.goal:
+            attrs.update(fillcolor=GOAL_FILL, peripheries="2", penwidth="2")
+            classes.append("goal")
+        if obj in marks.cycle_objects:
+            attrs.update(color=CYCLE, penwidth="2.5", fontcolor=CYCLE)
+            classes.append("cycle")
+        g.node(node, object_label(obj), tooltip=str(obj), **{"class": " ".join(classes)}, **attrs)
+    for k, unit in enumerate(units):
+        node = f"{prefix}u{k + 1}"
+        text = f"{k + 1}. {unit.motion}"
+        attrs = {"shape": "box", "style": "filled", "fillcolor": UNIT_FILL}
+        classes = ["unit"]
+        if k in marks.human:
+            text += "\n[human]"
+            attrs["fillcolor"] = HUMAN_FILL
+            classes.append("human")
+        if k in marks.cycle_units:
+            attrs.update(color=CYCLE, penwidth="2.5", fontcolor=CYCLE)
+            classes.append("cycle")
+        g.node(node, text, tooltip=str(unit), **{"class": " ".join(classes)}, **attrs)
+        for obj in dict.fromkeys(unit.inputs):
+            red = (obj, k) in marks.cycle_needed
+            g.edge(ids[obj], node, **({"color": CYCLE, "penwidth": "2.5"} if red else {}))
+        for obj in dict.fromkeys(unit.outputs):
+            red = (k, obj) in marks.cycle_made
+            g.edge(node, ids[obj], **({"color": CYCLE, "penwidth": "2.5"} if red else {}))
+    return g
+
+
+def count_nodes(units: Iterable[Unit]) -> tuple[int, int]:
+    """(units, distinct objects) of a drawing of ``units``: its node count is their sum."""
+    units = list(units)
+    return len(units), len({o for u in units for o in u.inputs + u.outputs})
+
+
+# ---------------------------------------------------------------- marks from a problem
+
+
+def cycle_marks(problem: Problem, finding: Finding | None, position: dict[int, int]) -> dict:
+    """The Marks fields of the cycle of ``finding`` (``position``: FOON unit id -> drawn position)."""
+    if finding is None or not finding.cycle:
+        return {}
+    cycle = finding.cycle
+    objs = [problem.objects[o] for o, _ in cycle]
+    units = [position[u] for _, u in cycle if u in position]
+    made = {(position[u], problem.objects[o]) for o, u in cycle if u in position}
+    needed = set()
+    for k, (_, u) in enumerate(cycle):
+        nxt = cycle[(k + 1) % len(cycle)][0]
+        if u in position:
+            needed.add((problem.objects[nxt], position[u]))
+    return {
+        "cycle_objects": frozenset(objs),
+        "cycle_units": frozenset(units),
+        "cycle_made": frozenset(made),
+        "cycle_needed": frozenset(needed),
+    }
+
+
+def tree_marks(problem: Problem, tree: TaskTree, finding: Finding | None = None, judge: bool = True) -> Marks:
+    """Marks of a solved tree: goal, kitchen items, human steps, and (``judge``) its blocking cycle."""
+    position = {u: k for k, u in enumerate(tree.units)}
+    valid = True
+    if judge and finding is None and tree.units:
+        validation, finding = check_units(problem, tree.goal, tree.units)
+        valid = validation.valid
+    elif finding is not None:
+        valid = False
+    human = frozenset(position[u] for u in tree.extra.get("human_steps", []) if u in position)
+    used = {o for u in tree.units for o in problem.units[u].inputs}
+    kitchen = frozenset(o for o in used if problem.foon.object_ids.get(o) in problem.kitchen)
+    title = f"{problem.objects[tree.goal]} -- {tree.method}, {tree.status}, {len(tree.units)} units"
+    if not valid:
+        title += ", INVALID"
+    return Marks(
+        title=title,
+        goal=problem.objects[tree.goal],
+        kitchen=kitchen,
+        human=human,
+        note=finding.message if finding is not None else "",
+        **cycle_marks(problem, finding, position),
+    )
+
+
+def trees_graph(problem: Problem, trees: list[TaskTree]) -> graphviz.Digraph:
+    """One tree as a graph; several as one graph with a cluster per tree."""
+    if len(trees) == 1:
+        t = trees[0]
+        return build_graph([problem.units[u] for u in t.units], tree_marks(problem, t))
+    g = graphviz.Digraph("task_trees")
+    g.attr(fontname="Helvetica")
+    for k, t in enumerate(trees, 1):
+        sub = build_graph([problem.units[u] for u in t.units], tree_marks(problem, t), f"cluster_{k}", f"t{k}_")
+        g.subgraph(sub)
+    return g
+
+
+def _top_product(units: list[Unit]) -> FoonObject | None:
+    """Without data: the one product of the last unit that no unit of the tree needs."""
+    if not units:
+        return None
+    needed = {o for u in units for o in u.inputs}
+    tops = [o for o in dict.fromkeys(units[-1].outputs) if not o.is_bare() and o not in needed]
+    return tops[0] if len(tops) == 1 else None
+
+
+def tree_file_marks(tree: TreeFile, data=None, problem: Problem | None = None, goal: str | None = None) -> Marks:
+    """Marks of a tree read from a file; with ``problem`` it is checked: goal, kitchen items, cycle."""
+    units = [tu.unit for tu in tree.units]
+    if problem is None:
+        top = tree.goal or _top_product(units)
+        return Marks(title=f"{top if top else tree.path} -- {len(units)} units", goal=top)
+    goal_id, _ = resolve_goal(data, problem, tree, goal)
+    rep = check_tree(problem, tree, goal_id)
+    position = {u: k for k, u in enumerate(rep.ids) if u is not None}
+    kitchen = frozenset(o for u in units for o in u.inputs if problem.foon.object_ids.get(o) in problem.kitchen)
+    verdict = "valid" if rep.valid else "INVALID"
+    return Marks(
+        title=f"{problem.objects[goal_id]} -- {len(units)} units, {verdict}",
+        goal=problem.objects[goal_id],
+        kitchen=kitchen,
+        note=rep.finding.message if rep.finding is not None else "",
+        **cycle_marks(problem, rep.finding, position),
+    )
+
+
+def file_graph(
+    path: str | Path, data=None, problem: Problem | None = None, goal: str | None = None
+) -> tuple[graphviz.Digraph, int]:
+    """The drawing of every tree in a tree file (one cluster per tree when there are several)."""
+    trees = read_trees(path)
+    if len(trees) == 1:
+        t = trees[0]
+        return build_graph([tu.unit for tu in t.units], tree_file_marks(t, data, problem, goal)), 1
+    g = graphviz.Digraph("task_trees")
+    for k, t in enumerate(trees, 1):
+        units = [tu.unit for tu in t.units]
+        g.subgraph(build_graph(units, tree_file_marks(t, data, problem, goal), f"cluster_{k}", f"t{k}_"))
+    return g, len(trees)
+
+
+# ---------------------------------------------------------------- rendering
+
+
+def require_dot() -> None:
+    """Fail with one line when Graphviz's ``dot`` is not installed."""
+    if shutil.which("dot") is None:
+        raise InputError(
+            "Graphviz 'dot' is not installed: install it (Debian: apt-get install graphviz) to draw task trees"
+        )
+
+
+def render(graph: graphviz.Digraph, fmt: str) -> bytes:
+    """``graph`` as ``fmt`` (``dot`` source, or svg/png/pdf laid out by ``dot``)."""
+    if fmt == "dot":
+        return graph.source.encode("utf-8")
+    if fmt not in FORMATS:
+        raise InputError(f"unknown drawing format {fmt!r} (have {', '.join(FORMATS)})")
+    require_dot()
+    try:
+        return graph.pipe(format=fmt)
+    except graphviz.ExecutableNotFound:
+        raise InputError("Graphviz 'dot' is not installed: install it (Debian: apt-get install graphviz)") from None
+    except graphviz.CalledProcessError as exc:
+        err = (exc.stderr or b"").decode("utf-8", "replace").strip().splitlines()
+        raise InputError(f"Graphviz 'dot' failed: {err[-1] if err else exc}") from None
+
+
+def svg_text(graph: graphviz.Digraph) -> str:
+    return render(graph, "svg").decode("utf-8")
+
+
+def inline_svg(svg: str, prefix: str) -> str:
+    """An SVG document as an element to put in HTML: no XML prolog, ids made unique with ``prefix``."""
+    start = svg.find("<svg")
+    svg = svg[start:] if start >= 0 else svg
+    svg = re.sub(r'\bid="([^"]*)"', lambda m: f'id="{prefix}{m.group(1)}"', svg)
+    return re.sub(r'href="#([^"]*)"', lambda m: f'href="#{prefix}{m.group(1)}"', svg)
+
+
+def format_of(path: str | Path) -> str:
+    """The drawing format of a file name (``.svg``, ``.png``, ``.pdf``, ``.dot``/``.gv``)."""
+    ext = Path(path).suffix.lower().lstrip(".")
+    ext = "dot" if ext == "gv" else ext
+    if ext not in FORMATS:
+        raise InputError(f"cannot tell the drawing format from {str(path)!r}: use .svg, .png, .pdf or .dot")
+    return ext
+
+
+# ---------------------------------------------------------------- the library API
+
+
+def tree_svg(problem: Problem, tree: TaskTree) -> str:
+    """The drawing of ``tree`` as an SVG document (for ``_repr_svg_`` in notebooks)."""
+    return svg_text(trees_graph(problem, [tree]))
+
+
+def draw_tree(problem: Problem, tree: TaskTree, path: str | Path) -> Path:
+    """Write the drawing of ``tree`` to ``path``; the format follows the extension."""
+    path = Path(path)
+    path.write_bytes(render(trees_graph(problem, [tree]), format_of(path)))
+    return path
