@@ -277,6 +277,11 @@ def main():
 @click.option("--format", "fmt", type=click.Choice(report.names("trees")), default="text", show_default=True)
 @click.option("--output", type=click.Path(file_okay=False), help="Also write one file per goal into this directory.")
 @click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
+@click.option(
+    "--together",
+    is_flag=True,
+    help="A meal: one tree that makes every goal, units shared between dishes counted once (ASP methods).",
+)
 @solver_options
 @guarded
 def solve(
@@ -294,12 +299,15 @@ def solve(
     fmt,
     output,
     time_limit,
+    together,
     constraints,
     solver_settings,
 ):
-    """Find the best task tree for each goal."""
+    """Find the best task tree for each goal (with --together: one tree for all goals)."""
     data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(data, problem, goal, goals)
+    if together and methods.get(method).kind != "asp":
+        raise InputError(f"--together needs an ASP method; {method!r} is a search baseline")
     if constraints and methods.get(method).kind != "asp":
         raise InputError(f"constraints apply to ASP methods only; {method!r} is a search baseline")
     if methods.get(method).kind != "asp" and solver_settings != SOLVER_DEFAULTS:
@@ -318,13 +326,15 @@ def solve(
     out_dir = Path(output) if output else None
     if out_dir:
         out_dir.mkdir(parents=True, exist_ok=True)
-    for index, g in enumerate(goal_ids, 1):
+    jobs: list = [tuple(dict.fromkeys(goal_ids))] if together else goal_ids
+    for index, g in enumerate(jobs, 1):
         tree = run(g)
         found = alternatives(tree)  # --models / --all-optimal: the further trees, best first
         trees.extend(found)
         if out_dir:
             ext = report.get("trees", fmt).extension
-            name = f"{safe_name(index, problem.objects[g].label)}.{ext}"
+            label = "+".join(problem.objects[x].label for x in tree.meal)
+            name = f"{safe_name(index, label)}.{ext}"
             (out_dir / name).write_text(render(problem, found, fmt), encoding="utf-8")
     _solver_warnings(problem, trees)
     click.echo(render(problem, trees, fmt), nl=False)
