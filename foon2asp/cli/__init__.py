@@ -1,5 +1,6 @@
 """The ``foon2asp`` command line: a thin layer over :mod:`foon2asp.api`."""
 
+from foon2asp.cli import export  # noqa: F401  (registers 'export')
 from foon2asp.cli.main import main
 
 __all__ = ["main"]

@@ -391,19 +391,25 @@ def list_methods():
 @main.command()
 @click.argument("tree", type=click.Path())
 @data_options
-@click.option("--goal", "goal", help="Goal label (default: the goal a JSON result names, else inferred from the tree).")
+@click.option(
+    "--goal",
+    "goal",
+    multiple=True,
+    help="Goal label; repeat for a meal (default: the goal a JSON result names, else inferred from the tree).",
+)
 @click.option("--format", "fmt", type=click.Choice(report.names("check")), default="text", show_default=True)
 @click.option(
     "--optimum/--no-optimum", default=True, show_default=True, help="Also solve the ASP optimum to compare with."
 )
 @guarded
 def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, fmt, optimum):
-    """Check a task tree (FOON text with // between units, or foon2asp JSON).
+    """Check a task tree (FOON text with // between units, or foon2asp JSON), or a plan
+    for a problem of 'export pddl' ('(action-name)' lines, as Fast Downward writes them).
 
     Exit status: 0 valid, 1 invalid, 2 bad input.
     """
     data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict)
-    reports = check_mod.check_file(data, problem, tree, goal, optimum)
+    reports = check_mod.check_file(data, problem, tree, tuple(goal) or None, optimum)
     if fmt == "json":
         click.echo(report.render("check", "json", problem, reports), nl=False)
     else:
