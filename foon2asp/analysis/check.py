@@ -423,9 +423,7 @@ def check_tree(problem: Problem, tree: TreeFile, goal: Goals, index: dict[tuple,
 # ---------------------------------------------------------------- a whole file
 
 
-def resolve_goal(
-    data, problem: Problem, tree: TreeFile, goal_label: str | tuple[str, ...] | None
-) -> tuple[Goals, str]:
+def resolve_goal(data, problem: Problem, tree: TreeFile, goal_label: str | tuple[str, ...] | None) -> tuple[Goals, str]:
     """The goal (several labels: a meal) and where it came from: ``--goal``, the JSON
     result, or inferred from the units."""
     if isinstance(goal_label, str):

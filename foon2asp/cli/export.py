@@ -29,7 +29,11 @@ def export():
     help="units: plan length; success: integer action costs round(-1000 ln p) (:action-costs); inputs: input nodes.",
 )
 @click.option(
-    "-o", "--output", required=True, type=click.Path(file_okay=False), help="Directory for domain.pddl and problem.pddl."
+    "-o",
+    "--output",
+    required=True,
+    type=click.Path(file_okay=False),
+    help="Directory for domain.pddl and problem.pddl.",
 )
 @click.option("--name", default="foon", show_default=True, help="Domain name (problem: NAME-task).")
 @constraint_options

@@ -430,6 +430,9 @@ def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict,
 )
 @click.option("--format", "fmt", type=click.Choice(report.names("compare")), default="text", show_default=True)
 @click.option("--time-limit", type=float, help="Seconds per goal for ASP methods.")
+@click.option(
+    "--together", is_flag=True, help="A meal: the one tree for all goals beside the sum of the single optima (ASP)."
+)
 @guarded
 def compare(
     data_dir,
@@ -444,9 +447,12 @@ def compare(
     method_list,
     fmt,
     time_limit,
+    together,
     constraints,
 ):
-    """Compare methods goal by goal: units, validity, success product, depth (default: --goals all)."""
+    """Compare methods goal by goal: units, validity, success product, depth (default: --goals all).
+
+    With --together: the meal's tree (one tree for every goal) beside the sum of the single optima."""
     if not goal and not goals:
         goals = "all"
     names = [m.strip() for m in method_list.split(",") if m.strip()]
@@ -460,6 +466,13 @@ def compare(
         click.echo(
             f"foon2asp: warning: constraints apply to ASP methods only; {', '.join(search)} ignore them", err=True
         )
+    if together:
+        asp = [n for n in names if methods.get(n).kind == "asp"] if method_list != "ids,gbfs-h1,gbfs-h2,asp" else []
+        meal = compare_mod.compare_meal(
+            problem, goal_ids, (asp or ["asp"])[0], AspOptions(time_limit=time_limit, programs=programs)
+        )
+        click.echo(report.render("compare", fmt, problem, meal), nl=False)
+        return
     rows = compare_mod.compare(problem, goal_ids, names, AspOptions(time_limit=time_limit, programs=programs))
     click.echo(report.render("compare", fmt, problem, rows), nl=False)
 

@@ -6,4 +6,17 @@ Importing this package registers the formats of every kind of answer.
 from foon2asp.report import check, compare, pddl, queries, summary, trees
 from foon2asp.report.registry import FORMATS, Format, get, names, register, render
 
-__all__ = ["FORMATS", "Format", "get", "names", "register", "render", "check", "compare", "pddl", "queries", "summary", "trees"]
+__all__ = [
+    "FORMATS",
+    "Format",
+    "get",
+    "names",
+    "register",
+    "render",
+    "check",
+    "compare",
+    "pddl",
+    "queries",
+    "summary",
+    "trees",
+]
