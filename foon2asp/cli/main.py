@@ -505,13 +505,17 @@ def reachable(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, g
 @constraint_options
 @click.option("--format", "fmt", type=click.Choice(report.names("missing")), default="text", show_default=True)
 @click.option("--time-limit", type=float, help="Seconds per goal; the best answer so far is reported as 'feasible'.")
+@click.option("--together", is_flag=True, help="A meal: the fewest objects so that one tree makes every goal.")
 @guarded
-def missing(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, time_limit, constraints):
+def missing(
+    data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, time_limit, together, constraints
+):
     """The fewest objects to add to the kitchen so a goal can be made (proven minimal), and the tree."""
     data, problem = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(data, problem, goal, goals)
     programs = constraint_programs(constraints, problem)
-    results = [queries.missing(problem, g, programs, time_limit) for g in goal_ids]
+    jobs: list = [tuple(dict.fromkeys(goal_ids))] if together else goal_ids
+    results = [queries.missing(problem, g, programs, time_limit) for g in jobs]
     if fmt == "json":
         click.echo(report.render("missing", "json", problem, results), nl=False)
     else:
