@@ -71,7 +71,7 @@ class Session:
         self.control.add_all(parts, user=[name for name, _ in self.options.programs])
         self.control.ground()
         self.ground_s = time.perf_counter() - t0
-        self._driver = None
+        self._driver: Driver | None = None
         self.goal_atoms = {
             a.symbol.arguments[0].number for a in self.ctl.symbolic_atoms.by_signature("goal", 1) if a.is_external
         }
@@ -97,10 +97,9 @@ class Session:
         """Which goals of an unreachable meal cannot be made (each solved alone)."""
         alone = [g for g in meal if self._solve((g,), None, None).status == "unreachable"]
         names = "; ".join(str(self.problem.objects[g]) for g in alone)
-        if alone:
-            tree.extra["reason"] = f"unreachable goal(s): {names}"
-        else:
-            tree.extra["reason"] = "each goal can be made alone, but not all of them in one tree"
+        why = f"unreachable goal(s): {names}" if alone else "each goal can be made alone, but not all in one tree"
+        earlier = tree.extra.get("reason")  # e.g. the depth bound
+        tree.extra["reason"] = f"{earlier}; {why}" if earlier else why
         tree.extra["unreachable_goals"] = [self.problem.objects[g].to_json() for g in alone]
 
     def _solve(

@@ -99,7 +99,7 @@ def exported_units(problem: Problem, goals: Iterable[int], spec: ConstraintSpec 
     return sorted(units)
 
 
-def _comment(text: str) -> str:
+def _comment(text: object) -> str:
     return " ".join(str(text).split())
 
 
