@@ -53,7 +53,11 @@ def random_problem(seed):
     rng = random.Random(seed)
     names = ["k1", "k2", "a", "b", "c", "g", "h"]
     units = [
-        (rng.choice(["pour", "mix", "cut"]), rng.sample(names, rng.randint(1, 3)), rng.sample(names[2:], rng.randint(1, 2)))
+        (
+            rng.choice(["pour", "mix", "cut"]),
+            rng.sample(names, rng.randint(1, 3)),
+            rng.sample(names[2:], rng.randint(1, 2)),
+        )
         for _ in range(rng.randint(4, 10))
     ]
     return build(units, kitchen=["k1", "k2"], rates={"pour": 0.9, "mix": 0.4, "cut": 0.7})
@@ -204,5 +208,7 @@ def test_missing_together_matches_singles(demo_problem):
 
 
 def test_cli_together_rejects_search_methods():
-    out = CliRunner().invoke(main, ["solve", "--goal", "tomato salad", "--goal", "scrambled egg", "--together", "--method", "ids"])
+    out = CliRunner().invoke(
+        main, ["solve", "--goal", "tomato salad", "--goal", "scrambled egg", "--together", "--method", "ids"]
+    )
     assert out.exit_code == 2 and "ASP method" in out.stderr
