@@ -1,3 +1,3 @@
-from foon2asp.cli.main import main
+from foon2asp.cli import main
 
 main(prog_name="foon2asp")

@@ -101,6 +101,11 @@ class Tree:
         return self.raw.goal
 
     @property
+    def goals(self) -> list[FoonObject]:
+        """Every goal of the tree: one, or the dishes of a meal (``together=True``)."""
+        return [self.kb.problem.objects[g] for g in self.raw.meal]
+
+    @property
     def method(self) -> str:
         return self.raw.method
 
@@ -343,9 +348,10 @@ class KnowledgeBase:
     # -- answers ------------------------------------------------------------
 
     def solve_iter(
-        self, goal_ids: Sequence[int], method: str = "asp", options: AspOptions | None = None
+        self, goal_ids: Sequence[int | tuple[int, ...]], method: str = "asp", options: AspOptions | None = None
     ) -> Iterator[Tree]:
-        """Trees for ``goal_ids`` one after another (the path every command takes)."""
+        """Trees for ``goal_ids`` one after another (the path every command takes); an
+        element that is a tuple of ids is a meal: one tree that makes all of them."""
         options = options or AspOptions()
         kind = methods.get(method).kind
         if kind != "asp" and options.programs:
@@ -373,8 +379,12 @@ class KnowledgeBase:
         all_optimal: bool = False,
         opt_strategy: str | None = None,
         threads: int | None = None,
+        together: bool = False,
     ) -> Tree | list[Tree]:
         """The best task tree for a goal (a :class:`Tree`), or for each of several goals (a list).
+
+        ``together=True``: one tree that makes every goal (a meal; units shared
+        between dishes count once), proven optimal like a single goal's.
 
         ``goals``: a label, an object's text, ``"#ID"``, an object, a list of
         these, or ``"all"`` / ``"all-objects"`` (a list).  ``objective``:
@@ -388,18 +398,24 @@ class KnowledgeBase:
             objective, time_limit, constraints, max_depth, human_steps, models, all_optimal, opt_strategy, threads
         )
         ids = self.goal_ids(goals)
+        if together:
+            return next(self.solve_iter([tuple(dict.fromkeys(ids))], method, options))
         trees = list(self.solve_iter(ids, method, options))
         single = isinstance(goals, str | int | FoonObject) and goals not in ("all", "all-objects")
         return trees[0] if single else trees
 
     def check(
-        self, tree: Tree | str | Path, goal: GoalLike | None = None, optimum: bool = True
+        self, tree: Tree | str | Path, goal: GoalLike | Sequence[GoalLike] | None = None, optimum: bool = True
     ) -> CheckReport | list[CheckReport]:
-        """Judge a tree (a :class:`Tree` or a tree file: FOON text or foon2asp JSON).
+        """Judge a tree: a :class:`Tree`, or a file (FOON text in either dialect, FOON JSON,
+        foon2asp JSON, or a plan as Fast Downward writes it for ``export pddl``).
 
         A :class:`Tree` gives one report; a file gives one per tree it holds.
+        ``goal``: the goal (several: a meal) when the file does not name it.
         """
         if isinstance(tree, Tree):
+            if goal is not None and not isinstance(goal, str | int | FoonObject):
+                raise InputError("check a Tree against one goal (its own by default)")
             units = [check_mod.TreeUnit(self.problem.units[u], i, None) for i, u in enumerate(tree.unit_ids, 1)]
             tf = check_mod.TreeFile("<tree>", units, tree.goal, tree.method)
             raw = check_mod.check_tree(self.problem, tf, tree.goal_id if goal is None else self.object_id(goal))
@@ -407,8 +423,13 @@ class KnowledgeBase:
             if optimum:
                 raw.optimum = next(iter(solve_goals(self.problem, [raw.goal], "asp", AspOptions())))
             return CheckReport(self, raw)
-        label = None if goal is None else str(goal) if not isinstance(goal, int) else f"#{goal}"
-        reports = check_mod.check_file(self.data, self.problem, tree, label, optimum)
+
+        def name(g: GoalLike) -> str:
+            return f"#{self.object_id(g)}" if isinstance(g, int | FoonObject) else g
+
+        goal_list = [] if goal is None else [goal] if isinstance(goal, str | int | FoonObject) else list(goal)
+        labels = tuple(name(g) for g in goal_list) or None
+        reports = check_mod.check_file(self.data, self.problem, tree, labels, optimum)
         return [CheckReport(self, r) for r in reports]
 
     def compare(
@@ -424,6 +445,19 @@ class KnowledgeBase:
         options = self.options(objective, time_limit, constraints)
         return Comparison(self, compare_mod.compare(self.problem, self.goal_ids(goals), list(methods), options))
 
+    def compare_meal(
+        self,
+        goals: Sequence[GoalLike],
+        method: str = "asp",
+        *,
+        objective: str | Sequence[str] = "units",
+        time_limit: float | None = None,
+        constraints: Constraints | None = None,
+    ) -> compare_mod.MealRow:
+        """The meal's optimal tree (all ``goals`` at once) beside each goal's own optimum."""
+        options = self.options(objective, time_limit, constraints)
+        return compare_mod.compare_meal(self.problem, self.goal_ids(goals), method, options)
+
     def reachable(self, goals: GoalLike | Sequence[GoalLike] | None = "all") -> dict[FoonObject, bool]:
         """For each goal: can it be made from the kitchen at all (one solve for all)?"""
         answers = queries.reachable(self.problem, self.goal_ids(goals))
@@ -431,14 +465,22 @@ class KnowledgeBase:
 
     def missing(
         self,
-        goal: GoalLike,
+        goal: GoalLike | Sequence[GoalLike],
         *,
         time_limit: float | None = None,
         constraints: Constraints | None = None,
     ) -> Missing:
-        """The fewest objects to add to the kitchen so ``goal`` can be made (proven minimal), and the tree."""
+        """The fewest objects to add to the kitchen so ``goal`` can be made (proven minimal), and the tree.
+
+        Several goals: the fewest objects for the whole meal (one tree making all of them).
+        """
         programs = (constraints or Constraints()).spec().programs()
-        return Missing(self, queries.missing(self.problem, self.object_id(goal), programs, time_limit))
+        target: int | tuple[int, ...]
+        if isinstance(goal, str | int | FoonObject):
+            target = self.object_id(goal)
+        else:
+            target = tuple(dict.fromkeys(self.object_id(g) for g in goal))
+        return Missing(self, queries.missing(self.problem, target, programs, time_limit))
 
     def query(
         self,

@@ -1,9 +1,11 @@
 """Checking a task tree from a file: does it exist in the FOON, is it well-founded?
 
-A tree is read as FOON text (units closed by ``//``, in the official dialect
-with ids or the ID-less one, as ``solve --format foon|foon-plain`` and the
-earlier search programs write; a leading ``//`` and ``#`` comment lines are
-fine), as FOON JSON (foon_api's ``{"functional_units": [...]}``, ``solve
+A tree is read as a plan (``(action-name)`` lines and ``;`` comments, as Fast
+Downward writes them for a problem of ``export pddl``; see
+:mod:`foon2asp.analysis.plans`), as FOON text (units closed by ``//``, in the
+official dialect with ids or the ID-less one, as ``solve --format foon|foon-plain``
+and the earlier search programs write; a leading ``//`` and ``#`` comment lines
+are fine), as FOON JSON (foon_api's ``{"functional_units": [...]}``, ``solve
 --format foon-json``) or as foon2asp JSON (the list ``solve --format json``
 prints, or one such result).  Each unit is matched to a FOON
 unit by :meth:`Unit.key` (motion, set of inputs, set of outputs).
@@ -24,6 +26,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from foon2asp.analysis import plans
 from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon import foonjson
@@ -33,7 +36,7 @@ from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.parser import parse_lines
 from foon2asp.foon.problem import Problem, required_flags
 from foon2asp.methods.planner import solve_goals
-from foon2asp.tree.tasktree import TaskTree, measures
+from foon2asp.tree.tasktree import Goals, TaskTree, meal_of, measures
 from foon2asp.tree.validate import Validation, check_order, validate
 
 
@@ -89,6 +92,12 @@ class Report:
     cost: dict
     optimum: TaskTree | None = None
     goal_source: str = ""
+    #: every goal when the tree is checked for a meal (else empty)
+    goals: tuple[int, ...] = ()
+
+    @property
+    def meal(self) -> tuple[int, ...]:
+        return self.goals or (self.goal,)
 
 
 # ---------------------------------------------------------------- reading
@@ -174,8 +183,16 @@ def _read_json_tree(text: str, path: str) -> list[TreeFile]:
     return trees
 
 
-def read_trees(path: str | Path) -> list[TreeFile]:
-    """The tree(s) in ``path``: FOON text (one tree) or foon2asp JSON (one or more)."""
+def _read_plan(problem: Problem, text: str, path: str) -> list[TreeFile]:
+    plan = plans.parse_plan(text, path)
+    units = [TreeUnit(unit, step, line) for step, (unit, line) in enumerate(plans.plan_units(problem, plan), 1)]
+    method = "plan" if plan.cost is None else f"plan, reported cost {plan.cost:g}"
+    return [TreeFile(path, units, method=method)]
+
+
+def read_trees(path: str | Path, problem: Problem | None = None) -> list[TreeFile]:
+    """The tree(s) in ``path``: FOON text (one tree), foon2asp JSON (one or more), or
+    (with ``problem``, whose unit ids the action names carry) a plan."""
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
@@ -189,6 +206,8 @@ def read_trees(path: str | Path) -> list[TreeFile]:
         raise InputError(f"not UTF-8 text ({exc.reason})", str(path)) from None
     if _looks_like_json(text):
         return _read_json_tree(text, str(path))
+    if problem is not None and plans.looks_like_plan(text):
+        return _read_plan(problem, text, str(path))
     return _read_foon_tree(text, str(path))
 
 
@@ -387,8 +406,20 @@ def check_units(
     return validation, diagnose(problem, goal, units, validation, name)
 
 
-def check_tree(problem: Problem, tree: TreeFile, goal: int, index: dict[tuple, int] | None = None) -> Report:
-    """Match the units of ``tree`` to the FOON and judge them for ``goal``."""
+def check_tree(problem: Problem, tree: TreeFile, goal: Goals, index: dict[tuple, int] | None = None) -> Report:
+    """Match the units of ``tree`` to the FOON and judge them for ``goal`` (for a meal, a
+    tuple of goals: valid when every goal is made; the first goal with a problem is explained)."""
+    meal = meal_of(goal)
+    if len(meal) > 1:
+        reports = [check_tree(problem, tree, g, index) for g in meal]
+        first = next((r for r in reports if not r.valid), reports[0])
+        first.goals = meal
+        first.valid = all(r.valid for r in reports)
+        first.order_problem = next((r.order_problem for r in reports if r.order_problem), None)
+        known = list(dict.fromkeys(u for u in first.ids if u is not None))
+        first.cost = measures(problem, meal, known)
+        return first
+    goal = meal[0]
     index = index if index is not None else unit_index(problem)
     ids = [index.get(tu.unit.key()) for tu in tree.units]
     unknown = [tu for tu, u in zip(tree.units, ids) if u is None]
@@ -414,20 +445,25 @@ def check_tree(problem: Problem, tree: TreeFile, goal: int, index: dict[tuple, i
 # ---------------------------------------------------------------- a whole file
 
 
-def resolve_goal(data, problem: Problem, tree: TreeFile, goal_label: str | None) -> tuple[int, str]:
-    """The goal and where it came from: ``--goal``, the JSON result, or inferred from the units."""
+def resolve_goal(data, problem: Problem, tree: TreeFile, goal_label: str | tuple[str, ...] | None) -> tuple[Goals, str]:
+    """The goal (several labels: a meal) and where it came from: ``--goal``, the JSON
+    result, or inferred from the units."""
+    if isinstance(goal_label, str):
+        goal_label = (goal_label,)
     if goal_label:
-        return goals_mod.resolve_goal(data, problem, goal_label), "--goal"
+        meal = meal_of(goals_mod.resolve_goal(data, problem, label) for label in goal_label)
+        return (meal if len(meal) > 1 else meal[0]), "--goal"
     if tree.goal is not None:
         return goals_mod.goal_id(problem, tree.goal, tree.path, tree.line), "named in the file"
     return infer_goal(problem, tree, [obj for obj, _ in data.goals]), "inferred from the units"
 
 
 def check_file(
-    data, problem: Problem, path: str | Path, goal_label: str | None = None, optimum: bool = True
+    data, problem: Problem, path: str | Path, goal_label: str | tuple[str, ...] | None = None, optimum: bool = True
 ) -> list[Report]:
-    """Check every tree in ``path``; with ``optimum`` the ASP optimum is solved for each goal."""
-    trees = read_trees(path)
+    """Check every tree (or plan) in ``path``; with ``optimum`` the ASP optimum is solved for
+    each goal (for several ``goal_label``: the meal's optimum)."""
+    trees = read_trees(path, problem)
     index = unit_index(problem)
     reports = []
     for tree in trees:
@@ -436,8 +472,8 @@ def check_file(
         report.goal_source = source
         reports.append(report)
     if optimum and reports:
-        goals = list(dict.fromkeys(r.goal for r in reports))
-        best = dict(zip(goals, solve_goals(problem, goals, "asp", AspOptions())))
+        meals = list(dict.fromkeys(r.meal for r in reports))
+        best = dict(zip(meals, solve_goals(problem, meals, "asp", AspOptions())))
         for r in reports:
-            r.optimum = best[r.goal]
+            r.optimum = best[r.meal]
     return reports

@@ -66,3 +66,43 @@ def compare(
 
 
 # ---------------------------------------------------------------- rendering
+
+
+@dataclass
+class MealRow:
+    """A meal's tree beside the single optima of its goals (``compare --together``)."""
+
+    goals: tuple[int, ...]
+    meal: TaskTree
+    singles: list[TaskTree]
+
+    def total(self) -> dict:
+        """The single optima added up (units, inputs; success multiplied); {} if one has no tree."""
+        if not all(t.has_tree for t in self.singles):
+            return {}
+        success = 1.0
+        for t in self.singles:
+            success *= t.cost.get("success", 1.0)
+        return {
+            "units": sum(t.cost["units"] for t in self.singles),
+            "success": float(f"{success:.6g}"),
+            "inputs": sum(t.cost["inputs"] for t in self.singles),
+            "depth": max(t.cost["depth"] or 0 for t in self.singles),
+        }
+
+
+def compare_meal(problem: Problem, goals: list[int], method: str = "asp", options: AspOptions | None = None) -> MealRow:
+    """The meal's optimum (one tree for all ``goals``) and each goal's own optimum, all judged."""
+    meal = tuple(dict.fromkeys(goals))
+    options = options or AspOptions()
+    if options.units is None:
+        options = replace(options, units=problem.units_for(meal))
+    run = BatchRunner(method, problem, options)
+    tree = run(meal)
+    if tree.has_tree:
+        validations = [check_units(problem, g, tree.units)[0] for g in meal]
+        tree.extra["valid"] = all(v.valid for v in validations)
+    else:
+        tree.extra["valid"] = False
+    singles = [judge(problem, run(g)) for g in meal]
+    return MealRow(meal, tree, singles)

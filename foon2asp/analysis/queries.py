@@ -24,7 +24,7 @@ from foon2asp.asp.facts import facts
 from foon2asp.asp.options import OBJECTIVES
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
-from foon2asp.tree.tasktree import executable_order, measures
+from foon2asp.tree.tasktree import Goals, executable_order, meal_of, measures
 
 # --------------------------------------------------------------------------- running
 
@@ -141,6 +141,8 @@ class MissingResult:
     path: list[tuple[int, int]] = field(default_factory=list)
     #: every object that may be added (relevant to the goal)
     buyable: list[int] = field(default_factory=list)
+    #: every goal of a meal (``missing --together``; empty for one goal)
+    goals: tuple[int, ...] = ()
 
     @property
     def has_tree(self) -> bool:
@@ -149,11 +151,18 @@ class MissingResult:
 
 def missing(
     problem: Problem,
-    goal: int,
+    goal: Goals,
     user_programs: Iterable[tuple[str, str]] = (),
     time_limit: float | None = None,
 ) -> MissingResult:
-    """The fewest objects to add to the kitchen so ``goal`` can be made, then the fewest units."""
+    """The fewest objects to add to the kitchen so ``goal`` can be made, then the fewest units.
+
+    ``goal`` may be a meal (a tuple of goals): the fewest objects so that one tree makes them all.
+    """
+    meal = meal_of(goal)
+    if len(meal) > 1:
+        return _missing_meal(problem, meal, list(user_programs), time_limit)
+    goal = meal[0]
     t0 = time.perf_counter()
     if goal in problem.kitchen:
         units: list[int] = []
@@ -194,6 +203,39 @@ def missing(
         result.path, result.cycle = blocking_cycle(problem, goal, reach)
         result.reason = "no set of objects that can only be brought in helps; a cycle blocks it"
     return result
+
+
+def _missing_meal(
+    problem: Problem, meal: tuple[int, ...], user_programs: list[tuple[str, str]], time_limit: float | None
+) -> MissingResult:
+    """:func:`missing` for several goals at once: one set of objects, one tree for all goals."""
+    t0 = time.perf_counter()
+    units = sorted({u for g in meal if g not in problem.kitchen for u in problem.relevant_units(g)})
+    text = facts(problem, goal=meal[0], units=units) + "".join(f"goal({g}).\n" for g in meal[1:])
+    prog = Program(
+        [("facts", text), ("encodings/missing.lp", encodings.encoding("missing")), *user_programs],
+        ["--opt-mode=opt", "--models=0"],
+    )
+    buyable = sorted(s.arguments[0].number for s in prog.facts_of("buyable", 1))
+    outcome = prog.solve(time_limit)
+    elapsed = round(time.perf_counter() - t0, 6)
+    if outcome.answers:
+        shown = outcome.answers[-1].symbols
+        added = sorted(s.arguments[0].number for s in shown if s.name == "add")
+        used = [s.arguments[0].number for s in shown if s.name == "use"]
+        extended = with_kitchen(problem, added)
+        order = executable_order(extended, used)
+        cost = measures(extended, meal, order)
+        cost["added"] = len(added)
+        status = "optimal" if outcome.status in ("optimal", "satisfiable") else "feasible"
+        return MissingResult(meal[0], status, added, order, cost, elapsed, buyable=buyable, goals=meal)
+    if outcome.status == "unknown":
+        return MissingResult(meal[0], "unknown", time_s=elapsed, reason="time ran out", buyable=buyable, goals=meal)
+    # which goals are blocked on their own
+    blocked = [g for g in meal if not missing(problem, g, user_programs, time_limit).has_tree]
+    names = "; ".join(str(problem.objects[g]) for g in blocked)
+    reason = f"no set of objects helps these goal(s): {names}" if blocked else "the constraints rule out every tree"
+    return MissingResult(meal[0], "unreachable", time_s=elapsed, reason=reason, buyable=buyable, goals=meal)
 
 
 def blocking_cycle(problem: Problem, goal: int, reach: set[int]) -> tuple[list[tuple[int, int]], list[tuple[int, int]]]:

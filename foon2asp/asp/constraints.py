@@ -33,9 +33,13 @@ def normalise(text: str) -> str:
     return " ".join(str(text).split()).lower()
 
 
-def _motion(text: str) -> str:
+def motion_name(text: str) -> str:
+    """A motion as the FOON model stores it (normalised, a trailing ``*`` dropped)."""
     text = normalise(text)
     return text[:-1].rstrip() if text.endswith("*") else text
+
+
+_motion = motion_name
 
 
 def forbid_motion(motion: str) -> str:

@@ -2,7 +2,9 @@
 
 A :class:`Session` grounds the facts of a whole problem together with the
 encodings once; each :meth:`Session.solve` then switches the external atom
-``goal(G)`` on for one goal, so many goals reuse one grounding.
+``goal(G)`` on for one goal, so many goals reuse one grounding.  A *meal* (a
+tuple of goal ids) switches ``goal(G)`` on for each of its goals: the tree
+must make all of them, and a unit two dishes share is counted once.
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ from foon2asp.asp.multishot.driver import Driver
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
-from foon2asp.tree.tasktree import TaskTree, executable_order, measures
+from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, goal_fields, meal_of, measures
 
 
 def _objective_facts(objective: Iterable[str]) -> str:
@@ -79,11 +81,34 @@ class Session:
 
     def solve(
         self,
-        goal: int,
+        goal: Goals,
         on_model: Callable[[clingo.Model], None] | None = None,
         time_limit: float | None = None,
     ) -> TaskTree:
-        """The best tree for ``goal`` (an object id), proven optimal unless time runs out."""
+        """The best tree for ``goal`` (an object id, or a tuple of them: a meal, one tree
+        that makes every goal), proven optimal unless time runs out."""
+        meal = meal_of(goal)
+        tree = self._solve(meal, on_model, time_limit)
+        if len(meal) > 1 and tree.status == "unreachable":
+            self._explain(meal, tree)
+        return tree
+
+    def _explain(self, meal: tuple[int, ...], tree: TaskTree) -> None:
+        """Which goals of an unreachable meal cannot be made (each solved alone)."""
+        alone = [g for g in meal if self._solve((g,), None, None).status == "unreachable"]
+        names = "; ".join(str(self.problem.objects[g]) for g in alone)
+        why = f"unreachable goal(s): {names}" if alone else "each goal can be made alone, but not all in one tree"
+        earlier = tree.extra.get("reason")  # e.g. the depth bound
+        tree.extra["reason"] = f"{earlier}; {why}" if earlier else why
+        tree.extra["unreachable_goals"] = [self.problem.objects[g].to_json() for g in alone]
+
+    def _solve(
+        self,
+        meal: tuple[int, ...],
+        on_model: Callable[[clingo.Model], None] | None,
+        time_limit: float | None,
+    ) -> TaskTree:
+        goal = meal if len(meal) > 1 else meal[0]
         if self.options.driven:
             # depth bounds, human steps, alternatives, greedy: see foon2asp.driver
             if self._driver is None:
@@ -91,10 +116,16 @@ class Session:
             return self._driver.solve(goal, on_model, time_limit)
         time_limit = self.options.time_limit if time_limit is None else time_limit
         t0 = time.perf_counter()
-        if goal not in self.goal_atoms:
-            # the goal is not an object of the grounded facts: nothing makes it (no solve call)
+        if any(g not in self.goal_atoms for g in meal):
+            # a goal is not an object of the grounded facts: nothing makes it (no solve call)
             stats = {"choices": 0, "conflicts": 0, "models": 0, "solve_s": 0.0}
-            return TaskTree(goal, self.options.method, "unreachable", time_s=time.perf_counter() - t0, stats=stats)
+            return TaskTree(
+                method=self.options.method,
+                status="unreachable",
+                time_s=time.perf_counter() - t0,
+                stats=stats,
+                **goal_fields(meal),
+            )
         best: dict = {}
 
         def record(model: clingo.Model) -> None:
@@ -104,12 +135,14 @@ class Session:
             if on_model is not None:
                 on_model(model)
 
-        self._set_goal(goal, True)
+        for g in meal:
+            self._set_goal(g, True)
         try:
             result = self.control.solve(record, time_limit or None)
             stats = self.stats()
         finally:
-            self._set_goal(goal, False)
+            for g in meal:
+                self._set_goal(g, False)
         elapsed = time.perf_counter() - t0
         if "units" in best:
             # no cost terms at all (e.g. the goal is in the kitchen): any model is optimal
@@ -118,16 +151,16 @@ class Session:
         else:
             status = "unreachable" if result.unsatisfiable else "unknown"
         units = executable_order(self.problem, best.get("units", []))
-        cost = measures(self.problem, goal, units) if status in ("optimal", "feasible") else {}
+        cost = measures(self.problem, meal, units) if status in ("optimal", "feasible") else {}
         return TaskTree(
-            goal,
-            self.options.method,
-            status,
-            units,
-            cost,
-            round(elapsed, 6),
-            stats,
-            {"asp_cost": best.get("cost", [])} if best else {},
+            method=self.options.method,
+            status=status,
+            units=units,
+            cost=cost,
+            time_s=round(elapsed, 6),
+            stats=stats,
+            extra={"asp_cost": best.get("cost", [])} if best else {},
+            **goal_fields(meal),
         )
 
     def stats(self) -> dict:

@@ -284,6 +284,11 @@ def main():
 @click.option("--format", "fmt", type=click.Choice(report.names("trees")), default="text", show_default=True)
 @click.option("--output", type=click.Path(file_okay=False), help="Also write one file per goal into this directory.")
 @click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
+@click.option(
+    "--together",
+    is_flag=True,
+    help="A meal: one tree that makes every goal, units shared between dishes counted once (ASP methods).",
+)
 @solver_options
 @guarded
 def solve(
@@ -301,12 +306,15 @@ def solve(
     fmt,
     output,
     time_limit,
+    together,
     constraints,
     solver_settings,
 ):
-    """Find the best task tree for each goal."""
+    """Find the best task tree for each goal (with --together: one tree for all goals)."""
     kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
+    if together and methods.get(method).kind != "asp":
+        raise InputError(f"--together needs an ASP method; {method!r} is a search baseline")
     if methods.get(method).kind != "asp" and solver_settings != SOLVER_DEFAULTS:
         raise InputError(f"solver settings apply to ASP methods only; {method!r} is a search baseline")
     options = kb.options(objective, time_limit, _constraints(constraints), **solver_settings)
@@ -319,12 +327,14 @@ def solve(
     out_dir = Path(output) if output else None
     if out_dir:
         out_dir.mkdir(parents=True, exist_ok=True)
-    for index, tree in enumerate(kb.solve_iter(goal_ids, method, options), 1):
+    jobs: list = [tuple(dict.fromkeys(goal_ids))] if together else goal_ids
+    for index, tree in enumerate(kb.solve_iter(jobs, method, options), 1):
         found = alternatives(tree.raw)  # --models / --all-optimal: the further trees, best first
         trees.extend(found)
         if out_dir:
             ext = report.get("trees", fmt).extension
-            name = f"{safe_name(index, tree.goal.label)}.{ext}"
+            label = "+".join(g.label for g in tree.goals)
+            name = f"{safe_name(index, label)}.{ext}"
             (out_dir / name).write_bytes(render_bytes(problem, found, fmt))
     _solver_warnings(problem, trees)
     if binary and out_dir:
@@ -399,19 +409,25 @@ def list_methods():
 @main.command()
 @click.argument("tree", type=click.Path())
 @data_options
-@click.option("--goal", "goal", help="Goal label (default: the goal a JSON result names, else inferred from the tree).")
+@click.option(
+    "--goal",
+    "goal",
+    multiple=True,
+    help="Goal label; repeat for a meal (default: the goal a JSON result names, else inferred from the tree).",
+)
 @click.option("--format", "fmt", type=click.Choice(report.names("check")), default="text", show_default=True)
 @click.option(
     "--optimum/--no-optimum", default=True, show_default=True, help="Also solve the ASP optimum to compare with."
 )
 @guarded
 def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, fmt, optimum):
-    """Check a task tree (FOON text with // between units, or foon2asp JSON).
+    """Check a task tree (FOON text with // between units, or foon2asp JSON), or a plan
+    for a problem of 'export pddl' ('(action-name)' lines, as Fast Downward writes them).
 
     Exit status: 0 valid, 1 invalid, 2 bad input.
     """
     kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict)
-    reports = kb.check(tree, goal, optimum)
+    reports = kb.check(tree, list(goal) or None, optimum)
     assert isinstance(reports, list)
     click.echo(report.render("check", fmt, kb.problem, [r.raw for r in reports]), nl=False)
     sys.exit(0 if all(r.valid for r in reports) else 1)
@@ -433,6 +449,9 @@ def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict,
 )
 @click.option("--format", "fmt", type=click.Choice(report.names("compare")), default="text", show_default=True)
 @click.option("--time-limit", type=float, help="Seconds per goal for ASP methods.")
+@click.option(
+    "--together", is_flag=True, help="A meal: the one tree for all goals beside the sum of the single optima (ASP)."
+)
 @guarded
 def compare(
     data_dir,
@@ -448,9 +467,12 @@ def compare(
     objective,
     fmt,
     time_limit,
+    together,
     constraints,
 ):
-    """Compare methods goal by goal: units, validity, success product, depth (default: --goals all)."""
+    """Compare methods goal by goal: units, validity, success product, depth (default: --goals all).
+
+    With --together: the meal's tree (one tree for every goal) beside the sum of the single optima."""
     if not goal and not goals:
         goals = "all"
     names = [m.strip() for m in method_list.split(",") if m.strip()]
@@ -463,6 +485,18 @@ def compare(
         click.echo(
             f"foon2asp: warning: constraints apply to ASP methods only; {', '.join(search)} ignore them", err=True
         )
+    if together:
+        asp = [n for n in names if methods.get(n).kind == "asp"] if method_list != "ids,gbfs-h1,gbfs-h2,asp" else []
+        meal = kb.compare_meal(
+            goal_ids,
+            (asp or ["asp"])[0],
+            objective=objective,
+            time_limit=time_limit,
+            constraints=_constraints(constraints),
+        )
+        _warn(kb)
+        click.echo(report.render("compare", fmt, kb.problem, meal), nl=False)
+        return
     comparison = kb.compare(
         goal_ids, names, objective=objective, time_limit=time_limit, constraints=_constraints(constraints)
     )
@@ -496,12 +530,16 @@ def reachable(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, g
 @constraint_options
 @click.option("--format", "fmt", type=click.Choice(report.names("missing")), default="text", show_default=True)
 @click.option("--time-limit", type=float, help="Seconds per goal; the best answer so far is reported as 'feasible'.")
+@click.option("--together", is_flag=True, help="A meal: the fewest objects so that one tree makes every goal.")
 @guarded
-def missing(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, time_limit, constraints):
+def missing(
+    data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, time_limit, together, constraints
+):
     """The fewest objects to add to the kitchen so a goal can be made (proven minimal), and the tree."""
     kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
-    results = [kb.missing(g, time_limit=time_limit, constraints=_constraints(constraints)).raw for g in goal_ids]
+    jobs: list = [goal_ids] if together else goal_ids
+    results = [kb.missing(g, time_limit=time_limit, constraints=_constraints(constraints)).raw for g in jobs]
     _warn(kb)
     click.echo(report.render("missing", fmt, kb.problem, results), nl=False)
 

@@ -40,8 +40,9 @@ from foon2asp import methods
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
+from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem, walk_back
-from foon2asp.tree.tasktree import TaskTree, executable_order, measures
+from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
 
 GROUNDINGS = ("whole", "per-goal")
 
@@ -73,14 +74,14 @@ class Parts:
     def derivable(self) -> frozenset[int]:
         return self.problem.derivable
 
-    def relevant(self, goal: int) -> tuple[list[int], set[int], bool]:
-        """``(units, objects, choice)`` of the goal's relevant part.
+    def relevant(self, goal: Goals) -> tuple[list[int], set[int], bool]:
+        """``(units, objects, choice)`` of the goal's relevant part (a meal's: all its goals').
 
         ``units`` are the encoding's candidates for ``goal``, ``objects`` the
         goal and the required inputs reached, ``choice`` whether some object
         has more than one candidate producer.
         """
-        units, seen, choice = walk_back([goal], self.problem.kitchen, self.producers, self.problem.required)
+        units, seen, choice = walk_back(meal_of(goal), self.problem.kitchen, self.producers, self.problem.required)
         return sorted(units), seen, choice
 
 
@@ -135,7 +136,7 @@ class BatchRunner:
                 units = tuple(sorted(self.parts.viable))
             self._whole = methods.runner(name, problem, replace(self.options, units=units))
 
-    def _solve(self, goal: int) -> TaskTree:
+    def _solve(self, goal: Goals) -> TaskTree:
         self.counts["solver"] += 1
         if self._whole is not None:
             tree = self._whole(goal)
@@ -149,9 +150,15 @@ class BatchRunner:
         self._label = tree.method
         return tree
 
-    def __call__(self, goal: int) -> TaskTree:
-        if not self.shortcuts or self._label is None or self.options.units is not None:
-            return self._solve(goal)
+    def __call__(self, goal: Goals) -> TaskTree:
+        """The tree for ``goal``: an object id, or a tuple of them (a meal, one tree for all)."""
+        meal = meal_of(goal)
+        if len(meal) > 1 and self.kind != "asp":
+            raise InputError(f"meals (several goals in one tree) need an ASP method; {self.name!r} is not one")
+        if not self.shortcuts or self._label is None or self.options.units is not None or len(meal) > 1:
+            # meals go to the solver: it names the goals that cannot be made
+            return self._solve(meal if len(meal) > 1 else meal[0])
+        goal = meal[0]
         t0 = time.perf_counter()
         if goal not in self.parts.derivable:
             self.counts["unreachable"] += 1
@@ -182,7 +189,7 @@ class BatchRunner:
 
 def solve_goals(
     problem: Problem,
-    goals: Iterable[int],
+    goals: Iterable[Goals],
     method: str = "asp",
     options: AspOptions | None = None,
     grounding: str = "whole",
@@ -190,13 +197,14 @@ def solve_goals(
 ) -> Iterator[TaskTree]:
     """The one path from goals to trees that ``solve``, ``compare``, ``check`` and the library take.
 
+    A goal is an object id, or a tuple of them (a meal: one tree for all).
     ASP methods ground only the units a tree for one of ``goals`` can use
     (:meth:`Problem.units_for`) unless ``options.units`` says otherwise.
     """
     options = options or AspOptions()
     goals = list(goals)
     if methods.get(method).kind == "asp" and options.units is None:
-        options = replace(options, units=problem.units_for(goals))
+        options = replace(options, units=problem.units_for({g for goal in goals for g in meal_of(goal)}))
     runner = BatchRunner(method, problem, options, grounding, shortcuts)
     for goal in goals:
         yield runner(goal)

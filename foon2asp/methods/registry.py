@@ -1,7 +1,8 @@
 """The one registry of methods: ASP objectives and the search baselines.
 
 A method turns (problem, options) into a *runner*: a function from a goal
-object id to a :class:`TaskTree`.  Runners are made once per problem, so a
+object id (or, for ASP methods, a tuple of them: a meal, one tree for every
+goal) to a :class:`TaskTree`.  Runners are made once per problem, so a
 runner may keep state (the ASP runner keeps one grounding for all goals).
 The CLI's ``solve``, ``compare`` and ``batch`` all look methods up here.
 """
@@ -16,9 +17,9 @@ from foon2asp.asp.session import Session
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.search import IDS, gbfs, h1, h2
-from foon2asp.tree.tasktree import TaskTree
+from foon2asp.tree.tasktree import Goals, TaskTree, meal_of
 
-Runner = Callable[[int], TaskTree]
+Runner = Callable[[Goals], TaskTree]
 Factory = Callable[[Problem, AspOptions], Runner]
 
 
@@ -88,13 +89,25 @@ for _h in HEURISTICS:
     )(_greedy(_h))
 
 
+def _single(name: str, run: Callable[[int], TaskTree]) -> Runner:
+    """A search baseline's runner: one goal at a time (meals need an ASP method)."""
+
+    def runner(goal: Goals) -> TaskTree:
+        meal = meal_of(goal)
+        if len(meal) > 1:
+            raise InputError(f"meals (several goals in one tree) need an ASP method; {name!r} is a search baseline")
+        return run(meal[0])
+
+    return runner
+
+
 # the search baselines (foon2asp.search knows nothing of this registry)
 register("ids", "search", "iterative deepening search (first producer in FOON order per depth; not optimal)")(
-    lambda problem, options: IDS(problem)
+    lambda problem, options: _single("ids", IDS(problem))
 )
 register("gbfs-h1", "search", "greedy best-first, h1: highest motion success rate (no cycle check)")(
-    lambda problem, options: lambda goal: gbfs(problem, goal, h1, "gbfs-h1")
+    lambda problem, options: _single("gbfs-h1", lambda goal: gbfs(problem, goal, h1, "gbfs-h1"))
 )
 register("gbfs-h2", "search", "greedy best-first, h2: fewest input nodes (no cycle check)")(
-    lambda problem, options: lambda goal: gbfs(problem, goal, h2, "gbfs-h2")
+    lambda problem, options: _single("gbfs-h2", lambda goal: gbfs(problem, goal, h2, "gbfs-h2"))
 )

@@ -24,7 +24,11 @@ def report_text(problem: Problem, report: Report) -> str:
     if tree.method:
         head += f"  method {tree.method}"
     source = f"  ({report.goal_source})" if report.goal_source else ""
-    lines = [head, f"Goal: {problem.objects[report.goal]}{source}"]
+    if report.goals:
+        lines = [head, f"Meal of {len(report.goals)} goals{source}:"]
+        lines += [f"  + {problem.objects[g]}" for g in report.goals]
+    else:
+        lines = [head, f"Goal: {problem.objects[report.goal]}{source}"]
     n_known = sum(u is not None for u in ids)
     lines.append(f"Units: {len(ids)} read, {n_known} found in the FOON, {len(ids) - n_known} unknown")
     lines.append(f"Verdict: {'VALID' if report.valid else 'INVALID'}")
@@ -71,7 +75,11 @@ def report_json(problem: Problem, report: Report) -> dict:
     v = report.validation
     out = {
         "tree": report.tree.path,
-        "goal": problem.objects[report.goal].to_json(),
+        **(
+            {"goals": [problem.objects[g].to_json() for g in report.goals]}
+            if report.goals
+            else {"goal": problem.objects[report.goal].to_json()}
+        ),
         "goal_source": report.goal_source,
         "method": report.tree.method,
         "valid": report.valid,

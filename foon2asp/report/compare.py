@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import csv
 import io
+import json
 
-from foon2asp.analysis.compare import Row
+from foon2asp.analysis.compare import MealRow, Row
 from foon2asp.foon.problem import Problem
 from foon2asp.report import registry
 from foon2asp.report.registry import register
@@ -130,12 +131,109 @@ def render_json(problem: Problem, rows: list[Row]) -> str:
     return json_list([tree_json(problem, t) for r in rows for t in r.trees.values()]) + "\n"
 
 
-register("compare", "text", "txt", "aligned table, goals x methods")(lambda problem, rows: render_table(problem, rows))
-register("compare", "markdown", "md", "Markdown table, goals x methods")(
-    lambda problem, rows: render_table(problem, rows, markdown=True)
-)
-register("compare", "csv", "csv", "one row per goal and method")(render_csv)
-register("compare", "json", "json", "solve-shaped results, each with valid")(render_json)
+def _meal_lines(problem: Problem, row: MealRow, markdown: bool) -> list[str]:
+    head = ["", "units", "success", "inputs", "depth"]
+
+    def cells(cost: dict, status: str) -> list[str]:
+        if not cost:
+            return [status, "-", "-", "-"]
+        depth = cost.get("depth")
+        return [str(cost["units"]), f"{cost['success']:.4g}", str(cost["inputs"]), "-" if depth is None else str(depth)]
+
+    body = [[_label(problem, t.goal) + " (alone)"] + cells(t.cost, t.status) for t in row.singles]
+    total = row.total()
+    body.append(["sum of single optima"] + cells(total, "-"))
+    status = "" if row.meal.status == "optimal" else f" ({row.meal.status})"
+    body.append([f"meal, together{status}"] + cells(row.meal.cost, row.meal.status))
+    if markdown:
+        out = ["| " + " | ".join(head) + " |", "|---|---:|---:|---:|---:|"]
+        out += ["| " + " | ".join(line) + " |" for line in body]
+    else:
+        widths = [max(len(x[i]) for x in [head] + body) for i in range(len(head))]
+        out = [
+            "  ".join(c.ljust(w) if i == 0 else c.rjust(w) for i, (c, w) in enumerate(zip(line, widths))).rstrip()
+            for line in [head] + body
+        ]
+    if total and row.meal.has_tree:
+        saved = total["units"] - row.meal.cost["units"]
+        valid = "valid" if row.meal.extra.get("valid") else "INVALID"
+        out += ["", f"{'- ' if markdown else ''}shared units counted once: {saved} unit(s) fewer together ({valid})"]
+    elif row.meal.extra.get("reason"):
+        out += ["", f"{'- ' if markdown else ''}{row.meal.extra['reason']}"]
+    return out
+
+
+def render_meal(problem: Problem, row: MealRow, markdown: bool = False) -> str:
+    """The meal's optimum beside each goal's own optimum and their sum."""
+    out = [f"Meal of {len(row.goals)} goals: one tree for all, beside the single optima", ""]
+    return "\n".join(out + _meal_lines(problem, row, markdown)) + "\n"
+
+
+def meal_json(problem: Problem, row: MealRow) -> dict:
+    return {
+        "goals": [problem.objects[g].to_json() for g in row.goals],
+        "meal": tree_json(problem, row.meal),
+        "singles": [tree_json(problem, t) for t in row.singles],
+        "sum_of_singles": row.total(),
+    }
+
+
+def meal_csv(problem: Problem, row: MealRow) -> str:
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["row", "status", "units", "success", "inputs", "depth"])
+    for t in row.singles:
+        c = t.cost
+        w.writerow(
+            [
+                str(problem.objects[t.goal]),
+                t.status,
+                c.get("units", ""),
+                c.get("success", ""),
+                c.get("inputs", ""),
+                c.get("depth", ""),
+            ]
+        )
+    total = row.total()
+    w.writerow(
+        [
+            "sum of single optima",
+            "",
+            total.get("units", ""),
+            total.get("success", ""),
+            total.get("inputs", ""),
+            total.get("depth", ""),
+        ]
+    )
+    c = row.meal.cost
+    w.writerow(
+        ["meal", row.meal.status, c.get("units", ""), c.get("success", ""), c.get("inputs", ""), c.get("depth", "")]
+    )
+    return buf.getvalue()
+
+
+def _text(problem: Problem, rows) -> str:
+    return render_meal(problem, rows) if isinstance(rows, MealRow) else render_table(problem, rows)
+
+
+def _markdown(problem: Problem, rows) -> str:
+    return render_meal(problem, rows, True) if isinstance(rows, MealRow) else render_table(problem, rows, True)
+
+
+def _csv(problem: Problem, rows) -> str:
+    return meal_csv(problem, rows) if isinstance(rows, MealRow) else render_csv(problem, rows)
+
+
+def _json(problem: Problem, rows) -> str:
+    if isinstance(rows, MealRow):
+        return json.dumps(meal_json(problem, rows)) + "\n"
+    return render_json(problem, rows)
+
+
+register("compare", "text", "txt", "aligned table, goals x methods (a meal: beside the single optima)")(_text)
+register("compare", "markdown", "md", "Markdown table, goals x methods (a meal: beside the single optima)")(_markdown)
+register("compare", "csv", "csv", "one row per goal and method")(_csv)
+register("compare", "json", "json", "solve-shaped results, each with valid")(_json)
 
 
 def render(problem: Problem, rows: list[Row], fmt: str) -> str:

@@ -28,7 +28,7 @@ from foon2asp.analysis.check import Finding, TreeFile, check_tree, check_units, 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem
-from foon2asp.tree.tasktree import TaskTree
+from foon2asp.tree.tasktree import TaskTree, meal_of
 
 #: drawing formats and what ``dot`` calls them
 FORMATS = ("dot", "svg", "png", "pdf")
@@ -223,8 +223,9 @@ def tree_file_marks(tree: TreeFile, data=None, problem: Problem | None = None, g
     if problem is None:
         top = tree.goal or _top_product(units)
         return Marks(title=f"{top if top else tree.path} -- {len(units)} units", goal=top)
-    goal_id, _ = resolve_goal(data, problem, tree, goal)
-    rep = check_tree(problem, tree, goal_id)
+    goals, _ = resolve_goal(data, problem, tree, goal)
+    goal_id = meal_of(goals)[0]
+    rep = check_tree(problem, tree, goals)
     position = {u: k for k, u in enumerate(rep.ids) if u is not None}
     kitchen = frozenset(o for u in units for o in u.inputs if problem.foon.object_ids.get(o) in problem.kitchen)
     verdict = "valid" if rep.valid else "INVALID"

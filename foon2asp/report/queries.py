@@ -51,8 +51,13 @@ def _cycle_json(problem: Problem, pairs: list[tuple[int, int]]) -> list[dict]:
 
 def missing_json(problem: Problem, result: MissingResult) -> dict:
     """``{"goal", "status", "missing", "units", "cost", "time_s"}`` (+ ``reason``, ``path``, ``cycle``)."""
+    head = (
+        {"goals": [problem.objects[g].to_json() for g in result.goals]}
+        if result.goals
+        else {"goal": problem.objects[result.goal].to_json()}
+    )
     out = {
-        "goal": problem.objects[result.goal].to_json(),
+        **head,
         "status": result.status,
         "missing": [problem.objects[o].to_json() for o in result.missing],
         "units": [problem.units[u].to_json() for u in result.units],
@@ -74,7 +79,10 @@ def _needs(problem: Problem, o: int, u: int, nxt: int) -> str:
 def missing_text(problem: Problem, result: MissingResult) -> str:
     goal = problem.objects[result.goal]
     if not result.has_tree:
-        lines = [f"Goal: {goal}", f"Status: {result.status}: {result.reason or 'no tree'}"]
+        heading = [f"Goal: {goal}"]
+        if result.goals:
+            heading = [f"Meal of {len(result.goals)} goals:"] + [f"  + {problem.objects[g]}" for g in result.goals]
+        lines = heading + [f"Status: {result.status}: {result.reason or 'no tree'}"]
         if result.cycle:
             chain = result.path + result.cycle
             if result.path:
@@ -88,17 +96,18 @@ def missing_text(problem: Problem, result: MissingResult) -> str:
                     _needs(problem, o, u, nxt) + (" (back to the start)" if k == len(result.cycle) - 1 else "")
                 )
         return "\n".join(lines) + "\n"
-    tree = TaskTree(result.goal, "missing", result.status, result.units, result.cost, result.time_s)
+    tree = TaskTree(result.goal, "missing", result.status, result.units, result.cost, result.time_s, goals=result.goals)
     body = tree_text(problem, tree).splitlines()
+    top = 2 + len(result.goals)  # the heading (one line per goal of a meal) and the method line
     if result.missing:
         add = [f"  Missing {len(result.missing)} object(s); add to the kitchen:"]
         add += [f"    + {problem.objects[o]}" for o in result.missing]
         add.append("  Then:")
-    elif result.goal in problem.kitchen:
+    elif all(g in problem.kitchen for g in (result.goals or (result.goal,))):
         add = ["  Nothing is missing: the goal is in the kitchen."]
     else:
         add = ["  Nothing is missing: the goal can be made from the kitchen."]
-    return "\n".join(body[:2] + add + body[2:]) + "\n"
+    return "\n".join(body[:top] + add + body[top:]) + "\n"
 
 
 def _ordered(symbols: list[clingo.Symbol]) -> list[clingo.Symbol]:

@@ -10,10 +10,17 @@ from foon2asp.foon.problem import Problem
 from foon2asp.tree.tasktree import TaskTree
 
 
+def _goal_json(problem: Problem, tree: TaskTree) -> dict:
+    """``{"goal": OBJ}``, or ``{"goals": [OBJ, ...]}`` for a meal."""
+    if tree.is_meal:
+        return {"goals": [problem.objects[g].to_json() for g in tree.goals]}
+    return {"goal": problem.objects[tree.goal].to_json()}
+
+
 def tree_json(problem: Problem, tree: TaskTree) -> dict:
-    """The stable JSON shape of one result."""
+    """The stable JSON shape of one result (a meal has ``"goals"`` instead of ``"goal"``)."""
     out = {
-        "goal": problem.objects[tree.goal].to_json(),
+        **_goal_json(problem, tree),
         "method": tree.method,
         "status": tree.status,
         "cost": tree.cost,
@@ -50,9 +57,15 @@ def _cost_text(cost: dict) -> str:
     return ", ".join(f"{k} {v}" for k, v in cost.items())
 
 
+def goal_heading(problem: Problem, tree: TaskTree) -> str:
+    """``Goal: OBJ``, or for a meal ``Meal of N goals:`` and one ``  + OBJ`` line per goal."""
+    if tree.is_meal:
+        return f"Meal of {len(tree.goals)} goals:\n" + "\n".join(f"  + {problem.objects[g]}" for g in tree.goals)
+    return f"Goal: {problem.objects[tree.goal]}"
+
+
 def tree_text(problem: Problem, tree: TaskTree) -> str:
-    goal = problem.objects[tree.goal]
-    head = f"Goal: {goal}\nMethod: {tree.method}  Status: {tree.status}"
+    head = f"{goal_heading(problem, tree)}\nMethod: {tree.method}  Status: {tree.status}"
     if tree.cost:
         head += f"  ({_cost_text(tree.cost)})"
     if "rank" in tree.extra:
@@ -75,9 +88,11 @@ def tree_text(problem: Problem, tree: TaskTree) -> str:
 
 
 def tree_header(problem: Problem, tree: TaskTree) -> str:
-    """``task tree for <goal> (<method>, <status>, <n> units)``: the comment line a FOON file starts with."""
-    goal = problem.objects[tree.goal]
-    return f"task tree for {goal} ({tree.method}, {tree.status}, {len(tree.units)} units)"
+    """``task tree for <goal> (<method>, <status>, <n> units)``: the comment line a FOON file starts with
+    (``meal for <goal> + <goal> ...`` for a meal)."""
+    goal = " + ".join(str(problem.objects[g]) for g in tree.meal)
+    what = "meal" if tree.is_meal else "task tree"
+    return f"{what} for {goal} ({tree.method}, {tree.status}, {len(tree.units)} units)"
 
 
 def tree_foon(problem: Problem, tree: TaskTree, dialect: str = "official") -> str:

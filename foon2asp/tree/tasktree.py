@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 from foon2asp.foon.problem import Problem
@@ -12,11 +13,13 @@ STATUSES = ("optimal", "feasible", "unreachable", "unknown", "found", "not-found
 
 @dataclass
 class TaskTree:
-    """The answer for one goal by one method.
+    """The answer for one goal (or one meal: several goals at once) by one method.
 
     ``units`` are unit ids in executable order (empty when there is no tree).
     ``status``: ``optimal`` | ``feasible`` | ``unreachable`` | ``unknown`` for
     ASP methods, ``found`` | ``not-found`` for the search baselines.
+    For a meal ``goals`` holds every goal (``goal`` is the first); for a
+    single goal ``goals`` is empty.
     """
 
     goal: int
@@ -27,10 +30,39 @@ class TaskTree:
     time_s: float = 0.0
     stats: dict = field(default_factory=dict)
     extra: dict = field(default_factory=dict)
+    goals: tuple[int, ...] = ()
 
     @property
     def has_tree(self) -> bool:
         return self.status in ("optimal", "feasible", "found")
+
+    @property
+    def meal(self) -> tuple[int, ...]:
+        """Every goal of the tree (one for a single goal)."""
+        return self.goals or (self.goal,)
+
+    @property
+    def is_meal(self) -> bool:
+        return len(self.goals) > 1
+
+
+Goals = int | tuple[int, ...]
+
+
+def meal_of(goal: int | Iterable[int]) -> tuple[int, ...]:
+    """A goal id or several as a tuple of distinct ids (first occurrence kept)."""
+    if isinstance(goal, int):
+        return (goal,)
+    out = tuple(dict.fromkeys(int(g) for g in goal))
+    if not out:
+        raise ValueError("a meal needs at least one goal")
+    return out
+
+
+def goal_fields(goal: int | Iterable[int]) -> dict:
+    """``goal`` and ``goals`` keyword arguments of :class:`TaskTree` for one goal or a meal."""
+    meal = meal_of(goal)
+    return {"goal": meal[0], "goals": meal if len(meal) > 1 else ()}
 
 
 def executable_order(problem: Problem, units: list[int] | set[int]) -> list[int]:
@@ -44,13 +76,18 @@ def executable_order(problem: Problem, units: list[int] | set[int]) -> list[int]
     return sorted(units, key=lambda u: (level.get(u, math.inf), u))
 
 
-def measures(problem: Problem, goal: int, units: list[int]) -> dict:
-    """Every measure of a tree: units, success product, input nodes, depth."""
+def measures(problem: Problem, goal: int | Iterable[int], units: list[int]) -> dict:
+    """Every measure of a tree: units, success product, input nodes, depth.
+
+    For a meal (several goals) the depth is the number of rounds until every
+    goal is had: the greatest depth of its goals (None when one is not made).
+    """
     obj_level, _ = problem.derivation_levels(list(units))
     success = 1.0
     for u in units:
         success *= problem.rates[u]
-    depth = obj_level.get(goal)
+    levels = [obj_level.get(g) for g in meal_of(goal)]
+    depth = None if any(d is None for d in levels) else max(d for d in levels if d is not None)
     return {
         "units": len(units),
         "success": float(f"{success:.6g}"),

@@ -33,6 +33,12 @@ contribute to ``g`` at all.
   tree is the optimum (no second solve).
 * ``--max-depth N`` alone: one solve with the bound N: units (etc.) within N.
 
+Meals (a tuple of goals): the depth of a meal is the round by which every
+goal is had, the greatest of the goals' levels.  A meal's bound ``d`` grounds
+the block of each goal for ``d`` (query and within off) and a block
+``meal(m,d)`` over them (``meal_query(m)``, ``meal_within(m)``); the least
+fixpoint's lower bound for a meal is the greatest level of its goals.
+
 The depth of a tree is the level of the goal in
 :meth:`Problem.derivation_levels` over the tree's units, which is what
 :func:`foon2asp.tree.measures` reports; ``had_at(k,O,t)`` is "level of O <= t".
@@ -145,8 +151,12 @@ class Levels:
                         frontier.append(u)
         return obj_level, unit_level
 
-    def level(self, goal: int) -> int | None:
-        """The least depth of any tree for ``goal`` (0 in the kitchen, None: no tree)."""
+    def level(self, goal: int | tuple[int, ...]) -> int | None:
+        """The least depth of any tree for ``goal`` (0 in the kitchen, None: no tree);
+        for a meal, the greatest over its goals."""
+        if not isinstance(goal, int):
+            levels = [self.level(g) for g in goal]
+            return None if any(x is None for x in levels) else max(x for x in levels if x is not None)
         return 0 if goal in self.kitchen else self.object_level.get(goal)
 
     def windows(self, goal: int, bound: int) -> list[tuple[int, int, int]]:
@@ -189,6 +199,12 @@ def levels(session) -> Levels:
     return index
 
 
+def _message(session) -> str:
+    """clingo's first message of the last failed call, or a generic one."""
+    messages = session.control.messages
+    return messages[0] if messages else "clingo failed"
+
+
 def block(session, goal: int, bound: int) -> int:
     """Ground the block for ``goal`` and ``bound`` (once) and return its id ``k``."""
     blocks = session.__dict__.setdefault("depth_blocks", {})
@@ -203,14 +219,43 @@ def block(session, goal: int, bound: int) -> int:
         session.ctl.add(name, [], text)
         session.ctl.ground([(name, []), ("bound", [num(k), num(goal), num(bound)])])
     except RuntimeError:
-        raise InputError(session._message("grounding the depth rounds")) from None
+        raise InputError(_message(session), "grounding the depth rounds") from None
     blocks[(goal, bound)] = k
     return k
 
 
-def bound_externals(session, goal: int, bound: int, count_depth: bool) -> dict[clingo.Symbol, bool]:
+def meal_block(session, meal: tuple[int, ...], bound: int) -> int:
+    """Ground the blocks of ``meal``'s goals and the meal block for ``bound`` (once); its id ``m``."""
+    blocks = session.__dict__.setdefault("depth_meal_blocks", {})
+    if (meal, bound) in blocks:
+        return blocks[(meal, bound)]
+    members = [block(session, g, bound) for g in meal]
+    m = len(blocks) + 1
+    name = f"depth_meal_{m}"
+    text = "".join(f"member({m},{k}).\n" for k in members)
+    num = clingo.Number
+    try:
+        session.ctl.add(name, [], text)
+        session.ctl.ground([(name, []), ("meal", [num(m), num(bound)])])
+    except RuntimeError:
+        raise InputError(_message(session), "grounding the depth rounds of a meal") from None
+    blocks[(meal, bound)] = m
+    return m
+
+
+def bound_externals(session, goal: int | tuple[int, ...], bound: int, count_depth: bool) -> dict[clingo.Symbol, bool]:
     """The externals for depth bound ``bound`` of ``goal``: query(k), and within(k) when
-    the depth cost is counted (the block is grounded if need be)."""
+    the depth cost is counted (the block is grounded if need be); for a meal
+    meal_query(m) and meal_within(m)."""
+    if not isinstance(goal, int):
+        if len(goal) == 1:
+            goal = goal[0]
+        else:
+            m = clingo.Number(meal_block(session, tuple(goal), bound))
+            out_meal = {clingo.Function("meal_query", [m]): True}
+            if count_depth:
+                out_meal[clingo.Function("meal_within", [m])] = True
+            return out_meal
     k = clingo.Number(block(session, goal, bound))
     out = {clingo.Function("query", [k]): True}
     if count_depth:
@@ -227,7 +272,7 @@ def depth_mode(options, ranked: tuple[str, ...]) -> str:
 
 def solve_depth(
     session,
-    goal: int,
+    goal: int | tuple[int, ...],
     shot: Callable[[dict, str | None], Any],
     tree_depth: Callable[[Any], int],
     mode: str,

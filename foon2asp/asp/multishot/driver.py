@@ -2,6 +2,10 @@
 features beyond a single optimisation: depth bounds (:mod:`foon2asp.depth`),
 human steps, the K best trees, all optimal trees and greedy retrieval.
 
+A goal may be a meal (a tuple of goal ids): ``goal(G)`` is then switched on
+for every goal, and a depth bound applies to the meal (every goal within the
+bound; see :mod:`foon2asp.asp.multishot.depth`).
+
 Every solve sets the externals it needs (``goal(G)``, ``query(k)``,
 ``within(k)``, exclusion guards) and switches them off again afterwards, so
 the next goal of the session starts clean; clingo proves each optimum anew
@@ -26,7 +30,7 @@ import clingo
 from foon2asp.asp import objectives
 from foon2asp.asp.control import Answer
 from foon2asp.asp.multishot import depth as depth_mod
-from foon2asp.tree.tasktree import TaskTree, executable_order, measures
+from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, goal_fields, meal_of, measures
 
 
 @dataclass
@@ -56,7 +60,7 @@ class Driver:
 
     def shot(
         self,
-        goal: int,
+        goal: Goals,
         externals: dict,
         mode: str | None,
         deadline: float | None,
@@ -88,7 +92,8 @@ class Driver:
             if on_model is not None:
                 on_model(model)
 
-        switched = {clingo.Function("goal", [clingo.Number(goal)]): True, **externals}
+        switched = {clingo.Function("goal", [clingo.Number(g)]): True for g in meal_of(goal)}
+        switched.update(externals)
         for atom, value in switched.items():
             ctl.assign_external(atom, value)
         self.solves += 1
@@ -110,7 +115,7 @@ class Driver:
 
     # -- one cost level ----------------------------------------------------
 
-    def level(self, goal: int, guards: dict, count: int, deadline, state: dict, on_model) -> tuple[Shot, int | None]:
+    def level(self, goal: Goals, guards: dict, count: int, deadline, state: dict, on_model) -> tuple[Shot, int | None]:
         """The best trees (up to ``count``, distinct) not yet excluded, with the depth bound used."""
         mode = "optN" if count > 1 else "opt"
 
@@ -153,19 +158,22 @@ class Driver:
 
     # -- a goal ------------------------------------------------------------
 
-    def solve(self, goal: int, on_model=None, time_limit: float | None = None) -> TaskTree:
+    def solve(self, goal: Goals, on_model=None, time_limit: float | None = None) -> TaskTree:
         options = self.options
         time_limit = options.time_limit if time_limit is None else time_limit
         t0 = time.perf_counter()
         deadline = None if not time_limit else t0 + time_limit
         self.solves = 0
         self.last_stats = {}
-        if goal not in self.session.goal_atoms:
+        meal = meal_of(goal)
+        goal = meal if len(meal) > 1 else meal[0]
+        if any(g not in self.session.goal_atoms for g in meal):
             return self._tree(goal, None, "unreachable", t0)
-        if goal in self.problem.kitchen:
+        if all(g in self.problem.kitchen for g in meal):
             return self._tree(goal, Answer((), (), True), "optimal", t0)
-        if self.session.ctl.symbolic_atoms[clingo.Function("reach", [clingo.Number(goal)])] is None:
-            # the grounder's fixpoint (tree.lp) never derives the goal: no tree at all
+        atoms = self.session.ctl.symbolic_atoms
+        if any(atoms[clingo.Function("reach", [clingo.Number(g)])] is None for g in meal):
+            # the grounder's fixpoint (tree.lp) never derives a goal: no tree at all
             return self._tree(goal, None, "unreachable", t0)
         if options.heuristic:
             return self._greedy(goal, deadline, t0, on_model)
@@ -214,17 +222,18 @@ class Driver:
             best.extra["_alternatives"] = trees[1:]
         return best
 
-    def _greedy(self, goal: int, deadline, t0: float, on_model) -> TaskTree:
+    def _greedy(self, goal: Goals, deadline, t0: float, on_model) -> TaskTree:
         shot = self.shot(goal, {}, "first", deadline, 1, on_model)
         if shot.answers:
             return self._tree(goal, shot.answers[0], "found", t0)
         return self._tree(goal, None, "unreachable" if shot.unsat and shot.finished else "unknown", t0)
 
-    def _tree(self, goal: int, answer: Answer | None, status: str, t0: float, bound: int | None = None) -> TaskTree:
+    def _tree(self, goal: Goals, answer: Answer | None, status: str, t0: float, bound: int | None = None) -> TaskTree:
         elapsed = round(time.perf_counter() - t0, 6)
         method = self.options.method
         if answer is None:
-            return TaskTree(goal, method, status, time_s=elapsed, stats=dict(self.last_stats, solves=self.solves))
+            stats = dict(self.last_stats, solves=self.solves)
+            return TaskTree(method=method, status=status, time_s=elapsed, stats=stats, **goal_fields(goal))
         units = executable_order(self.problem, list(answer.units))
         cost = measures(self.problem, goal, units)
         extra: dict = {"asp_cost": list(answer.cost)}
@@ -238,7 +247,16 @@ class Driver:
             refuted = self._state.get("refuted", [])
             extra["depth_refuted"] = {how: sum(1 for _, h in refuted if h == how) for how in ("grounder", "solver")}
         stats = dict(self.last_stats, solves=self.solves)
-        return TaskTree(goal, method, status, units, cost, elapsed, stats, extra)
+        return TaskTree(
+            method=method,
+            status=status,
+            units=units,
+            cost=cost,
+            time_s=elapsed,
+            stats=stats,
+            extra=extra,
+            **goal_fields(goal),
+        )
 
 
 def _with_depth(cost: tuple[int, ...], at: int, depth: int, levels: int) -> tuple[int, ...]:

@@ -1,0 +1,68 @@
+"""``foon2asp export pddl``: the goal's relevant part of the FOON as PDDL for classical planners."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from foon2asp.cli.main import constraint_options, data_options, guarded, load, main
+from foon2asp.errors import InputError
+from foon2asp.foon import goals as goals_mod
+from foon2asp.report import pddl
+
+
+@main.group()
+def export():
+    """Write a FOON problem in another planning language."""
+
+
+@export.command("pddl")
+@data_options
+@click.option("--goal", "goal", multiple=True, help="Goal label; repeat for a meal (every goal in :goal).")
+@click.option("--goals", "goals", help="FILE of goal objects or 'all' (the goals file): all of them in one :goal.")
+@click.option(
+    "--objective",
+    type=click.Choice(pddl.PDDL_OBJECTIVES),
+    default="units",
+    show_default=True,
+    help="units: plan length; success: integer action costs round(-1000 ln p) (:action-costs); inputs: input nodes.",
+)
+@click.option(
+    "-o",
+    "--output",
+    required=True,
+    type=click.Path(file_okay=False),
+    help="Directory for domain.pddl and problem.pddl.",
+)
+@click.option("--name", default="foon", show_default=True, help="Domain name (problem: NAME-task).")
+@constraint_options
+@guarded
+def export_pddl(
+    data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, objective, output, name, constraints
+):
+    """The goal's relevant part as a delete-free STRIPS domain and problem (DIR/domain.pddl, DIR/problem.pddl).
+
+    One action per functional unit, named u<id>-<motion> (a plan maps back to the units:
+    'foon2asp check PLAN --goal ...'); preconditions are the required inputs, effects the
+    products; kitchen items in :init, the goal(s) in :goal.  --forbid-motion and
+    --forbid-object remove actions; general --rule/--constraint programs, --require-* and
+    --max-units cannot be exported.
+    """
+    if goals == "all-objects":
+        raise InputError("--goals all-objects cannot be one PDDL goal; name goals with --goal or a goals FILE")
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    data, problem = kb.data, kb.problem
+    goal_ids = goals_mod.resolve(data, problem, goal, goals)
+    if not all(c.isalnum() or c in "-_" for c in name) or not name[:1].isalpha():
+        raise InputError(f"--name must be a PDDL name (a letter, then letters, digits, - or _), not {name!r}")
+    task = pddl.export(problem, goal_ids, objective, constraints, name)
+    out = Path(output)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "domain.pddl").write_text(task.domain, encoding="utf-8")
+    (out / "problem.pddl").write_text(task.problem, encoding="utf-8")
+    click.echo(
+        f"wrote {out / 'domain.pddl'} ({len(task.actions)} actions, {len(task.objects)} objects) "
+        f"and {out / 'problem.pddl'} ({len(task.goals)} goal(s))",
+        err=True,
+    )

@@ -1,0 +1,198 @@
+"""A FOON problem as PDDL: a delete-free STRIPS domain and a problem.
+
+``foon2asp export pddl`` writes the part of the FOON relevant to the goal(s)
+(the units a tree for them can use: :meth:`Problem.units_for`) so that any
+classical planner solves exactly the problem foon2asp solves:
+
+* one predicate ``(have ?o)``; every FOON object of the part is a constant
+  ``o<id>`` (a comment table in both files says which object each is);
+* one action per functional unit, named ``u<id>-<motion>``
+  (:func:`foon2asp.analysis.plans.action_name`, so a plan maps back to the
+  units): preconditions are the unit's *required* inputs (the utensil rule
+  applied), effects its *products*; nothing is ever deleted;
+* ``:init`` holds the kitchen items of the part, ``:goal`` every goal.
+
+A plan is a sequence of applicable actions, so its set of actions is a
+well-founded task tree, and a tree in executable order is a plan; an optimal
+plan repeats no action, so the fewest actions is the fewest units.  With
+``objective="success"`` each action costs its unit's integer weight
+round(-1000 ln p) (``:action-costs``), the weight ``--objective success``
+minimises; ``"inputs"`` costs the unit's number of input nodes.
+
+Constraints that only remove units (``--forbid-motion``, ``--forbid-object``)
+are applied here as filters; general ``--rule``/``--constraint`` programs,
+``--require-*`` and ``--max-units`` cannot be written as STRIPS and are refused.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+from foon2asp.analysis.plans import action_name
+from foon2asp.asp.constraints import ConstraintSpec, motion_name, normalise
+from foon2asp.asp.facts import neglog_weight
+from foon2asp.errors import InputError
+from foon2asp.foon.problem import Problem, walk_back
+
+#: objectives that PDDL can state (action costs per unit; "units" is plan length)
+PDDL_OBJECTIVES = ("units", "success", "inputs")
+
+
+@dataclass
+class PddlTask:
+    """The two PDDL texts and what their names stand for."""
+
+    domain: str
+    problem: str
+    #: action name -> FOON unit id
+    actions: dict[str, int] = field(default_factory=dict)
+    #: constant name -> FOON object id
+    objects: dict[str, int] = field(default_factory=dict)
+    goals: tuple[int, ...] = ()
+    objective: str = "units"
+
+
+def refuse_general(spec: ConstraintSpec | None) -> None:
+    """Raise InputError for constraints that are not unit filters."""
+    if spec is None:
+        return
+    bad = []
+    if spec.files or spec.extra:
+        bad.append("--constraint")
+    if spec.rules:
+        bad.append("--rule")
+    if spec.require_motion:
+        bad.append("--require-motion")
+    if spec.require_object:
+        bad.append("--require-object")
+    if spec.max_units is not None:
+        bad.append("--max-units")
+    if bad:
+        raise InputError(
+            f"{', '.join(bad)} cannot be exported to PDDL (only --forbid-motion and --forbid-object, which remove units)"
+        )
+
+
+def allowed(problem: Problem, u: int, spec: ConstraintSpec | None) -> bool:
+    """Does unit ``u`` pass the unit filters of ``spec`` (the same rules as the ASP constraints)?"""
+    if spec is None:
+        return True
+    unit = problem.units[u]
+    if unit.motion in {motion_name(m) for m in spec.forbid_motion}:
+        return False
+    labels = {normalise(x) for x in spec.forbid_object}
+    return not any(o.label in labels for o in (*unit.inputs, *unit.outputs))
+
+
+def exported_units(problem: Problem, goals: Iterable[int], spec: ConstraintSpec | None = None) -> list[int]:
+    """The units of the exported domain: those a tree for ``goals`` can use once the filters
+    of ``spec`` removed units (viable without the removed units, relevant to a goal)."""
+    refuse_general(spec)
+    keep = [u for u in range(len(problem.units)) if allowed(problem, u, spec)]
+    _, unit_level = problem.derivation_levels(keep)  # fires from the kitchen without the removed units
+    producers: dict[int, list[int]] = {}
+    for u in sorted(unit_level):
+        for o in problem.products[u]:
+            producers.setdefault(o, []).append(u)
+    units, _, _ = walk_back(list(goals), problem.kitchen, producers, problem.required)
+    return sorted(units)
+
+
+def _comment(text: object) -> str:
+    return " ".join(str(text).split())
+
+
+def export(
+    problem: Problem,
+    goals: Iterable[int],
+    objective: str = "units",
+    spec: ConstraintSpec | None = None,
+    name: str = "foon",
+) -> PddlTask:
+    """Domain and problem PDDL for making every goal of ``goals`` (see the module docstring)."""
+    goals = tuple(dict.fromkeys(goals))
+    if not goals:
+        raise InputError("no goal to export")
+    if objective not in PDDL_OBJECTIVES:
+        raise InputError(
+            f"objective {objective!r} cannot be exported to PDDL (have {', '.join(PDDL_OBJECTIVES)}; "
+            "a lexicographic list cannot be one action cost)"
+        )
+    units = exported_units(problem, goals, spec)
+    costs = objective != "units"
+    objs: list[int] = list(goals)
+    for u in units:
+        objs += problem.required[u]
+        objs += problem.products[u]
+    objs = sorted(set(objs))
+    const = {o: f"o{o}" for o in objs}
+    actions = {action_name(problem, u): u for u in units}
+
+    def cost_of(u: int) -> int:
+        if objective == "success":
+            return neglog_weight(problem.rates[u])
+        return len(problem.inputs[u])
+
+    goal_lines = [f"; goal {const[g]}: {_comment(problem.objects[g])}" for g in goals]
+    table = [f";   {const[o]:<8} {_comment(problem.objects[o])}" for o in objs]
+    what = {
+        "units": "plan length = number of units",
+        "success": "action cost = round(-1000 ln p) of the unit's motion success rate p",
+        "inputs": "action cost = the unit's number of input nodes",
+    }[objective]
+    head = [
+        "; written by foon2asp export pddl: a FOON problem as delete-free STRIPS",
+        f"; objective: {objective} ({what})",
+        "; action u<N>-<motion> is FOON unit N (unit ids as in 'foon2asp facts')",
+        *goal_lines,
+    ]
+    dom = head + [
+        "; objects (constants):",
+        *table,
+        f"(define (domain {name})",
+        "  (:requirements :strips" + (" :action-costs" if costs else "") + ")",
+        "  (:constants " + " ".join(const[o] for o in objs) + ")",
+        "  (:predicates (have ?o))",
+    ]
+    if costs:
+        dom.append("  (:functions (total-cost) - number)")
+    for act, u in actions.items():
+        unit = problem.units[u]
+        path, line = problem.foon.origins[u] if u < len(problem.foon.origins) else (None, None)
+        where = f" ({path}:{line})" if path else ""
+        dom.append(f"  ; unit {u}: {_comment(unit.motion)}{where}")
+        dom.append(f"  (:action {act}")
+        dom.append("    :parameters ()")
+        req = problem.required[u]
+        if req:
+            dom.append("    :precondition (and " + " ".join(f"(have {const[o]})" for o in req) + ")")
+        effects = [f"(have {const[o]})" for o in problem.products[u]]
+        if costs:
+            effects.append(f"(increase (total-cost) {cost_of(u)})")
+        dom.append("    :effect (and " + " ".join(effects) + "))")
+    dom.append(")")
+    init = [f"(have {const[o]})" for o in objs if o in problem.kitchen]
+    if costs:
+        init.append("(= (total-cost) 0)")
+    prob = head + [
+        "; objects:",
+        *table,
+        f"(define (problem {name}-task)",
+        f"  (:domain {name})",
+        "  (:init",
+        *[f"    {atom}" for atom in init],
+        "  )",
+        "  (:goal (and " + " ".join(f"(have {const[g]})" for g in goals) + "))",
+    ]
+    if costs:
+        prob.append("  (:metric minimize (total-cost))")
+    prob.append(")")
+    return PddlTask(
+        "\n".join(dom) + "\n",
+        "\n".join(prob) + "\n",
+        actions,
+        {c: o for o, c in const.items()},
+        goals,
+        objective,
+    )
