@@ -14,7 +14,8 @@ from collections.abc import Callable, Iterable
 import clingo
 
 from foon2asp.asp import encodings, objectives
-from foon2asp.asp.control import Control
+from foon2asp.asp.canonical import canonicalise
+from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import OPTIONAL, facts
 from foon2asp.asp.multishot.driver import Driver
 from foon2asp.asp.options import OBJECTIVES, AspOptions
@@ -75,7 +76,7 @@ class Session:
         }
 
     def _set_goal(self, goal: int, value: bool) -> None:
-        self.ctl.assign_external(clingo.Function("goal", [clingo.Number(goal)]), value)
+        self.control.assign({clingo.Function("goal", [clingo.Number(goal)]): value})
 
     def solve(
         self,
@@ -108,6 +109,12 @@ class Session:
         try:
             result = self.control.solve(record, time_limit or None)
             stats = self.stats()
+            if "units" in best and result.finished and self.options.canonical:
+                # several optimal trees: return the one that depends only on the input
+                deadline = None if not time_limit else t0 + time_limit
+                answer = Answer(tuple(sorted(best["units"])), tuple(best["cost"]), True)
+                answer, _ = canonicalise(self.control, self.candidates(goal), answer, deadline)
+                best["units"], best["cost"] = list(answer.units), list(answer.cost)
         finally:
             self._set_goal(goal, False)
         elapsed = time.perf_counter() - t0
@@ -129,6 +136,10 @@ class Session:
             stats,
             {"asp_cost": best.get("cost", [])} if best else {},
         )
+
+    def candidates(self, goal: int) -> tuple[int, ...]:
+        """The units a tree for ``goal`` can use (the same set in every grounding)."""
+        return self.problem.units_for([goal])
 
     def stats(self) -> dict:
         """Choices, conflicts, models and solve time of the last solve call."""
