@@ -10,11 +10,12 @@ from __future__ import annotations
 import re
 import time
 from collections.abc import Callable, Iterable
+from typing import Any
 
 import clingo
 
 from foon2asp.asp import encodings, objectives
-from foon2asp.asp.canonical import canonicalise
+from foon2asp.asp.canonical import canonicalise, chain_facts
 from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import OPTIONAL, facts
 from foon2asp.asp.multishot.driver import Driver
@@ -60,6 +61,9 @@ class Session:
         rules.append(("objective", _objective_facts(objectives.ranked(self.options))))
         rules += objectives.extra_parts(problem, self.options, units)
         rules.append(("goal", "#external goal(O) : object(O).\n"))
+        if self.options.canonical and not self.options.heuristic:
+            rules.append(("encodings/canonical.lp", encodings.encoding("canonical")))
+            rules.append(("unit order", chain_facts(units)))
         rules += list(self.options.programs)
         # facts nobody reads are left out (the strings, input/2, ...: user constraints read them)
         read = _read_predicates(rules)
@@ -71,6 +75,10 @@ class Session:
         self.control.ground()
         self.ground_s = time.perf_counter() - t0
         self._driver = None
+        if self.options.canonical:
+            # up to two distinct optimal trees in one solve: a second one calls for canonicalise()
+            conf: Any = self.ctl.configuration.solve
+            conf.opt_mode, conf.models, conf.project = "optN", "2", "project"
         self.goal_atoms = {
             a.symbol.arguments[0].number for a in self.ctl.symbolic_atoms.by_signature("goal", 1) if a.is_external
         }
@@ -97,11 +105,14 @@ class Session:
             stats = {"choices": 0, "conflicts": 0, "models": 0, "solve_s": 0.0}
             return TaskTree(goal, self.options.method, "unreachable", time_s=time.perf_counter() - t0, stats=stats)
         best: dict = {}
+        optimal: dict[tuple[int, ...], list[int]] = {}
 
         def record(model: clingo.Model) -> None:
             best["units"] = [s.arguments[0].number for s in model.symbols(shown=True) if s.name == "use"]
             best["cost"] = list(model.cost)
             best["proven"] = model.optimality_proven
+            if model.optimality_proven:
+                optimal.setdefault(tuple(sorted(best["units"])), best["cost"])
             if on_model is not None:
                 on_model(model)
 
@@ -109,12 +120,12 @@ class Session:
         try:
             result = self.control.solve(record, time_limit or None)
             stats = self.stats()
-            if "units" in best and result.finished and self.options.canonical:
-                # several optimal trees: return the one that depends only on the input
+            if len(optimal) > 1 and result.finished:
+                # several optimal trees: return the smallest one, which depends only on the input
                 deadline = None if not time_limit else t0 + time_limit
-                answer = Answer(tuple(sorted(best["units"])), tuple(best["cost"]), True)
-                answer, _ = canonicalise(self.control, self.candidates(goal), answer, deadline)
-                best["units"], best["cost"] = list(answer.units), list(answer.cost)
+                smallest = min(optimal)
+                answer, _ = canonicalise(self.control, Answer(smallest, tuple(optimal[smallest]), True), deadline)
+                best["units"], best["cost"], best["proven"] = list(answer.units), list(answer.cost), True
         finally:
             self._set_goal(goal, False)
         elapsed = time.perf_counter() - t0
@@ -136,10 +147,6 @@ class Session:
             stats,
             {"asp_cost": best.get("cost", [])} if best else {},
         )
-
-    def candidates(self, goal: int) -> tuple[int, ...]:
-        """The units a tree for ``goal`` can use (the same set in every grounding)."""
-        return self.problem.units_for([goal])
 
     def stats(self) -> dict:
         """Choices, conflicts, models and solve time of the last solve call."""

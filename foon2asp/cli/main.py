@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import functools
+import signal
 import sys
+import traceback
 from pathlib import Path
+from typing import Any
 
 import click
 
@@ -18,7 +21,8 @@ from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.batch import cluster as dask_runner
 from foon2asp.batch import run as batch_mod
-from foon2asp.errors import InputError
+from foon2asp.cli.params import SCHEDULER, SECONDS, int32
+from foon2asp.errors import InputError, Terminated, escape
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.demo import demo_dir
 from foon2asp.foon.loaders import Dataset
@@ -26,27 +30,120 @@ from foon2asp.foon.parser import read_foons, write_foon
 from foon2asp.foon.problem import UTENSIL_RULES, Problem
 from foon2asp.report.trees import render
 
+#: exit statuses: 2 bad input or usage, 3 an internal error, 130 SIGINT, 143 SIGTERM
+EXIT_INPUT, EXIT_INTERNAL, EXIT_SIGINT, EXIT_SIGTERM = 2, 3, 130, 143
 
-def fail(message: str, code: int = 2) -> None:
-    click.echo(f"foon2asp: error: {message}", err=True)
+
+def fail(message: str, code: int = EXIT_INPUT) -> None:
+    click.echo(f"foon2asp: error: {escape(message)}", err=True)
     sys.exit(code)
 
 
+def _debug() -> bool:
+    ctx = click.get_current_context(silent=True)
+    return bool(ctx is not None and ctx.find_root().params.get("debug"))
+
+
+def _terminate(signum, frame) -> None:
+    raise Terminated()
+
+
+def report_exception(exc: BaseException) -> None:
+    """Turn any exception of a command into one line on stderr and a documented exit status."""
+    if isinstance(exc, Terminated):
+        click.echo("foon2asp: terminated", err=True)
+        sys.exit(EXIT_SIGTERM)
+    if isinstance(exc, KeyboardInterrupt):
+        click.echo("foon2asp: interrupted", err=True)
+        sys.exit(EXIT_SIGINT)
+    if isinstance(exc, InputError):
+        fail(str(exc))
+    if isinstance(exc, BrokenPipeError):
+        sys.exit(0)
+    if isinstance(exc, OSError) and exc.filename is not None:
+        fail(f"{exc.filename}: {exc.strerror or exc}")
+    if isinstance(exc, RecursionError | MemoryError):
+        fail(f"input too large or too deeply nested ({type(exc).__name__})")
+    if _debug():
+        traceback.print_exception(exc)
+    fail(
+        f"internal error: {type(exc).__name__}: {exc} -- please report it with the command line"
+        f"{'' if _debug() else ' (--debug shows the traceback)'}",
+        EXIT_INTERNAL,
+    )
+
+
 def guarded(func):
-    """Run a command; bad input becomes one line on stderr and exit code 2."""
+    """Run a command: bad input is one line on stderr and exit status 2, an internal error one line
+    and 3 (the traceback with --debug), SIGINT 130, SIGTERM 143; never a traceback otherwise."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         try:
             return func(*args, **kwargs)
-        except InputError as exc:
-            fail(str(exc))
-        except KeyboardInterrupt:
-            fail("interrupted", 130)
-        except BrokenPipeError:
-            sys.exit(0)
+        except (SystemExit, click.exceptions.Exit, click.ClickException):
+            raise
+        except BaseException as exc:
+            report_exception(exc)
 
     return wrapper
+
+
+def writable_dir(path: str | Path) -> Path:
+    """``path`` as a directory, created with its parents (an error names the path)."""
+    out = Path(path)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"cannot create the output directory: {exc.strerror or exc}", str(out)) from None
+    if not out.is_dir():
+        raise InputError("output path is not a directory", str(out))
+    return out
+
+
+def write_file(path: str | Path, text: str) -> None:
+    """Write ``text`` to ``path``, creating its directory (an error names the path)."""
+    out = Path(path)
+    if out.parent != Path("."):
+        writable_dir(out.parent)
+    try:
+        out.write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise InputError(f"cannot write the output file: {exc.strerror or exc}", str(out)) from None
+
+
+class Main(click.Group):
+    """The command group: usage errors are one line too, SIGTERM is an interrupt (exit 143)."""
+
+    def main(self, *args: Any, standalone_mode: bool = True, **kwargs: Any) -> Any:
+        run: Any = super().main
+        if not standalone_mode:
+            return run(*args, standalone_mode=False, **kwargs)
+        try:
+            previous = signal.signal(signal.SIGTERM, _terminate)
+        except ValueError:  # not the main thread
+            previous = None
+        try:
+            rv = run(*args, standalone_mode=False, **kwargs)
+        except click.exceptions.Exit as exc:
+            sys.exit(exc.exit_code)
+        except click.ClickException as exc:
+            message = " ".join(exc.format_message().split())
+            ctx = getattr(exc, "ctx", None)
+            name = ctx.command_path if ctx is not None else "foon2asp"
+            hint = f" (see '{name} --help')" if isinstance(exc, click.UsageError) else ""
+            click.echo(f"foon2asp: error: {escape(message)}{hint}", err=True)
+            sys.exit(exc.exit_code)
+        except click.Abort as exc:
+            report_exception(exc.__context__ if isinstance(exc.__context__, KeyboardInterrupt) else KeyboardInterrupt())
+        except (SystemExit, BrokenPipeError):
+            raise
+        except BaseException as exc:
+            report_exception(exc)
+        finally:
+            if previous is not None:
+                signal.signal(signal.SIGTERM, previous)
+        sys.exit(rv if isinstance(rv, int) else 0)
 
 
 def data_options(func):
@@ -133,7 +230,7 @@ def constraint_options(func):
             metavar="LABEL",
             help="Some unit of the tree has an input or output labelled LABEL; repeatable.",
         ),
-        click.option("--max-units", type=click.IntRange(min=0), help="The tree has at most N units."),
+        click.option("--max-units", type=int32(min=0), help="The tree has at most N units."),
     ]
     for opt in reversed(opts):
         wrapper = opt(wrapper)
@@ -162,8 +259,8 @@ def load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_
         utensils=utensils,
         strict=strict,
     )
-    for warning in data.foon.warnings:
-        click.echo(f"foon2asp: warning: {warning}", err=True)
+    for warning in data.foon.warnings + data.warnings:
+        click.echo(f"foon2asp: warning: {escape(warning)}", err=True)
     problem = Problem.from_dataset(data, utensil_rule)
     if data.motion:
         unknown = problem.unknown_motions()
@@ -215,17 +312,17 @@ def solver_options(func):
     opts = [
         click.option(
             "--max-depth",
-            type=click.IntRange(min=1),
+            type=int32(min=1),
             help="Only trees of at most N sequential rounds (the goal's level); with --objective depth, the search stops there.",
         ),
         click.option(
             "--human-steps",
-            type=click.IntRange(min=0),
+            type=int32(min=0),
             help="At most M units may be done by a person (success 1.0); the solver picks them, the output marks them.",
         ),
         click.option(
             "--models",
-            type=click.IntRange(min=1),
+            type=int32(min=1),
             default=1,
             show_default=True,
             help="The K best distinct trees per goal, best first.",
@@ -238,7 +335,7 @@ def solver_options(func):
         ),
         click.option(
             "--threads",
-            type=click.IntRange(min=1),
+            type=int32(min=1, max=64),
             default=1,
             show_default=True,
             help="clingo solver threads (parallel mode).",
@@ -260,10 +357,16 @@ def safe_name(index: int, label: str) -> str:
     return f"{index:03d}-{keep}"
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(cls=Main, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="foon2asp")
-def main():
-    """foon2asp: minimal, well-founded FOON task trees with answer-set programming."""
+@click.option("--debug", is_flag=True, help="On an internal error (exit status 3), also print the traceback.")
+def main(debug):
+    """foon2asp: minimal, well-founded FOON task trees with answer-set programming.
+
+    Exit status: 0 success, 1 a negative answer (check: invalid tree; query:
+    unsatisfiable), 2 bad input or usage, 3 an internal error, 130 interrupted
+    (SIGINT), 143 terminated (SIGTERM).
+    """
 
 
 @main.command()
@@ -276,7 +379,7 @@ def main():
 )
 @click.option("--format", "fmt", type=click.Choice(report.names("trees")), default="text", show_default=True)
 @click.option("--output", type=click.Path(file_okay=False), help="Also write one file per goal into this directory.")
-@click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
+@click.option("--time-limit", type=SECONDS, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
 @solver_options
 @guarded
 def solve(
@@ -315,9 +418,7 @@ def solve(
     )
     run = methods.runner(method, problem, options)
     trees = []
-    out_dir = Path(output) if output else None
-    if out_dir:
-        out_dir.mkdir(parents=True, exist_ok=True)
+    out_dir = writable_dir(output) if output else None
     for index, g in enumerate(goal_ids, 1):
         tree = run(g)
         found = alternatives(tree)  # --models / --all-optimal: the further trees, best first
@@ -325,7 +426,7 @@ def solve(
         if out_dir:
             ext = report.get("trees", fmt).extension
             name = f"{safe_name(index, problem.objects[g].label)}.{ext}"
-            (out_dir / name).write_text(render(problem, found, fmt), encoding="utf-8")
+            write_file(out_dir / name, render(problem, found, fmt))
     _solver_warnings(problem, trees)
     click.echo(render(problem, trees, fmt), nl=False)
 
@@ -344,7 +445,7 @@ def facts(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals
     text = facts_text(problem, goal_nodes=goal_nodes)
     text += "".join(f"goal({g}).\n" for g in fixed)
     if output:
-        Path(output).write_text(text, encoding="utf-8")
+        write_file(output, text)
         click.echo(f"wrote {len(text.splitlines())} lines to {output}", err=True)
     else:
         click.echo(text, nl=False)
@@ -363,8 +464,13 @@ def merge(files, output, strict):
     foon = read_foons(files, strict)
     for warning in foon.warnings:
         click.echo(f"foon2asp: warning: {warning}", err=True)
-    with open(output, "w", encoding="utf-8") as fh:
-        write_foon(foon, fh, header=f"merged by foon2asp from {len(files)} file(s)")
+    if Path(output).parent != Path("."):
+        writable_dir(Path(output).parent)
+    try:
+        with open(output, "w", encoding="utf-8") as fh:
+            write_foon(foon, fh, header=f"merged by foon2asp from {len(files)} file(s)")
+    except OSError as exc:
+        raise InputError(f"cannot write the output file: {exc.strerror or exc}", output) from None
     click.echo(
         f"merged {len(files)} file(s): {len(foon.units)} units, {len(foon.objects)} objects -> {output}", err=True
     )
@@ -413,7 +519,7 @@ def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict,
     help="Comma-separated registered methods (see 'foon2asp methods').",
 )
 @click.option("--format", "fmt", type=click.Choice(report.names("compare")), default="text", show_default=True)
-@click.option("--time-limit", type=float, help="Seconds per goal for ASP methods.")
+@click.option("--time-limit", type=SECONDS, help="Seconds per goal for ASP methods.")
 @guarded
 def compare(
     data_dir,
@@ -475,7 +581,7 @@ def reachable(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, g
 @goal_options
 @constraint_options
 @click.option("--format", "fmt", type=click.Choice(report.names("missing")), default="text", show_default=True)
-@click.option("--time-limit", type=float, help="Seconds per goal; the best answer so far is reported as 'feasible'.")
+@click.option("--time-limit", type=SECONDS, help="Seconds per goal; the best answer so far is reported as 'feasible'.")
 @guarded
 def missing(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, time_limit, constraints):
     """The fewest objects to add to the kitchen so a goal can be made (proven minimal), and the tree."""
@@ -502,13 +608,13 @@ def missing(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goa
 )
 @click.option(
     "--models",
-    type=click.IntRange(min=0),
+    type=int32(min=0),
     default=1,
     show_default=True,
     help="Models to print (0 = all); with an objective, the optimum.",
 )
 @click.option("--format", "fmt", type=click.Choice(report.names("query")), default="text", show_default=True)
-@click.option("--time-limit", type=float, help="Seconds for the solve.")
+@click.option("--time-limit", type=SECONDS, help="Seconds for the solve.")
 @guarded
 def query(
     program,
@@ -568,9 +674,11 @@ def _method_list(values: tuple[str, ...]) -> list[str]:
     help="Results, one JSON line per (goal, method).",
 )
 @click.option("--resume", is_flag=True, help="Continue OUTPUT: skip the (goal, method) pairs it already holds.")
-@click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True, help="Worker processes.")
-@click.option("--scheduler", metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra).")
-@click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
+@click.option("--workers", type=int32(min=1, max=1024), default=1, show_default=True, help="Worker processes.")
+@click.option(
+    "--scheduler", type=SCHEDULER, metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra)."
+)
+@click.option("--time-limit", type=SECONDS, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
 @click.option(
     "--opt-strategy",
     callback=_opt_strategy,

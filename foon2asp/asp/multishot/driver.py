@@ -107,7 +107,7 @@ class Driver:
                 found = [Answer(a.units, a.cost, True, a.human) for a in found]
                 if self.options.canonical:
                     # several optimal trees: the one that depends only on the input
-                    found[0], _ = canonicalise(control, self.session.candidates(goal), found[0], deadline)
+                    found[0], _ = canonicalise(control, found[0], deadline)
         finally:
             control.assign(dict.fromkeys(switched, False))
         return Shot(found, result.unsatisfiable is True, finished)
