@@ -108,6 +108,10 @@ class Driver:
                 if self.options.canonical:
                     # several optimal trees: the one that depends only on the input
                     found[0], _ = canonicalise(control, found[0], deadline)
+            elif found and mode == "optN" and finished and found[0].proven and self.options.canonical:
+                # the first tree is the canonical one; the others follow in id order
+                first, _ = canonicalise(control, found[0], deadline)
+                found = [first] + [a for a in found if a.units != first.units][: max(0, count - 1)]
         finally:
             control.assign(dict.fromkeys(switched, False))
         return Shot(found, result.unsatisfiable is True, finished)
