@@ -3,7 +3,8 @@
 * :data:`SECONDS` -- a finite, non-negative number of seconds (``nan``, ``inf``, ``-1`` refused);
 * :func:`int32` -- an integer within what the solver takes (clingo numbers are 32-bit), so an
   overflow can never turn into a wrong answer;
-* :data:`SCHEDULER` -- a Dask scheduler address ``[tcp://|tls://|inproc://|ucx://]HOST:PORT``.
+* :data:`SCHEDULER` -- a Dask scheduler address ``[tcp://|tls://|ucx://|ws://|wss://]HOST:PORT``
+  (a port is required, except for ``inproc://``).
 """
 
 from __future__ import annotations
@@ -62,6 +63,10 @@ class SchedulerAddress(click.ParamType):
                 ctx,
             )
         port = m.group(3)
+        if port is None and m.group(1) != "inproc":
+            self.fail(
+                f"{escape(text)!r} has no port (expected [tcp://]HOST:PORT, e.g. tcp://127.0.0.1:8786)", param, ctx
+            )
         if port is not None and not 0 < int(port) < 65536:
             self.fail(f"port {port} of {escape(text)!r} is not in 1..65535", param, ctx)
         return text
