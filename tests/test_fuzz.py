@@ -25,7 +25,7 @@ from helpers import build
 
 pytest.importorskip("hypothesis")
 
-from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import HealthCheck, assume, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
 from foon2asp.analysis.check import read_trees  # noqa: E402
@@ -214,6 +214,7 @@ LABEL = st.text(
 @FUZZ
 @given(label=LABEL)
 def test_labels_round_trip_and_never_change_the_program(label):
+    assume(" ".join(label.split()).lower() not in ("b", "c"))  # another object of the FOON
     problem = build([("mix", [label, "b"], ["c"])], [label, "b"])
     text = facts(problem)
     ctl = clingo.Control(["--warn=none"])
