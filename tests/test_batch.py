@@ -244,6 +244,11 @@ def test_dask_local_cluster(shared_problem, tmp_path):
     b = {key(r): outcome(r) for r in read_results(tmp_path / "dask.jsonl")}
     assert a == b
 
+    def trees(name):
+        return {key(r): r["units"] for r in read_results(tmp_path / name) if r["requested_method"] == "asp"}
+
+    assert trees("local.jsonl") == trees("dask.jsonl")  # canonical trees: the same trees on Dask
+
 
 def test_dask_missing_is_a_clear_error(monkeypatch):
     import builtins
