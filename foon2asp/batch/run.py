@@ -49,6 +49,7 @@ except ModuleNotFoundError:  # pragma: no cover - not POSIX
     fcntl = None  # type: ignore[assignment]
 
 from foon2asp import methods as methods_mod
+from foon2asp.asp.control import deferred_signals
 from foon2asp.asp.facts import facts
 from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
@@ -257,11 +258,12 @@ class ResultFile:
     def append(self, line: str) -> None:
         data = line.encode("utf-8")
         view = memoryview(data)
-        while view:
-            written = os.write(self.fd, view)
-            view = view[written:]
-        if self.sync:
-            os.fsync(self.fd)
+        with deferred_signals():  # an interrupt waits until the line is whole
+            while view:
+                written = os.write(self.fd, view)
+                view = view[written:]
+            if self.sync:
+                os.fsync(self.fd)
 
     def close(self) -> None:
         os.close(self.fd)
