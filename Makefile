@@ -4,7 +4,7 @@ VENV   ?= .venv
 BIN     = $(VENV)/bin
 SHARED ?= ../shared
 
-.PHONY: install install-demo demo test lint shell bench clean
+.PHONY: install install-demo demo test lint shell bench clean fuzz
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -45,3 +45,9 @@ bench: install
 
 clean:
 	rm -rf $(VENV) build *.egg-info out .pytest_cache
+
+# property-based fuzzing of every reader of user input: FUZZ_EXAMPLES per test (7 tests)
+FUZZ_EXAMPLES ?= 2000
+fuzz: install
+	$(BIN)/pip install -q hypothesis
+	cd tests && FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) ../$(BIN)/python -m pytest -q test_fuzz.py

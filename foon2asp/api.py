@@ -549,7 +549,7 @@ def load(
         path, foon=foon_paths, kitchen=kitchen, goals=goals, motion=motion, utensils=utensils, strict=strict
     )
     problem = Problem.from_dataset(data, utensil_rule)
-    warnings = list(data.foon.warnings)
+    warnings = list(data.foon.warnings) + list(data.warnings)
     unknown = problem.unknown_motions()
     if data.motion and unknown:
         warnings.append(

@@ -1,22 +1,59 @@
-"""Errors about user input: always reported as one line naming file and line."""
+"""Errors about user input: always reported as one line naming file, line and column."""
 
 from __future__ import annotations
 
+import re
+
+#: characters never accepted in input text or labels: C0/C1 controls (TAB aside; line ends
+#: split lines), DEL, lone surrogates, the Unicode line and paragraph separators
+BAD_CHAR = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f\u2028\u2029\ud800-\udfff]")
+
+#: what :func:`escape` rewrites: the bad characters and the line ends
+_SHOWN = re.compile("[\x00-\x1f\x7f-\x9f\u2028\u2029\ud800-\udfff]")
+
+
+def escape(text: str) -> str:
+    """``text`` with control, separator and surrogate characters shown as escapes (``\\x0b``, ``\\u2028``)."""
+
+    def one(m: re.Match) -> str:
+        c = ord(m.group(0))
+        return f"\\x{c:02x}" if c < 0x100 else f"\\u{c:04x}"
+
+    return _SHOWN.sub(one, text)
+
+
+def char_name(ch: str) -> str:
+    """A bad character as users see it in a message: ``U+0000 (NUL)``-like."""
+    names = {0: "NUL", 0x7F: "DEL", 0x85: "NEL", 0x2028: "LINE SEPARATOR", 0x2029: "PARAGRAPH SEPARATOR"}
+    code = ord(ch)
+    if 0xD800 <= code <= 0xDFFF:
+        return f"U+{code:04X} (lone surrogate)"
+    if code in names:
+        return f"U+{code:04X} ({names[code]})"
+    return f"U+{code:04X} (control character)"
+
 
 class InputError(Exception):
-    """Bad input. ``str(err)`` is a one-line message ``FILE:LINE: what``."""
+    """Bad input. ``str(err)`` is a one-line message ``FILE:LINE[:COLUMN]: what``."""
 
-    def __init__(self, message: str, path: str | None = None, line: int | None = None):
+    def __init__(self, message: str, path: str | None = None, line: int | None = None, column: int | None = None):
         super().__init__(message)
         self.message = message
         self.path = path
         self.line = line
+        self.column = column
 
     def __str__(self) -> str:
         where = ""
         if self.path is not None:
-            where = str(self.path)
+            where = escape(str(self.path))
             if self.line is not None:
                 where += f":{self.line}"
+                if self.column is not None:
+                    where += f":{self.column}"
             where += ": "
-        return where + self.message.replace("\n", " ")
+        return where + escape(self.message.replace("\r\n", " ").replace("\n", " "))
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised like an interrupt so that the same clean-up runs (exit status 143)."""

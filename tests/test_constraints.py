@@ -316,7 +316,7 @@ def test_batch_applies_constraints_like_solve(tmp_path):
     args = ["--goals", "all", "--forbid-motion", "chop"]
     res = CliRunner().invoke(main, ["batch", *args, "--output", str(out), "--no-progress"])
     assert res.exit_code == 0, res.output
-    batch = {json.loads(l)["goal"]["label"]: json.loads(l) for l in out.read_text().splitlines()}
+    batch = {json.loads(l)["goal"]["label"]: json.loads(l) for l in out.read_text().splitlines()[1:]}
     solved = json.loads(CliRunner().invoke(main, ["solve", *args, "--format", "json"]).stdout)
     assert len(batch) == len(solved) == 4
     for r in solved:

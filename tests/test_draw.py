@@ -248,9 +248,9 @@ def test_batch_summary_html(tmp_path):
         "--no-progress",
     )
     assert res.exit_code == 0, res.output
-    import json
+    from foon2asp.batch.run import read_results
 
-    records = [json.loads(line) for line in out.read_text().splitlines()]
+    records = read_results(out)
     with_tree = [r for r in records if r["status"] in ("optimal", "found") and r["units"]]
     text = res.output
     assert '<table id="summary">' in text

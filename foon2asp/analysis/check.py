@@ -35,6 +35,8 @@ from foon2asp.foon.loaders import object_from_json
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.parser import parse_lines
 from foon2asp.foon.problem import Problem, required_flags
+from foon2asp.foon.safejson import loads as safe_loads
+from foon2asp.foon.safetext import lines_of, read_text
 from foon2asp.methods.planner import solve_goals
 from foon2asp.tree.tasktree import Goals, TaskTree, meal_of, measures
 from foon2asp.tree.validate import Validation, check_order, validate
@@ -108,7 +110,7 @@ def _looks_like_json(text: str) -> bool:
 
 
 def _read_foon_tree(text: str, path: str) -> list[TreeFile]:
-    foon = parse_lines(text.splitlines(), path, strict=True)
+    foon = parse_lines(lines_of(text), path, strict=True)
     if not foon.units:
         raise InputError("no functional units in the tree file (expected FOON text or foon2asp JSON)", path)
     units = [TreeUnit(u, step, origin[1]) for step, (u, origin) in enumerate(zip(foon.units, foon.origins), 1)]
@@ -148,10 +150,7 @@ def _read_foon_json_trees(data: object, path: str) -> list[TreeFile]:
 
 
 def _read_json_tree(text: str, path: str) -> list[TreeFile]:
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InputError(f"bad JSON: {exc.msg}", path, exc.lineno) from None
+    data = safe_loads(text, path, checked=True)
     if _is_foon_json(data) or (isinstance(data, list) and data and all(_is_foon_json(d) for d in data)):
         return _read_foon_json_trees(data, path)
     results = data if isinstance(data, list) else [data]
@@ -191,19 +190,9 @@ def _read_plan(problem: Problem, text: str, path: str) -> list[TreeFile]:
 
 
 def read_trees(path: str | Path, problem: Problem | None = None) -> list[TreeFile]:
-    """The tree(s) in ``path``: FOON text (one tree), foon2asp JSON (one or more), or
-    (with ``problem``, whose unit ids the action names carry) a plan."""
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError("tree file not found", str(path)) from None
-    except IsADirectoryError:
-        raise InputError("tree file is a directory", str(path)) from None
-    except OSError as exc:
-        raise InputError(f"cannot read tree file: {exc.strerror or exc}", str(path)) from None
-    except UnicodeDecodeError as exc:
-        raise InputError(f"not UTF-8 text ({exc.reason})", str(path)) from None
+    """The tree(s) in ``path``: FOON text (one tree), FOON JSON or foon2asp JSON (one or more),
+    or (with ``problem``, whose unit ids the action names carry) a plan."""
+    text = read_text(path, "tree")
     if _looks_like_json(text):
         return _read_json_tree(text, str(path))
     if problem is not None and plans.looks_like_plan(text):

@@ -5,18 +5,90 @@ becomes one :class:`~foon2asp.errors.InputError` naming the program (a user
 file, ``--rule #N``, ...), and it solves with an optional time limit on the
 asynchronous solve handle, so a time-out or an interrupt stops clingo's
 search through the handle (never by tearing the control down mid-call).
+
+Signals: while a clingo call runs (adding, grounding, solving, backend
+updates) SIGINT and SIGTERM are *deferred* (:func:`deferred_signals`): the
+handler only records the signal; a running search is then cancelled through
+its handle, grounding (which cannot be interrupted) runs to its end, and the
+signal is delivered to the previous handler once the call has returned
+cleanly (``KeyboardInterrupt`` for SIGINT).  So a Control is never left in the
+middle of a call, whatever moment the signal arrives.
 """
 
 from __future__ import annotations
 
+import os
+import signal
+import threading
 import time
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 import clingo
 
 from foon2asp.asp.constraints import check, clingo_error
 from foon2asp.errors import InputError
+
+#: how often a waiting solve looks for a deferred signal (seconds)
+POLL_S = 0.05
+
+_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+class _Deferral:
+    depth = 0
+    pending: int | None = None
+
+
+_DEFER = _Deferral()
+
+
+def _record(signum, frame) -> None:
+    if _DEFER.pending is None:
+        _DEFER.pending = signum
+
+
+def signal_pending() -> bool:
+    """Did SIGINT or SIGTERM arrive during the current deferred section?"""
+    return _DEFER.pending is not None
+
+
+def _deliver(signum: int, handler) -> None:
+    if callable(handler):
+        handler(signum, None)
+    elif handler == signal.SIG_DFL:
+        if signum == signal.SIGINT:
+            raise KeyboardInterrupt
+        os.kill(os.getpid(), signum)
+
+
+@contextmanager
+def deferred_signals() -> Iterator[None]:
+    """Run the body with SIGINT/SIGTERM recorded instead of raised; deliver the first one afterwards.
+
+    Only the main thread handles signals; elsewhere (Dask worker threads) this does nothing.
+    Ignored signals stay ignored (pool workers ignore SIGINT: their parent stops them).
+    """
+    if _DEFER.depth or threading.current_thread() is not threading.main_thread():
+        yield  # nested: the outer section delivers
+        return
+    saved = {}
+    for signum in _SIGNALS:
+        handler = signal.getsignal(signum)
+        if handler is not signal.SIG_IGN and handler is not None:
+            saved[signum] = handler
+            signal.signal(signum, _record)
+    _DEFER.depth, _DEFER.pending = 1, None
+    try:
+        yield
+    finally:
+        _DEFER.depth = 0
+        for signum, handler in saved.items():
+            signal.signal(signum, handler)
+        pending, _DEFER.pending = _DEFER.pending, None
+        if pending is not None and pending in saved:
+            _deliver(pending, saved[pending])
 
 
 @dataclass
@@ -64,7 +136,8 @@ class Control:
         if user:
             self.user_programs.append((name, text))
         try:
-            self.ctl.add("base", [], text)
+            with deferred_signals():
+                self.ctl.add("base", [], text)
         except RuntimeError:
             raise clingo_error(self.messages, name) from None
 
@@ -77,7 +150,8 @@ class Control:
         """Ground ``parts``; on an error the user programs are checked one by one to name the culprit."""
         self.messages.clear()
         try:
-            self.ctl.ground([(name, list(args)) for name, args in parts])
+            with deferred_signals():  # grounding cannot be interrupted: a signal waits for its end
+                self.ctl.ground([(name, list(args)) for name, args in parts])
         except RuntimeError:
             for name, text in self.user_programs:
                 check(name, text)
@@ -92,25 +166,25 @@ class Control:
     ) -> SolveResult:
         """Solve, stopping after ``time_limit`` seconds (None: no limit) through the solve handle.
 
-        A KeyboardInterrupt while waiting cancels the search cleanly before it is re-raised.
+        SIGINT/SIGTERM while solving cancel the search through the handle; the
+        interrupt is raised once the handle is closed (see :func:`deferred_signals`).
         """
         t0 = time.perf_counter()
-        with self.ctl.solve(on_model=on_model, async_=True, assumptions=list(assumptions)) as handle:
-            try:
-                if time_limit is None:
-                    # wait in slices so that signals are seen between them
-                    while not handle.wait(0.5):
-                        pass
-                    finished = True
-                else:
-                    finished = bool(handle.wait(max(0.0, time_limit)))
-            except BaseException:
-                handle.cancel()
-                handle.get()
-                raise
-            if not finished:
-                handle.cancel()
-            result = handle.get()
+        deadline = None if time_limit is None else t0 + max(0.0, time_limit)
+        with deferred_signals():
+            with self.ctl.solve(on_model=on_model, async_=True, assumptions=list(assumptions)) as handle:
+                finished = False
+                # wait in slices so that a deferred signal or the deadline is seen between them
+                while not signal_pending():
+                    step = POLL_S if deadline is None else min(POLL_S, max(0.0, deadline - time.perf_counter()))
+                    if handle.wait(step):
+                        finished = True
+                        break
+                    if deadline is not None and time.perf_counter() >= deadline:
+                        break
+                if not finished:
+                    handle.cancel()
+                result = handle.get()
         return SolveResult(
             finished and not result.interrupted,
             result.satisfiable,
@@ -119,6 +193,16 @@ class Control:
             bool(result.interrupted),
             time.perf_counter() - t0,
         )
+
+    def backend(self):
+        """``ctl.backend()``; use it inside :func:`deferred_signals`."""
+        return self.ctl.backend()
+
+    def assign(self, externals: dict[clingo.Symbol, bool]) -> None:
+        """Set external atoms (a signal meanwhile waits until all are set)."""
+        with deferred_signals():
+            for atom, value in externals.items():
+                self.ctl.assign_external(atom, value)
 
     def facts_of(self, name: str, arity: int) -> set[clingo.Symbol]:
         """Atoms of ``name/arity`` the grounder derived as facts."""

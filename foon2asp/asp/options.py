@@ -37,6 +37,8 @@ class AspOptions:
     all_optimal_cap: int = 100
     #: "h1" | "h2": greedy retrieval in the solver (first model under #heuristic)
     heuristic: str | None = None
+    #: among several optimal trees, return the lexicographically smallest (foon2asp.asp.canonical)
+    canonical: bool = True
 
     @property
     def method(self) -> str:

@@ -12,11 +12,13 @@ from __future__ import annotations
 import re
 import time
 from collections.abc import Callable, Iterable
+from typing import Any
 
 import clingo
 
 from foon2asp.asp import encodings, objectives
-from foon2asp.asp.control import Control
+from foon2asp.asp.canonical import canonicalise, chain_facts
+from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import OPTIONAL, facts
 from foon2asp.asp.multishot.driver import Driver
 from foon2asp.asp.options import OBJECTIVES, AspOptions
@@ -61,6 +63,9 @@ class Session:
         rules.append(("objective", _objective_facts(objectives.ranked(self.options))))
         rules += objectives.extra_parts(problem, self.options, units)
         rules.append(("goal", "#external goal(O) : object(O).\n"))
+        if self.options.canonical and not self.options.heuristic:
+            rules.append(("encodings/canonical.lp", encodings.encoding("canonical")))
+            rules.append(("unit order", chain_facts(units)))
         rules += list(self.options.programs)
         # facts nobody reads are left out (the strings, input/2, ...: user constraints read them)
         read = _read_predicates(rules)
@@ -72,12 +77,16 @@ class Session:
         self.control.ground()
         self.ground_s = time.perf_counter() - t0
         self._driver: Driver | None = None
+        if self.options.canonical:
+            # up to two distinct optimal trees in one solve: a second one calls for canonicalise()
+            conf: Any = self.ctl.configuration.solve
+            conf.opt_mode, conf.models, conf.project = "optN", "2", "project"
         self.goal_atoms = {
             a.symbol.arguments[0].number for a in self.ctl.symbolic_atoms.by_signature("goal", 1) if a.is_external
         }
 
     def _set_goal(self, goal: int, value: bool) -> None:
-        self.ctl.assign_external(clingo.Function("goal", [clingo.Number(goal)]), value)
+        self.control.assign({clingo.Function("goal", [clingo.Number(goal)]): value})
 
     def solve(
         self,
@@ -127,11 +136,14 @@ class Session:
                 **goal_fields(meal),
             )
         best: dict = {}
+        optimal: dict[tuple[int, ...], list[int]] = {}
 
         def record(model: clingo.Model) -> None:
             best["units"] = [s.arguments[0].number for s in model.symbols(shown=True) if s.name == "use"]
             best["cost"] = list(model.cost)
             best["proven"] = model.optimality_proven
+            if model.optimality_proven:
+                optimal.setdefault(tuple(sorted(best["units"])), best["cost"])
             if on_model is not None:
                 on_model(model)
 
@@ -140,6 +152,12 @@ class Session:
         try:
             result = self.control.solve(record, time_limit or None)
             stats = self.stats()
+            if len(optimal) > 1 and result.finished:
+                # several optimal trees: return the smallest one, which depends only on the input
+                deadline = None if not time_limit else t0 + time_limit
+                smallest = min(optimal)
+                answer, _ = canonicalise(self.control, Answer(smallest, tuple(optimal[smallest]), True), deadline)
+                best["units"], best["cost"], best["proven"] = list(answer.units), list(answer.cost), True
         finally:
             for g in meal:
                 self._set_goal(g, False)

@@ -52,7 +52,7 @@ def executor(scheduler, chunk: int = 8) -> Callable[[BatchSpec, list[tuple[int, 
         own = not isinstance(scheduler, distributed.Client)
         try:
             client = distributed.Client(scheduler) if own else scheduler
-        except OSError as exc:
+        except (OSError, ValueError, TypeError) as exc:
             raise InputError(f"cannot reach the Dask scheduler {scheduler}: {exc}") from None
         try:
             token = uuid.uuid4().hex

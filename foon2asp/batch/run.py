@@ -8,6 +8,17 @@ in full, written with one ``os.write`` on an append-only descriptor and
 worst a last line cut short by a crash of the machine, which ``--resume``
 drops).  ``--resume`` skips every (goal, method) pair already in the file.
 
+The file is self-describing and locked: its first line is a header
+``{"foon2asp_results": 1, "config": {...}}`` recording the configuration that
+produced it (objective, constraints, semantics, solver settings, a hash of
+the input); ``--resume`` with another configuration is refused with one line
+naming the keys that differ.  While a batch writes, it holds an exclusive
+lock on the file (``flock``): a second writer gets a one-line error.
+
+Pool workers ignore SIGINT (the parent stops them) and exit when the
+parent dies, even by SIGKILL (``PR_SET_PDEATHSIG`` on Linux, and a thread
+watching the parent process elsewhere).
+
 Runners are built once per process (:class:`foon2asp.fastpath.BatchRunner`);
 ``workers > 1`` runs goals in a process pool whose initializer builds each
 worker's runners once.  :mod:`foon2asp.dask_runner` runs the same tasks on a
@@ -16,24 +27,35 @@ Dask cluster.
 
 from __future__ import annotations
 
+import ctypes
+import hashlib
 import json
 import multiprocessing
 import os
+import signal
 import statistics
 import sys
+import threading
 import time
 from collections.abc import Callable, Iterable, Iterator
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from tqdm import tqdm
 
+try:
+    import fcntl
+except ModuleNotFoundError:  # pragma: no cover - not POSIX
+    fcntl = None  # type: ignore[assignment]
+
 from foon2asp import methods as methods_mod
+from foon2asp.asp.control import deferred_signals
+from foon2asp.asp.facts import facts
 from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
+from foon2asp.foon.safejson import loads as safe_loads
 from foon2asp.methods.planner import BatchRunner, Parts
 from foon2asp.tree.serialize import tree_json
 
@@ -76,8 +98,28 @@ class Worker:
 _WORKER: Worker | None = None
 
 
+def _exit_with_parent() -> None:
+    """Make this process exit when its parent dies (also by SIGKILL)."""
+    parent = os.getppid()
+    if sys.platform.startswith("linux"):
+        try:
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(1, signal.SIGTERM, 0, 0, 0)  # PR_SET_PDEATHSIG
+        except (OSError, AttributeError):  # pragma: no cover - no prctl
+            pass
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(0.5)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="parent-watch", daemon=True).start()
+
+
 def _init_worker(spec: BatchSpec) -> None:
     global _WORKER
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # an interrupt is the parent's to handle
+    _exit_with_parent()
     _WORKER = Worker(spec)
 
 
@@ -115,14 +157,14 @@ def read_results(path: str | Path, repair: bool = False) -> list[dict]:
     good_end = 0
     for lineno, raw in enumerate(complete, 1):
         try:
-            record = json.loads(raw.decode("utf-8")) if raw.strip() else None
+            record = safe_loads(raw.decode("utf-8"), str(path), checked=True) if raw.strip() else None
             if record is not None and not isinstance(record, dict):
                 raise ValueError("not an object")
-        except (ValueError, UnicodeDecodeError):
+        except (ValueError, UnicodeDecodeError, InputError):
             if lineno == len(complete) and not pieces[-1]:
                 break  # a damaged last line: dropped like a cut one
             raise InputError("not a JSON result line (remove or fix it to resume)", str(path), lineno) from None
-        if record is not None:
+        if record is not None and HEADER_KEY not in record:
             records.append(record)
         good_end += len(raw) + 1
     if repair and good_end < len(data):
@@ -133,24 +175,95 @@ def read_results(path: str | Path, repair: bool = False) -> list[dict]:
     return records
 
 
+HEADER_KEY = "foon2asp_results"
+HEADER_VERSION = 1
+
+#: configuration keys that may differ on --resume (they do not change the answers)
+RESUMABLE_KEYS = ("methods",)
+
+
+def configuration(spec: BatchSpec) -> dict:
+    """What produced a results file: the answers depend on these (see the module docstring)."""
+    o = spec.options
+    return {
+        "methods": list(spec.methods),
+        "objective": list(o.objective),
+        "constraints": [[name, hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]] for name, text in o.programs],
+        "encodings": list(o.encodings),
+        "utensil_rule": spec.problem.utensil_rule,
+        "time_limit": o.time_limit,
+        "opt_strategy": o.opt_strategy,
+        "threads": o.threads,
+        "clingo_args": list(o.clingo_args),
+        "max_depth": o.max_depth,
+        "human_steps": o.human_steps,
+        "models": o.models,
+        "all_optimal": o.all_optimal,
+        "heuristic": o.heuristic,
+        "canonical": o.canonical,
+        "input_sha256": hashlib.sha256(facts(spec.problem).encode("utf-8")).hexdigest(),
+    }
+
+
+def header_line(config: dict) -> str:
+    """The first line of a results file."""
+    return json.dumps({HEADER_KEY: HEADER_VERSION, "config": config}, ensure_ascii=False) + "\n"
+
+
+def read_header(path: str | Path) -> dict | None:
+    """The configuration recorded in the header line of a results file (None: no header)."""
+    try:
+        with open(path, "rb") as fh:
+            first = fh.readline()
+    except OSError:
+        return None
+    try:
+        value = json.loads(first.decode("utf-8"))
+    except (ValueError, UnicodeDecodeError):
+        return None
+    if isinstance(value, dict) and HEADER_KEY in value and isinstance(value.get("config"), dict):
+        return value["config"]
+    return None
+
+
+def config_differences(old: dict, new: dict) -> list[str]:
+    """The keys whose values differ (the ones in RESUMABLE_KEYS aside)."""
+    keys = sorted(set(old) | set(new))
+    return [k for k in keys if k not in RESUMABLE_KEYS and old.get(k) != new.get(k)]
+
+
 class ResultFile:
-    """Append-only result lines, each written whole and synced to disk."""
+    """Append-only result lines, each written whole and synced to disk; an exclusive lock
+    (``flock``) while open, so a second writer is refused."""
 
     def __init__(self, path: str | Path, sync: bool = True):
         self.path = Path(path)
         self.sync = sync
-        if self.path.parent and not self.path.parent.exists():
-            self.path.parent.mkdir(parents=True, exist_ok=True)
-        self.fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+        try:
+            if self.path.parent and not self.path.parent.exists():
+                self.path.parent.mkdir(parents=True, exist_ok=True)
+            self.fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+        except OSError as exc:
+            raise InputError(f"cannot open the results file: {exc.strerror or exc}", str(self.path)) from None
+        if fcntl is None:  # pragma: no cover - not POSIX: no lock
+            return
+        try:
+            fcntl.flock(self.fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            os.close(self.fd)
+            raise InputError(
+                "results file is in use by another running batch (it holds the lock)", str(self.path)
+            ) from None
 
     def append(self, line: str) -> None:
         data = line.encode("utf-8")
         view = memoryview(data)
-        while view:
-            written = os.write(self.fd, view)
-            view = view[written:]
-        if self.sync:
-            os.fsync(self.fd)
+        with deferred_signals():  # an interrupt waits until the line is whole
+            while view:
+                written = os.write(self.fd, view)
+                view = view[written:]
+            if self.sync:
+                os.fsync(self.fd)
 
     def close(self) -> None:
         os.close(self.fd)
@@ -212,29 +325,27 @@ def execute(
     workers: int = 1,
     chunk: int = 1,
 ) -> Iterator[tuple[int, str, str]]:
-    """Run ``tasks``; yield ``(goal, method, json_line)`` as results finish."""
+    """Run ``tasks``; yield ``(goal, method, json_line)`` as results finish.
+
+    With ``workers > 1`` a process pool runs them; when the caller stops (an
+    interrupt, an error) the pool's workers are terminated at once.
+    """
     if workers <= 1:
         worker = Worker(spec)
         for goal, method in tasks:
             yield goal, method, worker.run(goal, method)
         return
-
+    if not tasks:
+        return
     context = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(workers, mp_context=context, initializer=_init_worker, initargs=(spec,)) as pool:
-        queue = iter(_chunks(tasks, max(1, chunk)))
-        running = set()
-        # keep a bounded window of chunks in flight so an interrupt loses little
-        for part in queue:
-            running.add(pool.submit(_run_in_worker, part))
-            if len(running) >= 4 * workers:
-                break
-        while running:
-            finished, running = wait(running, return_when=FIRST_COMPLETED)
-            for future in finished:
-                yield from future.result()
-                nxt = next(queue, None)
-                if nxt is not None:
-                    running.add(pool.submit(_run_in_worker, nxt))
+    pool = context.Pool(workers, initializer=_init_worker, initargs=(spec,))
+    try:
+        for results in pool.imap_unordered(_run_in_worker, _chunks(tasks, max(1, chunk))):
+            yield from results
+        pool.close()
+    finally:
+        pool.terminate()
+        pool.join()
 
 
 def _progress(total: int, enabled: bool | None):
@@ -262,29 +373,51 @@ def run_batch(
     for name in spec.methods:
         methods_mod.get(name)  # unknown names fail before any work
     previous: list[dict] = []
+    out = None
     if output is not None:
         path = Path(output)
+        if path.is_dir():
+            raise InputError("results file is a directory", str(path))
         if path.exists() and path.stat().st_size > 0 and not resume:
             raise InputError("results file exists; use --resume to continue it or choose another --output", str(path))
-        if resume:
-            previous = read_results(path, repair=True)
-    todo, skipped = pending_tasks(spec.problem, goals, spec.methods, previous)
-    t0 = time.perf_counter()
-    new_records: list[dict] = []
-    out = ResultFile(output, sync) if output is not None else None
-    bar = _progress(len(todo), progress)
+        out = ResultFile(output, sync)  # locked from here on
     try:
-        if executor is not None:
-            results = executor(spec, todo)
-        else:
-            results = execute(spec, todo, workers, chunk)
-        for _goal, _method, line in results:
-            if out is not None:
-                out.append(line)
-            new_records.append(json.loads(line))
-            bar.update(1)
+        if out is not None:
+            config = configuration(spec)
+            if resume:
+                old = read_header(out.path)
+                if old is not None:
+                    differ = config_differences(old, config)
+                    if differ:
+                        raise InputError(
+                            "results file was made with another configuration (differs in: "
+                            f"{', '.join(differ)}); choose another --output or the same options",
+                            str(out.path),
+                        )
+                previous = read_results(out.path, repair=True)
+            if out.path.stat().st_size == 0:
+                out.append(header_line(config))
+        todo, skipped = pending_tasks(spec.problem, goals, spec.methods, previous)
+        t0 = time.perf_counter()
+        new_records: list[dict] = []
+        bar = _progress(len(todo), progress)
+        results: Iterable[tuple[int, str, str]] = ()
+        try:
+            if executor is not None:
+                results = executor(spec, todo)
+            else:
+                results = execute(spec, todo, workers, chunk)
+            for _goal, _method, line in results:
+                if out is not None:
+                    out.append(line)
+                new_records.append(json.loads(line))
+                bar.update(1)
+        finally:
+            close = getattr(results, "close", None)
+            if close is not None:
+                close()  # stops a pool at once
+            bar.close()
     finally:
-        bar.close()
         if out is not None:
             out.close()
     elapsed = time.perf_counter() - t0

@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import functools
+import signal
 import sys
+import traceback
 from pathlib import Path
+from typing import Any
 
 import click
 
@@ -15,7 +18,8 @@ from foon2asp.asp.facts import facts as facts_text
 from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.options import OBJECTIVES
 from foon2asp.batch import run as batch_mod
-from foon2asp.errors import InputError
+from foon2asp.cli.params import SCHEDULER, SECONDS, int32
+from foon2asp.errors import InputError, Terminated, escape
 from foon2asp.foon import foonjson
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.demo import demo_dir
@@ -24,27 +28,123 @@ from foon2asp.foon.problem import UTENSIL_RULES, Problem
 from foon2asp.report import draw
 from foon2asp.report.trees import render, render_bytes
 
+#: exit statuses: 2 bad input or usage, 3 an internal error, 130 SIGINT, 143 SIGTERM
+EXIT_INPUT, EXIT_INTERNAL, EXIT_SIGINT, EXIT_SIGTERM = 2, 3, 130, 143
 
-def fail(message: str, code: int = 2) -> None:
-    click.echo(f"foon2asp: error: {message}", err=True)
+
+def fail(message: str, code: int = EXIT_INPUT) -> None:
+    click.echo(f"foon2asp: error: {escape(message)}", err=True)
     sys.exit(code)
 
 
+def _debug() -> bool:
+    ctx = click.get_current_context(silent=True)
+    return bool(ctx is not None and ctx.find_root().params.get("debug"))
+
+
+def _terminate(signum, frame) -> None:
+    raise Terminated()
+
+
+def report_exception(exc: BaseException) -> None:
+    """Turn any exception of a command into one line on stderr and a documented exit status."""
+    if isinstance(exc, Terminated):
+        click.echo("foon2asp: terminated", err=True)
+        sys.exit(EXIT_SIGTERM)
+    if isinstance(exc, KeyboardInterrupt):
+        click.echo("foon2asp: interrupted", err=True)
+        sys.exit(EXIT_SIGINT)
+    if isinstance(exc, InputError):
+        fail(str(exc))
+    if isinstance(exc, BrokenPipeError):
+        sys.exit(0)
+    if isinstance(exc, OSError) and exc.filename is not None:
+        fail(f"{exc.filename}: {exc.strerror or exc}")
+    if isinstance(exc, RecursionError | MemoryError):
+        fail(f"input too large or too deeply nested ({type(exc).__name__})")
+    if _debug():
+        traceback.print_exception(exc)
+    fail(
+        f"internal error: {type(exc).__name__}: {exc} -- please report it with the command line"
+        f"{'' if _debug() else ' (--debug shows the traceback)'}",
+        EXIT_INTERNAL,
+    )
+
+
 def guarded(func):
-    """Run a command; bad input becomes one line on stderr and exit code 2."""
+    """Run a command: bad input is one line on stderr and exit status 2, an internal error one line
+    and 3 (the traceback with --debug), SIGINT 130, SIGTERM 143; never a traceback otherwise."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         try:
             return func(*args, **kwargs)
-        except InputError as exc:
-            fail(str(exc))
-        except KeyboardInterrupt:
-            fail("interrupted", 130)
-        except BrokenPipeError:
-            sys.exit(0)
+        except (SystemExit, click.exceptions.Exit, click.ClickException):
+            raise
+        except BaseException as exc:
+            report_exception(exc)
 
     return wrapper
+
+
+def writable_dir(path: str | Path) -> Path:
+    """``path`` as a directory, created with its parents (an error names the path)."""
+    out = Path(path)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"cannot create the output directory: {exc.strerror or exc}", str(out)) from None
+    if not out.is_dir():
+        raise InputError("output path is not a directory", str(out))
+    return out
+
+
+def write_file(path: str | Path, text: str | bytes) -> None:
+    """Write ``text`` to ``path``, creating its directory (an error names the path)."""
+    out = Path(path)
+    if out.parent != Path("."):
+        writable_dir(out.parent)
+    try:
+        if isinstance(text, bytes):
+            out.write_bytes(text)
+        else:
+            out.write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise InputError(f"cannot write the output file: {exc.strerror or exc}", str(out)) from None
+
+
+class Main(click.Group):
+    """The command group: usage errors are one line too, SIGTERM is an interrupt (exit 143)."""
+
+    def main(self, *args: Any, standalone_mode: bool = True, **kwargs: Any) -> Any:
+        run: Any = super().main
+        if not standalone_mode:
+            return run(*args, standalone_mode=False, **kwargs)
+        try:
+            previous = signal.signal(signal.SIGTERM, _terminate)
+        except ValueError:  # not the main thread
+            previous = None
+        try:
+            rv = run(*args, standalone_mode=False, **kwargs)
+        except click.exceptions.Exit as exc:
+            sys.exit(exc.exit_code)
+        except click.ClickException as exc:
+            message = " ".join(exc.format_message().split())
+            ctx = getattr(exc, "ctx", None)
+            name = ctx.command_path if ctx is not None else "foon2asp"
+            hint = f" (see '{name} --help')" if isinstance(exc, click.UsageError) else ""
+            click.echo(f"foon2asp: error: {escape(message)}{hint}", err=True)
+            sys.exit(exc.exit_code)
+        except click.Abort as exc:
+            report_exception(exc.__context__ if isinstance(exc.__context__, KeyboardInterrupt) else KeyboardInterrupt())
+        except (SystemExit, BrokenPipeError):
+            raise
+        except BaseException as exc:
+            report_exception(exc)
+        finally:
+            if previous is not None:
+                signal.signal(signal.SIGTERM, previous)
+        sys.exit(rv if isinstance(rv, int) else 0)
 
 
 def data_options(func):
@@ -131,7 +231,7 @@ def constraint_options(func):
             metavar="LABEL",
             help="Some unit of the tree has an input or output labelled LABEL; repeatable.",
         ),
-        click.option("--max-units", type=click.IntRange(min=0), help="The tree has at most N units."),
+        click.option("--max-units", type=int32(min=0), help="The tree has at most N units."),
     ]
     for opt in reversed(opts):
         wrapper = opt(wrapper)
@@ -167,7 +267,7 @@ def load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_
 
 def _warn(kb: api.KnowledgeBase) -> None:
     for warning in kb.warnings:
-        click.echo(f"foon2asp: warning: {warning}", err=True)
+        click.echo(f"foon2asp: warning: {escape(warning)}", err=True)
     kb.warnings.clear()
 
 
@@ -222,17 +322,17 @@ def solver_options(func):
     opts = [
         click.option(
             "--max-depth",
-            type=click.IntRange(min=1),
+            type=int32(min=1),
             help="Only trees of at most N sequential rounds (the goal's level); with --objective depth, the search stops there.",
         ),
         click.option(
             "--human-steps",
-            type=click.IntRange(min=0),
+            type=int32(min=0),
             help="At most M units may be done by a person (success 1.0); the solver picks them, the output marks them.",
         ),
         click.option(
             "--models",
-            type=click.IntRange(min=1),
+            type=int32(min=1),
             default=1,
             show_default=True,
             help="The K best distinct trees per goal, best first.",
@@ -245,7 +345,7 @@ def solver_options(func):
         ),
         click.option(
             "--threads",
-            type=click.IntRange(min=1),
+            type=int32(min=1, max=64),
             default=1,
             show_default=True,
             help="clingo solver threads (parallel mode).",
@@ -267,10 +367,16 @@ def safe_name(index: int, label: str) -> str:
     return f"{index:03d}-{keep}"
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(cls=Main, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="foon2asp")
-def main():
-    """foon2asp: minimal, well-founded FOON task trees with answer-set programming."""
+@click.option("--debug", is_flag=True, help="On an internal error (exit status 3), also print the traceback.")
+def main(debug):
+    """foon2asp: minimal, well-founded FOON task trees with answer-set programming.
+
+    Exit status: 0 success, 1 a negative answer (check: invalid tree; query:
+    unsatisfiable), 2 bad input or usage, 3 an internal error, 130 interrupted
+    (SIGINT), 143 terminated (SIGTERM).
+    """
 
 
 @main.command()
@@ -283,7 +389,7 @@ def main():
 )
 @click.option("--format", "fmt", type=click.Choice(report.names("trees")), default="text", show_default=True)
 @click.option("--output", type=click.Path(file_okay=False), help="Also write one file per goal into this directory.")
-@click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
+@click.option("--time-limit", type=SECONDS, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
 @click.option(
     "--together",
     is_flag=True,
@@ -324,9 +430,7 @@ def solve(
     if fmt in draw.FORMATS and fmt != "dot":
         draw.require_dot()  # before solving, not after
     trees = []
-    out_dir = Path(output) if output else None
-    if out_dir:
-        out_dir.mkdir(parents=True, exist_ok=True)
+    out_dir = writable_dir(output) if output else None
     jobs: list = [tuple(dict.fromkeys(goal_ids))] if together else goal_ids
     for index, tree in enumerate(kb.solve_iter(jobs, method, options), 1):
         found = alternatives(tree.raw)  # --models / --all-optimal: the further trees, best first
@@ -335,7 +439,7 @@ def solve(
             ext = report.get("trees", fmt).extension
             label = "+".join(g.label for g in tree.goals)
             name = f"{safe_name(index, label)}.{ext}"
-            (out_dir / name).write_bytes(render_bytes(problem, found, fmt))
+            write_file(out_dir / name, render_bytes(problem, found, fmt))
     _solver_warnings(problem, trees)
     if binary and out_dir:
         click.echo(f"wrote {len(goal_ids)} {fmt} file(s) to {out_dir}", err=True)
@@ -360,7 +464,7 @@ def facts(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals
     text = facts_text(problem, goal_nodes=goal_nodes)
     text += "".join(f"goal({g}).\n" for g in fixed)
     if output:
-        Path(output).write_text(text, encoding="utf-8")
+        write_file(output, text)
         click.echo(f"wrote {len(text.splitlines())} lines to {output}", err=True)
     else:
         click.echo(text, nl=False)
@@ -388,11 +492,16 @@ def merge(files, output, strict, fmt):
     for warning in foon.warnings:
         click.echo(f"foon2asp: warning: {warning}", err=True)
     header = f"merged by foon2asp from {len(files)} file(s)"
-    with open(output, "w", encoding="utf-8") as fh:
-        if fmt == "foon-json":
-            fh.write(foonjson.dumps(foon.units, id_map(foon), header))
-        else:
-            write_foon(foon, fh, header=header, dialect="plain" if fmt == "foon-plain" else "official")
+    if Path(output).parent != Path("."):
+        writable_dir(Path(output).parent)
+    try:
+        with open(output, "w", encoding="utf-8") as fh:
+            if fmt == "foon-json":
+                fh.write(foonjson.dumps(foon.units, id_map(foon), header))
+            else:
+                write_foon(foon, fh, header=header, dialect="plain" if fmt == "foon-plain" else "official")
+    except OSError as exc:
+        raise InputError(f"cannot write the output file: {exc.strerror or exc}", output) from None
     click.echo(
         f"merged {len(files)} file(s): {len(foon.units)} units, {len(foon.objects)} objects -> {output}", err=True
     )
@@ -448,7 +557,7 @@ def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict,
     "--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first."
 )
 @click.option("--format", "fmt", type=click.Choice(report.names("compare")), default="text", show_default=True)
-@click.option("--time-limit", type=float, help="Seconds per goal for ASP methods.")
+@click.option("--time-limit", type=SECONDS, help="Seconds per goal for ASP methods.")
 @click.option(
     "--together", is_flag=True, help="A meal: the one tree for all goals beside the sum of the single optima (ASP)."
 )
@@ -529,7 +638,7 @@ def reachable(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, g
 @goal_options
 @constraint_options
 @click.option("--format", "fmt", type=click.Choice(report.names("missing")), default="text", show_default=True)
-@click.option("--time-limit", type=float, help="Seconds per goal; the best answer so far is reported as 'feasible'.")
+@click.option("--time-limit", type=SECONDS, help="Seconds per goal; the best answer so far is reported as 'feasible'.")
 @click.option("--together", is_flag=True, help="A meal: the fewest objects so that one tree makes every goal.")
 @guarded
 def missing(
@@ -557,13 +666,13 @@ def missing(
 )
 @click.option(
     "--models",
-    type=click.IntRange(min=0),
+    type=int32(min=0),
     default=1,
     show_default=True,
     help="Models to print (0 = all); with an objective, the optimum.",
 )
 @click.option("--format", "fmt", type=click.Choice(report.names("query")), default="text", show_default=True)
-@click.option("--time-limit", type=float, help="Seconds for the solve.")
+@click.option("--time-limit", type=SECONDS, help="Seconds for the solve.")
 @guarded
 def query(
     program,
@@ -619,9 +728,11 @@ def _method_list(values: tuple[str, ...]) -> list[str]:
     help="Results, one JSON line per (goal, method).",
 )
 @click.option("--resume", is_flag=True, help="Continue OUTPUT: skip the (goal, method) pairs it already holds.")
-@click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True, help="Worker processes.")
-@click.option("--scheduler", metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra).")
-@click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
+@click.option("--workers", type=int32(min=1, max=1024), default=1, show_default=True, help="Worker processes.")
+@click.option(
+    "--scheduler", type=SCHEDULER, metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra)."
+)
+@click.option("--time-limit", type=SECONDS, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
 @click.option(
     "--opt-strategy",
     callback=_opt_strategy,

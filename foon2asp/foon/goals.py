@@ -129,5 +129,11 @@ def resolve(data: Dataset, problem: Problem, goal: tuple[str, ...] | None, goals
     elif goals:
         out += goals_from_file(problem, goals)
     if not out:
+        if goals == "all":
+            raise InputError("the goals file lists no goal", data.paths.get("goals"))
+        if goals == "all-objects":
+            raise InputError("no unit makes an object that is not in the kitchen: no goal")
+        if goals:
+            raise InputError("the goals file lists no goal", goals)
         raise InputError("no goal given: use --goal LABEL or --goals FILE|all")
     return out

@@ -13,6 +13,8 @@ from pathlib import Path
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject
 from foon2asp.foon.parser import read_foons
+from foon2asp.foon.safejson import loads as safe_loads
+from foon2asp.foon.safetext import lines_of, read_text
 
 FILE_NAMES = {
     "foon": "FOON.txt",
@@ -24,14 +26,7 @@ FILE_NAMES = {
 
 
 def _read_text(path: Path, what: str) -> str:
-    try:
-        return path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError(f"{what} file not found", str(path)) from None
-    except OSError as exc:
-        raise InputError(f"cannot read {what} file: {exc.strerror or exc}", str(path)) from None
-    except UnicodeDecodeError as exc:
-        raise InputError(f"not UTF-8 text ({exc.reason})", str(path)) from None
+    return read_text(path, what)
 
 
 def _line_of(text: str, pos: int) -> int:
@@ -41,10 +36,7 @@ def _line_of(text: str, pos: int) -> int:
 def _json_elements(text: str, path: str) -> list[tuple[object, int]]:
     """Elements of a top-level JSON list, each with the line it starts on."""
     dec = json.JSONDecoder()
-    try:
-        json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InputError(f"bad JSON: {exc.msg}", path, exc.lineno) from None
+    safe_loads(text, path, checked=True)
     pos = len(text) - len(text.lstrip())
     if text[pos : pos + 1] != "[":
         raise InputError("expected a JSON list of objects", path, _line_of(text, pos))
@@ -54,7 +46,7 @@ def _json_elements(text: str, path: str) -> list[tuple[object, int]]:
     while True:
         while pos < len(text) and text[pos] in " \t\r\n,":
             pos += 1
-        if text[pos] == "]":
+        if pos >= len(text) or text[pos] == "]":
             return out
         value, end = dec.raw_decode(text, pos)
         line += text.count("\n", counted, pos)
@@ -85,10 +77,7 @@ def read_objects(path: str | Path, what: str) -> list[FoonObject]:
     """A JSON list of objects (kitchen.json, goal_nodes.json)."""
     path = Path(path)
     text = _read_text(path, what)
-    try:
-        values = json.loads(text)
-    except json.JSONDecodeError:
-        values = None
+    values = safe_loads(text, str(path), checked=True)
     if isinstance(values, list):
         # one pass without line numbers; they are found only for a message
         try:
@@ -109,12 +98,21 @@ def read_goals(path: str | Path) -> list[tuple[FoonObject, int]]:
     return [(object_from_json(v, str(path), line), line) for v, line in _json_elements(text, str(path))]
 
 
-def read_motion(path: str | Path) -> dict[str, float]:
-    """``motion TAB success-rate`` per line; rates must lie in (0, 1]."""
+def _is_comment(line: str) -> bool:
+    return line.lstrip().startswith("#")
+
+
+def read_motion(path: str | Path, warnings: list[str] | None = None) -> dict[str, float]:
+    """``motion TAB success-rate`` per line; rates must lie in (0, 1].
+
+    Blank lines and lines whose first non-blank character is ``#`` (comments)
+    are skipped.  A file without any rate is warned about (into ``warnings``):
+    every motion then gets the default rate 0.5.
+    """
     path = Path(path)
     rates: dict[str, float] = {}
-    for lineno, line in enumerate(_read_text(path, "motion").splitlines(), 1):
-        if not line.strip() or line.lstrip().startswith("#"):
+    for lineno, line in enumerate(lines_of(_read_text(path, "motion")), 1):
+        if not line.strip() or _is_comment(line):
             continue
         parts = line.rsplit("\t", 1) if "\t" in line else line.rsplit(None, 1)
         if len(parts) != 2:
@@ -126,16 +124,32 @@ def read_motion(path: str | Path) -> dict[str, float]:
         if not 0.0 < rate <= 1.0:
             raise InputError(f"success rate {rate} is not in (0, 1]", str(path), lineno)
         rates[" ".join(parts[0].split()).lower()] = rate
+    if not rates and warnings is not None:
+        warnings.append(f"{path}: no success rate in the file: every motion gets the default rate 0.5")
     return rates
 
 
-def read_utensils(path: str | Path) -> frozenset[str]:
-    """One utensil label per line."""
+def read_utensils(path: str | Path, warnings: list[str] | None = None) -> frozenset[str]:
+    """One utensil label per line.
+
+    Blank lines and lines whose first non-blank character is ``#`` (comments)
+    are skipped; a comment that looks like a label (``#`` followed directly by
+    a letter or digit, e.g. ``#mixing bowl``) is warned about (into ``warnings``).
+    """
     path = Path(path)
-    text = _read_text(path, "utensils")
-    return frozenset(
-        " ".join(line.split()).lower() for line in text.splitlines() if line.strip() and not line.startswith("#")
-    )
+    out: set[str] = set()
+    for lineno, line in enumerate(lines_of(_read_text(path, "utensils")), 1):
+        if not line.strip():
+            continue
+        if _is_comment(line):
+            body = line.lstrip()[1:]
+            if body[:1].isalnum() and warnings is not None:
+                warnings.append(
+                    f"{path}:{lineno}: line ignored: '#' starts a comment (a utensil label cannot begin with '#')"
+                )
+            continue
+        out.add(" ".join(line.split()).lower())
+    return frozenset(out)
 
 
 @dataclass
@@ -148,6 +162,8 @@ class Dataset:
     motion: dict[str, float] = field(default_factory=dict)
     utensils: frozenset[str] = frozenset()
     paths: dict[str, str] = field(default_factory=dict)
+    #: warnings about the motion and utensil files (comment lines that look like labels, no rates)
+    warnings: list[str] = field(default_factory=list)
 
     @classmethod
     def load(
@@ -186,11 +202,13 @@ class Dataset:
             if not Path(p).is_file():
                 raise InputError("FOON file not found", str(p))
         one = {k: str(v) for k, v in paths.items() if k != "foon"}
+        warnings: list[str] = []
         return cls(
             foon=read_foons(foon_paths, strict),
             kitchen=read_kitchen(one["kitchen"]),
             goals=read_goals(one["goals"]) if "goals" in one else [],
-            motion=read_motion(one["motion"]) if "motion" in one else {},
-            utensils=read_utensils(one["utensils"]) if "utensils" in one else frozenset(),
+            motion=read_motion(one["motion"], warnings) if "motion" in one else {},
+            utensils=read_utensils(one["utensils"], warnings) if "utensils" in one else frozenset(),
             paths={k: (",".join(v) if isinstance(v, list) else v) for k, v in paths.items()},
+            warnings=warnings,
         )

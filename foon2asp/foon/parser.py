@@ -7,7 +7,10 @@ Two dialects are read, line by line, so files may even mix them:
 * the official subgraph format (``O<id>\\tlabel\\t<0|1>``, ``S<id>\\t...``,
   ``M<id>\\tmotion\\t<start>\\t<end>``, CRLF, ``# Source:`` lines).
 
-``//`` ends a unit; ``#`` starts a comment line; blank lines are ignored.
+``//`` ends a unit; a line starting with ``#`` is a comment; blank lines are
+ignored.  Lines end at LF, CRLF or CR; a control character (NUL, VT, ...),
+NEL, U+2028/U+2029 or a byte that is not UTF-8 is an error naming
+``FILE:LINE:COLUMN``; a byte-order mark at the start is skipped.
 ``in`` sets the container, ``contains`` the ingredients; any other relation
 (``on``, ``with``, ``attached to``, ...) is kept as the state ``"rel [arg]"``.
 A trailing ``*`` on a motion label is dropped.
@@ -31,6 +34,7 @@ from typing import TextIO
 from foon2asp.errors import InputError
 from foon2asp.foon.foonjson import looks_like_json, parse_json
 from foon2asp.foon.model import Foon, FoonObject, Unit, norm
+from foon2asp.foon.safetext import check_line, decode_error, lines_of, read_bytes
 
 _LINE = re.compile(r"^([OSM])(\d*)\t(.*)$")  # the line shape _parse checks by hand
 _KINDS = frozenset("OSM")
@@ -105,6 +109,9 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
     lineno = 0
     for lineno, raw in enumerate(lines, 1):
         line = raw.rstrip("\r\n")
+        if lineno == 1 and line.startswith("\ufeff"):
+            line = line[1:]
+        check_line(line, path, lineno)
         kind = line[:1]
         # the common lines first, without a regular expression (same as _LINE)
         tab = line.find("\t") if kind in _KINDS else -1
@@ -179,8 +186,13 @@ def read_foon(path: str | Path, foon: Foon | None = None, strict: bool = False) 
             return parse_lines(fh, str(path), foon, strict)
     except OSError as exc:
         raise InputError(f"cannot read FOON file: {exc.strerror or exc}", str(path)) from None
-    except UnicodeDecodeError as exc:
-        raise InputError(f"not UTF-8 text ({exc.reason})", str(path)) from None
+    except UnicodeDecodeError:
+        data = read_bytes(path, "FOON")
+        try:
+            data.decode("utf-8")
+        except UnicodeDecodeError as exc:
+            raise decode_error(data, exc, str(path)) from None
+        raise  # pragma: no cover - the bytes decode as a whole
 
 
 def read_foons(paths: Iterable[str | Path], strict: bool = False) -> Foon:
@@ -192,7 +204,7 @@ def read_foons(paths: Iterable[str | Path], strict: bool = False) -> Foon:
 
 
 def parse_text(text: str, path: str = "<string>", strict: bool = False) -> Foon:
-    return parse_lines(text.splitlines(), path, strict=strict)
+    return parse_lines(lines_of(text), path, strict=strict)
 
 
 DIALECTS = ("official", "plain")

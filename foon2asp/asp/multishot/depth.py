@@ -52,6 +52,7 @@ from typing import Any
 
 import clingo
 
+from foon2asp.asp.control import deferred_signals
 from foon2asp.errors import InputError
 
 
@@ -216,8 +217,9 @@ def block(session, goal: int, bound: int) -> int:
     text = "".join(f"window({k},{u},{lo},{hi}).\n" for u, lo, hi in windows)
     num = clingo.Number
     try:
-        session.ctl.add(name, [], text)
-        session.ctl.ground([(name, []), ("bound", [num(k), num(goal), num(bound)])])
+        with deferred_signals():  # grounding cannot be interrupted: a signal waits for its end
+            session.ctl.add(name, [], text)
+            session.ctl.ground([(name, []), ("bound", [num(k), num(goal), num(bound)])])
     except RuntimeError:
         raise InputError(_message(session), "grounding the depth rounds") from None
     blocks[(goal, bound)] = k

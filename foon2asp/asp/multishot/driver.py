@@ -28,7 +28,8 @@ from dataclasses import dataclass, field
 import clingo
 
 from foon2asp.asp import objectives
-from foon2asp.asp.control import Answer
+from foon2asp.asp.canonical import canonicalise
+from foon2asp.asp.control import Answer, deferred_signals
 from foon2asp.asp.multishot import depth as depth_mod
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, goal_fields, meal_of, measures
 
@@ -94,23 +95,30 @@ class Driver:
 
         switched = {clingo.Function("goal", [clingo.Number(g)]): True for g in meal_of(goal)}
         switched.update(externals)
-        for atom, value in switched.items():
-            ctl.assign_external(atom, value)
+        control = self.session.control
+        control.assign(switched)
         self.solves += 1
         try:
             remaining = None if deadline is None else max(0.0, deadline - time.perf_counter())
-            result = self.session.control.solve(record, remaining)
+            result = control.solve(record, remaining)
             self.last_stats = self.session.stats()  # before the externals change: that resets them
+            finished = result.finished
+            if mode == "optN":
+                # distinct optimal trees in an input-only order (smallest unit ids first)
+                found = sorted(answers.values(), key=lambda a: a.units) or ([] if finished else last)
+            else:
+                found = last
+            if found and mode == "opt" and finished and result.exhausted:
+                found = [Answer(a.units, a.cost, True, a.human) for a in found]
+                if self.options.canonical:
+                    # several optimal trees: the one that depends only on the input
+                    found[0], _ = canonicalise(control, found[0], deadline)
+            elif found and mode == "optN" and finished and found[0].proven and self.options.canonical:
+                # the first tree is the canonical one; the others follow in id order
+                first, _ = canonicalise(control, found[0], deadline)
+                found = [first] + [a for a in found if a.units != first.units][: max(0, count - 1)]
         finally:
-            for atom in switched:
-                ctl.assign_external(atom, False)
-        finished = result.finished
-        if mode == "optN":
-            found = list(answers.values()) or ([] if finished else last)
-        else:
-            found = last
-        if found and mode == "opt" and finished and result.exhausted:
-            found = [Answer(a.units, a.cost, True, a.human) for a in found]
+            control.assign(dict.fromkeys(switched, False))
         return Shot(found, result.unsatisfiable is True, finished)
 
     # -- one cost level ----------------------------------------------------
@@ -150,7 +158,7 @@ class Driver:
         ctl = self.session.ctl
         atoms = ctl.symbolic_atoms
         body = [atoms[clingo.Function("use", [clingo.Number(u)])].literal for u in answer.units]
-        with ctl.backend() as backend:
+        with deferred_signals(), ctl.backend() as backend:
             guard = backend.add_atom()
             backend.add_external(guard, clingo.TruthValue.False_)
             backend.add_rule([], [guard] + body)
@@ -199,8 +207,9 @@ class Driver:
                 for answer in shot.answers:
                     guards[self.exclude(answer)] = True
         finally:
-            for guard in guards:
-                self.session.ctl.release_external(guard)
+            with deferred_signals():
+                for guard in guards:
+                    self.session.ctl.release_external(guard)
         if not found:
             status = "unreachable" if first.unsat and first.finished else "unknown"
             tree = self._tree(goal, None, status, t0)

@@ -1,0 +1,75 @@
+"""Checked option types for the command line (click parameter types).
+
+* :data:`SECONDS` -- a finite, non-negative number of seconds (``nan``, ``inf``, ``-1`` refused);
+* :func:`int32` -- an integer within what the solver takes (clingo numbers are 32-bit), so an
+  overflow can never turn into a wrong answer;
+* :data:`SCHEDULER` -- a Dask scheduler address ``[tcp://|tls://|ucx://|ws://|wss://]HOST:PORT``
+  (a port is required, except for ``inproc://``).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+import click
+
+from foon2asp.errors import escape
+
+INT32_MAX = 2**31 - 1
+
+
+class Seconds(click.ParamType):
+    """A finite number of seconds >= 0."""
+
+    name = "seconds"
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, int | float) and not isinstance(value, bool):
+            number = float(value)
+        else:
+            try:
+                number = float(str(value).strip())
+            except ValueError:
+                self.fail(f"{escape(str(value))!r} is not a number of seconds", param, ctx)
+        if not math.isfinite(number) or number < 0:
+            self.fail(f"{escape(str(value))!r} is not a finite number of seconds >= 0", param, ctx)
+        return number
+
+
+SECONDS = Seconds()
+
+
+def int32(min: int = 0, max: int = INT32_MAX) -> click.IntRange:
+    """An integer in ``[min, max]``, at most 2^31 - 1 (the solver's integers are 32-bit)."""
+    return click.IntRange(min=min, max=max)
+
+
+_ADDRESS = re.compile(r"^(?:(tcp|tls|inproc|ucx|ws|wss)://)?(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.\-]+)(?::(\d{1,5}))?/?$")
+
+
+class SchedulerAddress(click.ParamType):
+    """``[PROTOCOL://]HOST[:PORT]`` of a Dask scheduler (the port 1..65535)."""
+
+    name = "address"
+
+    def convert(self, value, param, ctx):
+        text = str(value).strip()
+        m = _ADDRESS.match(text)
+        if m is None:
+            self.fail(
+                f"{escape(text)!r} is not a scheduler address (expected [tcp://]HOST:PORT, e.g. tcp://127.0.0.1:8786)",
+                param,
+                ctx,
+            )
+        port = m.group(3)
+        if port is None and m.group(1) != "inproc":
+            self.fail(
+                f"{escape(text)!r} has no port (expected [tcp://]HOST:PORT, e.g. tcp://127.0.0.1:8786)", param, ctx
+            )
+        if port is not None and not 0 < int(port) < 65536:
+            self.fail(f"port {port} of {escape(text)!r} is not in 1..65535", param, ctx)
+        return text
+
+
+SCHEDULER = SchedulerAddress()
