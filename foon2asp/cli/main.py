@@ -9,15 +9,16 @@ from pathlib import Path
 import click
 
 from foon2asp import api, methods, report
+from foon2asp.analysis import compare as compare_mod
 from foon2asp.analysis import queries
 from foon2asp.asp.constraints import ConstraintSpec, read_file, unknown_names
 from foon2asp.asp.facts import facts as facts_text
 from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.options import OBJECTIVES
 from foon2asp.batch import run as batch_mod
+from foon2asp.cli.options import EXIT_CODES, Group, exit_code, progress_bar
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
-from foon2asp.foon.demo import demo_dir
 from foon2asp.foon.parser import read_foons, write_foon
 from foon2asp.foon.problem import UTENSIL_RULES, Problem
 from foon2asp.report.trees import render
@@ -52,9 +53,16 @@ def data_options(func):
             "--data",
             "data_dir",
             type=click.Path(),
-            help="Directory with FOON.txt, kitchen.json, goal_nodes.json, motion.txt, utensils.txt (default: the demo data).",
+            help="Directory with FOON.txt, kitchen.json, goal_nodes.json, motion.txt, utensils.txt;"
+            " 'demo' for the demo data set shipped with foon2asp.",
         ),
-        click.option("--foon", "foon", type=click.Path(), multiple=True, help="FOON file(s); several are merged."),
+        click.option(
+            "--foon",
+            "foon",
+            type=click.Path(),
+            multiple=True,
+            help="FOON file(s), several are merged; without --data the other files are read from beside the first.",
+        ),
         click.option("--kitchen", type=click.Path(), help="kitchen.json"),
         click.option("--motion", type=click.Path(), help="motion.txt (motion TAB success rate)"),
         click.option("--utensils", type=click.Path(), help="utensils.txt"),
@@ -72,12 +80,38 @@ def data_options(func):
     return func
 
 
+GOAL_HELP = (
+    "Goal: a label, an object's text as foon2asp prints it ('tomato, diced, in [plate]') or #ID"
+    " from 'foon2asp objects'; repeatable."
+)
+GOALS_HELP = (
+    "FILE of goal objects (e.g. 'foon2asp objects --format json' output), 'all' (the goals file) or"
+    " 'all-objects' (every made object). Default without --goal: the goals file."
+)
+
+
 def goal_options(func):
-    func = click.option("--goals", "goals", help="FILE of goal objects, 'all' (the goals file) or 'all-objects'.")(func)
-    func = click.option(
-        "--goal", "goal", multiple=True, help="Goal label (goals-file entry, else a unique FOON object)."
-    )(func)
+    func = click.option("--goals", "goals", metavar="FILE|all|all-objects", help=GOALS_HELP)(func)
+    func = click.option("--goal", "goal", multiple=True, metavar="TEXT", help=GOAL_HELP)(func)
     return func
+
+
+def method_option(default: str, many: bool = True):
+    """``--method``/``--methods`` (the same option): registered names, comma-separated or repeated."""
+    return click.option(
+        "--methods",
+        "--method",
+        "method_list",
+        multiple=True,
+        metavar="NAME[,NAME]",
+        help=f"Registered method(s) (see 'foon2asp methods'), comma-separated or repeated (default: {default}).",
+    )
+
+
+def progress_option(func):
+    return click.option(
+        "--progress/--no-progress", default=None, help="Progress bar on stderr (default: when it is a terminal)."
+    )(func)
 
 
 _CONSTRAINT_KEYS = (
@@ -145,9 +179,9 @@ def constraint_programs(spec: ConstraintSpec, problem: Problem | None = None) ->
 
 
 def load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file=None) -> api.KnowledgeBase:
-    """Read the data through the library; warnings go to stderr."""
-    if data_dir is None and not (foon and kitchen):
-        data_dir = str(demo_dir())
+    """Read the data through the library; warnings go to stderr.  Never the demo data unless asked."""
+    if data_dir is None and not foon:
+        raise InputError("no data given: use --data DIR, --foon FILE (with kitchen.json ... beside it) or --data demo")
     goals_path = goals_file if goals_file not in (None, "all", "all-objects") else None
     kb = api.load(
         data_dir,
@@ -265,24 +299,34 @@ def safe_name(index: int, label: str) -> str:
     return f"{index:03d}-{keep}"
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(cls=Group, context_settings={"help_option_names": ["-h", "--help"]}, epilog=EXIT_CODES)
 @click.version_option(package_name="foon2asp")
 def main():
     """foon2asp: minimal, well-founded FOON task trees with answer-set programming."""
 
 
-@main.command()
+#: formats whose rendering of several trees is the renderings of each, joined by this: streamed
+STREAMED = {"text": "\n", "foon": "", "jsonl": ""}
+
+
+@main.command(epilog=EXIT_CODES)
 @data_options
 @goal_options
 @constraint_options
-@click.option("--method", default="asp", show_default=True, help="A registered method (see 'foon2asp methods').")
+@method_option("asp")
 @click.option(
     "--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first."
 )
 @click.option("--format", "fmt", type=click.Choice(report.names("trees")), default="text", show_default=True)
-@click.option("--output", type=click.Path(file_okay=False), help="Also write one file per goal into this directory.")
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(file_okay=False),
+    help="A FOLDER: also write one file per goal (and method) there.",
+)
 @click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
 @solver_options
+@progress_option
 @guarded
 def solve(
     data_dir,
@@ -294,56 +338,87 @@ def solve(
     strict,
     goal,
     goals,
-    method,
+    method_list,
     objective,
     fmt,
     output,
     time_limit,
     constraints,
     solver_settings,
+    progress,
 ):
-    """Find the best task tree for each goal."""
+    """Find the best task tree for each goal (default: the goals file's goals).
+
+    Text, FOON and JSON-lines output is printed goal by goal as each is solved.
+    """
+    names = _method_list(method_list)
     kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
-    if methods.get(method).kind != "asp" and solver_settings != SOLVER_DEFAULTS:
-        raise InputError(f"solver settings apply to ASP methods only; {method!r} is a search baseline")
+    if any(methods.get(m).kind != "asp" for m in names) and solver_settings != SOLVER_DEFAULTS:
+        search = [m for m in names if methods.get(m).kind != "asp"]
+        raise InputError(f"solver settings apply to ASP methods only; {', '.join(search)} are search baselines")
     options = kb.options(objective, time_limit, _constraints(constraints), **solver_settings)
     _warn(kb)
     problem = kb.problem
-    trees = []
     out_dir = Path(output) if output else None
     if out_dir:
         out_dir.mkdir(parents=True, exist_ok=True)
-    for index, tree in enumerate(kb.solve_iter(goal_ids, method, options), 1):
-        found = alternatives(tree.raw)  # --models / --all-optimal: the further trees, best first
-        trees.extend(found)
-        if out_dir:
-            ext = report.get("trees", fmt).extension
-            name = f"{safe_name(index, tree.goal.label)}.{ext}"
-            (out_dir / name).write_text(render(problem, found, fmt), encoding="utf-8")
-    _solver_warnings(problem, trees)
-    click.echo(render(problem, trees, fmt), nl=False)
+    ext = report.get("trees", fmt).extension
+    sep = STREAMED.get(fmt)
+    held: list = []
+    answers: list[tuple[str, object]] = []
+    printed = 0
+    for method in names:
+        trees = kb.solve_iter(goal_ids, method, options)
+        for index, tree in enumerate(progress_bar(trees, len(goal_ids), progress, f"solve {method}"), 1):
+            if methods.get(method).kind != "asp":
+                compare_mod.judge(problem, tree.raw)  # "valid" for search baselines, as compare gives it
+            found = alternatives(tree.raw)  # --models / --all-optimal: the further trees, best first
+            answers += [(t.status, t.extra.get("valid")) for t in found]
+            _solver_warnings(problem, found)
+            if out_dir:
+                suffix = f"-{method}" if len(names) > 1 else ""
+                name = f"{safe_name(index, tree.goal.label)}{suffix}.{ext}"
+                (out_dir / name).write_text(render(problem, found, fmt), encoding="utf-8")
+            if sep is None:
+                held.extend(found)
+                continue
+            text = render(problem, found, fmt)
+            click.echo((sep if printed else "") + text, nl=False)
+            sys.stdout.flush()
+            printed += 1
+    if sep is None:
+        click.echo(render(problem, held, fmt), nl=False)
+    sys.exit(exit_code(answers))
 
 
 @main.command()
 @data_options
-@click.option("--goals", "goals_file", help="Goals FILE (default: goal_nodes.json of --data).")
-@click.option("--goal", "goal", multiple=True, help="Also fix goal(O) for this label.")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the facts here (default: stdout).")
+@click.option(
+    "--goals", "goals", metavar="FILE|all|all-objects", help="Goals for goal_node/2 facts (default: the goals file)."
+)
+@click.option("--goal", "goal", multiple=True, metavar="TEXT", help="Also fix goal(O) for this goal. " + GOAL_HELP)
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="A FILE to write the facts to (default: stdout).")
 @guarded
-def facts(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file, goal, output):
+def facts(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals, goal, output):
     """Write the FOON, kitchen and goals as ASP facts."""
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file)
-    data, problem = kb.data, kb.problem
-    goal_nodes = [goals_mod.goal_id(problem, obj, data.paths.get("goals"), line) for obj, line in data.goals]
-    fixed = goals_mod.resolve(data, problem, goal, None) if goal else []
-    text = facts_text(problem, goal_nodes=goal_nodes)
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    text = facts_text(kb.problem, goal_nodes=_goal_nodes(kb, goals))
+    fixed = goals_mod.resolve(kb.data, kb.problem, goal, None) if goal else []
     text += "".join(f"goal({g}).\n" for g in fixed)
     if output:
         Path(output).write_text(text, encoding="utf-8")
         click.echo(f"wrote {len(text.splitlines())} lines to {output}", err=True)
     else:
         click.echo(text, nl=False)
+
+
+def _goal_nodes(kb: api.KnowledgeBase, goals: str | None) -> list[int]:
+    """goal_node/2 facts: ``--goals FILE|all|all-objects``, else the goals file's entries (if any)."""
+    if goals:
+        return goals_mod.resolve(kb.data, kb.problem, (), goals)
+    path = kb.data.paths.get("goals")
+    return [goals_mod.goal_id(kb.problem, obj, path, line) for obj, line in kb.data.goals]
 
 
 @main.command()
@@ -377,40 +452,52 @@ def list_methods():
 @main.command()
 @click.argument("tree", type=click.Path())
 @data_options
-@click.option("--goal", "goal", help="Goal label (default: the goal a JSON result names, else inferred from the tree).")
+@click.option(
+    "--goal",
+    "goal",
+    metavar="TEXT",
+    help="The goal (a label, an object's text or #ID); default: the goal the file names"
+    " (a JSON result, or the '# task tree for ...' line of solve --format foon), else the tree's only sink.",
+)
+@click.option(
+    "--goals",
+    "goals",
+    metavar="FILE|all",
+    help="Several goals (a goals file, or 'all' for the goals file): each tree's goal is the one of them it makes.",
+)
 @click.option("--format", "fmt", type=click.Choice(report.names("check")), default="text", show_default=True)
 @click.option(
     "--optimum/--no-optimum", default=True, show_default=True, help="Also solve the ASP optimum to compare with."
 )
 @guarded
-def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, fmt, optimum):
-    """Check a task tree (FOON text with // between units, or foon2asp JSON).
+def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, optimum):
+    """Check the task tree(s) in TREE (FOON text with // between units, or foon2asp JSON).
 
-    Exit status: 0 valid, 1 invalid, 2 bad input.
+    \b
+    Exit codes: 0 every tree valid; 1 some tree invalid; 2 bad input or usage;
+    130 interrupted.
     """
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict)
-    reports = kb.check(tree, goal, optimum)
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    among = None
+    if goals:
+        among = [kb.problem.objects[g] for g in goals_mod.resolve(kb.data, kb.problem, (), goals)]
+    reports = kb.check(tree, goal, optimum, among)
     assert isinstance(reports, list)
     click.echo(report.render("check", fmt, kb.problem, [r.raw for r in reports]), nl=False)
     sys.exit(0 if all(r.valid for r in reports) else 1)
 
 
-@main.command()
+@main.command(epilog=EXIT_CODES)
 @data_options
 @goal_options
 @constraint_options
-@click.option(
-    "--methods",
-    "method_list",
-    default="ids,gbfs-h1,gbfs-h2,asp",
-    show_default=True,
-    help="Comma-separated registered methods (see 'foon2asp methods').",
-)
+@method_option("ids,gbfs-h1,gbfs-h2,asp")
 @click.option(
     "--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first."
 )
 @click.option("--format", "fmt", type=click.Choice(report.names("compare")), default="text", show_default=True)
 @click.option("--time-limit", type=float, help="Seconds per goal for ASP methods.")
+@progress_option
 @guarded
 def compare(
     data_dir,
@@ -427,13 +514,13 @@ def compare(
     fmt,
     time_limit,
     constraints,
+    progress,
 ):
-    """Compare methods goal by goal: units, validity, success product, depth (default: --goals all)."""
-    if not goal and not goals:
-        goals = "all"
-    names = [m.strip() for m in method_list.split(",") if m.strip()]
-    for name in names:
-        methods.get(name)  # unknown names fail before any work
+    """Compare methods goal by goal: units, validity, success product, depth (default: the goals file's goals).
+
+    --format jsonl prints each goal's results as soon as it is done.
+    """
+    names = _method_list(method_list, list(compare_mod.DEFAULT_METHODS))
     kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
     search = [n for n in names if methods.get(n).kind != "asp"]
@@ -441,18 +528,18 @@ def compare(
         click.echo(
             f"foon2asp: warning: constraints apply to ASP methods only; {', '.join(search)} ignore them", err=True
         )
-    comparison = kb.compare(
-        goal_ids, names, objective=objective, time_limit=time_limit, constraints=_constraints(constraints)
-    )
+    options = kb.options(objective, time_limit, _constraints(constraints))
     _warn(kb)
-    click.echo(comparison.render(fmt), nl=False)
-
-
-def _goals_or_default(data, problem, goal, goals) -> list[int]:
-    """--goal/--goals, else every entry of the goals file, else every made object."""
-    if not goal and not goals:
-        goals = "all" if data.paths.get("goals") else "all-objects"
-    return goals_mod.resolve(data, problem, goal, goals)
+    rows = []
+    parts = kb.compare_iter(goal_ids, names, options)
+    for part in progress_bar(parts, len(goal_ids), progress, "compare"):
+        rows.extend(part.raw)
+        if fmt == "jsonl":
+            click.echo(part.render(fmt), nl=False)
+            sys.stdout.flush()
+    if fmt != "jsonl":
+        click.echo(api.Comparison(kb, rows).render(fmt), nl=False)
+    sys.exit(exit_code((t.status, t.extra.get("valid")) for r in rows for t in r.trees.values()))
 
 
 @main.command()
@@ -461,39 +548,74 @@ def _goals_or_default(data, problem, goal, goals) -> list[int]:
 @click.option("--format", "fmt", type=click.Choice(report.names("reachable")), default="text", show_default=True)
 @guarded
 def reachable(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt):
-    """Which goals (or objects) can be made from the kitchen at all, in one solve (default: --goals all)."""
+    """Which goals (or objects) can be made from the kitchen at all, in one solve (default: the goals file's goals)."""
     kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
-    goal_ids = _goals_or_default(kb.data, kb.problem, goal, goals)
+    goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
     answers = queries.reachable(kb.problem, goal_ids)
     click.echo(report.render("reachable", fmt, kb.problem, answers), nl=False)
 
 
-@main.command()
+@main.command(epilog=EXIT_CODES)
 @data_options
 @goal_options
 @constraint_options
+@click.option(
+    "--objective",
+    default="units",
+    show_default=True,
+    help="After the fewest added objects, the best tree by these objectives (units, success, inputs), comma-separated.",
+)
 @click.option("--format", "fmt", type=click.Choice(report.names("missing")), default="text", show_default=True)
 @click.option("--time-limit", type=float, help="Seconds per goal; the best answer so far is reported as 'feasible'.")
+@progress_option
 @guarded
-def missing(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, time_limit, constraints):
-    """The fewest objects to add to the kitchen so a goal can be made (proven minimal), and the tree."""
+def missing(
+    data_dir,
+    foon,
+    kitchen,
+    motion,
+    utensils,
+    utensil_rule,
+    strict,
+    goal,
+    goals,
+    objective,
+    fmt,
+    time_limit,
+    constraints,
+    progress,
+):
+    """The fewest objects to add to the kitchen so a goal can be made (proven minimal), and the tree.
+
+    Default goals: the goals file's.
+    """
     kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
-    results = [kb.missing(g, time_limit=time_limit, constraints=_constraints(constraints)).raw for g in goal_ids]
+    spec = _constraints(constraints)
+    kb.options(objective, time_limit, spec)  # checks the names, warns about unknown ones
     _warn(kb)
-    click.echo(report.render("missing", fmt, kb.problem, results), nl=False)
+    results = []
+    for g in progress_bar(goal_ids, len(goal_ids), progress, "missing"):
+        results.append(kb.missing(g, time_limit=time_limit, constraints=spec, objective=objective).raw)
+        if fmt == "jsonl":
+            click.echo(report.render("missing", fmt, kb.problem, results[-1:]), nl=False)
+    if fmt != "jsonl":
+        click.echo(report.render("missing", fmt, kb.problem, results), nl=False)
+    sys.exit(exit_code((r.status, None) for r in results))
 
 
 @main.command()
 @click.argument("program", type=click.Path())
 @data_options
-@click.option("--goals", "goals_file", help="Goals FILE for goal_node/2 (default: goal_nodes.json of --data).")
-@click.option("--goal", "goal", help="Also add goal(O) for this goal label.")
+@click.option(
+    "--goals", "goals", metavar="FILE|all|all-objects", help="Goals for goal_node/2 facts (default: the goals file)."
+)
+@click.option("--goal", "goal", metavar="TEXT", help="Also add goal(O) for this goal. " + GOAL_HELP)
 @click.option(
     "--encoding",
     "encoding_names",
     multiple=True,
-    help="Also load a shipped encoding (tree, units, reachable, missing); repeatable.",
+    help="Also load a shipped encoding (tree, units, success, inputs, reachable, missing) and what it needs; repeatable.",
 )
 @click.option(
     "--models",
@@ -514,7 +636,7 @@ def query(
     utensils,
     utensil_rule,
     strict,
-    goals_file,
+    goals,
     goal,
     encoding_names,
     models,
@@ -523,42 +645,58 @@ def query(
 ):
     """Run your ASP PROGRAM with the FOON facts; print its shown atoms with ids as readable objects.
 
-    Exit status: 0 with a model, 1 when unsatisfiable, 2 bad input.
+    With a #show statement in PROGRAM only what it shows is printed. Atoms that
+    no rule or fact defines (a misspelt predicate) are warned about.
+
+    \b
+    Exit codes: 0 a model, or proven unsatisfiable; 1 the time limit stopped the
+    search (no model, or the optimum not proven); 2 bad input or usage; 130 interrupted.
     """
 
     text = read_file(program)
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file)
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     result = kb.query(
-        text, goal=goal or None, encodings=encoding_names, models=models, time_limit=time_limit, name=program
+        text,
+        goal=goal or None,
+        encodings=encoding_names,
+        models=models,
+        time_limit=time_limit,
+        name=program,
+        goal_nodes=goals or None,
     )
+    for warning in result.warnings:
+        click.echo(f"foon2asp: warning: {warning}", err=True)
     click.echo(report.render("query", fmt, kb.problem, result), nl=False)
-    sys.exit(1 if result.status == "unsatisfiable" else 0)
+    sys.exit(exit_code([(result.status, None)]))
 
 
-def _method_list(values: tuple[str, ...]) -> list[str]:
+def _method_list(values: tuple[str, ...], default: list[str] | None = None) -> list[str]:
     names = [n.strip() for v in values for n in v.split(",") if n.strip()]
     for name in names:
         methods.get(name)
-    return list(dict.fromkeys(names)) or ["asp"]
+    return list(dict.fromkeys(names)) or list(default or ["asp"])
 
 
-@main.command()
+@main.command(epilog=EXIT_CODES)
 @data_options
 @goal_options
-@click.option(
-    "--methods", "method_list", multiple=True, help="Registered methods, comma-separated or repeated (default: asp)."
-)
+@method_option("asp")
 @click.option(
     "--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first."
 )
 @click.option(
+    "-o",
     "--output",
     default="results.jsonl",
     show_default=True,
     type=click.Path(dir_okay=False),
-    help="Results, one JSON line per (goal, method).",
+    help="A FILE of results, one JSON line per (goal, method).",
 )
-@click.option("--resume", is_flag=True, help="Continue OUTPUT: skip the (goal, method) pairs it already holds.")
+@click.option(
+    "--resume",
+    is_flag=True,
+    help="Continue OUTPUT: skip the (goal, method) pairs it already holds for the same configuration.",
+)
 @click.option("--workers", type=click.IntRange(min=1), default=1, show_default=True, help="Worker processes.")
 @click.option("--scheduler", metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra).")
 @click.option("--time-limit", type=float, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
@@ -617,7 +755,11 @@ def batch(
     fsync,
     constraints,
 ):
-    """Solve many goals with several methods; resumable JSON-lines output and a summary."""
+    """Solve many goals with several methods; resumable JSON-lines output and a summary.
+
+    Every result line carries "valid" (the independent validator's verdict); the
+    summary counts the valid trees per method. Default goals: the goals file's.
+    """
     kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
     outcome = kb.batch(
@@ -637,6 +779,7 @@ def batch(
         scheduler=scheduler,
     )
     click.echo(report.render("summary", summary_fmt, batch_mod.summarize(outcome.records), outcome), nl=False)
+    sys.exit(exit_code((r.get("status", "?"), r.get("valid")) for r in outcome.records))
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import io
+import json
 
 from foon2asp.analysis.compare import Row
 from foon2asp.foon.problem import Problem
@@ -135,6 +136,9 @@ register("compare", "markdown", "md", "Markdown table, goals x methods")(
 )
 register("compare", "csv", "csv", "one row per goal and method")(render_csv)
 register("compare", "json", "json", "solve-shaped results, each with valid")(render_json)
+register("compare", "jsonl", "jsonl", "JSON lines: one solve-shaped result with valid per goal and method")(
+    lambda problem, rows: "".join(json.dumps(tree_json(problem, t)) + "\n" for r in rows for t in r.trees.values())
+)
 
 
 def render(problem: Problem, rows: list[Row], fmt: str) -> str:

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 from foon2asp.foon.problem import Problem
 
-STATUSES = ("optimal", "feasible", "unreachable", "unknown", "found", "not-found")
+STATUSES = ("optimal", "ranked", "feasible", "unreachable", "unknown", "found", "not-found")
 
 
 @dataclass
@@ -30,7 +30,7 @@ class TaskTree:
 
     @property
     def has_tree(self) -> bool:
-        return self.status in ("optimal", "feasible", "found")
+        return self.status in ("optimal", "ranked", "feasible", "found")
 
 
 def executable_order(problem: Problem, units: list[int] | set[int]) -> list[int]:
