@@ -262,7 +262,19 @@ def test_cli_max_units_makes_unreachable_and_rule_file(tmp_path):
     assert json.loads(r.stdout)[0]["status"] == "unreachable"
     f = tmp_path / "c.lp"
     f.write_text(':- use(U), motion(U,"slice").\n')
-    r = run("solve", "--data", "demo", "--goal", "tomato salad", "--constraint", str(f), "--forbid-motion", "chop", "--format", "json")
+    r = run(
+        "solve",
+        "--data",
+        "demo",
+        "--goal",
+        "tomato salad",
+        "--constraint",
+        str(f),
+        "--forbid-motion",
+        "chop",
+        "--format",
+        "json",
+    )
     assert json.loads(r.stdout)[0]["status"] == "unreachable"
 
 

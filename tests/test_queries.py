@@ -315,7 +315,11 @@ def test_query_decodes_objects_and_units(tmp_path, demo_problem):
     assert r.exit_code == 0, r.output
     assert "can(<tomato salad, mixed, in [bowl]>)" in r.stdout
     assert "chops(0)" in r.stdout  # a user predicate: plain numbers stay numbers
-    out = json.loads(CliRunner().invoke(main, ["query", "--data", "demo", str(prog), "--encoding", "tree", "--format", "json"]).stdout)
+    out = json.loads(
+        CliRunner()
+        .invoke(main, ["query", "--data", "demo", str(prog), "--encoding", "tree", "--format", "json"])
+        .stdout
+    )
     (model,) = out["models"]
     can = [a for a in model["atoms"] if a["predicate"] == "can"]
     assert can[0]["arguments"][0]["label"] == "tomato salad"

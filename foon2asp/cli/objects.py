@@ -13,7 +13,7 @@ def _data_options_but_kitchen(func):
     """The data options without ``--kitchen FILE`` (here ``--kitchen`` keeps kitchen items):
     the kitchen is kitchen.json of --data or beside --foon."""
     func = data_options(func)
-    func.__click_params__ = [p for p in func.__click_params__ if p.name != "kitchen"]  # type: ignore[attr-defined]
+    func.__click_params__ = [p for p in func.__click_params__ if p.name != "kitchen"]
     return func
 
 

@@ -38,7 +38,7 @@ class Group(click.Group):
     """click's group with foon2asp's error style: usage errors are one line
     ``foon2asp: error: ...`` on stderr with exit code 2, like bad input."""
 
-    def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):  # type: ignore[override]
+    def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
         try:
             rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
         except click.exceptions.NoArgsIsHelpError as exc:  # pragma: no cover - click >= 8.2
