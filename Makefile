@@ -21,8 +21,8 @@ install-demo: $(BIN)/python
 	$(BIN)/pip install -q .
 
 demo: install-demo
-	$(BIN)/foon2asp solve --goals all
-	$(BIN)/foon2asp solve --goals all --format json --output out/demo > /dev/null
+	$(BIN)/foon2asp solve --data demo --goals all
+	$(BIN)/foon2asp solve --data demo --goals all --format json --output out/demo > /dev/null
 	@echo "trees written to out/demo/; run '. $(BIN)/activate' (or 'make shell') to use foon2asp"
 
 test: install lint

@@ -33,7 +33,7 @@ from foon2asp.batch import run as batch_run
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.demo import demo_dir
-from foon2asp.foon.loaders import Dataset
+from foon2asp.foon.loaders import FILE_NAMES, Dataset
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.planner import solve_goals
@@ -292,6 +292,16 @@ class KnowledgeBase:
             return list(self.problem.objects)
         return self.problem.foon.by_label(label)
 
+    def find_objects(self, query: str | None = None, only: str | None = None) -> list[int]:
+        """Ids of the objects ``query`` names (``#ID``, an object's text, a label, else labels
+        containing it as words; all when None); ``only``: ``produced``, ``kitchen`` or ``derivable``."""
+        return goals_mod.find_objects(self.problem, query, only)
+
+    def object_info(self, goal: GoalLike) -> dict:
+        """``{"id", "text", "label", "states", "ingredients", "container", "in_kitchen", "producers"}``
+        (``producers``: how many units make it); a list of these is a goals file."""
+        return goals_mod.object_info(self.problem, self.object_id(goal))
+
     def object_id(self, goal: GoalLike) -> int:
         """The object id of a goal given as a label, an object's text, ``#ID``, an id or an object."""
         if isinstance(goal, FoonObject):
@@ -304,7 +314,9 @@ class KnowledgeBase:
 
     def goal_ids(self, goals: GoalLike | Iterable[GoalLike] | None) -> list[int]:
         """Object ids for ``goals``: one goal, several, ``"all"`` (the goals file) or ``"all-objects"``."""
-        if goals is None or goals == "all":
+        if goals is None:
+            return goals_mod.default_goals(self.data, self.problem)
+        if goals == "all":
             return goals_mod.resolve(self.data, self.problem, (), "all")
         if goals == "all-objects":
             return goals_mod.all_objects(self.problem)
@@ -329,6 +341,12 @@ class KnowledgeBase:
         """The solver options every answer uses (defaults: see :mod:`foon2asp.asp.options`)."""
         spec = (constraints or Constraints()).spec()
         self.warnings.extend(unknown_names(self.problem, spec))
+        ranked = _objective(objective)
+        if human_steps is not None and "success" not in ranked:
+            raise InputError(
+                "human steps only change the tree when 'success' is an objective (a person's step succeeds"
+                f" for sure); use --objective success or {','.join(ranked)},success"
+            )
         settings: dict = {}
         if threads is not None:
             settings["threads"] = threads
@@ -405,13 +423,20 @@ class KnowledgeBase:
         return trees[0] if single else trees
 
     def check(
-        self, tree: Tree | str | Path, goal: GoalLike | Sequence[GoalLike] | None = None, optimum: bool = True
+        self,
+        tree: Tree | str | Path,
+        goal: GoalLike | Sequence[GoalLike] | None = None,
+        optimum: bool = True,
+        goals: Sequence[GoalLike] | str | Path | None = None,
     ) -> CheckReport | list[CheckReport]:
         """Judge a tree: a :class:`Tree`, or a file (FOON text in either dialect, FOON JSON,
         foon2asp JSON, or a plan as Fast Downward writes it for ``export pddl``).
 
         A :class:`Tree` gives one report; a file gives one per tree it holds.
-        ``goal``: the goal (several: a meal) when the file does not name it.
+        ``goal``: the goal (several: a meal). Otherwise the goal of a tree in a file is
+        the one of ``goals`` (a goals file or a list) the tree makes, else the one the
+        file names (a JSON result, or the ``# task tree for ...`` line ``solve --format
+        foon`` writes), else the tree's only product no unit of it needs.
         """
         if isinstance(tree, Tree):
             if goal is not None and not isinstance(goal, str | int | FoonObject):
@@ -429,7 +454,12 @@ class KnowledgeBase:
 
         goal_list = [] if goal is None else [goal] if isinstance(goal, str | int | FoonObject) else list(goal)
         labels = tuple(name(g) for g in goal_list) or None
-        reports = check_mod.check_file(self.data, self.problem, tree, labels, optimum)
+        among = None
+        if isinstance(goals, str | Path):
+            among = goals_mod.goals_from_file(self.problem, str(goals))
+        elif goals is not None:
+            among = [self.object_id(g) for g in goals]
+        reports = check_mod.check_file(self.data, self.problem, tree, labels, optimum, among)
         return [CheckReport(self, r) for r in reports]
 
     def compare(
@@ -443,7 +473,15 @@ class KnowledgeBase:
     ) -> Comparison:
         """Every method on every goal, each tree judged valid or not, beside the proven optimum."""
         options = self.options(objective, time_limit, constraints)
-        return Comparison(self, compare_mod.compare(self.problem, self.goal_ids(goals), list(methods), options))
+        parts = self.compare_iter(self.goal_ids(goals), methods, options)
+        return Comparison(self, [row for part in parts for row in part.raw])
+
+    def compare_iter(
+        self, goal_ids: Sequence[int], methods: Sequence[str] = compare_mod.DEFAULT_METHODS, options=None
+    ) -> Iterator[Comparison]:
+        """:meth:`compare` goal by goal: a one-row :class:`Comparison` as soon as each goal is done."""
+        for row in compare_mod.compare_iter(self.problem, list(goal_ids), list(methods), options):
+            yield Comparison(self, [row])
 
     def compare_meal(
         self,
@@ -469,18 +507,21 @@ class KnowledgeBase:
         *,
         time_limit: float | None = None,
         constraints: Constraints | None = None,
+        objective: str | Sequence[str] = "units",
     ) -> Missing:
-        """The fewest objects to add to the kitchen so ``goal`` can be made (proven minimal), and the tree.
+        """The fewest objects to add to the kitchen so ``goal`` can be made (proven minimal), then
+        the best tree by ``objective`` (``units``, ``success``, ``inputs`` or a lexicographic list).
 
         Several goals: the fewest objects for the whole meal (one tree making all of them).
         """
         programs = (constraints or Constraints()).spec().programs()
+        ranked = _objective(objective)
         target: int | tuple[int, ...]
         if isinstance(goal, str | int | FoonObject):
             target = self.object_id(goal)
         else:
             target = tuple(dict.fromkeys(self.object_id(g) for g in goal))
-        return Missing(self, queries.missing(self.problem, target, programs, time_limit))
+        return Missing(self, queries.missing(self.problem, target, programs, time_limit, ranked))
 
     def query(
         self,
@@ -491,12 +532,22 @@ class KnowledgeBase:
         models: int = 1,
         time_limit: float | None = None,
         name: str = "<program>",
+        goal_nodes: GoalLike | Sequence[GoalLike] | None = None,
     ) -> queries.QueryResult:
-        """Run an ASP ``program`` (text) with the facts; shown atoms come back with ids decoded."""
-        path = self.data.paths.get("goals")
-        goal_nodes = [goals_mod.goal_id(self.problem, obj, path, line) for obj, line in self.data.goals]
+        """Run an ASP ``program`` (text) with the facts; shown atoms come back with ids decoded.
+
+        ``goal_nodes`` (default: the goals file's entries) become ``goal_node/2`` facts;
+        ``encodings`` are loaded with the ones they need (``reachable`` needs ``tree``).
+        With a ``#show`` of its own in ``program`` only what it shows is returned;
+        ``warnings`` names atoms the program uses that no rule or fact defines.
+        """
+        if goal_nodes is None:
+            path = self.data.paths.get("goals")
+            nodes = [goals_mod.goal_id(self.problem, obj, path, line) for obj, line in self.data.goals]
+        else:
+            nodes = self.goal_ids(goal_nodes)
         gid = None if goal is None else self.object_id(goal)
-        return queries.query(self.problem, (name, program), goal_nodes, gid, encodings, models, time_limit)
+        return queries.query(self.problem, (name, program), nodes, gid, encodings, models, time_limit)
 
     def batch(
         self,
@@ -525,6 +576,33 @@ class KnowledgeBase:
         return batch_run.run_batch(spec, self.goal_ids(goals), output, resume, workers, progress, fsync, executor)
 
 
+#: what is lost when a file is not beside the FOON
+_WITHOUT = {
+    "goals": "no goals file: name goals with --goal or --goals FILE",
+    "motion": "every motion gets success rate 0.5",
+    "utensils": "no object is treated as a utensil",
+}
+
+
+def _beside(foon: Path, given: dict, warnings: list[str]) -> dict:
+    """``given`` with the files not given taken from beside ``foon``; warnings for absent optional ones."""
+    out = dict(given)
+    for key, value in given.items():
+        if value is not None:
+            continue
+        candidate = foon.parent / FILE_NAMES[key]
+        if candidate.is_file():
+            out[key] = str(candidate)
+        elif key == "kitchen":
+            raise InputError(
+                f"no {FILE_NAMES[key]} beside the FOON file (looked for {candidate});"
+                " give --kitchen FILE or --data DIR (--data demo for the demo data)"
+            )
+        else:
+            warnings.append(f"no {FILE_NAMES[key]} beside {foon}: {_WITHOUT[key]}")
+    return out
+
+
 def load(
     path: str | Path | None = None,
     *,
@@ -537,7 +615,12 @@ def load(
     strict: bool = False,
 ) -> KnowledgeBase:
     """Read a data folder (``FOON.txt``, ``kitchen.json``, ``goal_nodes.json``,
-    ``motion.txt``, ``utensils.txt``) or ``"demo"``; keyword files override its files."""
+    ``motion.txt``, ``utensils.txt``) or ``"demo"``; keyword files override its files.
+
+    With ``foon`` and no folder, the other files are read from beside the
+    (first) FOON file when there; a missing ``kitchen.json`` is an error, a
+    missing goals, motion or utensils file a warning saying what that means.
+    """
     if path == "demo":
         path = demo_dir()
     if path is None and foon is None:
@@ -545,11 +628,16 @@ def load(
     foon_paths: str | list | None = (
         [str(f) for f in foon] if isinstance(foon, list | tuple) else (None if foon is None else str(foon))
     )
+    beside: list[str] = []
+    if path is None and foon_paths:
+        first = Path(foon_paths[0] if isinstance(foon_paths, list) else foon_paths)
+        found = _beside(first, {"kitchen": kitchen, "goals": goals, "motion": motion, "utensils": utensils}, beside)
+        kitchen, goals, motion, utensils = found["kitchen"], found["goals"], found["motion"], found["utensils"]
     data = Dataset.load(
         path, foon=foon_paths, kitchen=kitchen, goals=goals, motion=motion, utensils=utensils, strict=strict
     )
     problem = Problem.from_dataset(data, utensil_rule)
-    warnings = list(data.foon.warnings) + list(data.warnings)
+    warnings = list(data.foon.warnings) + list(data.warnings) + beside
     unknown = problem.unknown_motions()
     if data.motion and unknown:
         warnings.append(

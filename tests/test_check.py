@@ -157,7 +157,7 @@ def test_read_foon_text_with_and_without_leading_separator(tmp_path):
 
 def test_read_json_result_list(tmp_path):
     path = tmp_path / "t.json"
-    res = cli("solve", "--goals", "all", "--format", "json")
+    res = cli("solve", "--data", "demo", "--goals", "all", "--format", "json")
     assert res.exit_code == 0
     path.write_text(res.stdout)
     trees = read_trees(path)
@@ -221,7 +221,7 @@ def test_check_demo_valid_and_greedy_trap(tmp_path, demo_problem):
 
 
 def test_check_exit_codes_on_json_with_several_trees(tmp_path):
-    res = cli("solve", "--goals", "all", "--format", "json")
+    res = cli("solve", "--data", "demo", "--goals", "all", "--format", "json")
     path = tmp_path / "asp.json"
     path.write_text(res.stdout)
     # tomato salad and scrambled egg are valid; the two unreachable goals have no tree

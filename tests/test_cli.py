@@ -52,10 +52,10 @@ def test_json_all_goals_shared(shared_foon_dir):
 
 
 def test_demo_is_default():
-    out = json.loads(run("solve", "--goals", "all", "--format", "json").stdout)
+    out = json.loads(run("solve", "--data", "demo", "--goals", "all", "--format", "json").stdout)
     assert [r["goal"]["label"] for r in out] == ["tomato salad", "scrambled egg", "whipped cream", "pancake"]
     assert [r["status"] for r in out] == ["optimal", "optimal", "unreachable", "unreachable"]
-    text = run("solve", "--goal", "tomato salad").stdout
+    text = run("solve", "--data", "demo", "--goal", "tomato salad").stdout
     assert "Status: optimal" in text and "1. chop" in text
 
 
@@ -68,7 +68,7 @@ def test_foon_format_round_trips(shared_foon_dir):
 
 
 def test_output_dir(tmp_path):
-    run("solve", "--goals", "all", "--format", "json", "--output", tmp_path)
+    run("solve", "--data", "demo", "--goals", "all", "--format", "json", "--output", tmp_path)
     files = sorted(p.name for p in tmp_path.iterdir())
     assert len(files) == 4 and files[0].startswith("001-tomato_salad")
     assert json.loads((tmp_path / files[0]).read_text())[0]["status"] == "optimal"
@@ -76,14 +76,14 @@ def test_output_dir(tmp_path):
 
 def test_goal_from_foon_label_and_ambiguity():
     # not in the goals file, but a unique produced object
-    out = json.loads(run("solve", "--goal", "pancake batter", "--format", "json").stdout)
+    out = json.loads(run("solve", "--data", "demo", "--goal", "pancake batter", "--format", "json").stdout)
     assert out[0]["status"] == "optimal" and len(out[0]["units"]) == 1
-    res = run("solve", "--goal", "tomato", ok=False)
+    res = run("solve", "--data", "demo", "--goal", "tomato", ok=False)
     assert_one_line_error(res, "ambiguous" if "ambiguous" in res.stderr else "names", "tomato, chopped")
 
 
 def test_unknown_goal_suggests_labels():
-    res = run("solve", "--goal", "tomato salat", ok=False)
+    res = run("solve", "--data", "demo", "--goal", "tomato salat", ok=False)
     assert_one_line_error(res, "tomato salad")
 
 
@@ -109,7 +109,7 @@ def test_goal_not_in_foon(tmp_path):
         '[\n  {"label": "tomato salad", "states": ["mixed"], "container": "bowl"},\n'
         '  {"label": "tomato salad", "states": ["burnt"], "container": "bowl"}\n]\n'
     )
-    res = run("solve", "--goals", goals, ok=False)
+    res = run("solve", "--data", "demo", "--goals", goals, ok=False)
     assert_one_line_error(res, "goals.json:3:", "not an object of the FOON")
 
 

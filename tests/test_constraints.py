@@ -247,41 +247,53 @@ def run(*args):
 
 
 def test_cli_solve_forbid_motion_demo():
-    r = run("solve", "--goal", "tomato salad", "--forbid-motion", "chop", "--format", "json")
+    r = run("solve", "--data", "demo", "--goal", "tomato salad", "--forbid-motion", "chop", "--format", "json")
     assert r.exit_code == 0, r.output
     (tree,) = json.loads(r.stdout)
     assert tree["status"] == "optimal"
     motions = [u["motion"] for u in tree["units"]]
     assert "chop" not in motions and {"slice", "dice"} <= set(motions)
-    base = json.loads(run("solve", "--goal", "tomato salad", "--format", "json").stdout)[0]
+    base = json.loads(run("solve", "--data", "demo", "--goal", "tomato salad", "--format", "json").stdout)[0]
     assert tree["cost"]["units"] == base["cost"]["units"] + 1
 
 
 def test_cli_max_units_makes_unreachable_and_rule_file(tmp_path):
-    r = run("solve", "--goal", "tomato salad", "--max-units", "3", "--format", "json")
+    r = run("solve", "--data", "demo", "--goal", "tomato salad", "--max-units", "3", "--format", "json")
     assert json.loads(r.stdout)[0]["status"] == "unreachable"
     f = tmp_path / "c.lp"
     f.write_text(':- use(U), motion(U,"slice").\n')
-    r = run("solve", "--goal", "tomato salad", "--constraint", str(f), "--forbid-motion", "chop", "--format", "json")
+    r = run(
+        "solve",
+        "--data",
+        "demo",
+        "--goal",
+        "tomato salad",
+        "--constraint",
+        str(f),
+        "--forbid-motion",
+        "chop",
+        "--format",
+        "json",
+    )
     assert json.loads(r.stdout)[0]["status"] == "unreachable"
 
 
 def test_cli_syntax_error_is_one_clean_line(tmp_path):
     f = tmp_path / "bad.lp"
     f.write_text('% comment\n\n:- use(U) motion(U,"chop").\n')
-    r = run("solve", "--goal", "tomato salad", "--constraint", str(f))
+    r = run("solve", "--data", "demo", "--goal", "tomato salad", "--constraint", str(f))
     assert r.exit_code == 2
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith(f"foon2asp: error: {f}:3: syntax error")
     assert "Traceback" not in r.output
-    r = run("solve", "--goal", "tomato salad", "--rule", "p(X) :- q.")
+    r = run("solve", "--data", "demo", "--goal", "tomato salad", "--rule", "p(X) :- q.")
     assert r.exit_code == 2 and r.stderr.startswith("foon2asp: error: --rule #1:1: unsafe variables")
 
 
 def test_cli_constraints_need_an_asp_method_and_warn_on_unknown_names():
-    r = run("solve", "--goal", "tomato salad", "--method", "ids", "--forbid-motion", "chop")
+    r = run("solve", "--data", "demo", "--goal", "tomato salad", "--method", "ids", "--forbid-motion", "chop")
     assert r.exit_code == 2 and "ASP methods only" in r.stderr
-    r = run("solve", "--goal", "tomato salad", "--forbid-motion", "flambe")
+    r = run("solve", "--data", "demo", "--goal", "tomato salad", "--forbid-motion", "flambe")
     assert r.exit_code == 0 and "no unit has motion 'flambe'" in r.stderr
 
 
@@ -314,10 +326,10 @@ def test_combinations_are_conjunctions():
 def test_batch_applies_constraints_like_solve(tmp_path):
     out = tmp_path / "b.jsonl"
     args = ["--goals", "all", "--forbid-motion", "chop"]
-    res = CliRunner().invoke(main, ["batch", *args, "--output", str(out), "--no-progress"])
+    res = CliRunner().invoke(main, ["batch", "--data", "demo", *args, "--output", str(out), "--no-progress"])
     assert res.exit_code == 0, res.output
     batch = {json.loads(l)["goal"]["label"]: json.loads(l) for l in out.read_text().splitlines()[1:]}
-    solved = json.loads(CliRunner().invoke(main, ["solve", *args, "--format", "json"]).stdout)
+    solved = json.loads(CliRunner().invoke(main, ["solve", "--data", "demo", *args, "--format", "json"]).stdout)
     assert len(batch) == len(solved) == 4
     for r in solved:
         b = batch[r["goal"]["label"]]

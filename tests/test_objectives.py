@@ -579,7 +579,7 @@ def test_cli_all_optimal_cap_message(tmp_path):
     ],
 )
 def test_cli_bad_solver_options(args):
-    result = run("solve", "--goal", "tomato salad", *args)
+    result = run("solve", "--data", "demo", "--goal", "tomato salad", *args)
     assert result.exit_code == 2
     assert "Traceback" not in result.output
 

@@ -308,7 +308,9 @@ def test_solve_command_accepts_search_methods():
     from foon2asp.cli.main import main
 
     for name in ("ids", "gbfs-h1", "gbfs-h2"):
-        res = CliRunner().invoke(main, ["solve", "--goal", "tomato salad", "--method", name, "--format", "json"])
+        res = CliRunner().invoke(
+            main, ["solve", "--data", "demo", "--goal", "tomato salad", "--method", name, "--format", "json"]
+        )
         assert res.exit_code == 0, res.output
         (out,) = json.loads(res.stdout)
         assert out["method"] == name and out["status"] == "found"

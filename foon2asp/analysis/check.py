@@ -22,6 +22,7 @@ object -> unit -> object ... back to the start.
 from __future__ import annotations
 
 import json
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -31,6 +32,7 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon import foonjson
 from foon2asp.foon import goals as goals_mod
+from foon2asp.foon.goals import parse_object_text
 from foon2asp.foon.loaders import object_from_json
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.parser import parse_lines
@@ -109,12 +111,37 @@ def _looks_like_json(text: str) -> bool:
     return text.lstrip()[:1] in ("[", "{")
 
 
+#: the line ``solve --format foon`` writes before each tree (serialize.tree_foon)
+_HEADER = re.compile(
+    r"^#\s*task tree for (?P<goal>.+) \((?P<method>[^(),]+), (?P<status>[^(),]+), (?P<n>\d+) units?\)\s*$"
+)
+
+
 def _read_foon_tree(text: str, path: str) -> list[TreeFile]:
-    foon = parse_lines(lines_of(text), path, strict=True)
-    if not foon.units:
+    """One tree, or one per ``# task tree for GOAL (...)`` line (``solve --format foon``
+    for several goals); the goal and method of such a line are kept."""
+    lines = lines_of(text)
+    starts = [i for i, line in enumerate(lines) if _HEADER.match(line)]
+    if not starts or starts[0] != 0 and any(ln.strip() and not ln.startswith("#") for ln in lines[: starts[0]]):
+        starts = [0, *starts]
+    trees: list[TreeFile] = []
+    for k, start in enumerate(starts):
+        end = starts[k + 1] if k + 1 < len(starts) else len(lines)
+        # blank out the other trees' lines so that line numbers stay those of the file
+        part = [ln if start <= i < end else "" for i, ln in enumerate(lines)]
+        foon = parse_lines(part, path, strict=True)
+        header = _HEADER.match(lines[start])
+        goal = method = None
+        if header:
+            goal = parse_object_text(header["goal"]) or FoonObject.make(header["goal"])
+            method = header["method"].strip()
+        units = [TreeUnit(u, step, origin[1]) for step, (u, origin) in enumerate(zip(foon.units, foon.origins), 1)]
+        if not units and header is None:
+            continue
+        trees.append(TreeFile(path, units, goal, method, start + 1 if header else None))
+    if not trees or not any(t.units for t in trees) and not any(t.goal for t in trees):
         raise InputError("no functional units in the tree file (expected FOON text or foon2asp JSON)", path)
-    units = [TreeUnit(u, step, origin[1]) for step, (u, origin) in enumerate(zip(foon.units, foon.origins), 1)]
-    return [TreeFile(path, units)]
+    return trees
 
 
 def _line_of(text: str, pos: int) -> int:
@@ -239,7 +266,8 @@ def nearest_hint(problem: Problem, unit: Unit) -> str:
 def infer_goal(problem: Problem, tree: TreeFile, goal_objects: list[FoonObject]) -> int:
     """The goal of a tree file that does not name it, from the units as written.
 
-    A goals-file entry that the tree makes wins (preferring one no unit of the
+    The tree's only sink (the one product no unit of the tree needs) wins;
+    else a goals-file entry that the tree makes (preferring one no unit of the
     tree needs); else the single product of the last unit that no unit needs
     (the earlier programs write the goal's unit last); else its single product.
     """
@@ -252,6 +280,7 @@ def infer_goal(problem: Problem, tree: TreeFile, goal_objects: list[FoonObject])
     goal_set = set(goal_objects)
     last = [o for o in units[-1].outputs if not o.is_bare()] if units else []
     for pool in (
+        tops if len(tops) == 1 else [],
         [o for o in tops if o in goal_set],
         [o for o in made if o in goal_set],
         [o for o in last if o in tops],
@@ -263,7 +292,13 @@ def infer_goal(problem: Problem, tree: TreeFile, goal_objects: list[FoonObject])
     hint = ""
     if len(last) == 1 and last[0] not in problem.foon.object_ids:
         hint = f" (the last unit makes {last[0]}, which is not a FOON object)"
-    raise InputError(f"cannot tell which object is the goal of this tree{hint}; use --goal LABEL", tree.path)
+    listing = ""
+    if 1 < len(tops) <= 10:
+        listing = "; it makes " + " | ".join(str(o) for o in tops) + " without using them"
+    raise InputError(
+        f"cannot tell which object is the goal of this tree{hint}{listing}; use --goal TEXT or --goals FILE",
+        tree.path,
+    )
 
 
 # ---------------------------------------------------------------- diagnosis
@@ -434,29 +469,63 @@ def check_tree(problem: Problem, tree: TreeFile, goal: Goals, index: dict[tuple,
 # ---------------------------------------------------------------- a whole file
 
 
-def resolve_goal(data, problem: Problem, tree: TreeFile, goal_label: str | tuple[str, ...] | None) -> tuple[Goals, str]:
-    """The goal (several labels: a meal) and where it came from: ``--goal``, the JSON
-    result, or inferred from the units."""
+def resolve_goal(
+    data,
+    problem: Problem,
+    tree: TreeFile,
+    goal_label: str | tuple[str, ...] | None,
+    among: list[int] | None = None,
+) -> tuple[Goals, str]:
+    """The goal (several labels: a meal) and where it came from: ``--goal``, the one of
+    ``among`` (``--goals``) the tree makes, the file (JSON result or FOON header), or
+    inferred from the units."""
     if isinstance(goal_label, str):
         goal_label = (goal_label,)
     if goal_label:
         meal = meal_of(goals_mod.resolve_goal(data, problem, label) for label in goal_label)
         return (meal if len(meal) > 1 else meal[0]), "--goal"
+    if among is not None:
+        chosen = _among(problem, tree, among)
+        if chosen is not None:
+            return chosen, "--goals"
     if tree.goal is not None:
         return goals_mod.goal_id(problem, tree.goal, tree.path, tree.line), "named in the file"
     return infer_goal(problem, tree, [obj for obj, _ in data.goals]), "inferred from the units"
 
 
+def _among(problem: Problem, tree: TreeFile, among: list[int]) -> int | None:
+    """The one goal of ``among`` the tree names or makes (preferring products no unit of it needs)."""
+    if tree.goal is not None and problem.foon.object_ids.get(tree.goal) in among:
+        return problem.foon.object_ids[tree.goal]
+    oid = problem.foon.object_ids
+    made = [oid[o] for tu in tree.units for o in tu.unit.outputs if o in oid]
+    needed = {oid[o] for tu in tree.units for o in tu.unit.inputs if o in oid}
+    wanted = set(among)
+    for pool in ([o for o in made if o in wanted and o not in needed], [o for o in made if o in wanted]):
+        pool = list(dict.fromkeys(pool))
+        if len(pool) == 1:
+            return pool[0]
+    return None
+
+
 def check_file(
-    data, problem: Problem, path: str | Path, goal_label: str | tuple[str, ...] | None = None, optimum: bool = True
+    data,
+    problem: Problem,
+    path: str | Path,
+    goal_label: str | tuple[str, ...] | None = None,
+    optimum: bool = True,
+    among: list[int] | None = None,
 ) -> list[Report]:
     """Check every tree (or plan) in ``path``; with ``optimum`` the ASP optimum is solved for
-    each goal (for several ``goal_label``: the meal's optimum)."""
+    each goal (for several ``goal_label``: the meal's optimum).
+
+    ``among`` (``--goals``): each tree's goal is the one of these it makes.
+    """
     trees = read_trees(path, problem)
     index = unit_index(problem)
     reports = []
     for tree in trees:
-        goal, source = resolve_goal(data, problem, tree, goal_label)
+        goal, source = resolve_goal(data, problem, tree, goal_label, among)
         report = check_tree(problem, tree, goal, index)
         report.goal_source = source
         reports.append(report)

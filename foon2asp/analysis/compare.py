@@ -10,6 +10,7 @@ list of ``solve``-shaped JSON results, each with ``"valid"``.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, replace
 
 from foon2asp.analysis.check import check_units
@@ -52,17 +53,25 @@ def compare(
     ASP methods ground only the units relevant to these goals (no tree for
     any of them can use another unit), unless ``options.units`` says otherwise.
     """
+    return list(compare_iter(problem, goals, method_names, options))
+
+
+def compare_iter(
+    problem: Problem,
+    goals: list[int],
+    method_names: tuple[str, ...] | list[str] = DEFAULT_METHODS,
+    options: AspOptions | None = None,
+) -> Iterator[Row]:
+    """:func:`compare` one goal at a time: each row as soon as its goal is done."""
     options = options or AspOptions()
     if options.units is None:
         options = replace(options, units=problem.units_for(goals))
     runners = {name: BatchRunner(name, problem, options) for name in dict.fromkeys(method_names)}
-    rows = []
     for g in goals:
         trees = {name: judge(problem, run(g)) for name, run in runners.items()}
         for name, tree in trees.items():
             tree.method = name
-        rows.append(Row(g, trees))
-    return rows
+        yield Row(g, trees)
 
 
 # ---------------------------------------------------------------- rendering

@@ -16,11 +16,13 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import clingo
+import clingo.ast
 
 from foon2asp.asp import encodings
 from foon2asp.asp.constraints import check
 from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import facts
+from foon2asp.asp.objectives import input_node_facts
 from foon2asp.asp.options import OBJECTIVES
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
@@ -149,18 +151,43 @@ class MissingResult:
         return self.status in ("optimal", "feasible")
 
 
+#: the tree objectives ``missing`` can use after the fewest added objects
+MISSING_OBJECTIVES = ("units", "success", "inputs")
+
+
+def objective_parts(
+    problem: Problem, objective: tuple[str, ...], units: list[int], first: int
+) -> list[tuple[str, str]]:
+    """The objective encodings with ``objective(Name,P)`` facts, most important first,
+    and ``add_priority(first)``, a priority above them all."""
+    parts = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(objective)]
+    parts += [(f"objective {n}", f"objective({n},{len(objective) - k}).\n") for k, n in enumerate(objective)]
+    if "inputs" in objective:
+        parts.append(("input_nodes", input_node_facts(problem, units)))
+    parts.append(("add_priority", f"add_priority({first}).\n"))
+    return parts
+
+
 def missing(
     problem: Problem,
     goal: Goals,
     user_programs: Iterable[tuple[str, str]] = (),
     time_limit: float | None = None,
+    objective: tuple[str, ...] = ("units",),
 ) -> MissingResult:
-    """The fewest objects to add to the kitchen so ``goal`` can be made, then the fewest units.
+    """The fewest objects to add to the kitchen so ``goal`` can be made, then the best tree
+    by ``objective`` (``units``, ``success``, ``inputs``, lexicographic; default fewest units).
 
-    ``goal`` may be a meal (a tuple of goals): the fewest objects so that one tree makes them all.
+    ``goal`` may be a meal (a tuple of goals): the fewest objects so that one tree makes them all
+    (then the fewest units).
     """
+    for name in objective:
+        if name not in MISSING_OBJECTIVES:
+            raise InputError(f"missing takes the objectives {', '.join(MISSING_OBJECTIVES)}, not {name!r}")
     meal = meal_of(goal)
     if len(meal) > 1:
+        if tuple(objective) != ("units",):
+            raise InputError("missing for a meal (--together) takes the objective units only")
         return _missing_meal(problem, meal, list(user_programs), time_limit)
     goal = meal[0]
     t0 = time.perf_counter()
@@ -173,6 +200,7 @@ def missing(
         [
             ("facts", facts(problem, goal=goal, units=units)),
             ("encodings/missing.lp", encodings.encoding("missing")),
+            *objective_parts(problem, tuple(dict.fromkeys(objective)), units, len(objective) + 1),
             *user_programs,
         ],
         ["--opt-mode=opt", "--models=0"],
@@ -320,6 +348,31 @@ class QueryResult:
     status: str
     answers: list[Answer]
     time_s: float
+    #: clingo's info messages about the user's program (atoms no rule or fact defines)
+    warnings: list[str] = field(default_factory=list)
+    #: the encodings loaded, with the ones those asked for depend on
+    encodings: list[str] = field(default_factory=list)
+
+
+def shows(name: str, text: str) -> bool:
+    """Does the program ``text`` have a ``#show`` statement of its own?"""
+    found = [False]
+
+    def visit(stm: clingo.ast.AST) -> None:
+        if stm.ast_type in (clingo.ast.ASTType.ShowSignature, clingo.ast.ASTType.ShowTerm):
+            found[0] = True
+
+    try:
+        clingo.ast.parse_string(text, visit)
+    except RuntimeError:
+        check(name, text)  # a syntax error: one line naming the program
+        raise
+    return found[0]
+
+
+def _hide_shows(text: str) -> str:
+    """A shipped encoding without its ``#show`` lines (each is one line there)."""
+    return "\n".join("" if line.lstrip().startswith("#show") else line for line in text.split("\n"))
 
 
 def query(
@@ -341,19 +394,28 @@ def query(
     """
     name, text = program
     check(name, text)
+    own_show = shows(name, text)
     parts = [("facts", facts(problem, goal_nodes=goal_nodes, goal=goal))]
-    names = list(dict.fromkeys(with_encodings))
-    ranked = [n for n in names if n in OBJECTIVES]
+    asked = list(dict.fromkeys(with_encodings))
+    ranked = [n for n in asked if n in OBJECTIVES]
+    for enc in asked:
+        if enc not in encodings.names():
+            raise InputError(f"no encoding {enc!r}; have {', '.join(encodings.names())}")
+    names = encodings.with_dependencies(asked)
     for enc in names:
-        try:
-            parts.append((f"encodings/{enc}.lp", encodings.encoding(enc)))
-        except KeyError as exc:
-            raise InputError(str(exc.args[0])) from None
+        body = encodings.encoding(enc)
+        parts.append((f"encodings/{enc}.lp", _hide_shows(body) if own_show else body))
+    if "inputs" in names:
+        parts.append(("input_nodes", input_node_facts(problem)))
     # objective encodings listed first weigh most: objective(Name,P), P = n..1
     parts += [(f"objective {n}", f"objective({n},{len(ranked) - k}).\n") for k, n in enumerate(ranked)]
+    if own_show:
+        parts.append(("show", "#show.\n"))  # only what the user's #show statements show
     parts.append((name, text))
-    outcome = Program(parts, ["--opt-mode=opt", "--models=0"]).solve(time_limit, max(models, 0))
-    return QueryResult(outcome.status, outcome.answers, outcome.time_s)
+    prog = Program(parts, ["--opt-mode=opt", "--models=0"])
+    warnings = [m.replace("<block>", name) for m in prog.control.messages if "does not occur in any rule head" in m]
+    outcome = prog.solve(time_limit, max(models, 0))
+    return QueryResult(outcome.status, outcome.answers, outcome.time_s, warnings, names)
 
 
 def _term(problem: Problem, sym: clingo.Symbol, kind: str = "-"):

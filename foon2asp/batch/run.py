@@ -49,6 +49,7 @@ except ModuleNotFoundError:  # pragma: no cover - not POSIX
     fcntl = None  # type: ignore[assignment]
 
 from foon2asp import methods as methods_mod
+from foon2asp.analysis.compare import judge
 from foon2asp.asp.control import deferred_signals
 from foon2asp.asp.facts import facts
 from foon2asp.asp.options import AspOptions
@@ -84,7 +85,7 @@ class Worker:
 
     def run(self, goal: int, method: str) -> str:
         """The result of ``method`` for ``goal`` as one JSON line (with newline)."""
-        tree = self.runners[method](goal)
+        tree = judge(self.spec.problem, self.runners[method](goal))  # "valid", as compare gives it
         record = tree_json(self.spec.problem, tree)
         record["requested_method"] = method
         return json.dumps(record, ensure_ascii=False) + "\n"
@@ -439,7 +440,8 @@ def summarize(records: list[dict]) -> list[dict]:
         statuses: dict[str, int] = {}
         for r in recs:
             statuses[r.get("status", "?")] = statuses.get(r.get("status", "?"), 0) + 1
-        sizes = [len(r.get("units", [])) for r in recs if r.get("status") in ("optimal", "feasible", "found")]
+        sizes = [len(r.get("units", [])) for r in recs if r.get("status") in ("optimal", "ranked", "feasible", "found")]
+        valid = [r.get("valid") for r in recs if r.get("status") in ("optimal", "ranked", "feasible", "found")]
         times = [float(r.get("time_s", 0.0)) for r in recs]
         rows.append(
             {
@@ -447,6 +449,8 @@ def summarize(records: list[dict]) -> list[dict]:
                 "results": len(recs),
                 "statuses": dict(sorted(statuses.items())),
                 "trees": len(sizes),
+                # trees the independent validator accepts (None: records written without "valid")
+                "valid": sum(1 for v in valid if v) if all(v is not None for v in valid) else None,
                 "units_min": min(sizes) if sizes else None,
                 "units_median": statistics.median(sizes) if sizes else None,
                 "units_mean": round(statistics.fmean(sizes), 2) if sizes else None,

@@ -12,17 +12,18 @@ from typing import Any
 import click
 
 from foon2asp import api, methods, report
+from foon2asp.analysis import compare as compare_mod
 from foon2asp.analysis import queries
 from foon2asp.asp.constraints import ConstraintSpec, read_file, unknown_names
 from foon2asp.asp.facts import facts as facts_text
 from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.options import OBJECTIVES
 from foon2asp.batch import run as batch_mod
+from foon2asp.cli.options import EXIT_CODES, exit_code, progress_bar
 from foon2asp.cli.params import SCHEDULER, SECONDS, int32
 from foon2asp.errors import InputError, Terminated, escape
 from foon2asp.foon import foonjson
 from foon2asp.foon import goals as goals_mod
-from foon2asp.foon.demo import demo_dir
 from foon2asp.foon.parser import id_map, read_foons, write_foon
 from foon2asp.foon.problem import UTENSIL_RULES, Problem
 from foon2asp.report import draw
@@ -132,8 +133,10 @@ class Main(click.Group):
             message = " ".join(exc.format_message().split())
             ctx = getattr(exc, "ctx", None)
             name = ctx.command_path if ctx is not None else "foon2asp"
-            hint = f" (see '{name} --help')" if isinstance(exc, click.UsageError) else ""
-            click.echo(f"foon2asp: error: {escape(message)}{hint}", err=True)
+            usage = isinstance(exc, click.UsageError)
+            hint = f" (see '{name} --help')" if usage else ""
+            where = f"{ctx.info_name}: " if usage and ctx is not None and ctx.parent is not None else ""
+            click.echo(f"foon2asp: error: {where}{escape(message)}{hint}", err=True)
             sys.exit(exc.exit_code)
         except click.Abort as exc:
             report_exception(exc.__context__ if isinstance(exc.__context__, KeyboardInterrupt) else KeyboardInterrupt())
@@ -154,9 +157,16 @@ def data_options(func):
             "--data",
             "data_dir",
             type=click.Path(),
-            help="Directory with FOON.txt, kitchen.json, goal_nodes.json, motion.txt, utensils.txt (default: the demo data).",
+            help="Directory with FOON.txt, kitchen.json, goal_nodes.json, motion.txt, utensils.txt;"
+            " 'demo' for the demo data set shipped with foon2asp.",
         ),
-        click.option("--foon", "foon", type=click.Path(), multiple=True, help="FOON file(s); several are merged."),
+        click.option(
+            "--foon",
+            "foon",
+            type=click.Path(),
+            multiple=True,
+            help="FOON file(s), several are merged; without --data the other files are read from beside the first.",
+        ),
         click.option("--kitchen", type=click.Path(), help="kitchen.json"),
         click.option("--motion", type=click.Path(), help="motion.txt (motion TAB success rate)"),
         click.option("--utensils", type=click.Path(), help="utensils.txt"),
@@ -174,12 +184,38 @@ def data_options(func):
     return func
 
 
+GOAL_HELP = (
+    "Goal: a label, an object's text as foon2asp prints it ('tomato, diced, in [plate]') or #ID"
+    " from 'foon2asp objects'; repeatable."
+)
+GOALS_HELP = (
+    "FILE of goal objects (e.g. 'foon2asp objects --format json' output), 'all' (the goals file) or"
+    " 'all-objects' (every made object). Default without --goal: the goals file."
+)
+
+
 def goal_options(func):
-    func = click.option("--goals", "goals", help="FILE of goal objects, 'all' (the goals file) or 'all-objects'.")(func)
-    func = click.option(
-        "--goal", "goal", multiple=True, help="Goal label (goals-file entry, else a unique FOON object)."
-    )(func)
+    func = click.option("--goals", "goals", metavar="FILE|all|all-objects", help=GOALS_HELP)(func)
+    func = click.option("--goal", "goal", multiple=True, metavar="TEXT", help=GOAL_HELP)(func)
     return func
+
+
+def method_option(default: str, many: bool = True):
+    """``--method``/``--methods`` (the same option): registered names, comma-separated or repeated."""
+    return click.option(
+        "--methods",
+        "--method",
+        "method_list",
+        multiple=True,
+        metavar="NAME[,NAME]",
+        help=f"Registered method(s) (see 'foon2asp methods'), comma-separated or repeated (default: {default}).",
+    )
+
+
+def progress_option(func):
+    return click.option(
+        "--progress/--no-progress", default=None, help="Progress bar on stderr (default: when it is a terminal)."
+    )(func)
 
 
 _CONSTRAINT_KEYS = (
@@ -247,9 +283,9 @@ def constraint_programs(spec: ConstraintSpec, problem: Problem | None = None) ->
 
 
 def load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file=None) -> api.KnowledgeBase:
-    """Read the data through the library; warnings go to stderr."""
-    if data_dir is None and not (foon and kitchen):
-        data_dir = str(demo_dir())
+    """Read the data through the library; warnings go to stderr.  Never the demo data unless asked."""
+    if data_dir is None and not foon:
+        raise InputError("no data given: use --data DIR, --foon FILE (with kitchen.json ... beside it) or --data demo")
     goals_path = goals_file if goals_file not in (None, "all", "all-objects") else None
     kb = api.load(
         data_dir,
@@ -367,7 +403,7 @@ def safe_name(index: int, label: str) -> str:
     return f"{index:03d}-{keep}"
 
 
-@click.group(cls=Main, context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(cls=Main, context_settings={"help_option_names": ["-h", "--help"]}, epilog=EXIT_CODES)
 @click.version_option(package_name="foon2asp")
 @click.option("--debug", is_flag=True, help="On an internal error (exit status 3), also print the traceback.")
 def main(debug):
@@ -379,16 +415,25 @@ def main(debug):
     """
 
 
-@main.command()
+#: formats whose rendering of several trees is the renderings of each, joined by this: streamed
+STREAMED = {"text": "\n", "foon": "", "jsonl": ""}
+
+
+@main.command(epilog=EXIT_CODES)
 @data_options
 @goal_options
 @constraint_options
-@click.option("--method", default="asp", show_default=True, help="A registered method (see 'foon2asp methods').")
+@method_option("asp")
 @click.option(
     "--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first."
 )
 @click.option("--format", "fmt", type=click.Choice(report.names("trees")), default="text", show_default=True)
-@click.option("--output", type=click.Path(file_okay=False), help="Also write one file per goal into this directory.")
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(file_okay=False),
+    help="A FOLDER: also write one file per goal (and method) there.",
+)
 @click.option("--time-limit", type=SECONDS, help="Seconds per goal; the best tree so far is reported as 'feasible'.")
 @click.option(
     "--together",
@@ -396,6 +441,7 @@ def main(debug):
     help="A meal: one tree that makes every goal, units shared between dishes counted once (ASP methods).",
 )
 @solver_options
+@progress_option
 @guarded
 def solve(
     data_dir,
@@ -407,7 +453,7 @@ def solve(
     strict,
     goal,
     goals,
-    method,
+    method_list,
     objective,
     fmt,
     output,
@@ -415,59 +461,89 @@ def solve(
     together,
     constraints,
     solver_settings,
+    progress,
 ):
-    """Find the best task tree for each goal (with --together: one tree for all goals)."""
+    """Find the best task tree for each goal (default: the goals file's goals; with --together:
+    one tree for all goals).
+
+    Text, FOON and JSON-lines output is printed goal by goal as each is solved.
+    """
+    names = _method_list(method_list)
     kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
-    if together and methods.get(method).kind != "asp":
-        raise InputError(f"--together needs an ASP method; {method!r} is a search baseline")
-    if methods.get(method).kind != "asp" and solver_settings != SOLVER_DEFAULTS:
-        raise InputError(f"solver settings apply to ASP methods only; {method!r} is a search baseline")
+    search = [m for m in names if methods.get(m).kind != "asp"]
+    if together and search:
+        raise InputError(f"--together needs an ASP method; {', '.join(search)} are search baselines")
+    if search and solver_settings != SOLVER_DEFAULTS:
+        raise InputError(f"solver settings apply to ASP methods only; {', '.join(search)} are search baselines")
     options = kb.options(objective, time_limit, _constraints(constraints), **solver_settings)
     _warn(kb)
     problem = kb.problem
     binary = report.get("trees", fmt).binary
     if fmt in draw.FORMATS and fmt != "dot":
         draw.require_dot()  # before solving, not after
-    trees = []
     out_dir = writable_dir(output) if output else None
+    ext = report.get("trees", fmt).extension
+    sep = None if binary else STREAMED.get(fmt)
+    held: list = []
+    answers: list[tuple[str, object]] = []
+    printed = 0
     jobs: list = [tuple(dict.fromkeys(goal_ids))] if together else goal_ids
-    for index, tree in enumerate(kb.solve_iter(jobs, method, options), 1):
-        found = alternatives(tree.raw)  # --models / --all-optimal: the further trees, best first
-        trees.extend(found)
-        if out_dir:
-            ext = report.get("trees", fmt).extension
-            label = "+".join(g.label for g in tree.goals)
-            name = f"{safe_name(index, label)}.{ext}"
-            write_file(out_dir / name, render_bytes(problem, found, fmt))
-    _solver_warnings(problem, trees)
+    for method in names:
+        trees = kb.solve_iter(jobs, method, options)
+        for index, tree in enumerate(progress_bar(trees, len(jobs), progress, f"solve {method}"), 1):
+            if methods.get(method).kind != "asp":
+                compare_mod.judge(problem, tree.raw)  # "valid" for search baselines, as compare gives it
+            found = alternatives(tree.raw)  # --models / --all-optimal: the further trees, best first
+            answers += [(t.status, t.extra.get("valid")) for t in found]
+            _solver_warnings(problem, found)
+            if out_dir:
+                suffix = f"-{method}" if len(names) > 1 else ""
+                label = "+".join(g.label for g in tree.goals)
+                write_file(out_dir / f"{safe_name(index, label)}{suffix}.{ext}", render_bytes(problem, found, fmt))
+            if sep is None:
+                held.extend(found)
+                continue
+            text = render(problem, found, fmt)
+            click.echo((sep if printed else "") + text, nl=False)
+            sys.stdout.flush()
+            printed += 1
     if binary and out_dir:
-        click.echo(f"wrote {len(goal_ids)} {fmt} file(s) to {out_dir}", err=True)
+        click.echo(f"wrote {len(jobs) * len(names)} {fmt} file(s) to {out_dir}", err=True)
     elif binary:
-        sys.stdout.buffer.write(render_bytes(problem, trees, fmt))
-    else:
-        click.echo(render(problem, trees, fmt), nl=False)
+        sys.stdout.buffer.write(render_bytes(problem, held, fmt))
+    elif sep is None:
+        click.echo(render(problem, held, fmt), nl=False)
+    sys.exit(exit_code(answers))
 
 
 @main.command()
 @data_options
-@click.option("--goals", "goals_file", help="Goals FILE (default: goal_nodes.json of --data).")
-@click.option("--goal", "goal", multiple=True, help="Also fix goal(O) for this label.")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the facts here (default: stdout).")
+@click.option(
+    "--goals", "goals", metavar="FILE|all|all-objects", help="Goals for goal_node/2 facts (default: the goals file)."
+)
+@click.option("--goal", "goal", multiple=True, metavar="TEXT", help="Also fix goal(O) for this goal. " + GOAL_HELP)
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="A FILE to write the facts to (default: stdout).")
 @guarded
-def facts(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file, goal, output):
+def facts(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals, goal, output):
     """Write the FOON, kitchen and goals as ASP facts."""
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file)
-    data, problem = kb.data, kb.problem
-    goal_nodes = [goals_mod.goal_id(problem, obj, data.paths.get("goals"), line) for obj, line in data.goals]
-    fixed = goals_mod.resolve(data, problem, goal, None) if goal else []
-    text = facts_text(problem, goal_nodes=goal_nodes)
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    text = facts_text(kb.problem, goal_nodes=_goal_nodes(kb, goals))
+    fixed = goals_mod.resolve(kb.data, kb.problem, goal, None) if goal else []
     text += "".join(f"goal({g}).\n" for g in fixed)
     if output:
         write_file(output, text)
         click.echo(f"wrote {len(text.splitlines())} lines to {output}", err=True)
     else:
         click.echo(text, nl=False)
+
+
+def _goal_nodes(kb: api.KnowledgeBase, goals: str | None) -> list[int]:
+    """goal_node/2 facts: ``--goals FILE|all|all-objects``, else the goals file's entries (if any)."""
+    if goals:
+        return goals_mod.resolve(kb.data, kb.problem, (), goals)
+    path = kb.data.paths.get("goals")
+    return [goals_mod.goal_id(kb.problem, obj, path, line) for obj, line in kb.data.goals]
 
 
 @main.command()
@@ -522,37 +598,44 @@ def list_methods():
     "--goal",
     "goal",
     multiple=True,
-    help="Goal label; repeat for a meal (default: the goal a JSON result names, else inferred from the tree).",
+    metavar="TEXT",
+    help="The goal (a label, an object's text or #ID; repeat for a meal); default: the goal the file names"
+    " (a JSON result, or the '# task tree for ...' line of solve --format foon), else the tree's only sink.",
+)
+@click.option(
+    "--goals",
+    "goals",
+    metavar="FILE|all",
+    help="Several goals (a goals file, or 'all' for the goals file): each tree's goal is the one of them it makes.",
 )
 @click.option("--format", "fmt", type=click.Choice(report.names("check")), default="text", show_default=True)
 @click.option(
     "--optimum/--no-optimum", default=True, show_default=True, help="Also solve the ASP optimum to compare with."
 )
 @guarded
-def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, fmt, optimum):
-    """Check a task tree (FOON text with // between units, or foon2asp JSON), or a plan
-    for a problem of 'export pddl' ('(action-name)' lines, as Fast Downward writes them).
+def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, optimum):
+    """Check the task tree(s) in TREE (FOON text with // between units, FOON JSON or foon2asp JSON),
+    or a plan for a problem of 'export pddl' ('(action-name)' lines, as Fast Downward writes them).
 
-    Exit status: 0 valid, 1 invalid, 2 bad input.
+    \b
+    Exit codes: 0 every tree valid; 1 some tree invalid; 2 bad input or usage;
+    130 interrupted.
     """
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict)
-    reports = kb.check(tree, list(goal) or None, optimum)
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    among = None
+    if goals:
+        among = [kb.problem.objects[g] for g in goals_mod.resolve(kb.data, kb.problem, (), goals)]
+    reports = kb.check(tree, list(goal) or None, optimum, among)
     assert isinstance(reports, list)
     click.echo(report.render("check", fmt, kb.problem, [r.raw for r in reports]), nl=False)
     sys.exit(0 if all(r.valid for r in reports) else 1)
 
 
-@main.command()
+@main.command(epilog=EXIT_CODES)
 @data_options
 @goal_options
 @constraint_options
-@click.option(
-    "--methods",
-    "method_list",
-    default="ids,gbfs-h1,gbfs-h2,asp",
-    show_default=True,
-    help="Comma-separated registered methods (see 'foon2asp methods').",
-)
+@method_option("ids,gbfs-h1,gbfs-h2,asp")
 @click.option(
     "--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first."
 )
@@ -561,6 +644,7 @@ def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict,
 @click.option(
     "--together", is_flag=True, help="A meal: the one tree for all goals beside the sum of the single optima (ASP)."
 )
+@progress_option
 @guarded
 def compare(
     data_dir,
@@ -578,15 +662,14 @@ def compare(
     time_limit,
     together,
     constraints,
+    progress,
 ):
-    """Compare methods goal by goal: units, validity, success product, depth (default: --goals all).
+    """Compare methods goal by goal: units, validity, success product, depth (default: the goals file's goals).
 
-    With --together: the meal's tree (one tree for every goal) beside the sum of the single optima."""
-    if not goal and not goals:
-        goals = "all"
-    names = [m.strip() for m in method_list.split(",") if m.strip()]
-    for name in names:
-        methods.get(name)  # unknown names fail before any work
+    --format jsonl prints each goal's results as soon as it is done.  With --together: the
+    meal's tree (one tree for every goal) beside the sum of the single optima.
+    """
+    names = _method_list(method_list, list(compare_mod.DEFAULT_METHODS))
     kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
     search = [n for n in names if methods.get(n).kind != "asp"]
@@ -595,7 +678,7 @@ def compare(
             f"foon2asp: warning: constraints apply to ASP methods only; {', '.join(search)} ignore them", err=True
         )
     if together:
-        asp = [n for n in names if methods.get(n).kind == "asp"] if method_list != "ids,gbfs-h1,gbfs-h2,asp" else []
+        asp = [n for n in names if methods.get(n).kind == "asp"]
         meal = kb.compare_meal(
             goal_ids,
             (asp or ["asp"])[0],
@@ -605,19 +688,19 @@ def compare(
         )
         _warn(kb)
         click.echo(report.render("compare", fmt, kb.problem, meal), nl=False)
-        return
-    comparison = kb.compare(
-        goal_ids, names, objective=objective, time_limit=time_limit, constraints=_constraints(constraints)
-    )
+        sys.exit(exit_code([(meal.meal.status, meal.meal.extra.get("valid"))]))
+    options = kb.options(objective, time_limit, _constraints(constraints))
     _warn(kb)
-    click.echo(comparison.render(fmt), nl=False)
-
-
-def _goals_or_default(data, problem, goal, goals) -> list[int]:
-    """--goal/--goals, else every entry of the goals file, else every made object."""
-    if not goal and not goals:
-        goals = "all" if data.paths.get("goals") else "all-objects"
-    return goals_mod.resolve(data, problem, goal, goals)
+    rows = []
+    parts = kb.compare_iter(goal_ids, names, options)
+    for part in progress_bar(parts, len(goal_ids), progress, "compare"):
+        rows.extend(part.raw)
+        if fmt == "jsonl":
+            click.echo(part.render(fmt), nl=False)
+            sys.stdout.flush()
+    if fmt != "jsonl":
+        click.echo(api.Comparison(kb, rows).render(fmt), nl=False)
+    sys.exit(exit_code((t.status, t.extra.get("valid")) for r in rows for t in r.trees.values()))
 
 
 @main.command()
@@ -626,43 +709,77 @@ def _goals_or_default(data, problem, goal, goals) -> list[int]:
 @click.option("--format", "fmt", type=click.Choice(report.names("reachable")), default="text", show_default=True)
 @guarded
 def reachable(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt):
-    """Which goals (or objects) can be made from the kitchen at all, in one solve (default: --goals all)."""
+    """Which goals (or objects) can be made from the kitchen at all, in one solve (default: the goals file's goals)."""
     kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
-    goal_ids = _goals_or_default(kb.data, kb.problem, goal, goals)
+    goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
     answers = queries.reachable(kb.problem, goal_ids)
     click.echo(report.render("reachable", fmt, kb.problem, answers), nl=False)
 
 
-@main.command()
+@main.command(epilog=EXIT_CODES)
 @data_options
 @goal_options
 @constraint_options
+@click.option(
+    "--objective",
+    default="units",
+    show_default=True,
+    help="After the fewest added objects, the best tree by these objectives (units, success, inputs), comma-separated.",
+)
 @click.option("--format", "fmt", type=click.Choice(report.names("missing")), default="text", show_default=True)
 @click.option("--time-limit", type=SECONDS, help="Seconds per goal; the best answer so far is reported as 'feasible'.")
 @click.option("--together", is_flag=True, help="A meal: the fewest objects so that one tree makes every goal.")
+@progress_option
 @guarded
 def missing(
-    data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, time_limit, together, constraints
+    data_dir,
+    foon,
+    kitchen,
+    motion,
+    utensils,
+    utensil_rule,
+    strict,
+    goal,
+    goals,
+    objective,
+    fmt,
+    time_limit,
+    together,
+    constraints,
+    progress,
 ):
-    """The fewest objects to add to the kitchen so a goal can be made (proven minimal), and the tree."""
+    """The fewest objects to add to the kitchen so a goal can be made (proven minimal), and the tree.
+
+    Default goals: the goals file's.  With --together: the fewest objects for the whole meal.
+    """
     kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
-    jobs: list = [goal_ids] if together else goal_ids
-    results = [kb.missing(g, time_limit=time_limit, constraints=_constraints(constraints)).raw for g in jobs]
+    spec = _constraints(constraints)
+    kb.options(objective, time_limit, spec)  # checks the names, warns about unknown ones
     _warn(kb)
-    click.echo(report.render("missing", fmt, kb.problem, results), nl=False)
+    results = []
+    jobs: list = [goal_ids] if together else goal_ids
+    for g in progress_bar(jobs, len(jobs), progress, "missing"):
+        results.append(kb.missing(g, time_limit=time_limit, constraints=spec, objective=objective).raw)
+        if fmt == "jsonl":
+            click.echo(report.render("missing", fmt, kb.problem, results[-1:]), nl=False)
+    if fmt != "jsonl":
+        click.echo(report.render("missing", fmt, kb.problem, results), nl=False)
+    sys.exit(exit_code((r.status, None) for r in results))
 
 
 @main.command()
 @click.argument("program", type=click.Path())
 @data_options
-@click.option("--goals", "goals_file", help="Goals FILE for goal_node/2 (default: goal_nodes.json of --data).")
-@click.option("--goal", "goal", help="Also add goal(O) for this goal label.")
+@click.option(
+    "--goals", "goals", metavar="FILE|all|all-objects", help="Goals for goal_node/2 facts (default: the goals file)."
+)
+@click.option("--goal", "goal", metavar="TEXT", help="Also add goal(O) for this goal. " + GOAL_HELP)
 @click.option(
     "--encoding",
     "encoding_names",
     multiple=True,
-    help="Also load a shipped encoding (tree, units, reachable, missing); repeatable.",
+    help="Also load a shipped encoding (tree, units, success, inputs, reachable, missing) and what it needs; repeatable.",
 )
 @click.option(
     "--models",
@@ -683,7 +800,7 @@ def query(
     utensils,
     utensil_rule,
     strict,
-    goals_file,
+    goals,
     goal,
     encoding_names,
     models,
@@ -692,42 +809,58 @@ def query(
 ):
     """Run your ASP PROGRAM with the FOON facts; print its shown atoms with ids as readable objects.
 
-    Exit status: 0 with a model, 1 when unsatisfiable, 2 bad input.
+    With a #show statement in PROGRAM only what it shows is printed. Atoms that
+    no rule or fact defines (a misspelt predicate) are warned about.
+
+    \b
+    Exit codes: 0 a model, or proven unsatisfiable; 1 the time limit stopped the
+    search (no model, or the optimum not proven); 2 bad input or usage; 130 interrupted.
     """
 
     text = read_file(program)
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals_file)
+    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     result = kb.query(
-        text, goal=goal or None, encodings=encoding_names, models=models, time_limit=time_limit, name=program
+        text,
+        goal=goal or None,
+        encodings=encoding_names,
+        models=models,
+        time_limit=time_limit,
+        name=program,
+        goal_nodes=goals or None,
     )
+    for warning in result.warnings:
+        click.echo(f"foon2asp: warning: {warning}", err=True)
     click.echo(report.render("query", fmt, kb.problem, result), nl=False)
-    sys.exit(1 if result.status == "unsatisfiable" else 0)
+    sys.exit(exit_code([(result.status, None)]))
 
 
-def _method_list(values: tuple[str, ...]) -> list[str]:
+def _method_list(values: tuple[str, ...], default: list[str] | None = None) -> list[str]:
     names = [n.strip() for v in values for n in v.split(",") if n.strip()]
     for name in names:
         methods.get(name)
-    return list(dict.fromkeys(names)) or ["asp"]
+    return list(dict.fromkeys(names)) or list(default or ["asp"])
 
 
-@main.command()
+@main.command(epilog=EXIT_CODES)
 @data_options
 @goal_options
-@click.option(
-    "--methods", "method_list", multiple=True, help="Registered methods, comma-separated or repeated (default: asp)."
-)
+@method_option("asp")
 @click.option(
     "--objective", default="units", show_default=True, help="ASP objective(s), comma-separated, most important first."
 )
 @click.option(
+    "-o",
     "--output",
     default="results.jsonl",
     show_default=True,
     type=click.Path(dir_okay=False),
-    help="Results, one JSON line per (goal, method).",
+    help="A FILE of results, one JSON line per (goal, method).",
 )
-@click.option("--resume", is_flag=True, help="Continue OUTPUT: skip the (goal, method) pairs it already holds.")
+@click.option(
+    "--resume",
+    is_flag=True,
+    help="Continue OUTPUT: skip the (goal, method) pairs it already holds for the same configuration.",
+)
 @click.option("--workers", type=int32(min=1, max=1024), default=1, show_default=True, help="Worker processes.")
 @click.option(
     "--scheduler", type=SCHEDULER, metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra)."
@@ -788,7 +921,11 @@ def batch(
     fsync,
     constraints,
 ):
-    """Solve many goals with several methods; resumable JSON-lines output and a summary."""
+    """Solve many goals with several methods; resumable JSON-lines output and a summary.
+
+    Every result line carries "valid" (the independent validator's verdict); the
+    summary counts the valid trees per method. Default goals: the goals file's.
+    """
     kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
     outcome = kb.batch(
@@ -808,6 +945,7 @@ def batch(
         scheduler=scheduler,
     )
     click.echo(report.render("summary", summary_fmt, batch_mod.summarize(outcome.records), outcome), nl=False)
+    sys.exit(exit_code((r.get("status", "?"), r.get("valid")) for r in outcome.records))
 
 
 if __name__ == "__main__":  # pragma: no cover

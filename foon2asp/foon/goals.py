@@ -11,7 +11,12 @@ from foon2asp.foon.problem import Problem
 
 
 def _closest(problem: Problem, label: str) -> str:
-    close = difflib.get_close_matches(label, sorted(problem.foon.labels()), n=5, cutoff=0.5)
+    labels = sorted(problem.foon.labels())
+    close = difflib.get_close_matches(label, labels, n=5, cutoff=0.5)
+    if not close:  # a misspelt word of a longer label ("scrambld egg" -> "scrambled egg")
+        words = sorted({w for lab in labels for w in lab.split()})
+        hits = {w for part in label.split() for w in difflib.get_close_matches(part, words, n=2, cutoff=0.75)}
+        close = [lab for lab in labels if hits & set(lab.split())][:5]
     return f"; closest labels: {', '.join(close)}" if close else ""
 
 
@@ -115,7 +120,8 @@ def all_objects(problem: Problem) -> list[int]:
 
 
 def resolve(data: Dataset, problem: Problem, goal: tuple[str, ...] | None, goals: str | None) -> list[int]:
-    """Goal ids for ``--goal LABEL`` (repeatable) or ``--goals FILE|all|all-objects``."""
+    """Goal ids for ``--goal TEXT`` (repeatable) and ``--goals FILE|all|all-objects``;
+    neither: :func:`default_goals`."""
     out: list[int] = []
     for label in goal or ():
         out.append(resolve_goal(data, problem, label))
@@ -128,6 +134,8 @@ def resolve(data: Dataset, problem: Problem, goal: tuple[str, ...] | None, goals
         out += all_objects(problem)
     elif goals:
         out += goals_from_file(problem, goals)
+    if not out and not goal and not goals:
+        return default_goals(data, problem)
     if not out:
         if goals == "all":
             raise InputError("the goals file lists no goal", data.paths.get("goals"))
@@ -135,5 +143,77 @@ def resolve(data: Dataset, problem: Problem, goal: tuple[str, ...] | None, goals
             raise InputError("no unit makes an object that is not in the kitchen: no goal")
         if goals:
             raise InputError("the goals file lists no goal", goals)
-        raise InputError("no goal given: use --goal LABEL or --goals FILE|all")
+        raise InputError("no goal given: use --goal TEXT or --goals FILE|all|all-objects")
     return out
+
+
+def default_goals(data: Dataset, problem: Problem) -> list[int]:
+    """The goals when none are named, the same for every command: the goals file's entries."""
+    path = data.paths.get("goals")
+    if path is None:
+        raise InputError(
+            "no goal given and no goals file: use --goal TEXT, --goals FILE or --goals all-objects"
+            " (goal_nodes.json beside the FOON is read when present)"
+        )
+    return [goal_id(problem, obj, path, line) for obj, line in data.goals]
+
+
+# ---------------------------------------------------------------- listing objects
+
+#: what ``objects`` can restrict the listing to
+OBJECT_FILTERS = ("produced", "kitchen", "derivable")
+
+
+def object_info(problem: Problem, oid: int) -> dict:
+    """One object as ``foon2asp objects --format json`` lists it (also a goals-file entry)."""
+    obj = problem.objects[oid]
+    return {
+        "id": oid,
+        "text": obj.text,
+        **obj.to_json(),
+        "in_kitchen": oid in problem.kitchen,
+        "producers": len(problem.producers.get(oid, ())),
+    }
+
+
+def find_objects(problem: Problem, query: str | None = None, only: str | None = None) -> list[int]:
+    """Ids of the objects ``query`` names, in id order: every object (None), ``#ID``, an
+    object's text, a label, else the labels containing ``query`` as words; ``only``
+    keeps the ``produced`` (made by some unit), ``kitchen`` or ``derivable`` ones.
+
+    Nothing matching is an :class:`InputError` with the closest labels.
+    """
+    if only is not None and only not in OBJECT_FILTERS:
+        raise InputError(f"unknown object filter {only!r} (have {', '.join(OBJECT_FILTERS)})")
+    if query is None or not query.strip():
+        ids = list(range(len(problem.objects)))
+    else:
+        ids = _matching(problem, query.strip())
+    keep = {
+        None: lambda o: True,
+        "produced": lambda o: o in problem.producers,
+        "kitchen": lambda o: o in problem.kitchen,
+        "derivable": lambda o: o in problem.derivable,
+    }[only]
+    return [o for o in ids if keep(o)]
+
+
+def _matching(problem: Problem, query: str) -> list[int]:
+    if query.startswith("#") and query[1:].isdigit():
+        oid = int(query[1:])
+        if oid >= len(problem.objects):
+            raise InputError(f"no object #{oid}: ids run from #0 to #{len(problem.objects) - 1}")
+        return [oid]
+    obj = parse_object_text(query)
+    if obj is not None and obj in problem.foon.object_ids:
+        return [problem.foon.object_ids[obj]]
+    norm = " ".join(query.split()).lower()
+    ids = [problem.foon.object_ids[o] for o in problem.foon.by_label(norm)]
+    if ids:
+        return ids
+    # the labels that contain the query as whole words ("egg" -> "scrambled egg")
+    words = f" {norm} "
+    ids = [i for i, o in enumerate(problem.objects) if words in f" {o.label} "]
+    if ids:
+        return ids
+    raise InputError(f"no object matches {query!r}{_closest(problem, norm)}")

@@ -236,5 +236,14 @@ register("compare", "csv", "csv", "one row per goal and method")(_csv)
 register("compare", "json", "json", "solve-shaped results, each with valid")(_json)
 
 
+def _jsonl(problem: Problem, rows) -> str:
+    if isinstance(rows, MealRow):
+        return json.dumps(meal_json(problem, rows)) + "\n"
+    return "".join(json.dumps(tree_json(problem, t)) + "\n" for r in rows for t in r.trees.values())
+
+
+register("compare", "jsonl", "jsonl", "JSON lines: one solve-shaped result with valid per goal and method")(_jsonl)
+
+
 def render(problem: Problem, rows: list[Row], fmt: str) -> str:
     return registry.render("compare", fmt, problem, rows)

@@ -120,6 +120,8 @@ def query_json(problem: Problem, result: QueryResult) -> dict:
     return {
         "status": result.status,
         "time_s": result.time_s,
+        "encodings": result.encodings,
+        "warnings": result.warnings,
         "models": [
             {"cost": a.cost, "atoms": [decode(problem, s) for s in _ordered(a.symbols)]} for a in result.answers
         ],
@@ -128,6 +130,8 @@ def query_json(problem: Problem, result: QueryResult) -> dict:
 
 def query_text(problem: Problem, result: QueryResult) -> str:
     lines = [f"Status: {result.status}"]
+    if result.encodings:
+        lines.append(f"Encodings: {', '.join(result.encodings)}")
     for n, answer in enumerate(result.answers, 1):
         cost = f"  (cost {' '.join(map(str, answer.cost))})" if answer.cost else ""
         if len(result.answers) > 1 or cost:
@@ -143,6 +147,12 @@ register("reachable", "json", "json", "[{goal, reachable}]")(
 )
 register("missing", "text", "txt", "objects to add and the tree, per goal")(
     lambda problem, results: "\n".join(missing_text(problem, r) for r in results)
+)
+register("reachable", "jsonl", "jsonl", "JSON lines: {goal, reachable} per goal")(
+    lambda problem, answers: "".join(json.dumps(r) + "\n" for r in reachable_json(problem, answers))
+)
+register("missing", "jsonl", "jsonl", "JSON lines: {goal, status, missing, units, cost} per goal")(
+    lambda problem, results: "".join(json.dumps(missing_json(problem, r)) + "\n" for r in results)
 )
 register("missing", "json", "json", "a list of {goal, status, missing, units, cost}")(
     lambda problem, results: json.dumps([missing_json(problem, r) for r in results], indent=2) + "\n"

@@ -13,6 +13,7 @@ _COLUMNS = [
     "results",
     "statuses",
     "trees",
+    "valid",
     "units_min",
     "units_median",
     "units_mean",

@@ -7,7 +7,7 @@ import json
 from foon2asp.foon.problem import Problem
 from foon2asp.report import draw
 from foon2asp.report.registry import get, register
-from foon2asp.tree.serialize import to_json, tree_foon, tree_foon_json, tree_text
+from foon2asp.tree.serialize import to_json, tree_foon, tree_foon_json, tree_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
 
 
@@ -52,6 +52,11 @@ for _fmt, _what in (
     ("pdf", "the drawing as PDF (needs Graphviz 'dot')"),
 ):
     register("trees", _fmt, _fmt, _what, binary=_fmt in draw.BINARY)(_drawing(_fmt))
+
+
+@register("trees", "jsonl", "jsonl", "JSON lines: one result per line, written as each goal is solved")
+def trees_jsonl(problem: Problem, trees: list[TaskTree]) -> str:
+    return "".join(json.dumps(tree_json(problem, t), ensure_ascii=False) + "\n" for t in trees)
 
 
 def render(problem: Problem, trees: list[TaskTree], fmt: str) -> str:

@@ -82,7 +82,7 @@ def tree_text(problem: Problem, tree: TaskTree) -> str:
         lines.append(f"  {step:>3}. {unit.motion}{who}")
         lines.append(f"       in:  {'; '.join(map(str, unit.inputs))}")
         lines.append(f"       out: {'; '.join(map(str, unit.outputs))}")
-    if not tree.units and tree.status in ("optimal", "feasible", "found"):
+    if not tree.units and tree.status in ("optimal", "ranked", "feasible", "found"):
         lines.append("  (already in the kitchen: no steps)")
     return "\n".join(lines) + "\n"
 

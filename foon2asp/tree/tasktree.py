@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 from foon2asp.foon.problem import Problem
 
-STATUSES = ("optimal", "feasible", "unreachable", "unknown", "found", "not-found")
+STATUSES = ("optimal", "ranked", "feasible", "unreachable", "unknown", "found", "not-found")
 
 
 @dataclass
@@ -34,7 +34,7 @@ class TaskTree:
 
     @property
     def has_tree(self) -> bool:
-        return self.status in ("optimal", "feasible", "found")
+        return self.status in ("optimal", "ranked", "feasible", "found")
 
     @property
     def meal(self) -> tuple[int, ...]:

@@ -19,3 +19,31 @@ def encoding(name: str) -> str:
     if not path.is_file():
         raise KeyError(f"no encoding {name!r}; have {', '.join(names())}")
     return path.read_text(encoding="utf-8")
+
+
+#: the shipped encodings each encoding needs loaded with it (tree.lp defines use/1, reach/1, ...)
+DEPENDS: dict[str, tuple[str, ...]] = {
+    "reachable": ("tree",),
+    "units": ("tree",),
+    "success": ("tree",),
+    "inputs": ("tree",),
+    "human": ("tree",),
+    "greedy": ("tree",),
+    "greedy_h1": ("greedy",),
+    "greedy_h2": ("greedy",),
+}
+
+
+def with_dependencies(wanted: list[str] | tuple[str, ...]) -> list[str]:
+    """``wanted`` with what each needs (:data:`DEPENDS`), each name once, needed ones first."""
+    out: list[str] = []
+
+    def visit(name: str) -> None:
+        for dep in DEPENDS.get(name, ()):
+            visit(dep)
+        if name not in out:
+            out.append(name)
+
+    for name in wanted:
+        visit(name)
+    return out

@@ -219,7 +219,9 @@ class Driver:
         best_cost = found[0][0].cost
         trees = []
         for rank, (answer, bound) in enumerate(found, 1):
-            status = "optimal" if answer.proven and answer.cost == best_cost else "feasible"
+            # "ranked": proven best once the better trees (and their supersets) are excluded;
+            # "feasible" only when the time limit stopped that search
+            status = ("optimal" if answer.cost == best_cost else "ranked") if answer.proven else "feasible"
             tree = self._tree(goal, answer, status, t0, bound)
             if want > 1 or options.all_optimal:
                 tree.extra["rank"] = rank

@@ -1,0 +1,52 @@
+"""``foon2asp objects``: list objects with their ids and texts, to pick goals from."""
+
+from __future__ import annotations
+
+import json
+
+import click
+
+from foon2asp.cli.main import data_options, guarded, load, main
+
+
+def _data_options_but_kitchen(func):
+    """The data options without ``--kitchen FILE`` (here ``--kitchen`` keeps kitchen items):
+    the kitchen is kitchen.json of --data or beside --foon."""
+    func = data_options(func)
+    func.__click_params__ = [p for p in func.__click_params__ if p.name != "kitchen"]
+    return func
+
+
+@main.command()
+@click.argument("query", required=False, metavar="[LABEL]")
+@_data_options_but_kitchen
+@click.option("--produced", "only", flag_value="produced", help="Only objects some unit makes.")
+@click.option("--kitchen", "only", flag_value="kitchen", help="Only kitchen items.")
+@click.option("--derivable", "only", flag_value="derivable", help="Only objects that can be made from the kitchen.")
+@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+def objects(query, data_dir, foon, motion, utensils, utensil_rule, strict, only, fmt):
+    """List the objects LABEL names (all objects without it), each with its #ID and text.
+
+    LABEL is a label ('scrambled egg'), an object's text, #ID, or words of labels ('egg').
+    Any #ID or text listed can be given as --goal; the JSON list is a goals file
+    (--goals FILE).
+    """
+    _objects(query, data_dir, foon, motion, utensils, utensil_rule, strict, only, fmt)
+
+
+@guarded
+def _objects(query, data_dir, foon, motion, utensils, utensil_rule, strict, only, fmt):
+    kb = load(data_dir, foon, None, motion, utensils, utensil_rule, strict)
+    ids = kb.find_objects(query, only)
+    infos = [kb.object_info(i) for i in ids]
+    if fmt == "json":
+        click.echo("[\n" + ",\n".join(json.dumps(i, ensure_ascii=False) for i in infos) + "\n]" if infos else "[]")
+        return
+    width = len(f"#{max(ids)}") if ids else 2
+    for info in infos:
+        where = ["kitchen"] if info["in_kitchen"] else []
+        if info["producers"]:
+            where.append(f"made by {info['producers']} unit{'s' if info['producers'] != 1 else ''}")
+        click.echo(f"{'#' + str(info['id']):<{width}}  {info['text']}" + (f"   ({', '.join(where)})" if where else ""))
+    what = {None: "", "produced": " made by some unit", "kitchen": " in the kitchen", "derivable": " derivable"}[only]
+    click.echo(f"{len(infos)} object{'s' if len(infos) != 1 else ''}{what}", err=True)
