@@ -9,6 +9,7 @@ import shutil
 from click.testing import CliRunner
 
 from conftest import DEMO
+from foon2asp.batch.run import read_results
 from foon2asp.cli.main import main
 
 
@@ -140,7 +141,7 @@ def test_human_steps_need_success_and_models_are_ranked(shared_foon_dir):
 def test_batch_rows_carry_valid(shared_foon_dir, tmp_path):
     out = tmp_path / "r.jsonl"
     res = run("batch", "--data", shared_foon_dir, "--method", "gbfs-h1", "-o", out, "--no-progress")
-    records = [json.loads(line) for line in out.read_text().splitlines()]
+    records = read_results(out)  # the configuration header is not a record
     assert len(records) == 25 and all("valid" in r for r in records)
     invalid = [r for r in records if r["status"] == "found" and not r["valid"]]
     assert invalid and res.exit_code == 1

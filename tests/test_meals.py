@@ -209,6 +209,18 @@ def test_missing_together_matches_singles(demo_problem):
 
 def test_cli_together_rejects_search_methods():
     out = CliRunner().invoke(
-        main, ["solve", "--goal", "tomato salad", "--goal", "scrambled egg", "--together", "--method", "ids"]
+        main,
+        [
+            "solve",
+            "--data",
+            "demo",
+            "--goal",
+            "tomato salad",
+            "--goal",
+            "scrambled egg",
+            "--together",
+            "--method",
+            "ids",
+        ],
     )
     assert out.exit_code == 2 and "ASP method" in out.stderr

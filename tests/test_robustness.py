@@ -25,8 +25,15 @@ REPO = Path(__file__).resolve().parent.parent
 DEMO = REPO / "data"
 
 
+#: commands that read data: the demo data unless the test names some (there is no silent default)
+_DATA_COMMANDS = {"solve", "check", "compare", "reachable", "missing", "query", "batch", "facts", "objects"}
+
+
 def run(*args):
-    return CliRunner().invoke(main, [str(a) for a in args])
+    argv = [str(a) for a in args]
+    if argv and argv[0] in _DATA_COMMANDS and not {"--data", "--foon"} & set(argv):
+        argv += ["--data", "demo"]
+    return CliRunner().invoke(main, argv)
 
 
 def one_line_error(res, code=2):
@@ -202,7 +209,7 @@ def test_internal_error_is_exit_3_with_traceback_only_under_debug(monkeypatch):
     monkeypatch.setattr(goals, "resolve", boom)
     msg = one_line_error(run("solve", "--goal", "x"), code=3)
     assert "internal error: ZeroDivisionError: boom" in msg and "please report" in msg
-    res = CliRunner().invoke(main, ["--debug", "solve", "--goal", "x"])
+    res = CliRunner().invoke(main, ["--debug", "solve", "--data", "demo", "--goal", "x"])
     assert res.exit_code == 3 and "Traceback" in res.stderr
 
 
