@@ -172,7 +172,7 @@ def test_labels_are_data_in_generated_rules():
     g = goal_id(p, "chopped")
     assert len(solve_with(p, g, []).units) == 1
     text = constraints.forbid_object(evil)
-    constraints.check("generated", text)  # a well-formed program
+    constraints.check_syntax("generated", text)  # a well-formed program
     tree = solve_with(p, g, [("f", text)])
     assert tree.status == "optimal" and len(tree.units) == 2
     assert evil not in labels_of(p, tree.units)

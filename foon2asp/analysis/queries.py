@@ -19,7 +19,7 @@ import clingo
 import clingo.ast
 
 from foon2asp.asp import encodings
-from foon2asp.asp.constraints import check
+from foon2asp.asp.constraints import check_syntax
 from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import facts
 from foon2asp.asp.objectives import input_node_facts
@@ -365,7 +365,7 @@ def shows(name: str, text: str) -> bool:
     try:
         clingo.ast.parse_string(text, visit)
     except RuntimeError:
-        check(name, text)  # a syntax error: one line naming the program
+        check_syntax(name, text)  # a syntax error: one line naming the program
         raise
     return found[0]
 
@@ -393,7 +393,7 @@ def query(
     (0 = all).
     """
     name, text = program
-    check(name, text)
+    check_syntax(name, text)
     own_show = shows(name, text)
     parts = [("facts", facts(problem, goal_nodes=goal_nodes, goal=goal))]
     asked = list(dict.fromkeys(with_encodings))

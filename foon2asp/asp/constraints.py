@@ -109,7 +109,7 @@ def clingo_error(messages: list[str], name: str) -> InputError:
     return InputError(f"{text} (column {first['col']})", name, int(first["line"]))
 
 
-def check(name: str, text: str) -> None:
+def check_syntax(name: str, text: str) -> None:
     """Parse and ground ``text`` alone; raise a located InputError if clingo rejects it.
 
     Grounding alone catches unsafe variables, which clingo reports only at
@@ -203,11 +203,11 @@ def programs(
     out: list[tuple[str, str]] = []
     for path in files:
         text = read_file(path)
-        check(str(path), text)
+        check_syntax(str(path), text)
         out.append((str(path), text))
     for n, rule in enumerate(rules, 1):
         name = f"--rule #{n}"
-        check(name, rule)
+        check_syntax(name, rule)
         out.append((name, rule))
     generated = [
         ("--forbid-motion", forbid_motion, forbid_motions),

@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 
 import clingo
 
-from foon2asp.asp.constraints import check, clingo_error
+from foon2asp.asp.constraints import check_syntax, clingo_error
 from foon2asp.errors import InputError
 
 #: how often a waiting solve looks for a deferred signal (seconds)
@@ -154,7 +154,7 @@ class Control:
                 self.ctl.ground([(name, list(args)) for name, args in parts])
         except RuntimeError:
             for name, text in self.user_programs:
-                check(name, text)
+                check_syntax(name, text)
             msg = self.messages[0] if self.messages else "error"
             raise InputError(msg.replace("<block>", "program")) from None
 

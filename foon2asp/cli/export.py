@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from foon2asp.cli.main import constraint_options, data_options, guarded, load, main
+from foon2asp.cli.main import constraint_options, data_options, guarded, main
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.report import pddl
@@ -38,9 +38,7 @@ def export():
 @click.option("--name", default="foon", show_default=True, help="Domain name (problem: NAME-task).")
 @constraint_options
 @guarded
-def export_pddl(
-    data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, objective, output, name, constraints
-):
+def export_pddl(data, goal, goals, objective, output, name, constraints):
     """The goal's relevant part as a delete-free STRIPS domain and problem (DIR/domain.pddl, DIR/problem.pddl).
 
     One action per functional unit, named u<id>-<motion> (a plan maps back to the units:
@@ -51,7 +49,7 @@ def export_pddl(
     """
     if goals == "all-objects":
         raise InputError("--goals all-objects cannot be one PDDL goal; name goals with --goal or a goals FILE")
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    kb = data.load(goals)
     data, problem = kb.data, kb.problem
     goal_ids = goals_mod.resolve(data, problem, goal, goals)
     if not all(c.isalnum() or c in "-_" for c in name) or not name[:1].isalpha():

@@ -6,6 +6,7 @@ import functools
 import signal
 import sys
 import traceback
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -179,9 +180,41 @@ def data_options(func):
         ),
         click.option("--strict", is_flag=True, help="Treat skipped FOON units (warnings) as errors."),
     ]
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        values = {k: kwargs.pop(k) for k in DataArgs.__dataclass_fields__}
+        return func(*args, data=DataArgs(**values), **kwargs)
+
     for opt in reversed(opts):
-        func = opt(func)
-    return func
+        wrapper = opt(wrapper)
+    return wrapper
+
+
+@dataclass(frozen=True)
+class DataArgs:
+    """The data options of a command (--data, --foon, --kitchen, --motion, --utensils, --utensil-rule, --strict)."""
+
+    data_dir: str | None
+    foon: tuple[str, ...]
+    kitchen: str | None
+    motion: str | None
+    utensils: str | None
+    utensil_rule: str
+    strict: bool
+
+    def load(self, goals_file: str | None = None) -> api.KnowledgeBase:
+        """The knowledge base these options name (``goals_file``: a ``--goals FILE`` to read)."""
+        return load(
+            self.data_dir,
+            self.foon,
+            self.kitchen,
+            self.motion,
+            self.utensils,
+            self.utensil_rule,
+            self.strict,
+            goals_file,
+        )
 
 
 GOAL_HELP = (
@@ -444,13 +477,7 @@ STREAMED = {"text": "\n", "foon": "", "jsonl": ""}
 @progress_option
 @guarded
 def solve(
-    data_dir,
-    foon,
-    kitchen,
-    motion,
-    utensils,
-    utensil_rule,
-    strict,
+    data,
     goal,
     goals,
     method_list,
@@ -469,7 +496,7 @@ def solve(
     Text, FOON and JSON-lines output is printed goal by goal as each is solved.
     """
     names = _method_list(method_list)
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    kb = data.load(goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
     search = [m for m in names if methods.get(m).kind != "asp"]
     if together and search:
@@ -525,9 +552,9 @@ def solve(
 @click.option("--goal", "goal", multiple=True, metavar="TEXT", help="Also fix goal(O) for this goal. " + GOAL_HELP)
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="A FILE to write the facts to (default: stdout).")
 @guarded
-def facts(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals, goal, output):
+def facts(data, goals, goal, output):
     """Write the FOON, kitchen and goals as ASP facts."""
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    kb = data.load(goals)
     text = facts_text(kb.problem, goal_nodes=_goal_nodes(kb, goals))
     fixed = goals_mod.resolve(kb.data, kb.problem, goal, None) if goal else []
     text += "".join(f"goal({g}).\n" for g in fixed)
@@ -613,7 +640,7 @@ def list_methods():
     "--optimum/--no-optimum", default=True, show_default=True, help="Also solve the ASP optimum to compare with."
 )
 @guarded
-def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt, optimum):
+def check(tree, data, goal, goals, fmt, optimum):
     """Check the task tree(s) in TREE (FOON text with // between units, FOON JSON or foon2asp JSON),
     or a plan for a problem of 'export pddl' ('(action-name)' lines, as Fast Downward writes them).
 
@@ -621,7 +648,7 @@ def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict,
     Exit codes: 0 every tree valid; 1 some tree invalid; 2 bad input or usage;
     130 interrupted.
     """
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    kb = data.load(goals)
     among = None
     if goals:
         among = [kb.problem.objects[g] for g in goals_mod.resolve(kb.data, kb.problem, (), goals)]
@@ -647,13 +674,7 @@ def check(tree, data_dir, foon, kitchen, motion, utensils, utensil_rule, strict,
 @progress_option
 @guarded
 def compare(
-    data_dir,
-    foon,
-    kitchen,
-    motion,
-    utensils,
-    utensil_rule,
-    strict,
+    data,
     goal,
     goals,
     method_list,
@@ -670,7 +691,7 @@ def compare(
     meal's tree (one tree for every goal) beside the sum of the single optima.
     """
     names = _method_list(method_list, list(compare_mod.DEFAULT_METHODS))
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    kb = data.load(goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
     search = [n for n in names if methods.get(n).kind != "asp"]
     if constraints and search:
@@ -708,9 +729,9 @@ def compare(
 @goal_options
 @click.option("--format", "fmt", type=click.Choice(report.names("reachable")), default="text", show_default=True)
 @guarded
-def reachable(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goal, goals, fmt):
+def reachable(data, goal, goals, fmt):
     """Which goals (or objects) can be made from the kitchen at all, in one solve (default: the goals file's goals)."""
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    kb = data.load(goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
     answers = queries.reachable(kb.problem, goal_ids)
     click.echo(report.render("reachable", fmt, kb.problem, answers), nl=False)
@@ -732,13 +753,7 @@ def reachable(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, g
 @progress_option
 @guarded
 def missing(
-    data_dir,
-    foon,
-    kitchen,
-    motion,
-    utensils,
-    utensil_rule,
-    strict,
+    data,
     goal,
     goals,
     objective,
@@ -752,7 +767,7 @@ def missing(
 
     Default goals: the goals file's.  With --together: the fewest objects for the whole meal.
     """
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    kb = data.load(goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
     spec = _constraints(constraints)
     kb.options(objective, time_limit, spec)  # checks the names, warns about unknown ones
@@ -793,13 +808,7 @@ def missing(
 @guarded
 def query(
     program,
-    data_dir,
-    foon,
-    kitchen,
-    motion,
-    utensils,
-    utensil_rule,
-    strict,
+    data,
     goals,
     goal,
     encoding_names,
@@ -818,7 +827,7 @@ def query(
     """
 
     text = read_file(program)
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    kb = data.load(goals)
     result = kb.query(
         text,
         goal=goal or None,
@@ -897,13 +906,7 @@ def _method_list(values: tuple[str, ...], default: list[str] | None = None) -> l
 @constraint_options
 @guarded
 def batch(
-    data_dir,
-    foon,
-    kitchen,
-    motion,
-    utensils,
-    utensil_rule,
-    strict,
+    data,
     goal,
     goals,
     method_list,
@@ -926,7 +929,7 @@ def batch(
     Every result line carries "valid" (the independent validator's verdict); the
     summary counts the valid trees per method. Default goals: the goals file's.
     """
-    kb = load(data_dir, foon, kitchen, motion, utensils, utensil_rule, strict, goals)
+    kb = data.load(goals)
     goal_ids = goals_mod.resolve(kb.data, kb.problem, goal, goals)
     outcome = kb.batch(
         goal_ids,
