@@ -178,27 +178,19 @@ def missing(
     """The fewest objects to add to the kitchen so ``goal`` can be made, then the best tree
     by ``objective`` (``units``, ``success``, ``inputs``, lexicographic; default fewest units).
 
-    ``goal`` may be a meal (a tuple of goals): the fewest objects so that one tree makes them all
-    (then the fewest units).
+    ``goal`` may be a meal (a tuple of goals): the fewest objects so that one tree makes them all.
     """
     for name in objective:
         if name not in MISSING_OBJECTIVES:
             raise InputError(f"missing takes the objectives {', '.join(MISSING_OBJECTIVES)}, not {name!r}")
     meal = meal_of(goal)
-    if len(meal) > 1:
-        if tuple(objective) != ("units",):
-            raise InputError("missing for a meal (--together) takes the objective units only")
-        return _missing_meal(problem, meal, list(user_programs), time_limit)
-    goal = meal[0]
-    t0 = time.perf_counter()
-    if goal in problem.kitchen:
-        units: list[int] = []
-    else:
-        units = problem.relevant_units(goal)
     user_programs = list(user_programs)
+    t0 = time.perf_counter()
+    units = sorted({u for g in meal if g not in problem.kitchen for u in problem.relevant_units(g)})
+    text = facts(problem, goal=meal[0], units=units) + "".join(f"goal({g}).\n" for g in meal[1:])
     prog = Program(
         [
-            ("facts", facts(problem, goal=goal, units=units)),
+            ("facts", text),
             ("encodings/missing.lp", encodings.encoding("missing")),
             *objective_parts(problem, tuple(dict.fromkeys(objective)), units, len(objective) + 1),
             *user_programs,
@@ -208,21 +200,31 @@ def missing(
     buyable = sorted(s.arguments[0].number for s in prog.facts_of("buyable", 1))
     outcome = prog.solve(time_limit)
     elapsed = round(time.perf_counter() - t0, 6)
+    goals = meal if len(meal) > 1 else ()
     if outcome.answers:
         shown = outcome.answers[-1].symbols
         added = sorted(s.arguments[0].number for s in shown if s.name == "add")
         used = [s.arguments[0].number for s in shown if s.name == "use"]
         extended = with_kitchen(problem, added)
         order = executable_order(extended, used)
-        cost = measures(extended, goal, order)
+        cost = measures(extended, meal if goals else meal[0], order)
         cost["added"] = len(added)
         # "satisfiable": no weighted atom was grounded, so every model costs 0
         status = "optimal" if outcome.status in ("optimal", "satisfiable") else "feasible"
-        return MissingResult(goal, status, added, order, cost, elapsed, buyable=buyable)
+        return MissingResult(meal[0], status, added, order, cost, elapsed, buyable=buyable, goals=goals)
     if outcome.status == "unknown":
-        return MissingResult(goal, "unknown", time_s=elapsed, reason="time ran out", buyable=buyable)
+        return MissingResult(meal[0], "unknown", time_s=elapsed, reason="time ran out", buyable=buyable, goals=goals)
+    result = MissingResult(meal[0], "unreachable", time_s=elapsed, buyable=buyable, goals=goals)
+    if goals:
+        # which goals are blocked on their own
+        blocked = [g for g in meal if not missing(problem, g, user_programs, time_limit).has_tree]
+        names = "; ".join(str(problem.objects[g]) for g in blocked)
+        result.reason = (
+            f"no set of objects helps these goal(s): {names}" if blocked else "the constraints rule out every tree"
+        )
+        return result
+    goal = meal[0]
     reach = {s.arguments[0].number for s in prog.facts_of("reach", 1)}
-    result = MissingResult(goal, "unreachable", time_s=elapsed, buyable=buyable)
     if goal in reach:
         result.reason = "the constraints rule out every tree"
     elif goal not in problem.producers:
@@ -231,39 +233,6 @@ def missing(
         result.path, result.cycle = blocking_cycle(problem, goal, reach)
         result.reason = "no set of objects that can only be brought in helps; a cycle blocks it"
     return result
-
-
-def _missing_meal(
-    problem: Problem, meal: tuple[int, ...], user_programs: list[tuple[str, str]], time_limit: float | None
-) -> MissingResult:
-    """:func:`missing` for several goals at once: one set of objects, one tree for all goals."""
-    t0 = time.perf_counter()
-    units = sorted({u for g in meal if g not in problem.kitchen for u in problem.relevant_units(g)})
-    text = facts(problem, goal=meal[0], units=units) + "".join(f"goal({g}).\n" for g in meal[1:])
-    prog = Program(
-        [("facts", text), ("encodings/missing.lp", encodings.encoding("missing")), *user_programs],
-        ["--opt-mode=opt", "--models=0"],
-    )
-    buyable = sorted(s.arguments[0].number for s in prog.facts_of("buyable", 1))
-    outcome = prog.solve(time_limit)
-    elapsed = round(time.perf_counter() - t0, 6)
-    if outcome.answers:
-        shown = outcome.answers[-1].symbols
-        added = sorted(s.arguments[0].number for s in shown if s.name == "add")
-        used = [s.arguments[0].number for s in shown if s.name == "use"]
-        extended = with_kitchen(problem, added)
-        order = executable_order(extended, used)
-        cost = measures(extended, meal, order)
-        cost["added"] = len(added)
-        status = "optimal" if outcome.status in ("optimal", "satisfiable") else "feasible"
-        return MissingResult(meal[0], status, added, order, cost, elapsed, buyable=buyable, goals=meal)
-    if outcome.status == "unknown":
-        return MissingResult(meal[0], "unknown", time_s=elapsed, reason="time ran out", buyable=buyable, goals=meal)
-    # which goals are blocked on their own
-    blocked = [g for g in meal if not missing(problem, g, user_programs, time_limit).has_tree]
-    names = "; ".join(str(problem.objects[g]) for g in blocked)
-    reason = f"no set of objects helps these goal(s): {names}" if blocked else "the constraints rule out every tree"
-    return MissingResult(meal[0], "unreachable", time_s=elapsed, reason=reason, buyable=buyable, goals=meal)
 
 
 def blocking_cycle(problem: Problem, goal: int, reach: set[int]) -> tuple[list[tuple[int, int]], list[tuple[int, int]]]:

@@ -28,7 +28,7 @@ from typing import Any
 
 import clingo
 
-from foon2asp.asp.control import Answer, Control
+from foon2asp.asp.control import Answer, Control, read_model
 
 LEX_ON = clingo.Function("lex_on", [])
 
@@ -67,13 +67,7 @@ def canonicalise(control: Control, answer: Answer, deadline: float | None = None
     found: list[Answer] = []
 
     def record(model: clingo.Model) -> None:
-        units, human = [], []
-        for s in model.symbols(shown=True):
-            if s.name == "use" and len(s.arguments) == 1:
-                units.append(s.arguments[0].number)
-            elif s.name == "human" and len(s.arguments) == 1:
-                human.append(s.arguments[0].number)
-        found[:] = [Answer(tuple(sorted(units)), tuple(model.cost), True, tuple(sorted(human)))]
+        found[:] = [read_model(model, proven=True)]
 
     on: set[int] = set()
     try:

@@ -103,6 +103,18 @@ class Answer:
     symbols: list[clingo.Symbol] = field(default_factory=list)
 
 
+def read_model(model: clingo.Model, proven: bool | None = None) -> Answer:
+    """The tree of ``model``: its ``use/1`` and ``human/1`` atoms, cost and optimality."""
+    units, human = [], []
+    for s in model.symbols(shown=True):
+        if s.name == "use" and len(s.arguments) == 1:
+            units.append(s.arguments[0].number)
+        elif s.name == "human" and len(s.arguments) == 1:
+            human.append(s.arguments[0].number)
+    done = model.optimality_proven if proven is None else proven
+    return Answer(tuple(sorted(units)), tuple(model.cost), done, tuple(sorted(human)))
+
+
 @dataclass
 class SolveResult:
     """What a solve call ended with."""

@@ -29,7 +29,7 @@ import clingo
 
 from foon2asp.asp import objectives
 from foon2asp.asp.canonical import canonicalise
-from foon2asp.asp.control import Answer, deferred_signals
+from foon2asp.asp.control import Answer, deferred_signals, read_model
 from foon2asp.asp.multishot import depth as depth_mod
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, goal_fields, meal_of, measures
 
@@ -80,13 +80,7 @@ class Driver:
         last: list[Answer] = []
 
         def record(model: clingo.Model) -> None:
-            units, human = [], []
-            for s in model.symbols(shown=True):
-                if s.name == "use" and len(s.arguments) == 1:
-                    units.append(s.arguments[0].number)
-                elif s.name == "human" and len(s.arguments) == 1:
-                    human.append(s.arguments[0].number)
-            answer = Answer(tuple(sorted(units)), tuple(model.cost), model.optimality_proven, tuple(sorted(human)))
+            answer = read_model(model)
             last[:] = [answer]
             if mode == "optN" and answer.proven:
                 answers.setdefault(answer.units, answer)
