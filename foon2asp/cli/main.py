@@ -151,8 +151,9 @@ class Main(click.Group):
         sys.exit(rv if isinstance(rv, int) else 0)
 
 
-def data_options(func):
-    """--data DIR and the per-file overrides, plus --utensil-rule and --strict."""
+def data_options(func, with_kitchen: bool = True):
+    """--data DIR and the per-file overrides, plus --utensil-rule and --strict, passed on as one
+    ``data`` value (:class:`DataArgs`); ``with_kitchen=False`` leaves out ``--kitchen FILE``."""
     opts = [
         click.option(
             "--data",
@@ -168,7 +169,6 @@ def data_options(func):
             multiple=True,
             help="FOON file(s), several are merged; without --data the other files are read from beside the first.",
         ),
-        click.option("--kitchen", type=click.Path(), help="kitchen.json"),
         click.option("--motion", type=click.Path(), help="motion.txt (motion TAB success rate)"),
         click.option("--utensils", type=click.Path(), help="utensils.txt"),
         click.option(
@@ -180,10 +180,13 @@ def data_options(func):
         ),
         click.option("--strict", is_flag=True, help="Treat skipped FOON units (warnings) as errors."),
     ]
+    if with_kitchen:
+        opts.insert(2, click.option("--kitchen", type=click.Path(), help="kitchen.json"))
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
-        values = {k: kwargs.pop(k) for k in DataArgs.__dataclass_fields__}
+        values = {k: kwargs.pop(k) for k in DataArgs.__dataclass_fields__ if with_kitchen or k != "kitchen"}
+        values.setdefault("kitchen", None)
         return func(*args, data=DataArgs(**values), **kwargs)
 
     for opt in reversed(opts):

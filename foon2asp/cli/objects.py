@@ -6,15 +6,13 @@ import json
 
 import click
 
-from foon2asp.cli.main import data_options, guarded, load, main
+from foon2asp.cli.main import data_options, guarded, main
 
 
 def _data_options_but_kitchen(func):
     """The data options without ``--kitchen FILE`` (here ``--kitchen`` keeps kitchen items):
     the kitchen is kitchen.json of --data or beside --foon."""
-    func = data_options(func)
-    func.__click_params__ = [p for p in func.__click_params__ if p.name != "kitchen"]
-    return func
+    return data_options(func, with_kitchen=False)
 
 
 @main.command()
@@ -24,19 +22,19 @@ def _data_options_but_kitchen(func):
 @click.option("--kitchen", "only", flag_value="kitchen", help="Only kitchen items.")
 @click.option("--derivable", "only", flag_value="derivable", help="Only objects that can be made from the kitchen.")
 @click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
-def objects(query, data_dir, foon, motion, utensils, utensil_rule, strict, only, fmt):
+def objects(query, data, only, fmt):
     """List the objects LABEL names (all objects without it), each with its #ID and text.
 
     LABEL is a label ('scrambled egg'), an object's text, #ID, or words of labels ('egg').
     Any #ID or text listed can be given as --goal; the JSON list is a goals file
     (--goals FILE).
     """
-    _objects(query, data_dir, foon, motion, utensils, utensil_rule, strict, only, fmt)
+    _objects(query, data, only, fmt)
 
 
 @guarded
-def _objects(query, data_dir, foon, motion, utensils, utensil_rule, strict, only, fmt):
-    kb = load(data_dir, foon, None, motion, utensils, utensil_rule, strict)
+def _objects(query, data, only, fmt):
+    kb = data.load()
     ids = kb.find_objects(query, only)
     infos = [kb.object_info(i) for i in ids]
     if fmt == "json":
