@@ -95,9 +95,7 @@ def weights(problem: Problem, ranked: tuple[str, ...]) -> list[int]:
     return [base(problem, u) * scale + 1 for u in range(len(problem.units))]
 
 
-def cheapest_sets(
-    problem: Problem, w: list[int], units: Iterable[int] | None = None
-) -> dict[int, frozenset[int]]:
+def cheapest_sets(problem: Problem, w: list[int], units: Iterable[int] | None = None) -> dict[int, frozenset[int]]:
     """Object -> its cheapest-set tree (see the module docstring); kitchen items -> the empty set."""
     pool = range(len(problem.units)) if units is None else units
     kitchen = problem.kitchen

@@ -20,9 +20,25 @@ Three ways to build the runner of a registered ASP method for a batch:
     they fire), so it is the optimum of every objective that only adds
     non-negative weights per used unit (:data:`MONOTONE`).
 
+  - the lower bound of :mod:`foon2asp.methods.bounds` meets its upper bound:
+    the *bounds tree* (a valid tree built without the solver) is optimal
+    (``"shortcut": "bounds"``).
+
   Shortcuts are taken only for plain optimisation (no user programs, extra
   encodings, depth bounds, human steps, alternatives or greedy heuristics);
-  anything else goes to the solver.
+  anything else goes to the solver.  They are exact also when the caller
+  restricts the units (``options.units``, as :func:`solve_goals` does), as
+  long as the goal's relevant part lies inside them.
+* pruning: a goal with choice that the bounds do not decide is solved on its
+  part without the units no optimal tree uses, the landmark units required
+  (:meth:`~foon2asp.methods.bounds.Bounds.keep`), on a small grounding.
+
+*The canonical tree* (the same from every path: solve, compare, check,
+batch with any grounding, workers or shortcuts, the library): for the
+objectives the bounds handle, the bounds tree whenever it is optimal -- found
+by the shortcut, or by the solver proving an optimum of the same cost --
+else the lexicographically smallest optimal tree
+(:mod:`foon2asp.asp.canonical`).
 
 Search methods (kind ``search``) are built once on the whole problem, as
 :func:`foon2asp.methods.runner` does.
@@ -193,7 +209,7 @@ class BatchRunner:
             return tree
         if tuple(sorted(tree.units)) == best or bounds.cost(best) != list(tree.extra.get("asp_cost", ())):
             return tree
-        tree.units = executable_order(self.problem, best)
+        tree.units = executable_order(self.problem, list(best))
         tree.cost = measures(self.problem, tree.goal, tree.units)
         tree.time_s = round(time.perf_counter() - t0, 6)
         return tree
@@ -234,7 +250,7 @@ class BatchRunner:
         if bounds.proven(goal):
             self.counts["bounds"] += 1
             tree = bounds.tree(goal) or ()
-            return self._answer(goal, label, executable_order(self.problem, tree), "bounds", t0)
+            return self._answer(goal, label, executable_order(self.problem, list(tree)), "bounds", t0)
         return self._canonical(self._solve_pruned(goal, units, objects, bounds), bounds, t0)
 
     def _answer(self, goal: int, label: str, order: list[int], shortcut: str, t0: float) -> TaskTree:
