@@ -42,6 +42,7 @@ shell: install-demo
 
 bench: install
 	$(BIN)/python bench/run.py --shared $(SHARED)
+	$(BIN)/python bench/p2.py --shared $(SHARED)
 
 clean:
 	rm -rf $(VENV) build *.egg-info out .pytest_cache

@@ -18,7 +18,8 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
 from foon2asp.batch.run import ResultFile, read_header, read_results
 from foon2asp.cli.main import main
-from foon2asp.methods.planner import BatchRunner
+from foon2asp.methods.bounds import Bounds
+from foon2asp.methods.planner import BatchRunner, solve_goals
 from helpers import brute_force, build, goal_id
 
 REPO = Path(__file__).resolve().parent.parent
@@ -354,12 +355,18 @@ def test_canonical_tree_is_the_smallest_optimal_tree_in_every_grounding(seed):
         want = canonical_brute(problem, g)
         trees = {
             "session": Session(problem, AspOptions()).solve(g),
-            "whole": BatchRunner("asp", problem, AspOptions(), "whole", shortcuts=False)(g),
-            "per-goal": BatchRunner("asp", problem, AspOptions(), "per-goal", shortcuts=False)(g),
             "driver": Session(problem, AspOptions(models=2)).solve(g),
         }
         for name, tree in trees.items():
             assert tuple(sorted(tree.units)) == want, (name, seed, g)
+        # the planner's canonical tree: the bounds tree when it is optimal, else the smallest optimal one
+        bounds_tree = Bounds(problem).tree(g)
+        if bounds_tree is not None and len(bounds_tree) == len(want):
+            want = bounds_tree
+        for grounding in ("whole", "per-goal"):
+            for shortcuts in (True, False):
+                tree = BatchRunner("asp", problem, AspOptions(), grounding, shortcuts=shortcuts)(g)
+                assert tuple(sorted(tree.units)) == want, (grounding, shortcuts, seed, g)
 
 
 def test_same_trees_from_solve_batch_workers_and_groundings(shared_foon_dir, tmp_path):
@@ -382,3 +389,41 @@ def test_same_trees_from_solve_batch_workers_and_groundings(shared_foon_dir, tmp
             for r in read_results(out)
         }
         assert batch == solved, extra
+
+
+def test_a_goal_the_bounds_decide_gets_the_same_tree_everywhere(shared_problem, shared_foon_dir, tmp_path):
+    """A goal whose bounds tree is optimal but not the smallest optimal tree: solve, batch
+    (both groundings, with and without shortcuts, two workers) and the library all give the
+    bounds tree, the canonical one."""
+    _, problem = shared_problem
+    runner = BatchRunner("asp", problem, AspOptions(), "per-goal")
+    bounds = Bounds(problem)
+    goal = None
+    for g in sorted(problem.derivable):
+        tree = runner(g)
+        if tree.stats.get("shortcut") != "bounds":
+            continue
+        smallest = Session(problem, AspOptions()).solve(g)
+        if sorted(smallest.units) != sorted(tree.units):
+            goal = g
+            break
+    assert goal is not None, "no goal where the bounds tree differs from the smallest optimal tree"
+    want = list(bounds.tree(goal))
+    assert len(want) == len(smallest.units)
+    trees = [next(iter(solve_goals(problem, [goal])))]
+    trees += [BatchRunner("asp", problem, AspOptions(), gr, sc)(goal) for gr in ("whole", "per-goal") for sc in (1, 0)]
+    for tree in trees:
+        assert tree.status == "optimal" and sorted(tree.units) == want
+    label = problem.objects[goal].to_json()
+    key = json.dumps(label, sort_keys=True)
+    res = run("solve", "--data", shared_foon_dir, "--goal", f"#{goal}", "--format", "json")
+    assert res.exit_code == 0, res.stderr
+    solved = json.loads(res.output)
+    solved = solved[0] if isinstance(solved, list) else solved
+    for extra in ([], ["--workers", "2", "--no-shortcuts"], ["--grounding", "per-goal"]):
+        out = tmp_path / f"b{len(extra)}.jsonl"
+        res = run("batch", "--data", shared_foon_dir, "--goal", f"#{goal}", "--output", out, "--no-progress", *extra)
+        assert res.exit_code == 0, res.stderr
+        (record,) = [r for r in read_results(out) if json.dumps(r["goal"], sort_keys=True) == key]
+        assert record["units"] == solved["units"], extra
+        assert len(record["units"]) == len(want)

@@ -35,6 +35,9 @@ POLL_S = 0.05
 
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
+#: between programs added in one call: each starts in the base part, as a separate add would
+_JOIN = "\n#program base.\n"
+
 
 class _Deferral:
     depth = 0
@@ -154,9 +157,20 @@ class Control:
             raise clingo_error(self.messages, name) from None
 
     def add_all(self, parts: Iterable[tuple[str, str]], user: Iterable[str] = ()) -> None:
+        """Add ``parts``; consecutive shipped (not user) parts go in one call, which is cheaper
+        per session (they are generated or shipped, so they hold no error to name)."""
         users = set(user)
+        shipped: list[str] = []
         for name, text in parts:
-            self.add(name, text, name in users)
+            if name in users:
+                if shipped:
+                    self.add("program", _JOIN.join(shipped))
+                    shipped = []
+                self.add(name, text, True)
+            else:
+                shipped.append(text)
+        if shipped:
+            self.add("program", _JOIN.join(shipped))
 
     def ground(self, parts: Sequence[tuple[str, Sequence[clingo.Symbol]]] = (("base", ()),)) -> None:
         """Ground ``parts``; on an error the user programs are checked one by one to name the culprit."""
@@ -184,7 +198,10 @@ class Control:
         t0 = time.perf_counter()
         deadline = None if time_limit is None else t0 + max(0.0, time_limit)
         with deferred_signals():
-            with self.ctl.solve(on_model=on_model, async_=True, assumptions=list(assumptions)) as handle:
+            self._last_stats: dict = {}
+            with self.ctl.solve(
+                on_model=on_model, on_statistics=self._record_stats, async_=True, assumptions=list(assumptions)
+            ) as handle:
                 finished = False
                 # wait in slices so that a deferred signal or the deadline is seen between them
                 while not signal_pending():
@@ -220,8 +237,24 @@ class Control:
         """Atoms of ``name/arity`` the grounder derived as facts."""
         return {a.symbol for a in self.ctl.symbolic_atoms.by_signature(name, arity) if a.is_fact}
 
+    def _record_stats(self, step, accumulated) -> None:
+        """Keep the few numbers :meth:`stats` reports (reading them here is cheaper than
+        converting the whole statistics tree afterwards)."""
+        try:
+            summary = step["summary"]
+            self._last_stats = {
+                "choices": int(step["solving"]["solvers"]["choices"]),
+                "conflicts": int(step["solving"]["solvers"]["conflicts"]),
+                "models": int(summary["models"]["enumerated"]),
+                "solve_s": round(summary["times"]["solve"], 6),
+            }
+        except (KeyError, RuntimeError):
+            self._last_stats = {}
+
     def stats(self) -> dict:
         """Choices, conflicts, models and solve time of the last solve call."""
+        if getattr(self, "_last_stats", None):
+            return dict(self._last_stats)
         try:
             s = self.ctl.statistics
             solving = s["solving"]["solvers"]

@@ -87,6 +87,15 @@ def unit_facts(problem: Problem, u: int, leave_out: frozenset[str] = frozenset()
 OPTIONAL = ("label", "state", "ingredient", "container", "motion", "success", "neglog", "input", "output")
 
 
+def fact_objects(problem: Problem, unit_ids: Iterable[int]) -> set[int]:
+    """The objects :func:`facts` writes for these units (their inputs and outputs, the kitchen)."""
+    objects: set[int] = set(problem.kitchen)
+    for u in unit_ids:
+        objects.update(problem.inputs[u])
+        objects.update(problem.outputs[u])
+    return objects
+
+
 def facts(
     problem: Problem,
     goal_nodes: Iterable[int] = (),
@@ -107,13 +116,10 @@ def facts(
     if unknown:
         raise ValueError(f"facts cannot leave out {sorted(unknown)}")
     unit_ids = range(len(problem.units)) if units is None else sorted(set(units))
-    objects: set[int] = set()
     lines = ["% units"]
     for u in unit_ids:
         lines += unit_facts(problem, u, leave_out)
-        objects.update(problem.inputs[u])
-        objects.update(problem.outputs[u])
-    objects.update(o for o in problem.kitchen)
+    objects = fact_objects(problem, unit_ids)
     goal_nodes = list(goal_nodes)
     objects.update(goal_nodes)
     if goal is not None:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 import time
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 import clingo
@@ -19,7 +19,7 @@ import clingo
 from foon2asp.asp import encodings, objectives
 from foon2asp.asp.canonical import canonicalise, chain_facts
 from foon2asp.asp.control import Answer, Control
-from foon2asp.asp.facts import OPTIONAL, facts
+from foon2asp.asp.facts import OPTIONAL, fact_objects, facts
 from foon2asp.asp.multishot.driver import Driver
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
@@ -48,7 +48,15 @@ def _read_predicates(parts: list[tuple[str, str]]) -> set[str]:
 class Session:
     """One grounding of ``problem`` with the tree encoding and an objective."""
 
-    def __init__(self, problem: Problem, options: AspOptions | None = None, units: Iterable[int] | None = None):
+    def __init__(
+        self,
+        problem: Problem,
+        options: AspOptions | None = None,
+        units: Iterable[int] | None = None,
+        require: Iterable[int] = (),
+    ):
+        """``units``: ground only these (default ``options.units``, else the viable units);
+        ``require``: units every tree must use (a caller that knows them, e.g. landmarks)."""
         self.problem = problem
         self.options = options or AspOptions()
         self.control = Control(self.options.args())
@@ -59,6 +67,7 @@ class Session:
         if units is None:
             # a unit that never fires in the kitchen's fixpoint is never a candidate
             units = sorted(problem.viable_units)
+        units = list(units)
         rules = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(names)]
         rules.append(("objective", _objective_facts(objectives.ranked(self.options))))
         rules += objectives.extra_parts(problem, self.options, units)
@@ -66,6 +75,9 @@ class Session:
         if self.options.canonical and not self.options.heuristic:
             rules.append(("encodings/canonical.lp", encodings.encoding("canonical")))
             rules.append(("unit order", chain_facts(units)))
+        required = sorted(set(require))
+        if required:
+            rules.append(("required units", "".join(f":- not use({u}).\n" for u in required)))
         rules += list(self.options.programs)
         # facts nobody reads are left out (the strings, input/2, ...: user constraints read them)
         read = _read_predicates(rules)
@@ -77,13 +89,19 @@ class Session:
         self.control.ground()
         self.ground_s = time.perf_counter() - t0
         self._driver: Driver | None = None
+        conf: Any = self.ctl.configuration.solve
+        self._plain_conf = (conf.opt_mode, conf.models, conf.project)
         if self.options.canonical:
             # up to two distinct optimal trees in one solve: a second one calls for canonicalise()
-            conf: Any = self.ctl.configuration.solve
             conf.opt_mode, conf.models, conf.project = "optN", "2", "project"
-        self.goal_atoms = {
-            a.symbol.arguments[0].number for a in self.ctl.symbolic_atoms.by_signature("goal", 1) if a.is_external
-        }
+        if self.options.programs:
+            # a user program may add objects: ask the grounder
+            self.goal_atoms = {
+                a.symbol.arguments[0].number for a in self.ctl.symbolic_atoms.by_signature("goal", 1) if a.is_external
+            }
+        else:
+            # the goal externals: one per object of the facts (no scan of the grounded atoms)
+            self.goal_atoms = fact_objects(problem, units)
 
     def _set_goal(self, goal: int, value: bool) -> None:
         self.control.assign({clingo.Function("goal", [clingo.Number(goal)]): value})
@@ -93,11 +111,18 @@ class Session:
         goal: Goals,
         on_model: Callable[[clingo.Model], None] | None = None,
         time_limit: float | None = None,
+        known: tuple[Sequence[int], Sequence[int]] | None = None,
     ) -> TaskTree:
         """The best tree for ``goal`` (an object id, or a tuple of them: a meal, one tree
-        that makes every goal), proven optimal unless time runs out."""
+        that makes every goal), proven optimal unless time runs out.
+
+        ``known`` is a valid tree the caller has, with its cost vector (as the solver
+        reports it): when its cost is the proven optimum it is the answer, otherwise
+        the canonical (smallest) optimal tree is; either way no second optimal model
+        is searched for first.
+        """
         meal = meal_of(goal)
-        tree = self._solve(meal, on_model, time_limit)
+        tree = self._solve(meal, on_model, time_limit, known)
         if len(meal) > 1 and tree.status == "unreachable":
             self._explain(meal, tree)
         return tree
@@ -116,6 +141,7 @@ class Session:
         meal: tuple[int, ...],
         on_model: Callable[[clingo.Model], None] | None,
         time_limit: float | None,
+        known: tuple[Sequence[int], Sequence[int]] | None = None,
     ) -> TaskTree:
         goal = meal if len(meal) > 1 else meal[0]
         if self.options.driven:
@@ -147,18 +173,32 @@ class Session:
             if on_model is not None:
                 on_model(model)
 
+        conf: Any = self.ctl.configuration.solve
+        saved = (conf.opt_mode, conf.models, conf.project)
+        if known is not None and self.options.canonical:
+            conf.opt_mode, conf.models, conf.project = self._plain_conf
         for g in meal:
             self._set_goal(g, True)
         try:
             result = self.control.solve(record, time_limit or None)
             stats = self.stats()
-            if len(optimal) > 1 and result.finished:
+            conf.opt_mode, conf.models, conf.project = saved
+            if known is not None and self.options.canonical and result.finished and "units" in best:
+                if best["cost"] == list(known[1]):
+                    best["units"] = list(known[0])  # the known tree is optimal: it is the answer
+                else:
+                    deadline = None if not time_limit else t0 + time_limit
+                    answer = Answer(tuple(sorted(best["units"])), tuple(best["cost"]), True)
+                    answer, _ = canonicalise(self.control, answer, deadline)
+                    best["units"], best["cost"] = list(answer.units), list(answer.cost)
+            elif len(optimal) > 1 and result.finished:
                 # several optimal trees: return the smallest one, which depends only on the input
                 deadline = None if not time_limit else t0 + time_limit
                 smallest = min(optimal)
                 answer, _ = canonicalise(self.control, Answer(smallest, tuple(optimal[smallest]), True), deadline)
                 best["units"], best["cost"], best["proven"] = list(answer.units), list(answer.cost), True
         finally:
+            conf.opt_mode, conf.models, conf.project = saved
             for g in meal:
                 self._set_goal(g, False)
         elapsed = time.perf_counter() - t0

@@ -905,7 +905,12 @@ def _method_list(values: tuple[str, ...], default: list[str] | None = None) -> l
     help="Format of the summary printed at the end.",
 )
 @click.option("--progress/--no-progress", default=None, help="Progress bar (default: when stderr is a terminal).")
-@click.option("--fsync/--no-fsync", default=True, show_default=True, help="Sync each result line to disk.")
+@click.option(
+    "--fsync/--no-fsync",
+    default=True,
+    show_default=True,
+    help="Sync result lines to disk (grouped: at most 0.25 s apart, and at the end).",
+)
 @constraint_options
 @guarded
 def batch(

@@ -4,6 +4,16 @@ Nothing below this package imports it: :mod:`foon2asp.asp` and
 :mod:`foon2asp.search` do not know they are registered here.
 """
 
-from foon2asp.methods.registry import METHODS, Factory, Method, Runner, get, names, register, runner
+from foon2asp.methods.registry import (
+    METHODS,
+    Factory,
+    Method,
+    Runner,
+    effective_options,
+    get,
+    names,
+    register,
+    runner,
+)
 
-__all__ = ["METHODS", "Factory", "Method", "Runner", "get", "names", "register", "runner"]
+__all__ = ["METHODS", "Factory", "Method", "Runner", "effective_options", "get", "names", "register", "runner"]

@@ -20,9 +20,25 @@ Three ways to build the runner of a registered ASP method for a batch:
     they fire), so it is the optimum of every objective that only adds
     non-negative weights per used unit (:data:`MONOTONE`).
 
+  - the lower bound of :mod:`foon2asp.methods.bounds` meets its upper bound:
+    the *bounds tree* (a valid tree built without the solver) is optimal
+    (``"shortcut": "bounds"``).
+
   Shortcuts are taken only for plain optimisation (no user programs, extra
   encodings, depth bounds, human steps, alternatives or greedy heuristics);
-  anything else goes to the solver.
+  anything else goes to the solver.  They are exact also when the caller
+  restricts the units (``options.units``, as :func:`solve_goals` does), as
+  long as the goal's relevant part lies inside them.
+* pruning: a goal with choice that the bounds do not decide is solved on its
+  part without the units no optimal tree uses, the landmark units required
+  (:meth:`~foon2asp.methods.bounds.Bounds.keep`), on a small grounding.
+
+*The canonical tree* (the same from every path: solve, compare, check,
+batch with any grounding, workers or shortcuts, the library): for the
+objectives the bounds handle, the bounds tree whenever it is optimal -- found
+by the shortcut, or by the solver proving an optimum of the same cost --
+else the lexicographically smallest optimal tree
+(:mod:`foon2asp.asp.canonical`).
 
 Search methods (kind ``search``) are built once on the whole problem, as
 :func:`foon2asp.methods.runner` does.
@@ -32,7 +48,7 @@ from __future__ import annotations
 
 import copy
 import time
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import replace
 from functools import cached_property
 
@@ -40,8 +56,11 @@ from foon2asp import methods
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
+from foon2asp.asp.session import Session
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem, walk_back
+from foon2asp.methods.bounds import Bounds
+from foon2asp.methods.bounds import supports as bounds_supports
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
 
 GROUNDINGS = ("whole", "per-goal")
@@ -69,6 +88,13 @@ class Parts:
             keep = [u for u in units if u in self.viable]
             if keep:
                 self.producers[obj] = keep
+        self._bounds: dict[tuple[str, ...], Bounds] = {}
+
+    def bounds(self, ranked_objectives: tuple[str, ...]) -> Bounds:
+        """The bounds (foon2asp.methods.bounds) for these ranked objectives, built once."""
+        if ranked_objectives not in self._bounds:
+            self._bounds[ranked_objectives] = Bounds(self.problem, ranked_objectives)
+        return self._bounds[ranked_objectives]
 
     @cached_property
     def derivable(self) -> frozenset[int]:
@@ -124,30 +150,68 @@ class BatchRunner:
         self.kind = methods.get(name).kind
         self.parts = parts if parts is not None else Parts(problem)
         self.shortcuts = shortcuts and self.kind == "asp" and plain(self.options)
-        #: how each goal was answered: "solver" | "unreachable" | "no-choice"
-        self.counts = {"solver": 0, "unreachable": 0, "no-choice": 0}
+        #: how each goal was answered: "solver" | "unreachable" | "no-choice" | "bounds"
+        self.counts = {"solver": 0, "unreachable": 0, "no-choice": 0, "bounds": 0}
         self._label: str | None = None
-        self._whole = None
-        if self.kind != "asp":
+        self._whole: Callable[[Goals], TaskTree] | None = None
+        #: units the caller allows (options.units); a goal whose part lies inside them is answered exactly
+        self._allowed = None if self.options.units is None else frozenset(self.options.units)
+        #: the options the method's sessions use, and the ranked objectives the bounds see
+        self._effective = methods.effective_options(name, self.options) if self.kind == "asp" else self.options
+        ranked_objectives = ranked(self._effective)
+        self._ranked = ranked_objectives
+        #: the bounds of foon2asp.methods.bounds decide canonical trees and (with shortcuts) answer goals
+        self._bounded = self.kind == "asp" and plain(self._effective) and bounds_supports(ranked_objectives)
+        if self.kind == "asp":
+            self._label = self._effective.method
+        else:
             self._whole = methods.runner(name, problem, self.options)
-        elif grounding == "whole":
+
+    def _whole_runner(self) -> Callable[[Goals], TaskTree]:
+        """The one grounding of all viable (or allowed) units, built on first use."""
+        if self._whole is None:
             units = self.options.units
             if units is None:
                 units = tuple(sorted(self.parts.viable))
-            self._whole = methods.runner(name, problem, replace(self.options, units=units))
+            self._whole = methods.runner(self.name, self.problem, replace(self.options, units=units))
+        return self._whole
 
     def _solve(self, goal: Goals) -> TaskTree:
         self.counts["solver"] += 1
-        if self._whole is not None:
-            tree = self._whole(goal)
+        if self.kind != "asp" or self.grounding == "whole":
+            tree = self._whole_runner()(goal)
         else:
             units, objects, _ = self.parts.relevant(goal)
-            if self.options.units is not None:
-                keep = set(self.options.units)
-                units = [u for u in units if u in keep]
+            if self._allowed is not None:
+                units = [u for u in units if u in self._allowed]
             view = _view(self.problem, objects)
             tree = methods.runner(self.name, view, replace(self.options, units=tuple(units)))(goal)
         self._label = tree.method
+        return tree
+
+    def _solve_pruned(self, goal: int, units: list[int], objects: set[int], bounds: Bounds) -> TaskTree:
+        """Solve on the goal's part without the units no optimal tree uses, landmark units required."""
+        keep = bounds.keep(goal, units)
+        if self.grounding == "whole" and 2 * len(keep) > len(self.parts.viable):
+            return self._solve(goal)  # the pruned part is most of the FOON: the whole grounding is cheaper
+        self.counts["solver"] += 1
+        view = _view(self.problem, objects)
+        session = Session(view, replace(self._effective, units=tuple(keep)), require=bounds.landmarks(goal))
+        best = bounds.tree(goal) or ()
+        tree = session.solve(goal, known=(best, bounds.cost(best)))
+        tree.stats["pruned_units"] = len(units) - len(keep)
+        return tree
+
+    def _canonical(self, tree: TaskTree, bounds: Bounds, t0: float) -> TaskTree:
+        """The bounds tree in place of an optimal tree of the same cost (the canonical tree)."""
+        best = bounds.tree(tree.goal)
+        if best is None or tree.status != "optimal" or not self._effective.canonical:
+            return tree
+        if tuple(sorted(tree.units)) == best or bounds.cost(best) != list(tree.extra.get("asp_cost", ())):
+            return tree
+        tree.units = executable_order(self.problem, list(best))
+        tree.cost = measures(self.problem, tree.goal, tree.units)
+        tree.time_s = round(time.perf_counter() - t0, 6)
         return tree
 
     def __call__(self, goal: Goals) -> TaskTree:
@@ -155,34 +219,51 @@ class BatchRunner:
         meal = meal_of(goal)
         if len(meal) > 1 and self.kind != "asp":
             raise InputError(f"meals (several goals in one tree) need an ASP method; {self.name!r} is not one")
-        if not self.shortcuts or self._label is None or self.options.units is not None or len(meal) > 1:
+        if self.kind != "asp" or len(meal) > 1 or not (self.shortcuts or self._bounded):
             # meals go to the solver: it names the goals that cannot be made
             return self._solve(meal if len(meal) > 1 else meal[0])
         goal = meal[0]
         t0 = time.perf_counter()
-        if goal not in self.parts.derivable:
+        label = self._label or self._effective.method
+        if self.shortcuts and goal not in self.parts.derivable:
             self.counts["unreachable"] += 1
             return TaskTree(
                 goal,
-                self._label,
+                label,
                 "unreachable",
                 time_s=round(time.perf_counter() - t0, 6),
                 stats={"shortcut": "unreachable"},
             )
-        units, _, choice = self.parts.relevant(goal)
-        if choice:
+        units, objects, choice = self.parts.relevant(goal)
+        # exact when the caller's units (if any) hold the goal's whole part
+        exact = self._allowed is None or self._allowed.issuperset(units)
+        if not exact or goal not in self.parts.derivable:
             return self._solve(goal)
-        self.counts["no-choice"] += 1
-        order = executable_order(self.problem, units)
-        asp_cost = [MONOTONE[name](self.problem, order) for name in ranked(self.options)]
+        if self.shortcuts and not choice:
+            self.counts["no-choice"] += 1
+            return self._answer(goal, label, executable_order(self.problem, units), "no-choice", t0)
+        if not self._bounded:
+            return self._solve(goal)
+        bounds = self.parts.bounds(self._ranked)
+        if not self.shortcuts:
+            return self._canonical(self._solve(goal), bounds, t0)
+        if bounds.proven(goal):
+            self.counts["bounds"] += 1
+            tree = bounds.tree(goal) or ()
+            return self._answer(goal, label, executable_order(self.problem, list(tree)), "bounds", t0)
+        return self._canonical(self._solve_pruned(goal, units, objects, bounds), bounds, t0)
+
+    def _answer(self, goal: int, label: str, order: list[int], shortcut: str, t0: float) -> TaskTree:
+        """An optimal tree found without the solver."""
+        asp_cost = [MONOTONE[name](self.problem, order) for name in self._ranked]
         return TaskTree(
             goal,
-            self._label,
+            label,
             "optimal",
             order,
             measures(self.problem, goal, order),
             round(time.perf_counter() - t0, 6),
-            {"shortcut": "no-choice"},
+            {"shortcut": shortcut},
             {"asp_cost": asp_cost},
         )
 

@@ -29,19 +29,30 @@ class Method:
     kind: str  # "asp" or "search"
     description: str
     factory: Factory
+    #: for ASP methods: the options the method's sessions solve with, from the caller's
+    adjust: Callable[[AspOptions], AspOptions] | None = None
 
 
 METHODS: dict[str, Method] = {}
 
 
-def register(name: str, kind: str, description: str) -> Callable[[Factory], Factory]:
+def register(
+    name: str, kind: str, description: str, adjust: Callable[[AspOptions], AspOptions] | None = None
+) -> Callable[[Factory], Factory]:
     """Decorator: register ``factory`` under ``name``."""
 
     def deco(factory: Factory) -> Factory:
-        METHODS[name] = Method(name, kind, description, factory)
+        METHODS[name] = Method(name, kind, description, factory, adjust)
         return factory
 
     return deco
+
+
+def effective_options(name: str, options: AspOptions | None = None) -> AspOptions:
+    """The options an ASP method ``name`` solves with when called with ``options``."""
+    options = options or AspOptions()
+    adjust = get(name).adjust
+    return adjust(options) if adjust is not None else options
 
 
 def get(name: str) -> Method:
@@ -64,29 +75,35 @@ def _asp(problem: Problem, options: AspOptions) -> Runner:
     return Session(problem, options).solve
 
 
-def _fixed_objective(objective: str) -> Factory:
+def _adjusted(adjust: Callable[[AspOptions], AspOptions]) -> Factory:
     def factory(problem: Problem, options: AspOptions) -> Runner:
-        return Session(problem, replace(options, objective=(objective,))).solve
+        return Session(problem, adjust(options)).solve
 
     return factory
+
+
+def _objective_is(objective: str) -> Callable[[AspOptions], AspOptions]:
+    return lambda options: replace(options, objective=(objective,))
+
+
+def _heuristic_is(heuristic: str) -> Callable[[AspOptions], AspOptions]:
+    return lambda options: replace(options, heuristic=heuristic)
 
 
 for _name in list(OBJECTIVES):
-    register(f"asp-{_name}", "asp", f"ASP, proven optimal for the objective {_name!r}")(_fixed_objective(_name))
-
-
-def _greedy(heuristic: str) -> Factory:
-    def factory(problem: Problem, options: AspOptions) -> Runner:
-        return Session(problem, replace(options, heuristic=heuristic)).solve
-
-    return factory
+    _adjust = _objective_is(_name)
+    register(f"asp-{_name}", "asp", f"ASP, proven optimal for the objective {_name!r}", _adjust)(_adjusted(_adjust))
 
 
 _GREEDY = {"h1": "highest motion success rate", "h2": "fewest input nodes"}
 for _h in HEURISTICS:
+    _adjust = _heuristic_is(_h)
     register(
-        f"asp-greedy-{_h}", "asp", f"ASP first model under #heuristic {_h} ({_GREEDY[_h]}), valid by construction"
-    )(_greedy(_h))
+        f"asp-greedy-{_h}",
+        "asp",
+        f"ASP first model under #heuristic {_h} ({_GREEDY[_h]}), valid by construction",
+        _adjust,
+    )(_adjusted(_adjust))
 
 
 def _single(name: str, run: Callable[[int], TaskTree]) -> Runner:
