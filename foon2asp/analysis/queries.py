@@ -24,6 +24,7 @@ from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import facts
 from foon2asp.asp.objectives import input_node_facts
 from foon2asp.asp.options import OBJECTIVES
+from foon2asp.asp.settings import solver_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.tasktree import Goals, executable_order, meal_of, measures
@@ -174,6 +175,8 @@ def missing(
     user_programs: Iterable[tuple[str, str]] = (),
     time_limit: float | None = None,
     objective: tuple[str, ...] = ("units",),
+    opt_strategy: str | None = None,
+    threads: int = 1,
 ) -> MissingResult:
     """The fewest objects to add to the kitchen so ``goal`` can be made, then the best tree
     by ``objective`` (``units``, ``success``, ``inputs``, lexicographic; default fewest units).
@@ -188,7 +191,7 @@ def missing(
     if len(meal) > 1:
         if tuple(objective) != ("units",):
             raise InputError("missing for a meal (--together) takes the objective units only")
-        return _missing_meal(problem, meal, list(user_programs), time_limit)
+        return _missing_meal(problem, meal, list(user_programs), time_limit, solver_args(opt_strategy, threads))
     goal = meal[0]
     t0 = time.perf_counter()
     if goal in problem.kitchen:
@@ -203,7 +206,7 @@ def missing(
             *objective_parts(problem, tuple(dict.fromkeys(objective)), units, len(objective) + 1),
             *user_programs,
         ],
-        ["--opt-mode=opt", "--models=0"],
+        ["--opt-mode=opt", "--models=0", *solver_args(opt_strategy, threads)],
     )
     buyable = sorted(s.arguments[0].number for s in prog.facts_of("buyable", 1))
     outcome = prog.solve(time_limit)
@@ -234,7 +237,11 @@ def missing(
 
 
 def _missing_meal(
-    problem: Problem, meal: tuple[int, ...], user_programs: list[tuple[str, str]], time_limit: float | None
+    problem: Problem,
+    meal: tuple[int, ...],
+    user_programs: list[tuple[str, str]],
+    time_limit: float | None,
+    settings: list[str],
 ) -> MissingResult:
     """:func:`missing` for several goals at once: one set of objects, one tree for all goals."""
     t0 = time.perf_counter()
@@ -242,7 +249,7 @@ def _missing_meal(
     text = facts(problem, goal=meal[0], units=units) + "".join(f"goal({g}).\n" for g in meal[1:])
     prog = Program(
         [("facts", text), ("encodings/missing.lp", encodings.encoding("missing")), *user_programs],
-        ["--opt-mode=opt", "--models=0"],
+        ["--opt-mode=opt", "--models=0", *settings],
     )
     buyable = sorted(s.arguments[0].number for s in prog.facts_of("buyable", 1))
     outcome = prog.solve(time_limit)
