@@ -59,13 +59,17 @@ class Synthetic:
     goals: list[FoonObject]
     motion: dict[str, float]
     utensils: frozenset[str]
+    #: the preset's name, if any (names the goals in messages)
+    name: str = ""
 
     def problem(self, utensil_rule: str = "starter") -> Problem:
         return Problem(self.foon, self.kitchen, self.motion, self.utensils, utensil_rule)
 
     def dataset(self) -> Dataset:
         """The same data as a :class:`~foon2asp.foon.loaders.Dataset` (what loading :meth:`write`'s folder gives)."""
-        return Dataset(self.foon, list(self.kitchen), [(g, 0) for g in self.goals], dict(self.motion), self.utensils)
+        goals = [(g, i) for i, g in enumerate(self.goals, 1)]
+        where = {"goals": f"<goals of {self.name or 'the synthetic FOON'}>"}
+        return Dataset(self.foon, list(self.kitchen), goals, dict(self.motion), self.utensils, where)
 
     def write(self, directory: str | Path) -> Path:
         """Write FOON.txt, kitchen.json, goal_nodes.json, motion.txt, utensils.txt."""
@@ -463,4 +467,6 @@ def preset(name: str) -> Synthetic:
     """The named instance of :data:`PRESETS` (``generate(**PRESETS[name])``)."""
     if name not in PRESETS:
         raise InputError(f"unknown preset {name!r} (have {', '.join(PRESETS)})")
-    return generate(**PRESETS[name])
+    syn = generate(**PRESETS[name])
+    syn.name = name
+    return syn
