@@ -4,7 +4,7 @@ VENV   ?= .venv
 BIN     = $(VENV)/bin
 SHARED ?= ../shared
 
-.PHONY: install install-demo demo test lint shell bench clean fuzz
+.PHONY: install install-demo demo test lint shell bench bench-hard clean fuzz
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -40,9 +40,15 @@ shell: install-demo
 	@echo "foon2asp is on PATH in this shell; 'exit' to leave"
 	@. $(BIN)/activate && exec $${SHELL:-bash}
 
+# P1-P3 (bench/run.py) and the hard table (bench/hard.py, about 40 minutes; BENCHMARKS.md)
 bench: install
 	$(BIN)/python bench/run.py --shared $(SHARED)
 	$(BIN)/python bench/p2.py --shared $(SHARED)
+	$(BIN)/python bench/hard.py --shared $(SHARED) $(HARD_ARGS)
+
+# only the hard table; e.g. make bench-hard HARD_ARGS="--presets small --limit 5"
+bench-hard: install
+	$(BIN)/python bench/hard.py --shared $(SHARED) $(HARD_ARGS)
 
 clean:
 	rm -rf $(VENV) build *.egg-info out .pytest_cache

@@ -470,9 +470,11 @@ class KnowledgeBase:
         objective: str | Sequence[str] = "units",
         time_limit: float | None = None,
         constraints: Constraints | None = None,
+        opt_strategy: str | None = None,
+        threads: int | None = None,
     ) -> Comparison:
         """Every method on every goal, each tree judged valid or not, beside the proven optimum."""
-        options = self.options(objective, time_limit, constraints)
+        options = self.options(objective, time_limit, constraints, opt_strategy=opt_strategy, threads=threads)
         parts = self.compare_iter(self.goal_ids(goals), methods, options)
         return Comparison(self, [row for part in parts for row in part.raw])
 
@@ -491,9 +493,11 @@ class KnowledgeBase:
         objective: str | Sequence[str] = "units",
         time_limit: float | None = None,
         constraints: Constraints | None = None,
+        opt_strategy: str | None = None,
+        threads: int | None = None,
     ) -> compare_mod.MealRow:
         """The meal's optimal tree (all ``goals`` at once) beside each goal's own optimum."""
-        options = self.options(objective, time_limit, constraints)
+        options = self.options(objective, time_limit, constraints, opt_strategy=opt_strategy, threads=threads)
         return compare_mod.compare_meal(self.problem, self.goal_ids(goals), method, options)
 
     def reachable(self, goals: GoalLike | Sequence[GoalLike] | None = "all") -> dict[FoonObject, bool]:
@@ -508,6 +512,8 @@ class KnowledgeBase:
         time_limit: float | None = None,
         constraints: Constraints | None = None,
         objective: str | Sequence[str] = "units",
+        opt_strategy: str | None = None,
+        threads: int = 1,
     ) -> Missing:
         """The fewest objects to add to the kitchen so ``goal`` can be made (proven minimal), then
         the best tree by ``objective`` (``units``, ``success``, ``inputs`` or a lexicographic list).
@@ -521,7 +527,8 @@ class KnowledgeBase:
             target = self.object_id(goal)
         else:
             target = tuple(dict.fromkeys(self.object_id(g) for g in goal))
-        return Missing(self, queries.missing(self.problem, target, programs, time_limit, ranked))
+        answer = queries.missing(self.problem, target, programs, time_limit, ranked, opt_strategy, threads)
+        return Missing(self, answer)
 
     def query(
         self,
@@ -561,14 +568,19 @@ class KnowledgeBase:
         time_limit: float | None = None,
         constraints: Constraints | None = None,
         opt_strategy: str | None = None,
-        grounding: str = "whole",
+        threads: int | None = None,
+        grounding: str = "auto",
         shortcuts: bool = True,
         progress: bool | None = False,
         fsync: bool = True,
         scheduler: str | None = None,
     ) -> batch_run.BatchReport:
-        """Many goals x methods into a resumable JSON-lines file (``output``; None keeps results in memory)."""
-        options = self.options(objective, time_limit, constraints, opt_strategy=opt_strategy)
+        """Many goals x methods into a resumable JSON-lines file (``output``; None keeps results in memory).
+
+        ``grounding``: ``"whole"``, ``"per-goal"`` or ``"auto"`` (chosen from the FOON and the goals by
+        :func:`foon2asp.batch.run.choose_grounding`; the report's ``grounding`` and ``grounding_reason`` say which).
+        """
+        options = self.options(objective, time_limit, constraints, opt_strategy=opt_strategy, threads=threads)
         spec = batch_run.BatchSpec(self.problem, list(dict.fromkeys(methods)), options, grounding, shortcuts)
         executor = None
         if scheduler:

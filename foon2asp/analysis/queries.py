@@ -24,6 +24,7 @@ from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import facts
 from foon2asp.asp.objectives import input_node_facts
 from foon2asp.asp.options import OBJECTIVES
+from foon2asp.asp.settings import solver_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.tasktree import Goals, executable_order, meal_of, measures
@@ -174,6 +175,8 @@ def missing(
     user_programs: Iterable[tuple[str, str]] = (),
     time_limit: float | None = None,
     objective: tuple[str, ...] = ("units",),
+    opt_strategy: str | None = None,
+    threads: int = 1,
 ) -> MissingResult:
     """The fewest objects to add to the kitchen so ``goal`` can be made, then the best tree
     by ``objective`` (``units``, ``success``, ``inputs``, lexicographic; default fewest units).
@@ -195,7 +198,7 @@ def missing(
             *objective_parts(problem, tuple(dict.fromkeys(objective)), units, len(objective) + 1),
             *user_programs,
         ],
-        ["--opt-mode=opt", "--models=0"],
+        ["--opt-mode=opt", "--models=0", *solver_args(opt_strategy, threads)],
     )
     buyable = sorted(s.arguments[0].number for s in prog.facts_of("buyable", 1))
     outcome = prog.solve(time_limit)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from foon2asp.asp.settings import solver_args
+
 #: objective name -> encoding that defines it (all use objective(Name,Priority))
 OBJECTIVES: dict[str, str] = {"units": "units", "success": "success", "inputs": "inputs", "depth": "depth"}
 
@@ -21,8 +23,11 @@ class AspOptions:
     #: extra encodings (names in encodings/) to load
     encodings: list[str] = field(default_factory=list)
     time_limit: float | None = None
+    #: clingo's --opt-strategy; None: the default of foon2asp.asp.settings (usc; a portfolio with threads > 1)
     opt_strategy: str | None = None
     threads: int = 1
+    #: threads > 1 without opt_strategy: the portfolio (clasp's configuration-file text); None: the default
+    portfolio: str | None = None
     clingo_args: list[str] = field(default_factory=list)
     #: ground only these units (e.g. the goals' relevant units); None: all units
     units: tuple[int, ...] | None = None
@@ -62,8 +67,5 @@ class AspOptions:
         args = ["--opt-mode=opt"]
         if self.heuristic:
             args.append("--heuristic=Domain")
-        if self.opt_strategy:
-            args.append(f"--opt-strategy={self.opt_strategy}")
-        if self.threads and self.threads > 1:
-            args.append(f"--parallel-mode={self.threads}")
+        args += solver_args(self.opt_strategy, self.threads, self.portfolio)
         return args + list(self.clingo_args)

@@ -25,6 +25,7 @@ from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, goal_fields, meal_of, measures
+from foon2asp.tree.upper import cheapest_tree
 
 
 def _objective_facts(objective: Iterable[str]) -> str:
@@ -68,6 +69,7 @@ class Session:
             # a unit that never fires in the kitchen's fixpoint is never a candidate
             units = sorted(problem.viable_units)
         units = list(units)
+        self.units = tuple(units)
         rules = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(names)]
         rules.append(("objective", _objective_facts(objectives.ranked(self.options))))
         rules += objectives.extra_parts(problem, self.options, units)
@@ -125,7 +127,36 @@ class Session:
         tree = self._solve(meal, on_model, time_limit, known)
         if len(meal) > 1 and tree.status == "unreachable":
             self._explain(meal, tree)
+        if tree.status == "unknown" and self._plain():
+            self._fallback(meal, tree)
         return tree
+
+    def _plain(self) -> bool:
+        """Is every tree of the grounded units an answer (no constraints, bounds or alternatives)?"""
+        o = self.options
+        return not (
+            o.programs
+            or o.encodings
+            or o.max_depth is not None
+            or o.human_steps is not None
+            or o.models > 1
+            or o.all_optimal
+            or o.heuristic
+        )
+
+    def _fallback(self, meal: tuple[int, ...], tree: TaskTree) -> None:
+        """No tree within the time limit (core-guided search finds none before its proof):
+        report a cheapest-first tree (foon2asp.tree.upper) as ``feasible``."""
+        t0 = time.perf_counter()
+        units = cheapest_tree(self.problem, meal, self.units, objectives.ranked(self.options)[0])
+        if units is None:
+            return
+        tree.units = executable_order(self.problem, units)
+        tree.status = "feasible"
+        tree.cost = measures(self.problem, meal, tree.units)
+        tree.time_s = round(tree.time_s + time.perf_counter() - t0, 6)
+        tree.extra["fallback"] = "cheapest-first"
+        tree.extra["note"] = "no tree from the solver within the time limit: a cheapest-first tree, not proven optimal"
 
     def _explain(self, meal: tuple[int, ...], tree: TaskTree) -> None:
         """Which goals of an unreachable meal cannot be made (each solved alone)."""

@@ -50,7 +50,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Iterable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from tqdm import tqdm
@@ -69,8 +69,43 @@ from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.safejson import loads as safe_loads
-from foon2asp.methods.planner import BatchRunner, Parts
+from foon2asp.methods.planner import GROUNDINGS, BatchRunner, Parts
 from foon2asp.tree.serialize import tree_json
+
+#: --grounding: "auto" picks whole or per-goal with :func:`choose_grounding`
+GROUNDING_CHOICES = ("auto", *GROUNDINGS)
+#: auto: per-goal when the median relevant part is below this share of the viable units ...
+AUTO_PART_SHARE = 0.10
+#: ... or when there are more viable units than this (the whole grounding's memory)
+AUTO_MAX_WHOLE = 50_000
+#: ... judged on this many goals, spread over the list
+AUTO_SAMPLE = 50
+
+
+def choose_grounding(problem: Problem, goals: list[int], parts: Parts | None = None) -> tuple[str, str]:
+    """``(grounding, reason)`` for ``--grounding auto``.
+
+    ``per-goal`` when the FOON has more than :data:`AUTO_MAX_WHOLE` viable
+    units (one grounding of everything costs minutes and gigabytes there), or
+    when the median relevant part of a sample of the goals
+    (:meth:`Parts.relevant`) is under :data:`AUTO_PART_SHARE` of the viable
+    units (each small grounding is then cheap, and one big one would be
+    searched for every goal); ``whole`` otherwise (the parts overlap most of
+    the FOON, so grounding each of them again would repeat the same work).
+    """
+    parts = parts if parts is not None else Parts(problem)
+    viable = len(parts.viable)
+    if viable > AUTO_MAX_WHOLE:
+        return "per-goal", f"{viable:,} viable units (more than {AUTO_MAX_WHOLE:,})"
+    if not goals:
+        return "whole", "no goals"
+    step = max(1, len(goals) // AUTO_SAMPLE)
+    sample = goals[::step][:AUTO_SAMPLE]
+    median = statistics.median(len(parts.relevant(g)[0]) for g in sample)
+    share = median / max(1, viable)
+    if share < AUTO_PART_SHARE:
+        return "per-goal", f"median relevant part {median:g} of {viable:,} viable units ({share:.1%}, under 10 %)"
+    return "whole", f"median relevant part {median:g} of {viable:,} viable units ({share:.1%}, 10 % or more)"
 
 
 @dataclass
@@ -80,6 +115,7 @@ class BatchSpec:
     problem: Problem
     methods: list[str]
     options: AspOptions = field(default_factory=AspOptions)
+    #: "whole" | "per-goal" | "auto" (resolved by run_batch with choose_grounding)
     grounding: str = "whole"
     shortcuts: bool = True
 
@@ -322,6 +358,9 @@ class BatchReport:
     records: list[dict]
     workers: int
     output: str | None
+    #: the grounding used, and why when --grounding auto chose it
+    grounding: str = ""
+    grounding_reason: str = ""
 
 
 def pending_tasks(
@@ -406,6 +445,12 @@ def run_batch(
     """
     for name in spec.methods:
         methods_mod.get(name)  # unknown names fail before any work
+    reason = ""
+    if spec.grounding == "auto":
+        grounding, reason = choose_grounding(spec.problem, goals)
+        spec = replace(spec, grounding=grounding)
+    elif spec.grounding not in GROUNDINGS:
+        raise InputError(f"unknown grounding {spec.grounding!r} (have {', '.join(GROUNDING_CHOICES)})")
     previous: list[dict] = []
     out = None
     if output is not None:
@@ -457,7 +502,16 @@ def run_batch(
     elapsed = time.perf_counter() - t0
     wanted = {(g, m) for g in goals for m in spec.methods}
     kept = [r for r in previous if (_goal_key(spec.problem, r), r.get("requested_method", r.get("method"))) in wanted]
-    return BatchReport(len(new_records), skipped, elapsed, kept + new_records, workers, str(output) if output else None)
+    return BatchReport(
+        len(new_records),
+        skipped,
+        elapsed,
+        kept + new_records,
+        workers,
+        str(output) if output else None,
+        spec.grounding,
+        reason,
+    )
 
 
 # --- the summary ---

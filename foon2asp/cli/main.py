@@ -413,7 +413,8 @@ def solver_options(func):
         click.option(
             "--opt-strategy",
             callback=_opt_strategy,
-            help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll.",
+            help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll;"
+            " default usc, or with --threads 2+ a portfolio of one bb and one usc solver.",
         ),
         click.option(
             "--threads",
@@ -426,6 +427,22 @@ def solver_options(func):
     for opt in reversed(opts):
         wrapper = opt(wrapper)
     return wrapper
+
+
+def strategy_options(func):
+    """--opt-strategy and --threads (None and 1: the defaults of foon2asp.asp.settings)."""
+    func = click.option(
+        "--threads",
+        type=int32(min=1, max=64),
+        default=1,
+        show_default=True,
+        help="clingo solver threads; 2 or more without --opt-strategy: a bb and a usc solver side by side.",
+    )(func)
+    return click.option(
+        "--opt-strategy",
+        callback=_opt_strategy,
+        help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll; default usc.",
+    )(func)
 
 
 def _solver_warnings(problem: Problem, trees: list) -> None:
@@ -674,6 +691,7 @@ def check(tree, data, goal, goals, fmt, optimum):
 @click.option(
     "--together", is_flag=True, help="A meal: the one tree for all goals beside the sum of the single optima (ASP)."
 )
+@strategy_options
 @progress_option
 @guarded
 def compare(
@@ -685,6 +703,8 @@ def compare(
     fmt,
     time_limit,
     together,
+    opt_strategy,
+    threads,
     constraints,
     progress,
 ):
@@ -709,11 +729,13 @@ def compare(
             objective=objective,
             time_limit=time_limit,
             constraints=_constraints(constraints),
+            opt_strategy=opt_strategy,
+            threads=threads,
         )
         _warn(kb)
         click.echo(report.render("compare", fmt, kb.problem, meal), nl=False)
         sys.exit(exit_code([(meal.meal.status, meal.meal.extra.get("valid"))]))
-    options = kb.options(objective, time_limit, _constraints(constraints))
+    options = kb.options(objective, time_limit, _constraints(constraints), opt_strategy=opt_strategy, threads=threads)
     _warn(kb)
     rows = []
     parts = kb.compare_iter(goal_ids, names, options)
@@ -753,6 +775,7 @@ def reachable(data, goal, goals, fmt):
 @click.option("--format", "fmt", type=click.Choice(report.names("missing")), default="text", show_default=True)
 @click.option("--time-limit", type=SECONDS, help="Seconds per goal; the best answer so far is reported as 'feasible'.")
 @click.option("--together", is_flag=True, help="A meal: the fewest objects so that one tree makes every goal.")
+@strategy_options
 @progress_option
 @guarded
 def missing(
@@ -763,6 +786,8 @@ def missing(
     fmt,
     time_limit,
     together,
+    opt_strategy,
+    threads,
     constraints,
     progress,
 ):
@@ -778,7 +803,10 @@ def missing(
     results = []
     jobs: list = [goal_ids] if together else goal_ids
     for g in progress_bar(jobs, len(jobs), progress, "missing"):
-        results.append(kb.missing(g, time_limit=time_limit, constraints=spec, objective=objective).raw)
+        answer = kb.missing(
+            g, time_limit=time_limit, constraints=spec, objective=objective, opt_strategy=opt_strategy, threads=threads
+        )
+        results.append(answer.raw)
         if fmt == "jsonl":
             click.echo(report.render("missing", fmt, kb.problem, results[-1:]), nl=False)
     if fmt != "jsonl":
@@ -881,14 +909,24 @@ def _method_list(values: tuple[str, ...], default: list[str] | None = None) -> l
 @click.option(
     "--opt-strategy",
     callback=_opt_strategy,
-    help="clingo optimisation strategy: bb or usc (core-guided, often much faster here), e.g. usc,oll.",
+    help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll;"
+    " default usc (see foon2asp.asp.settings).",
+)
+@click.option(
+    "--threads",
+    type=int32(min=1, max=64),
+    default=1,
+    show_default=True,
+    help="clingo solver threads per worker; 2 or more without --opt-strategy: a bb and a usc solver side by side.",
 )
 @click.option(
     "--grounding",
-    type=click.Choice(("whole", "per-goal")),
-    default="whole",
+    type=click.Choice(batch_mod.GROUNDING_CHOICES),
+    default="auto",
     show_default=True,
-    help="One grounding for all goals, or a small grounding of each goal's relevant part (very large FOONs).",
+    help="One grounding for all goals, or a small grounding of each goal's relevant part; auto: per-goal when"
+    " the goals' median relevant part is under 10 % of the viable units or there are over 50,000 of them"
+    " (the summary says which).",
 )
 @click.option(
     "--shortcuts/--no-shortcuts",
@@ -925,6 +963,7 @@ def batch(
     scheduler,
     time_limit,
     opt_strategy,
+    threads,
     grounding,
     shortcuts,
     summary_fmt,
@@ -949,6 +988,7 @@ def batch(
         time_limit=time_limit,
         constraints=_constraints(constraints),
         opt_strategy=opt_strategy,
+        threads=threads,
         grounding=grounding,
         shortcuts=shortcuts,
         progress=progress,

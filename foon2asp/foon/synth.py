@@ -1,7 +1,8 @@
-"""Seeded synthetic FOONs N times the size of a given one, with the same shape.
+"""Seeded synthetic FOONs: copies of a given one, or hard FOONs with real choice.
 
-Copy ``k`` (0..N-1) of the base FOON renames every label, ingredient and
-container to ``"LABEL~k"`` (copy 0 keeps the names), so each copy has the
+:func:`synthesize` makes a FOON N times the size of a given one, with the same
+shape.  Copy ``k`` (0..N-1) of the base FOON renames every label, ingredient
+and container to ``"LABEL~k"`` (copy 0 keeps the names), so each copy has the
 base's producers per object, inputs per unit, depths and cycles; the kitchen
 and the utensils are copied the same way, motions are shared.  Cross-links
 then tie the copies together: for a fraction ``cross`` of the units of
@@ -9,6 +10,12 @@ copies 1.., an extra unit is added that makes the same outputs from the same
 inputs except one required input taken from another (random) copy.  That
 adds alternative producers and cycles across copies, as a merged FOON of
 many recipe sets has, while the averages stay close to the base.
+
+:func:`generate` makes a FOON from scratch with knobs for choice (producers
+per object, shared intermediates, depth, cycles, ...), and :data:`PRESETS`
+names seeded instances of it (:func:`preset`): ``tiny`` and ``small`` for
+tests, ``hard-4k`` and ``hard-10k`` for the benchmark (bench/hard.py).
+Generated on demand, never stored as data.
 """
 
 from __future__ import annotations
@@ -18,6 +25,7 @@ import random
 from dataclasses import dataclass
 from pathlib import Path
 
+from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.model import Foon, FoonObject, Unit
 from foon2asp.foon.parser import write_foon
@@ -51,9 +59,17 @@ class Synthetic:
     goals: list[FoonObject]
     motion: dict[str, float]
     utensils: frozenset[str]
+    #: the preset's name, if any (names the goals in messages)
+    name: str = ""
 
     def problem(self, utensil_rule: str = "starter") -> Problem:
         return Problem(self.foon, self.kitchen, self.motion, self.utensils, utensil_rule)
+
+    def dataset(self) -> Dataset:
+        """The same data as a :class:`~foon2asp.foon.loaders.Dataset` (what loading :meth:`write`'s folder gives)."""
+        goals = [(g, i) for i, g in enumerate(self.goals, 1)]
+        where = {"goals": f"<goals of {self.name or 'the synthetic FOON'}>"}
+        return Dataset(self.foon, list(self.kitchen), goals, dict(self.motion), self.utensils, where)
 
     def write(self, directory: str | Path) -> Path:
         """Write FOON.txt, kitchen.json, goal_nodes.json, motion.txt, utensils.txt."""
@@ -167,3 +183,290 @@ def _count_cycles(problem: Problem) -> int:
                 if size > 1:
                     count += 1
     return count
+
+
+# --- hard FOONs with real choice --------------------------------------------
+
+_STATES = (
+    "chopped sliced diced mixed cooked heated mashed whisked fried boiled baked ground peeled grated blended cooled"
+).split()
+_CONTAINERS = ("bowl", "pan", "pot", "plate", "tray", "jar", "cup", "mixing bowl")
+_TOOLS = ("knife", "spoon", "whisk", "spatula", "ladle", "fork", "peeler", "grater")
+_MOTIONS = (
+    "chop slice dice mix stir cook heat mash whisk fry boil bake grind peel grate blend pour cool season"
+    " knead roll spread sprinkle fold"
+).split()
+
+#: a count: a (lo, hi) range drawn uniformly, or a float mean (1 + geometric extra)
+Count = tuple[int, int] | float
+
+
+def _count(spec: Count, rng: random.Random) -> int:
+    if isinstance(spec, tuple | list):
+        return rng.randint(int(spec[0]), int(spec[1]))
+    mean = float(spec)
+    if mean <= 1:
+        return 1
+    n = 1
+    while rng.random() > 1.0 / mean:  # geometric: P(stop) = 1 / mean
+        n += 1
+    return n
+
+
+def _mean(spec: Count) -> float:
+    if isinstance(spec, tuple | list):
+        return (spec[0] + spec[1]) / 2
+    return max(1.0, float(spec))
+
+
+def generate(
+    units: int = 4000,
+    producers: Count = (1, 4),
+    shared: float = 0.25,
+    depth: int = 12,
+    cycles: float = 0.02,
+    kitchen: int = 150,
+    goals: int = 20,
+    seed: int = 0,
+    inputs: Count = (2, 3),
+    chain: float = 0.5,
+    shared_pool: float = 0.03,
+    byproduct: float = 0.6,
+    byproduct_use: float = 0.1,
+    utensil_pairs: float = 0.05,
+    dead: int = 3,
+    unreachable_goal: bool = True,
+) -> Synthetic:
+    """A FOON with real choice, deterministic for a given ``seed``.
+
+    * **kitchen**: ``kitchen`` raw items (``ing17, raw``), containers
+      (``bowl, empty``) and bare tools (``knife``).
+    * **made objects** over ``depth`` layers, about ``units / mean(producers)``
+      of them, none bare; each gets ``producers`` units (the total is trimmed
+      or padded to exactly ``units``).
+    * **inputs** (``inputs`` of them) of a producer of a layer-L object: with
+      probability ``shared`` one of a pool of popular intermediates
+      (``shared_pool`` of the made objects, from the lower two thirds of the
+      layers: the trees of many goals overlap there); else with probability
+      ``chain`` an object of layer L-1 (deep trees); else any lower layer or
+      the kitchen (short cuts: cheap producers beside expensive ones).  Plus
+      one tool, which passes through as a bare output.
+    * **by-products**: with probability ``byproduct`` a unit also makes a
+      unit-specific ``container, used``; a later unit needs one with
+      probability ``byproduct_use`` (forced, single-producer sub-chains).
+    * **cycles**: a fraction ``cycles`` of the units takes one input from the
+      same or a higher layer (back edges), and ``dead`` gadgets (X needs Y,
+      Y needs X) make objects nobody can derive.
+    * **utensil rule**: in a fraction ``utensil_pairs`` of the units
+      ``bowl contains {x}`` sits beside ``x ..., in [bowl]``.
+    * **goals**: ``goals`` derivable made objects with at least two producers
+      from the upper two thirds of the layers, a mix of derivation levels;
+      plus (``unreachable_goal``) one dead object.
+    """
+    rng = random.Random(seed)
+    motion = {m: round(rng.uniform(0.35, 1.0), 3) for m in _MOTIONS}
+    raw = [FoonObject.make(f"ing{i}", [rng.choice(["raw", "whole", "fresh"])]) for i in range(kitchen)]
+    tools = [FoonObject.make(t) for t in _TOOLS]
+    kitchen_objects = raw + [FoonObject.make(c, ["empty"]) for c in _CONTAINERS] + tools
+
+    n_main = max(depth, int(round(units / _mean(producers))))
+    per_layer = [n_main // depth + (1 if i < n_main % depth else 0) for i in range(depth)]
+    layers: list[list[FoonObject]] = [list(raw)]
+    level_of: dict[FoonObject, int] = {o: 0 for o in raw}
+    serial = 0
+    for layer_no in range(1, depth + 1):
+        layer = []
+        for _ in range(per_layer[layer_no - 1]):
+            serial += 1
+            states = [rng.choice(_STATES)]
+            if rng.random() < 0.3:
+                states.append(rng.choice(_STATES))
+            ingredients = [f"ing{rng.randrange(kitchen)}" for _ in range(rng.randint(0, 3))]
+            container = rng.choice(_CONTAINERS) if rng.random() < 0.7 else None
+            obj = FoonObject.make(f"food{serial}", states, ingredients, container)
+            layer.append(obj)
+            level_of[obj] = layer_no
+        layers.append(layer)
+    made = [o for layer in layers[1:] for o in layer]
+    low = [o for layer in layers[1 : max(2, (2 * depth) // 3)] for o in layer]
+    pool = rng.sample(low, max(1, min(len(low), int(shared_pool * len(made)))))
+
+    # producers per made object, trimmed or padded to exactly `units` in total
+    counts = {o: _count(producers, rng) for o in made}
+    total = sum(counts.values())
+    order = list(made)
+    rng.shuffle(order)
+    i = 0
+    while total > units and i < 10 * len(order):
+        o = order[i % len(order)]
+        if counts[o] > 1:
+            counts[o] -= 1
+            total -= 1
+        i += 1
+    i = 0
+    while total < units:
+        counts[order[i % len(order)]] += 1
+        total += 1
+        i += 1
+
+    foon = Foon()
+    byproducts: list[FoonObject] = []
+
+    def pick_input(layer_no: int) -> FoonObject:
+        if rng.random() < shared:
+            below = [o for o in pool if level_of[o] < layer_no]
+            if below:
+                return rng.choice(below)
+        if layer_no > 1 and rng.random() < chain:
+            return rng.choice(layers[layer_no - 1])
+        if byproducts and rng.random() < byproduct_use:
+            b = rng.choice(byproducts)
+            if level_of[b] < layer_no:
+                return b
+        return rng.choice(layers[rng.randrange(0, layer_no)])
+
+    for layer_no in range(1, depth + 1):
+        for obj in layers[layer_no]:
+            for _ in range(counts[obj]):
+                ins: list[FoonObject] = []
+                for _k in range(_count(inputs, rng)):
+                    x = pick_input(layer_no)
+                    if x not in ins and x != obj:
+                        ins.append(x)
+                if not ins:
+                    ins.append(rng.choice(raw))
+                if rng.random() < cycles:
+                    x = rng.choice(layers[rng.randrange(layer_no, depth + 1)])  # a back edge
+                    if x != obj and x not in ins:
+                        ins.append(x)
+                tool = rng.choice(tools)
+                ins.append(tool)
+                outs = [obj, tool]  # the tool passes through: a bare output, not a product
+                held = [x for x in ins if x.container in _CONTAINERS]
+                if held and rng.random() < utensil_pairs:
+                    x = rng.choice(held)
+                    assert x.container is not None
+                    ins.append(FoonObject.make(x.container, [], [x.label]))
+                if rng.random() < byproduct:
+                    b = FoonObject.make(rng.choice(_CONTAINERS), ["used"], [f"trace{len(byproducts)}"])
+                    outs.append(b)
+                    level_of[b] = layer_no
+                    byproducts.append(b)
+                foon.add_unit(Unit(rng.choice(_MOTIONS), tuple(ins), tuple(outs)), ("generate", 0))
+
+    dead_objects = []
+    for d in range(dead):
+        x = FoonObject.make(f"dead{d}x", ["cooked"], [], "pot")
+        y = FoonObject.make(f"dead{d}y", ["mixed"], [], "bowl")
+        base = rng.choice(made)
+        foon.add_unit(Unit("cook", (y, base, tools[0]), (x, tools[0])), ("generate", 0))
+        foon.add_unit(Unit("mix", (x, rng.choice(raw)), (y,)), ("generate", 0))
+        dead_objects.append(x)
+
+    goal_objects = _pick_goals(foon, set(kitchen_objects), made, level_of, goals, rng, depth)
+    if unreachable_goal and dead_objects:
+        goal_objects.append(dead_objects[0])
+    return Synthetic(foon, kitchen_objects, goal_objects, motion, frozenset(_CONTAINERS))
+
+
+def _utensil_free(unit: Unit, obj: FoonObject) -> bool:
+    return (
+        obj.label in _CONTAINERS
+        and len(obj.ingredients) == 1
+        and any(o.label == obj.ingredients[0] and o.container == obj.label for o in unit.inputs)
+    )
+
+
+def _levels(foon: Foon, kitchen: set[FoonObject]) -> dict[FoonObject, int]:
+    """Least-fixpoint derivation levels over all units (to pick goals of mixed depth)."""
+    level = {o: 0 for o in kitchen}
+    waiting: dict[int, int] = {}
+    users: dict[FoonObject, list[int]] = {}
+    frontier = []
+    for u, unit in enumerate(foon.units):
+        need = {o for o in unit.inputs if o not in level and not _utensil_free(unit, o)}
+        waiting[u] = len(need)
+        for o in need:
+            users.setdefault(o, []).append(u)
+        if not need:
+            frontier.append(u)
+    t = 0
+    while frontier:
+        t += 1
+        new = []
+        for u in frontier:
+            for o in foon.units[u].outputs:
+                if o not in level and not o.is_bare():
+                    level[o] = t
+                    new.append(o)
+        frontier = []
+        for o in new:
+            for u in users.get(o, ()):
+                waiting[u] -= 1
+                if waiting[u] == 0:
+                    frontier.append(u)
+    return level
+
+
+def _pick_goals(
+    foon: Foon,
+    kitchen: set[FoonObject],
+    made: list[FoonObject],
+    level_of: dict[FoonObject, int],
+    n: int,
+    rng: random.Random,
+    depth: int,
+) -> list[FoonObject]:
+    levels = _levels(foon, kitchen)
+    producers: dict[FoonObject, int] = {}
+    for unit in foon.units:
+        for o in unit.outputs:
+            if not o.is_bare():
+                producers[o] = producers.get(o, 0) + 1
+    cands = [o for o in made if o in levels and level_of[o] >= max(2, depth // 3) and producers.get(o, 0) >= 2]
+    if not cands:
+        cands = [o for o in made if o in levels]
+    by_level: dict[int, list[FoonObject]] = {}
+    for o in cands:
+        by_level.setdefault(levels[o], []).append(o)
+    for v in by_level.values():
+        rng.shuffle(v)
+    out: list[FoonObject] = []
+    while len(out) < n and any(by_level.values()):
+        for k in sorted(by_level):
+            if by_level[k] and len(out) < n:
+                out.append(by_level[k].pop())
+    return out
+
+
+#: named, seeded instances of :func:`generate` (keyword arguments)
+PRESETS: dict[str, dict] = {
+    # brute-force size: parts of at most ~30 units, for exhaustive checks in tests
+    "tiny": dict(
+        units=60, producers=(1, 3), shared=0.3, depth=4, cycles=0.05, kitchen=12, goals=6, seed=1, inputs=(1, 2),
+        shared_pool=0.15, dead=1,
+    ),
+    # the same structure as the hard ones, small enough for tests (parts of 200-300 units)
+    "small": dict(
+        units=400, producers=(1, 4), shared=0.3, depth=8, cycles=0.03, kitchen=30, goals=10, seed=2,
+        shared_pool=0.06, dead=2,
+    ),
+    # the issue's sizes: 1-4 producers per made object, shared intermediates, a few cycles
+    "hard-4k": dict(
+        units=4000, producers=(1, 4), shared=0.25, depth=12, cycles=0.02, kitchen=150, byproduct=0.8, goals=20,
+        seed=3,
+    ),
+    "hard-10k": dict(
+        units=10000, producers=(1, 4), shared=0.25, depth=14, cycles=0.02, kitchen=300, byproduct=0.8, goals=30,
+        seed=4,
+    ),
+}  # fmt: skip
+
+
+def preset(name: str) -> Synthetic:
+    """The named instance of :data:`PRESETS` (``generate(**PRESETS[name])``)."""
+    if name not in PRESETS:
+        raise InputError(f"unknown preset {name!r} (have {', '.join(PRESETS)})")
+    syn = generate(**PRESETS[name])
+    syn.name = name
+    return syn

@@ -47,6 +47,8 @@ def render_summary(rows: list[dict], fmt: str = "text", report: BatchReport | No
             f"{report.done} new result(s), {report.skipped} already done, "
             f"{report.elapsed_s:.2f} s with {report.workers} worker(s)"
             + (f"; results in {report.output}" if report.output else "")
+            + (f"\ngrounding: {report.grounding}" if report.grounding else "")
+            + (f" (auto: {report.grounding_reason})" if report.grounding_reason else "")
             + "\n"
         )
     if fmt == "markdown":
