@@ -174,3 +174,18 @@ def test_exit_codes_unreachable_is_answered():
     assert res.exit_code == 0 and "unreachable" in res.stdout
     res = run("missing", "--data", "demo", "--goal", "pancake", "--objective", "success", "--format", "json")
     assert res.exit_code == 0 and json.loads(res.stdout)[0]["status"] == "optimal"
+
+
+def test_numbers_are_printed_with_one_rule(shared_foon_dir, tmp_path):
+    """Text outputs print a measure with 4 significant digits; JSON keeps the full value."""
+    from foon2asp.tree.serialize import number
+
+    js = json.loads(run("solve", "--data", shared_foon_dir, "--goal", "greek salad", "--format", "json").stdout)[0]
+    success = js["cost"]["success"]
+    text = run("solve", "--data", shared_foon_dir, "--goal", "greek salad").stdout
+    assert f"success {number(success)}," in text and number(success) == f"{success:.4g}" != str(success)
+    tree = tmp_path / "t.foon"
+    tree.write_text(run("solve", "--data", shared_foon_dir, "--goal", "greek salad", "--format", "foon").stdout)
+    checked = run("check", tree, "--data", shared_foon_dir).stdout
+    assert f"success {number(success)}," in checked
+    assert number(25) == "25" and number(0.02187) == "0.02187"

@@ -7,12 +7,13 @@ import json
 from foon2asp.analysis.check import Report, cycle_lines
 from foon2asp.foon.problem import Problem
 from foon2asp.report.registry import register
+from foon2asp.tree.serialize import number
 
 
 def _cost_text(cost: dict) -> str:
     depth = cost.get("depth")
     return (
-        f"{cost.get('units')} units, success {cost.get('success'):.4g}, "
+        f"{cost.get('units')} units, success {number(cost.get('success'))}, "
         f"depth {depth if depth is not None else '- (goal not made)'}"
     )
 

@@ -10,7 +10,7 @@ from foon2asp.analysis.compare import MealRow, Row
 from foon2asp.foon.problem import Problem
 from foon2asp.report import registry
 from foon2asp.report.registry import register
-from foon2asp.tree.serialize import json_list, tree_json
+from foon2asp.tree.serialize import json_list, number, tree_json
 from foon2asp.tree.tasktree import TaskTree
 
 
@@ -35,7 +35,7 @@ def quality_cell(tree: TaskTree) -> str:
     if not tree.has_tree:
         return "-"
     depth = tree.cost.get("depth")
-    return f"{tree.cost.get('success', 0):.3g} / {depth if depth is not None else '-'}"
+    return f"{number(tree.cost.get('success', 0))} / {depth if depth is not None else '-'}"
 
 
 def _header(name: str) -> str:
@@ -138,7 +138,7 @@ def _meal_lines(problem: Problem, row: MealRow, markdown: bool) -> list[str]:
         if not cost:
             return [status, "-", "-", "-"]
         depth = cost.get("depth")
-        return [str(cost["units"]), f"{cost['success']:.4g}", str(cost["inputs"]), "-" if depth is None else str(depth)]
+        return [str(cost["units"]), number(cost["success"]), str(cost["inputs"]), "-" if depth is None else str(depth)]
 
     body = [[_label(problem, t.goal) + " (alone)"] + cells(t.cost, t.status) for t in row.singles]
     total = row.total()

@@ -53,8 +53,16 @@ def to_json(problem: Problem, trees: list[TaskTree], indent: int | None = 2) -> 
     return json_list([tree_json(problem, t) for t in trees], indent)
 
 
+def number(value: object) -> str:
+    """A measure as every text output prints it: integers in full, other numbers to 4
+    significant digits (``0.02187``, ``1.016e-10``); JSON keeps the full values."""
+    if isinstance(value, float):
+        return f"{value:.4g}"
+    return str(value)
+
+
 def _cost_text(cost: dict) -> str:
-    return ", ".join(f"{k} {v}" for k, v in cost.items())
+    return ", ".join(f"{k} {number(v)}" for k, v in cost.items())
 
 
 def goal_heading(problem: Problem, tree: TaskTree) -> str:
