@@ -23,17 +23,17 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import platform
 import statistics
 import sys
 import time
 from collections.abc import Iterable
 from pathlib import Path
 
+from machine import describe  # noqa: E402  (bench/machine.py)
+
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-import clingo  # noqa: E402
 
 from foon2asp.asp.session import AspOptions, Session  # noqa: E402
 from foon2asp.foon import goals as goals_mod  # noqa: E402
@@ -154,17 +154,7 @@ def table(records: list[dict]) -> str:
 
 
 def machine() -> str:
-    load1, load5, load15 = os.getloadavg()
-    cpu = platform.machine()
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as fh:
-            cpu = next((line.split(":", 1)[1].strip() for line in fh if line.startswith("model name")), cpu)
-    except OSError:
-        pass
-    return (
-        f"{cpu}, nproc {os.cpu_count()}, Python {platform.python_version()},"
-        f" clingo {clingo.__version__}, load average {load1:.2f} / {load5:.2f} / {load15:.2f} at the start"
-    )
+    return describe()
 
 
 def main() -> None:
