@@ -97,3 +97,14 @@ def test_version_in_one_place():
     from importlib.metadata import version
 
     assert foon2asp.__version__ == version("foon2asp") or os.environ.get("PYTHONPATH")
+
+
+@pytest.mark.parametrize("page", ["objectives.md", "queries.md", "batch.md", "vocabulary.md", "experiment.md"])
+def test_python_examples_of_the_other_docs_run(page, shared_foon_dir, monkeypatch):
+    """No docs page shows Python that does not run."""
+    text = (REPO / "docs" / page).read_text(encoding="utf-8")
+    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
+    monkeypatch.chdir(REPO)
+    namespace: dict = {}
+    for block in blocks:
+        exec(compile(block, f"docs/{page}", "exec"), namespace)  # noqa: S102
