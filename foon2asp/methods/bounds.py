@@ -66,11 +66,11 @@ prunes the goal's part exactly: a unit ``u`` whose closure bound of
 
 from __future__ import annotations
 
-import heapq
 from collections.abc import Iterable
 
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.foon.problem import Problem, walk_back
+from foon2asp.tree.upper import cheapest_sets
 
 #: ranked objective lists (as :func:`foon2asp.asp.objectives.ranked` gives them) the bounds handle
 SUPPORTED = (("units",), ("success", "units"), ("inputs", "units"))
@@ -93,41 +93,6 @@ def weights(problem: Problem, ranked: tuple[str, ...]) -> list[int]:
     base = _BASE[ranked[0]]
     scale = len(problem.units) + 1
     return [base(problem, u) * scale + 1 for u in range(len(problem.units))]
-
-
-def cheapest_sets(problem: Problem, w: list[int], units: Iterable[int] | None = None) -> dict[int, frozenset[int]]:
-    """Object -> its cheapest-set tree (see the module docstring); kitchen items -> the empty set."""
-    pool = range(len(problem.units)) if units is None else units
-    kitchen = problem.kitchen
-    settled: dict[int, frozenset[int]] = dict.fromkeys(kitchen, frozenset())
-    waiting: dict[int, int] = {}
-    users: dict[int, list[int]] = {}
-    heap: list[tuple[int, int, int, int, frozenset[int]]] = []
-
-    def fire(u: int) -> None:
-        s = frozenset().union(*(settled[i] for i in problem.required[u])) | {u}
-        c = sum(w[x] for x in s)
-        for o in problem.products[u]:
-            if o not in settled:
-                heapq.heappush(heap, (c, len(s), u, o, s))
-
-    for u in pool:
-        req = {i for i in problem.required[u] if i not in kitchen}
-        waiting[u] = len(req)
-        for i in req:
-            users.setdefault(i, []).append(u)
-        if not req:
-            fire(u)
-    while heap:
-        _, _, _, o, s = heapq.heappop(heap)
-        if o in settled:
-            continue
-        settled[o] = s
-        for u in users.get(o, ()):
-            waiting[u] -= 1
-            if waiting[u] == 0:
-                fire(u)
-    return settled
 
 
 def landmarks(

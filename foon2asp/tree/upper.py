@@ -1,13 +1,11 @@
 """A cheap, valid tree for any derivable goal: an upper bound, not an optimum.
 
-:func:`cheapest_tree` runs Knuth's generalisation of Dijkstra's algorithm over
-the units: the kitchen items cost 0, a unit costs its weight plus the costs
-of its required inputs, and an object is settled by its cheapest unit once
-that unit's inputs are settled.  Following the settling units back from the
-goals gives a well-founded tree (every unit's inputs were settled before its
-product), which is then made irredundant: units whose removal keeps every
-goal derivable are dropped, heaviest first.  The solver uses it when it has
-no tree of its own within the time limit.
+:func:`cheapest_sets` runs Knuth's generalisation of Dijkstra's algorithm over
+sets of units (each object's cheapest well-founded tree, shared units counted
+once); :func:`cheapest_tree` takes the union of the goals' sets and makes it
+irredundant: units whose removal keeps every goal derivable are dropped,
+heaviest first.  The bounds of :mod:`foon2asp.methods.bounds` start from the
+same sets.  The solver uses it when it has no tree of its own within the time limit.
 """
 
 from __future__ import annotations
@@ -15,7 +13,7 @@ from __future__ import annotations
 import heapq
 import math
 import time
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 
 from foon2asp.foon.problem import Problem
 
@@ -37,54 +35,64 @@ def cheapest_tree(
     (None: all); None when some goal cannot be made.  ``prune_s`` bounds the time spent
     dropping redundant units."""
     weight = WEIGHTS.get(objective, lambda problem, u: 1.0)
-    allowed = range(len(problem.units)) if units is None else units
+    wanted = set(goals)
+    w = [weight(problem, u) for u in range(len(problem.units))]
+    sets = cheapest_sets(problem, w, units, wanted)
+    if any(g not in sets for g in wanted):
+        return None
+    tree = set(frozenset().union(*(sets[g] for g in wanted)))
+    return _irredundant(problem, wanted, tree, weight, time.perf_counter() + prune_s)
+
+
+def cheapest_sets(
+    problem: Problem, w: Sequence[float], units: Iterable[int] | None = None, goals: Iterable[int] = ()
+) -> dict[int, frozenset[int]]:
+    """Object -> its cheapest-set tree; kitchen items -> the empty set.
+
+    Knuth's generalisation of Dijkstra's algorithm over sets of units: a unit whose
+    required inputs are settled offers the union of their sets plus itself to each
+    of its products, priced by the total weight ``w`` of that set (shared units count
+    once); an object is settled by the cheapest offer (ties: fewer units, then unit
+    and object ids), so every set is a well-founded tree for its object and the
+    result depends only on the units given.  With ``goals`` the search stops once
+    all of them are settled.
+    """
+    pool = range(len(problem.units)) if units is None else units
     kitchen = problem.kitchen
-    cost: dict[int, float] = {o: 0.0 for o in kitchen}
-    best: dict[int, int] = {}
+    settled: dict[int, frozenset[int]] = dict.fromkeys(kitchen, frozenset())
     waiting: dict[int, int] = {}
     users: dict[int, list[int]] = {}
-    heap: list[tuple[float, int, int]] = []
+    heap: list[tuple[float, int, int, int, frozenset[int]]] = []
 
     def fire(u: int) -> None:
-        c = weight(problem, u) + sum(cost[i] for i in problem.required[u])
+        s = frozenset().union(*(settled[i] for i in problem.required[u])) | {u}
+        c = sum(w[x] for x in s)
         for o in problem.products[u]:
-            if o not in cost:
-                heapq.heappush(heap, (c, o, u))
+            if o not in settled:
+                heapq.heappush(heap, (c, len(s), u, o, s))
 
-    for u in allowed:
-        need = [i for i in problem.required[u] if i not in kitchen]
-        waiting[u] = len(need)
-        for i in need:
+    for u in pool:
+        req = {i for i in problem.required[u] if i not in kitchen}
+        waiting[u] = len(req)
+        for i in req:
             users.setdefault(i, []).append(u)
-        if not need:
+        if not req:
             fire(u)
-    wanted = set(goals)
-    left = {g for g in wanted if g not in kitchen}
-    while heap and left:
-        c, o, u = heapq.heappop(heap)
-        if o in cost:
+    left = {g for g in goals if g not in kitchen}
+    stop = bool(left)
+    while heap:
+        _, _, _, o, s = heapq.heappop(heap)
+        if o in settled:
             continue
-        cost[o], best[o] = c, u
+        settled[o] = s
         left.discard(o)
-        for v in users.get(o, ()):
-            waiting[v] -= 1
-            if waiting[v] == 0:
-                fire(v)
-    if left:
-        return None
-    tree: set[int] = set()
-    stack = [g for g in wanted if g not in kitchen]
-    seen = set(stack)
-    while stack:
-        u = best[stack.pop()]
-        if u in tree:
-            continue
-        tree.add(u)
-        for i in problem.required[u]:
-            if i not in kitchen and i not in seen:
-                seen.add(i)
-                stack.append(i)
-    return _irredundant(problem, wanted, tree, weight, time.perf_counter() + prune_s)
+        if stop and not left:
+            break
+        for u in users.get(o, ()):
+            waiting[u] -= 1
+            if waiting[u] == 0:
+                fire(u)
+    return settled
 
 
 def _irredundant(
