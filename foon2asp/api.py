@@ -432,7 +432,8 @@ class KnowledgeBase:
         """Judge a tree: a :class:`Tree`, or a file (FOON text in either dialect, FOON JSON,
         foon2asp JSON, or a plan as Fast Downward writes it for ``export pddl``).
 
-        A :class:`Tree` gives one report; a file gives one per tree it holds.
+        A :class:`Tree`, or a file holding one tree, gives one report; a file holding several
+        gives a list, one per tree (:meth:`check_all`: always a list).
         ``goal``: the goal (several: a meal). Otherwise the goal of a tree in a file is
         the one of ``goals`` (a goals file or a list) the tree makes, else the one the
         file names (a JSON result, or the ``# task tree for ...`` line ``solve --format
@@ -460,7 +461,19 @@ class KnowledgeBase:
         elif goals is not None:
             among = [self.object_id(g) for g in goals]
         reports = check_mod.check_file(self.data, self.problem, tree, labels, optimum, among)
-        return [CheckReport(self, r) for r in reports]
+        found = [CheckReport(self, r) for r in reports]
+        return found[0] if len(found) == 1 else found
+
+    def check_all(
+        self,
+        tree: Tree | str | Path,
+        goal: GoalLike | Sequence[GoalLike] | None = None,
+        optimum: bool = True,
+        goals: Sequence[GoalLike] | str | Path | None = None,
+    ) -> list[CheckReport]:
+        """:meth:`check` as a list, whatever the file holds (one report per tree)."""
+        found = self.check(tree, goal, optimum, goals)
+        return found if isinstance(found, list) else [found]
 
     def compare(
         self,

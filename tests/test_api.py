@@ -108,3 +108,16 @@ def test_python_examples_of_the_other_docs_run(page, shared_foon_dir, monkeypatc
     namespace: dict = {}
     for block in blocks:
         exec(compile(block, f"docs/{page}", "exec"), namespace)  # noqa: S102
+
+
+def test_check_of_a_file_with_one_tree_is_a_report(kb, tmp_path):
+    """``kb.check("tree.txt")`` gives a report with .valid; several trees give a list."""
+    one = tmp_path / "one.foon"
+    one.write_text(kb.solve("greek salad").to_foon())
+    report = kb.check(one)
+    assert not isinstance(report, list) and report.valid and report.optimum.cost["units"] == 25
+    both = tmp_path / "both.foon"
+    both.write_text("".join(t.to_foon() for t in kb.solve(["greek salad", "macaroni"])))
+    reports = kb.check(both)
+    assert isinstance(reports, list) and [r.valid for r in reports] == [True, True]
+    assert [r.valid for r in kb.check_all(one)] == [True]

@@ -672,8 +672,7 @@ def check(tree, data, goal, goals, fmt, optimum):
     among = None
     if goals:
         among = [kb.problem.objects[g] for g in goals_mod.resolve(kb.data, kb.problem, (), goals)]
-    reports = kb.check(tree, list(goal) or None, optimum, among)
-    assert isinstance(reports, list)
+    reports = kb.check_all(tree, list(goal) or None, optimum, among)
     click.echo(report.render("check", fmt, kb.problem, [r.raw for r in reports]), nl=False)
     sys.exit(0 if all(r.valid for r in reports) else 1)
 
