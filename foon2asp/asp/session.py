@@ -12,12 +12,13 @@ from __future__ import annotations
 import re
 import time
 from collections.abc import Callable, Iterable, Sequence
+from dataclasses import replace
 from typing import Any
 
 import clingo
 
 from foon2asp.asp import encodings, objectives
-from foon2asp.asp.canonical import canonicalise, chain_facts
+from foon2asp.asp.canonical import canonical_problem, canonicalise, chain_facts
 from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import OPTIONAL, fact_objects, facts
 from foon2asp.asp.multishot.driver import Driver
@@ -78,6 +79,9 @@ class Session:
             rules.append(("encodings/canonical.lp", encodings.encoding("canonical")))
             rules.append(("unit order", chain_facts(units)))
         required = sorted(set(require))
+        self.required = tuple(required)
+        #: no solve has run yet: the solver state is the same as in any fresh session of the same grounding
+        self._fresh = True
         if required:
             rules.append(("required units", "".join(f":- not use({u}).\n" for u in required)))
         rules += list(self.options.programs)
@@ -184,7 +188,7 @@ class Session:
         t0 = time.perf_counter()
         if any(g not in self.goal_atoms for g in meal):
             # a goal is not an object of the grounded facts: nothing makes it (no solve call)
-            stats = {"choices": 0, "conflicts": 0, "models": 0, "solve_s": 0.0}
+            stats: dict[str, Any] = {"choices": 0, "conflicts": 0, "models": 0, "solve_s": 0.0}
             return TaskTree(
                 method=self.options.method,
                 status="unreachable",
@@ -192,8 +196,15 @@ class Session:
                 stats=stats,
                 **goal_fields(meal),
             )
+        # a fresh session on the goal's own part is its canonical session (foon2asp.asp.canonical)
+        here = False
+        if self._fresh and not self.required and self.options.canonical:
+            view, part = canonical_problem(self.problem, meal)
+            here = self.units == part and self.problem.kitchen == view.kitchen
+        self._fresh = False
         best: dict = {}
         optimal: dict[tuple[int, ...], list[int]] = {}
+        start: Answer | None = None  # an optimal tree to start the search for the canonical one from
 
         def record(model: clingo.Model) -> None:
             best["units"] = [s.arguments[0].number for s in model.symbols(shown=True) if s.name == "use"]
@@ -206,7 +217,10 @@ class Session:
 
         conf: Any = self.ctl.configuration.solve
         saved = (conf.opt_mode, conf.models, conf.project)
-        if known is not None and self.options.canonical:
+        # with a known tree one plain optimisation decides whether it is optimal; the canonical
+        # session always looks for a second optimal tree, so its answer does not depend on `known`
+        plain = known is not None and self.options.canonical and not here
+        if plain:
             conf.opt_mode, conf.models, conf.project = self._plain_conf
         for g in meal:
             self._set_goal(g, True)
@@ -214,25 +228,38 @@ class Session:
             result = self.control.solve(record, time_limit or None)
             stats = self.stats()
             conf.opt_mode, conf.models, conf.project = saved
-            if known is not None and self.options.canonical and result.finished and "units" in best:
-                if best["cost"] == list(known[1]):
-                    best["units"] = list(known[0])  # the known tree is optimal: it is the answer
-                else:
-                    deadline = None if not time_limit else t0 + time_limit
-                    answer = Answer(tuple(sorted(best["units"])), tuple(best["cost"]), True)
-                    answer, _ = canonicalise(self.control, answer, deadline)
-                    best["units"], best["cost"] = list(answer.units), list(answer.cost)
+            if (
+                known is not None
+                and self.options.canonical
+                and "units" in best
+                and result.finished
+                and best["cost"] == list(known[1])
+            ):
+                best["units"] = list(known[0])  # the known tree is optimal: it is the answer
+            elif plain and result.finished and "units" in best:
+                start = Answer(tuple(sorted(best["units"])), tuple(best["cost"]), True)
             elif len(optimal) > 1 and result.finished:
                 # several optimal trees: return the smallest one, which depends only on the input
-                deadline = None if not time_limit else t0 + time_limit
                 smallest = min(optimal)
-                answer, _ = canonicalise(self.control, Answer(smallest, tuple(optimal[smallest]), True), deadline)
+                start = Answer(smallest, tuple(optimal[smallest]), True)
+            if start is not None and here:
+                deadline = None if not time_limit else t0 + time_limit
+                answer, complete = canonicalise(self.control, start, deadline)
                 best["units"], best["cost"], best["proven"] = list(answer.units), list(answer.cost), True
+                if not complete:
+                    stats["canonical_search"] = "budget" if not deadline or time.perf_counter() < deadline else "time"
         finally:
             conf.opt_mode, conf.models, conf.project = saved
             for g in meal:
                 self._set_goal(g, False)
         elapsed = time.perf_counter() - t0
+        if start is not None and not here:
+            # the canonical tree comes from the goal's canonical session, whatever this session's history
+            left = None if not time_limit else max(0.0, time_limit - elapsed)
+            if left is None or left > 0:
+                return self._canonical_session(meal, known, left, t0)
+            best["units"], best["cost"], best["proven"] = list(start.units), list(start.cost), True
+            stats["canonical_search"] = "time"
         if "units" in best:
             # no cost terms at all (e.g. the goal is in the kitchen): any model is optimal
             proven = best["proven"] or not any(best["cost"])
@@ -251,6 +278,21 @@ class Session:
             extra={"asp_cost": best.get("cost", [])} if best else {},
             **goal_fields(meal),
         )
+
+    def _canonical_session(
+        self,
+        meal: tuple[int, ...],
+        known: tuple[Sequence[int], Sequence[int]] | None,
+        time_limit: float | None,
+        t0: float,
+    ) -> TaskTree:
+        """Solve ``meal`` again in its canonical session (a fresh grounding of its part)."""
+        view, part = canonical_problem(self.problem, meal)
+        session = Session(view, replace(self.options, units=part))
+        tree = session._solve(meal, None, time_limit if time_limit is not None else 0.0, known)
+        tree.time_s = round(time.perf_counter() - t0, 6)
+        tree.stats["canonical_session"] = True
+        return tree
 
     def stats(self) -> dict:
         """Choices, conflicts, models and solve time of the last solve call."""

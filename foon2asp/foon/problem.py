@@ -183,15 +183,25 @@ class Problem:
         """Units that fire in the kitchen's least fixpoint; no tree can use any other unit."""
         return frozenset(self.derivation_levels()[1])
 
-    def units_for(self, goals: Iterable[int]) -> tuple[int, ...]:
-        """The units a tree for any of ``goals`` can use: relevant to one of them and viable.
-
-        Grounding only these gives the same trees as grounding the whole FOON
-        (one backwards walk from all goals, then :attr:`viable_units`).
-        """
-        units, _, _ = walk_back(goals, self.kitchen, self.producers, self.required)
+    @cached_property
+    def viable_producers(self) -> dict[int, list[int]]:
+        """Object -> its producers that are viable (fire in the kitchen's least fixpoint)."""
         viable = self.viable_units
-        return tuple(sorted(u for u in units if u in viable))
+        out: dict[int, list[int]] = {}
+        for obj, units in self.producers.items():
+            keep = [u for u in units if u in viable]
+            if keep:
+                out[obj] = keep
+        return out
+
+    def units_for(self, goals: Iterable[int]) -> tuple[int, ...]:
+        """The units a tree for any of ``goals`` can use (sorted): backwards from the goals
+        through their viable producers (units that fire in the kitchen's least fixpoint) and
+        the required inputs of those, kitchen items stopping the walk -- exactly the
+        encoding's candidate units, so grounding only these gives the same trees as
+        grounding the whole FOON."""
+        units, _, _ = walk_back(goals, self.kitchen, self.viable_producers, self.required)
+        return tuple(sorted(units))
 
     def relevant_units(self, goal: int) -> list[int]:
         """Units that can contribute to ``goal`` (backwards from it, kitchen items stop)."""
