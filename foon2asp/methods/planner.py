@@ -61,6 +61,7 @@ from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem, walk_back
 from foon2asp.methods.bounds import Bounds
 from foon2asp.methods.bounds import supports as bounds_supports
+from foon2asp.methods.exact import NODE_LIMIT, canonical_tree
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
 
 GROUNDINGS = ("whole", "per-goal")
@@ -150,8 +151,10 @@ class BatchRunner:
         self.kind = methods.get(name).kind
         self.parts = parts if parts is not None else Parts(problem)
         self.shortcuts = shortcuts and self.kind == "asp" and plain(self.options)
-        #: how each goal was answered: "solver" | "unreachable" | "no-choice" | "bounds"
-        self.counts = {"solver": 0, "unreachable": 0, "no-choice": 0, "bounds": 0}
+        #: how each goal was answered: "solver" | "unreachable" | "no-choice" | "bounds" | "branch-and-bound"
+        self.counts = {"solver": 0, "unreachable": 0, "no-choice": 0, "bounds": 0, "branch-and-bound": 0}
+        #: nodes the branch and bound (foon2asp.methods.exact) may search per goal before the solver is asked
+        self.search_nodes = NODE_LIMIT
         self._label: str | None = None
         self._whole: Callable[[Goals], TaskTree] | None = None
         #: units the caller allows (options.units); a goal whose part lies inside them is answered exactly
@@ -251,6 +254,10 @@ class BatchRunner:
             self.counts["bounds"] += 1
             tree = bounds.tree(goal) or ()
             return self._answer(goal, label, executable_order(self.problem, list(tree)), "bounds", t0)
+        found = canonical_tree(bounds, goal, units, self.search_nodes)
+        if found is not None:
+            self.counts["branch-and-bound"] += 1
+            return self._answer(goal, label, executable_order(self.problem, list(found)), "branch-and-bound", t0)
         return self._canonical(self._solve_pruned(goal, units, objects, bounds), bounds, t0)
 
     def _answer(self, goal: int, label: str, order: list[int], shortcut: str, t0: float) -> TaskTree:
