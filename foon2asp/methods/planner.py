@@ -22,16 +22,21 @@ Three ways to build the runner of a registered ASP method for a batch:
 
   - the lower bound of :mod:`foon2asp.methods.bounds` meets its upper bound:
     the *bounds tree* (a valid tree built without the solver) is optimal
-    (``"shortcut": "bounds"``).
+    (``"shortcut": "bounds"``);
+  - otherwise the branch and bound of :mod:`foon2asp.methods.exact` finds the
+    optimum and the canonical tree on the goal's part
+    (``"shortcut": "branch-and-bound"``), unless it runs out of nodes
+    (:attr:`BatchRunner.search_nodes`).
 
   Shortcuts are taken only for plain optimisation (no user programs, extra
   encodings, depth bounds, human steps, alternatives or greedy heuristics);
   anything else goes to the solver.  They are exact also when the caller
   restricts the units (``options.units``, as :func:`solve_goals` does), as
   long as the goal's relevant part lies inside them.
-* pruning: a goal with choice that the bounds do not decide is solved on its
-  part without the units no optimal tree uses, the landmark units required
-  (:meth:`~foon2asp.methods.bounds.Bounds.keep`), on a small grounding.
+* pruning: a goal with choice that neither the bounds nor the branch and bound
+  decide is solved on its part without the units no optimal tree uses, the
+  landmark units required (:meth:`~foon2asp.methods.bounds.Bounds.keep`), on a
+  small grounding.
 
 *The canonical tree* (the same from every path: solve, compare, check,
 batch with any grounding, workers or shortcuts, the library): for the
