@@ -8,6 +8,7 @@ shortcuts on a synthetic FOON, and the fallback to the solver when the search ru
 from __future__ import annotations
 
 import functools
+import itertools
 import random
 
 import pytest
@@ -116,12 +117,12 @@ def test_runner_answers_by_branch_and_bound_and_falls_back_to_the_solver():
     """Goals the bounds do not decide are answered by the search (``"shortcut": "branch-and-bound"``);
     with no nodes to search, the solver on the pruned part gives the same trees."""
     searched = solved = 0
-    for seed in range(30):
+    for seed, grounding in itertools.product(range(30), ("per-goal", "whole")):
         problem = random_foon(seed)
         for ranked in RANKED:
             options = AspOptions(objective=(ranked[0],))
-            fast = BatchRunner("asp", problem, options, "per-goal")
-            slow = BatchRunner("asp", problem, options, "per-goal")
+            fast = BatchRunner("asp", problem, options, grounding)
+            slow = BatchRunner("asp", problem, options, grounding)
             slow.search_nodes = 0
             for goal in sorted(problem.derivable - problem.kitchen):
                 a, b = fast(goal), slow(goal)
