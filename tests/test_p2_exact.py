@@ -158,3 +158,22 @@ def test_synthetic_foon_equals_the_solver():
         assert answer.status == "optimal" and answer.stats.get("shortcut") is None, goal
         assert tuple(sorted(answer.units)) == tree, goal
     assert settled >= 20
+
+
+def test_large_parts_get_fewer_nodes(monkeypatch):
+    """The node budget shrinks with the part (WORK_LIMIT): with no work allowed, nothing is settled."""
+    checked = 0
+    for seed in range(20):
+        problem = random_foon(seed)
+        bounds = Bounds(problem)
+        parts = Parts(problem)
+        for goal in sorted(problem.derivable - problem.kitchen):
+            units, _, choice = parts.relevant(goal)
+            if not choice or bounds.proven(goal):
+                continue
+            assert exact.canonical_tree(bounds, goal, units) is not None
+            with monkeypatch.context() as patch:
+                patch.setattr(exact, "WORK_LIMIT", 0)
+                assert exact.canonical_tree(bounds, goal, units) is None
+            checked += 1
+    assert checked

@@ -4,7 +4,8 @@ For the objectives of :mod:`foon2asp.methods.bounds` (a tree costs the sum of
 positive unit weights), :func:`canonical_tree` finds the optimum of a goal on
 its part and the canonical tree -- the bounds tree when it is optimal, else
 the lexicographically smallest optimal tree -- or gives up (None) after
-:data:`NODE_LIMIT` search nodes, and the caller asks the solver.
+:data:`NODE_LIMIT` search nodes (fewer on large parts, :data:`WORK_LIMIT`), and the
+caller asks the solver.
 
 **The search.**  A node is a set ``S`` of units that every tree of the branch
 contains.  A tree is a set of units that all fire (the tree encoding,
@@ -54,8 +55,10 @@ from collections.abc import Iterable, Iterator
 
 from foon2asp.methods.bounds import Bounds
 
-#: search nodes one goal may use before the caller asks the solver instead
+#: search nodes one goal may use before the caller asks the solver instead ...
 NODE_LIMIT = 20_000
+#: ... and on a large part fewer: nodes times units of the part at most this (a node's work grows with the part)
+WORK_LIMIT = 5_000_000
 
 
 class OutOfNodes(Exception):
@@ -255,12 +258,12 @@ class Search:
 def canonical_tree(bounds: Bounds, goal: int, units: Iterable[int], nodes: int = NODE_LIMIT) -> tuple[int, ...] | None:
     """The canonical optimal tree of ``goal`` (sorted unit ids) over ``units`` -- a set holding
     every optimal tree of the goal, e.g. its relevant part -- or None when ``nodes`` search
-    nodes do not settle it.  The goal must be derivable."""
+    nodes (fewer on a part of more than ``WORK_LIMIT / nodes`` units) do not settle it.  The goal must be derivable."""
     tree = bounds.tree(goal)
     if tree is None:
         raise ValueError(f"object {goal} is not derivable")
     part = Part(bounds, goal, units)
-    search = Search(part, nodes)
+    search = Search(part, min(nodes, WORK_LIMIT // max(1, len(part.units))))
     start = part.mask(bounds.landmarks(goal))
     try:
         lighter, optimum = search.run(start, bounds.weight(tree))
