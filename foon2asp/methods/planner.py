@@ -22,16 +22,21 @@ Three ways to build the runner of a registered ASP method for a batch:
 
   - the lower bound of :mod:`foon2asp.methods.bounds` meets its upper bound:
     the *bounds tree* (a valid tree built without the solver) is optimal
-    (``"shortcut": "bounds"``).
+    (``"shortcut": "bounds"``);
+  - otherwise the branch and bound of :mod:`foon2asp.methods.exact` finds the
+    optimum and the canonical tree on the goal's part
+    (``"shortcut": "branch-and-bound"``), unless it runs out of nodes
+    (:attr:`BatchRunner.search_nodes`).
 
   Shortcuts are taken only for plain optimisation (no user programs, extra
   encodings, depth bounds, human steps, alternatives or greedy heuristics);
   anything else goes to the solver.  They are exact also when the caller
   restricts the units (``options.units``, as :func:`solve_goals` does), as
   long as the goal's relevant part lies inside them.
-* pruning: a goal with choice that the bounds do not decide is solved on its
-  part without the units no optimal tree uses, the landmark units required
-  (:meth:`~foon2asp.methods.bounds.Bounds.keep`), on a small grounding.
+* pruning: a goal with choice that neither the bounds nor the branch and bound
+  decide is solved on its part without the units no optimal tree uses, the
+  landmark units required (:meth:`~foon2asp.methods.bounds.Bounds.keep`), on a
+  small grounding.
 
 *The canonical tree* (the same from every path: solve, compare, check,
 batch with any grounding, workers or shortcuts, the library): for the
@@ -61,6 +66,7 @@ from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem, walk_back
 from foon2asp.methods.bounds import Bounds
 from foon2asp.methods.bounds import supports as bounds_supports
+from foon2asp.methods.exact import NODE_LIMIT, canonical_tree
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
 
 GROUNDINGS = ("whole", "per-goal")
@@ -150,8 +156,10 @@ class BatchRunner:
         self.kind = methods.get(name).kind
         self.parts = parts if parts is not None else Parts(problem)
         self.shortcuts = shortcuts and self.kind == "asp" and plain(self.options)
-        #: how each goal was answered: "solver" | "unreachable" | "no-choice" | "bounds"
-        self.counts = {"solver": 0, "unreachable": 0, "no-choice": 0, "bounds": 0}
+        #: how each goal was answered: "solver" | "unreachable" | "no-choice" | "bounds" | "branch-and-bound"
+        self.counts = {"solver": 0, "unreachable": 0, "no-choice": 0, "bounds": 0, "branch-and-bound": 0}
+        #: nodes the branch and bound (foon2asp.methods.exact) may search per goal before the solver is asked
+        self.search_nodes = NODE_LIMIT
         self._label: str | None = None
         self._whole: Callable[[Goals], TaskTree] | None = None
         #: units the caller allows (options.units); a goal whose part lies inside them is answered exactly
@@ -251,6 +259,10 @@ class BatchRunner:
             self.counts["bounds"] += 1
             tree = bounds.tree(goal) or ()
             return self._answer(goal, label, executable_order(self.problem, list(tree)), "bounds", t0)
+        found = canonical_tree(bounds, goal, units, self.search_nodes)
+        if found is not None:
+            self.counts["branch-and-bound"] += 1
+            return self._answer(goal, label, executable_order(self.problem, list(found)), "branch-and-bound", t0)
         return self._canonical(self._solve_pruned(goal, units, objects, bounds), bounds, t0)
 
     def _answer(self, goal: int, label: str, order: list[int], shortcut: str, t0: float) -> TaskTree:
