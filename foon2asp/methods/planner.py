@@ -210,13 +210,23 @@ class BatchRunner:
         tree.stats["pruned_units"] = len(units) - len(keep)
         return tree
 
-    def _canonical(self, tree: TaskTree, bounds: Bounds, t0: float) -> TaskTree:
-        """The bounds tree in place of an optimal tree of the same cost (the canonical tree)."""
+    def _canonical(self, tree: TaskTree, bounds: Bounds, t0: float, search: bool = True) -> TaskTree:
+        """The canonical tree in place of an optimal tree from the solver: the bounds tree when
+        it is optimal, else the branch and bound's smallest optimal tree when the search
+        settles it (``search``: not tried yet for this goal), else the solver's tree (found in
+        the goal's canonical session, foon2asp.asp.canonical)."""
         best = bounds.tree(tree.goal)
         if best is None or tree.status != "optimal" or not self._effective.canonical:
             return tree
-        if tuple(sorted(tree.units)) == best or bounds.cost(best) != list(tree.extra.get("asp_cost", ())):
+        if tuple(sorted(tree.units)) == best:
             return tree
+        if bounds.cost(best) != list(tree.extra.get("asp_cost", ())):
+            units, _, _ = self.parts.relevant(tree.goal)
+            found = canonical_tree(bounds, tree.goal, units, self.search_nodes) if search else None
+            if found is None or tuple(sorted(tree.units)) == found:
+                return tree
+            best = found
+            tree.stats.pop("canonical_search", None)  # the smallest optimal tree after all
         tree.units = executable_order(self.problem, list(best))
         tree.cost = measures(self.problem, tree.goal, tree.units)
         tree.time_s = round(time.perf_counter() - t0, 6)
@@ -263,7 +273,8 @@ class BatchRunner:
         if found is not None:
             self.counts["branch-and-bound"] += 1
             return self._answer(goal, label, executable_order(self.problem, list(found)), "branch-and-bound", t0)
-        return self._canonical(self._solve_pruned(goal, units, objects, bounds), bounds, t0)
+        # the branch and bound ran out of nodes: it would again
+        return self._canonical(self._solve_pruned(goal, units, objects, bounds), bounds, t0, search=False)
 
     def _answer(self, goal: int, label: str, order: list[int], shortcut: str, t0: float) -> TaskTree:
         """An optimal tree found without the solver."""
