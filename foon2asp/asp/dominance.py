@@ -3,6 +3,7 @@
 A unit ``V`` *dominates* a unit ``U`` when
 
 * ``V < U`` (FOON id order, the order of canonical trees: foon2asp.asp.canonical),
+  or ``V`` costs strictly less than ``U`` in some ranked objective (below),
 * every required input of ``V`` that is not a kitchen item is a required input of ``U``,
 * ``V`` makes every product of ``U`` that is relevant to the goal (the products of
   ``U`` that ``V`` does not make are listed as ``dom_extra(V,U,O)``; the solver
@@ -15,8 +16,8 @@ Then in a tree that uses ``U``, ``U`` can be replaced by ``V`` (``V`` fires
 whenever ``U`` does and makes what ``U`` made for the tree): the tree stays valid
 and costs no more; if ``V`` is in the tree already, dropping ``U`` is cheaper.
 So an optimal tree using ``U`` gives an optimal tree without it that is smaller
-in the canonical order, and the canonical optimal tree never uses a dominated
-unit: forbidding them changes neither the optimum nor the canonical tree, only
+in the canonical order (``V < U``; when ``V`` is cheaper, no optimal tree uses
+``U`` at all), and the canonical optimal tree never uses a dominated unit: forbidding them changes neither the optimum nor the canonical tree, only
 removes interchangeable alternatives the proof of optimality would otherwise
 have to rule out one by one.
 
@@ -73,14 +74,14 @@ def dominance_pairs(
         seen: set[int] = set()
         for o in sorted(products[u]):
             for v in producers[o]:
-                if v >= u:
-                    break
-                if v in seen:
+                if v == u or v in seen:
                     continue
                 seen.add(v)
                 if not required[v] <= required[u]:
                     continue
                 if any(w[v] > w[u] for w in weight.values()):
+                    continue
+                if v > u and not any(w[v] < w[u] for w in weight.values()):
                     continue
                 pairs.append((v, u, tuple(sorted(products[u] - products[v]))))
     return pairs
