@@ -49,6 +49,10 @@ NEED = (
 #: the domain heuristic: try leaving candidates out first
 DOM_FALSE = ("dom-false", "#heuristic use(U) : candidate(U). [1,false]\n")
 
+#: a user program that changes nothing: it switches off what only plain optimisation may use
+#: (dominated units, foon2asp.asp.dominance), to measure without it
+NO_DOMINANCE = ("no-dominance", "% a user program: no dominated units are forbidden\n")
+
 #: setting name -> AspOptions keyword arguments ("default": what a user who sets nothing gets)
 SETTINGS: dict[str, dict] = {
     "default": {},
@@ -61,6 +65,11 @@ SETTINGS: dict[str, dict] = {
     "usc+shrink": {"opt_strategy": "usc", "clingo_args": ["--opt-usc-shrink=rgs"]},
     # the proof alone: no canonical tree afterwards (foon2asp.asp.canonical)
     "usc-nocanon": {"opt_strategy": "usc", "canonical": False},
+    "usc-nodom": {"opt_strategy": "usc", "programs": [NO_DOMINANCE]},
+    "usc-nodom-nocanon": {"opt_strategy": "usc", "canonical": False, "programs": [NO_DOMINANCE]},
+    # OLL without its redundant (symmetry) constraints on the cardinality outputs
+    "usc,succinct": {"opt_strategy": "usc,oll,succinct"},
+    "usc,succinct-nocanon": {"opt_strategy": "usc,oll,succinct", "canonical": False},
     "pf2(bb|usc)": {"threads": 2, "portfolio": "[bb]: --opt-strategy=bb\n[usc]: --opt-strategy=usc\n"},
     "pf2(bbsign|usc)": {
         "threads": 2,
@@ -69,7 +78,12 @@ SETTINGS: dict[str, dict] = {
 }
 OBJECTIVES = ("units", "success", "inputs", "depth", "depth,success")
 ALL = ";".join(OBJECTIVES)
-EVERY = "/".join(s for s in SETTINGS if s not in ("default", "usc-nocanon"))  # "default" is usc, one thread
+#: the settings of the comparison ("default" is usc, one thread; the others measure one change each)
+EVERY = "/".join(
+    s
+    for s in SETTINGS
+    if s not in ("default", "usc-nocanon", "usc-nodom", "usc-nodom-nocanon", "usc,succinct", "usc,succinct-nocanon")
+)
 
 #: the table of BENCHMARKS.md: (preset, objectives, settings, at most N goals)
 DEFAULT_PLAN = [
