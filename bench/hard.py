@@ -49,9 +49,15 @@ NEED = (
 #: the domain heuristic: try leaving candidates out first
 DOM_FALSE = ("dom-false", "#heuristic use(U) : candidate(U). [1,false]\n")
 
+#: a user program that changes nothing: it switches off what only plain optimisation may use
+#: (dominated units, foon2asp.asp.dominance), to measure without it
+NO_DOMINANCE = ("no-dominance", "% a user program: no dominated units are forbidden\n")
+
 #: setting name -> AspOptions keyword arguments ("default": what a user who sets nothing gets)
 SETTINGS: dict[str, dict] = {
     "default": {},
+    # the default, the proof alone
+    "default-nocanon": {"canonical": False},
     "bb": {"opt_strategy": "bb"},
     "bb+dom-false+need": {"opt_strategy": "bb", "clingo_args": ["--heuristic=Domain"], "programs": [NEED, DOM_FALSE]},
     "usc": {"opt_strategy": "usc"},
@@ -61,6 +67,11 @@ SETTINGS: dict[str, dict] = {
     "usc+shrink": {"opt_strategy": "usc", "clingo_args": ["--opt-usc-shrink=rgs"]},
     # the proof alone: no canonical tree afterwards (foon2asp.asp.canonical)
     "usc-nocanon": {"opt_strategy": "usc", "canonical": False},
+    "usc-nodom": {"opt_strategy": "usc", "programs": [NO_DOMINANCE]},
+    "usc-nodom-nocanon": {"opt_strategy": "usc", "canonical": False, "programs": [NO_DOMINANCE]},
+    # OLL without its redundant (symmetry) constraints on the cardinality outputs
+    "usc,succinct": {"opt_strategy": "usc,oll,succinct"},
+    "usc,succinct-nocanon": {"opt_strategy": "usc,oll,succinct", "canonical": False},
     "pf2(bb|usc)": {"threads": 2, "portfolio": "[bb]: --opt-strategy=bb\n[usc]: --opt-strategy=usc\n"},
     "pf2(bbsign|usc)": {
         "threads": 2,
@@ -69,7 +80,9 @@ SETTINGS: dict[str, dict] = {
 }
 OBJECTIVES = ("units", "success", "inputs", "depth", "depth,success")
 ALL = ";".join(OBJECTIVES)
-EVERY = "/".join(s for s in SETTINGS if s not in ("default", "usc-nocanon"))  # "default" is usc, one thread
+#: settings that measure one change each, left out of the comparison ("default" is its usc line)
+SINGLE = ("default", "default-nocanon", "usc-nocanon", "usc-nodom", "usc-nodom-nocanon", "usc,succinct")
+EVERY = "/".join(s for s in SETTINGS if s not in SINGLE and s != "usc,succinct-nocanon")
 
 #: the table of BENCHMARKS.md: (preset, objectives, settings, at most N goals)
 DEFAULT_PLAN = [
@@ -77,9 +90,9 @@ DEFAULT_PLAN = [
     ("small", ALL, EVERY, None),
     ("foon", ALL, EVERY, None),
     ("hard-4k", "units", "bb", 10),
-    ("hard-4k", ALL, "usc/usc+shrink/pf2(bbsign|usc)", 10),
-    ("hard-4k", "units;success", "usc-nocanon", 10),
-    ("hard-10k", "units;success", "usc", 10),
+    ("hard-4k", ALL, "default/usc/usc+shrink/pf2(bbsign|usc)", 10),
+    ("hard-4k", "units;success", "default-nocanon/usc-nocanon/usc-nodom-nocanon", 10),
+    ("hard-10k", "units;success", "default/usc", 10),
 ]
 
 

@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 
+from foon2asp.asp import dominance
 from foon2asp.asp.facts import SCALE, neglog_weight, success_permille
 from foon2asp.foon.problem import Problem
 
@@ -58,6 +59,8 @@ def encoding_names(options, registry: dict[str, str]) -> list[str]:
         names.append("depth")
     if options.human_steps is not None:
         names.append("human")
+    if dominance.applies(options, ranked(options)):
+        names.append("dominance")
     return names
 
 
@@ -111,6 +114,9 @@ def extra_parts(problem: Problem, options, units: Iterable[int] | None = None) -
         parts.append(("human steps", f"human_limit({int(options.human_steps)}).\n"))
         if "success" in ranked(options) and options.human_steps > 0:
             parts.append(("human order", human_order_facts(problem, units)))
+    if dominance.applies(options, ranked(options)):
+        ids = range(len(problem.units)) if units is None else units
+        parts.append(("dominated units", dominance.dominance_facts(problem, ids, ranked(options))))
     # distinct answers are distinct sets of units (used when enumerating)
     parts.append(("projection", "#project use/1.\n"))
     return parts

@@ -4,11 +4,14 @@ Every answer that comes from clingo (``solve``, ``compare``, the optimum of
 ``check``, ``missing``, ``batch``, the Python API) builds its clingo
 arguments with :func:`solver_args`; a user who sets nothing gets:
 
-* one thread: ``--opt-strategy=usc`` (core-guided optimisation, OLL).  On
-  FOONs with real choice it proves where branch and bound (clingo's own
-  default) stalls, and it is as fast on FOONs with little choice;
+* one thread: ``--opt-strategy=usc,oll,succinct`` (core-guided optimisation,
+  OLL, without the redundant symmetry constraints OLL adds over the outputs of
+  its cardinality constraints).  On FOONs with real choice it proves where
+  branch and bound (clingo's own default) stalls, and it is as fast on FOONs
+  with little choice; ``succinct`` proves the hardest goals of the hard
+  presets several times faster than plain ``usc`` (BENCHMARKS.md);
 * ``--threads N`` (N >= 2) and no ``--opt-strategy``: a portfolio of one
-  branch-and-bound solver (``--opt-heuristic=sign,model``) beside one usc
+  branch-and-bound solver (``--opt-heuristic=sign,model``) beside one such usc
   solver (:data:`PORTFOLIO`, clasp's configuration-file format; more threads
   repeat its lines).
 
@@ -22,10 +25,10 @@ import os
 import tempfile
 
 #: the optimisation strategy when the user sets none (one thread)
-DEFAULT_OPT_STRATEGY = "usc"
+DEFAULT_OPT_STRATEGY = "usc,oll,succinct"
 
 #: the portfolio for --threads >= 2 without --opt-strategy: one solver per line, ``[name]: <clasp options>``
-PORTFOLIO = "[bbsign]: --opt-strategy=bb --opt-heuristic=sign,model\n[usc]: --opt-strategy=usc\n"
+PORTFOLIO = f"[bbsign]: --opt-strategy=bb --opt-heuristic=sign,model\n[usc]: --opt-strategy={DEFAULT_OPT_STRATEGY}\n"
 
 
 def portfolio_file(text: str = PORTFOLIO) -> str:
@@ -58,7 +61,7 @@ def solver_args(opt_strategy: str | None = None, threads: int = 1, portfolio: st
 
 
 def describe(opt_strategy: str | None = None, threads: int = 1) -> str:
-    """The setting in words, e.g. ``usc`` or ``portfolio bb(sign,model)|usc x2``."""
+    """The setting in words, e.g. ``usc,oll,succinct`` or ``portfolio bb(sign,model)|usc x2``."""
     if opt_strategy:
         return opt_strategy + (f" x{threads}" if threads > 1 else "")
     if threads > 1:

@@ -1,0 +1,122 @@
+"""Dominated units (foon2asp.asp.dominance, encodings/dominance.lp): forbidding them keeps
+the optimum and the canonical tree, checked against brute force and against sessions
+that ground no dominance."""
+
+from __future__ import annotations
+
+import pytest
+
+from foon2asp.asp import dominance, objectives
+from foon2asp.asp.facts import neglog_weight
+from foon2asp.asp.options import AspOptions
+from foon2asp.asp.session import Session
+from foon2asp.foon.model import Foon
+from foon2asp.foon.problem import Problem
+from foon2asp.foon.synth import preset
+from foon2asp.tree.tasktree import measures
+from helpers import brute_force
+
+#: a user program that changes nothing but switches dominance off (a program may forbid anything)
+NOOP = ("noop", "% nothing\n")
+
+OBJECTIVES = [("units",), ("success",), ("inputs",), ("depth",), ("depth", "success"), ("success", "inputs")]
+
+
+@pytest.fixture(scope="module")
+def tiny() -> tuple[Problem, list[int]]:
+    syn = preset("tiny")
+    p = syn.problem()
+    return p, [p.foon.object_ids[g] for g in syn.goals]
+
+
+@pytest.fixture(scope="module")
+def small() -> tuple[Problem, list[int]]:
+    syn = preset("small")
+    p = syn.problem()
+    return p, [p.foon.object_ids[g] for g in syn.goals]
+
+
+def test_pairs_are_cheaper_earlier_producers_from_fewer_inputs(small):
+    p, goals = small
+    units = p.units_for(goals)
+    for ranked in (("units",), ("success", "inputs")):
+        pairs = dominance.dominance_pairs(p, units, ranked)
+        assert pairs
+        for v, u, extra in pairs:
+            cheaper = neglog_weight(p.rates[v]) < neglog_weight(p.rates[u]) or len(p.inputs[v]) < len(p.inputs[u])
+            assert v < u or ("success" in ranked and cheaper)
+            assert {i for i in p.required[v] if i not in p.kitchen} <= set(p.required[u])
+            assert set(p.products[u]) - set(p.products[v]) - p.kitchen == set(extra)
+            assert set(p.products[u]) & set(p.products[v])
+            if "success" in ranked:
+                assert neglog_weight(p.rates[v]) <= neglog_weight(p.rates[u])
+                assert len(p.inputs[v]) <= len(p.inputs[u])
+    assert any(v > u for v, u, _ in dominance.dominance_pairs(p, units, ("success",)))
+
+
+def test_only_plain_optimisation_forbids_dominated_units():
+    def used(**kw) -> bool:
+        options = AspOptions(**kw)
+        return "dominance" in objectives.encoding_names(options, {"units": "units", "success": "success"})
+
+    assert used() and used(objective=("depth", "success"), max_depth=4)
+    assert not used(programs=[NOOP])
+    assert not used(human_steps=1)
+    assert not used(models=2)
+    assert not used(all_optimal=True)
+    assert not used(heuristic="h1")
+    assert not used(encodings=["reachable"])
+
+
+def _canonical(trees: list[tuple[int, ...]]) -> tuple[int, ...]:
+    """The smallest tree in the canonical order: the tree holding the smallest unit in which two differ."""
+    universe = sorted({u for t in trees for u in t})
+    return min(trees, key=lambda t: [u not in t for u in universe])
+
+
+def test_the_canonical_optimum_agrees_with_brute_force(tiny):
+    p, _ = tiny
+    checked = 0
+    for g in sorted(p.derivable - p.kitchen):
+        part = sorted(p.relevant_units(g))
+        if not part or len(part) > 12:
+            continue
+        foon = Foon()
+        for u in part:
+            foon.add_unit(p.units[u])
+        sub = Problem(foon, p.kitchen_items, p.motion_rates, p.utensils)
+        sg = sub.foon.object_ids[p.objects[g]]
+        units = sub.units_for([sg])
+        if not dominance.dominance_pairs(sub, units):
+            continue
+        trees = brute_force(sub, sg)
+        for objective in (("units",), ("success",), ("inputs",)):
+            key = [o if o != "success" else "neglog" for o in objective] + ["units"]
+
+            def cost(t: tuple[int, ...], key=key) -> list:
+                m = measures(sub, sg, list(t))
+                return [
+                    sum(neglog_weight(sub.rates[u]) for u in t) if k == "neglog" else m[k]  # noqa: B023
+                    for k in key
+                ]
+
+            top = min(cost(t) for t in trees)
+            want = _canonical([t for t in trees if cost(t) == top])
+            got = Session(sub, AspOptions(objective=objective, units=units)).solve(sg)
+            assert got.status == "optimal"
+            assert tuple(sorted(got.units)) == want, (g, objective)
+        checked += 1
+    assert checked >= 3
+
+
+@pytest.mark.parametrize("name", ["tiny", "small"])
+def test_the_same_answers_as_without_dominance(name, tiny, small):
+    p, goals = tiny if name == "tiny" else small
+    for objective in OBJECTIVES:
+        for g in goals:
+            units = p.units_for([g])
+            with_ = Session(p, AspOptions(objective=objective, units=units)).solve(g)
+            without = Session(p, AspOptions(objective=objective, units=units, programs=[NOOP])).solve(g)
+            assert with_.status == without.status, (objective, g)
+            assert sorted(with_.units) == sorted(without.units), (objective, g)
+            assert with_.extra.get("asp_cost") == without.extra.get("asp_cost"), (objective, g)
