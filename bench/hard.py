@@ -25,6 +25,7 @@ import json
 import os
 import statistics
 import sys
+import tempfile
 import time
 from collections.abc import Iterable
 from pathlib import Path
@@ -35,6 +36,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 
+from foon2asp.asp.canonical import canonical_problem  # noqa: E402
 from foon2asp.asp.session import AspOptions, Session  # noqa: E402
 from foon2asp.foon import goals as goals_mod  # noqa: E402
 from foon2asp.foon.loaders import Dataset  # noqa: E402
@@ -100,6 +102,10 @@ def load(name: str, shared: Path) -> tuple[Problem, list[int]]:
     """The problem and goal ids of a preset or of ``foon`` (shared/foon and its goals file)."""
     if name == "foon":
         data = Dataset.load(shared / "foon")
+    elif name == "foon-111":
+        from foon111 import build  # bench/foon111.py: the 111 recipe files merged
+
+        data = build(shared, Path(tempfile.mkdtemp(prefix="foon111-")))
     else:
         data = preset(name).dataset()
     problem = Problem.from_dataset(data)
@@ -119,13 +125,15 @@ def run(
 ) -> Iterable[dict]:
     for g in goals:
         t0 = time.perf_counter()
+        # the goal's canonical session, as solve builds it when nothing is pruned
+        view, units = canonical_problem(problem, [g])
         options = AspOptions(
             objective=tuple(objective.split(",")),
             time_limit=time_limit,
-            units=problem.units_for([g]),
+            units=units,
             **SETTINGS[setting],
         )
-        session = Session(problem, options)
+        session = Session(view, options, goal=g)
         tree = session.solve(g)
         elapsed = time.perf_counter() - t0
         yield {
@@ -137,6 +145,7 @@ def run(
             "units": len(tree.units),
             "asp_cost": tree.extra.get("asp_cost"),
             "fallback": "fallback" in tree.extra,
+            "canonical_search": tree.stats.get("canonical_search"),
             "time_s": round(elapsed, 4),
             "ground_s": round(session.ground_s, 4),
             "limit": time_limit,
@@ -211,8 +220,8 @@ def main() -> None:
         plan = [(p, a.objectives or ALL, a.settings or EVERY, a.limit) for p in presets]
     plan = plan or DEFAULT_PLAN
     for p, _, settings, _ in plan:
-        if p != "foon" and p not in PRESETS:
-            ap.error(f"unknown preset {p!r} (have foon, {', '.join(PRESETS)})")
+        if p not in ("foon", "foon-111") and p not in PRESETS:
+            ap.error(f"unknown preset {p!r} (have foon, foon-111, {', '.join(PRESETS)})")
         for s in settings.split("/"):
             if s not in SETTINGS:
                 ap.error(f"unknown setting {s!r} (have {', '.join(SETTINGS)})")

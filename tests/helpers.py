@@ -59,3 +59,16 @@ def best(problem: Problem, goal: int, key) -> tuple[float, list[tuple[int, ...]]
     scored = [(key(measures(problem, goal, list(t))), t) for t in trees]
     top = min(s for s, _ in scored)
     return top, [t for s, t in scored if s == top]
+
+
+def goal_part(problem: Problem, goal: int, limit: int = 12) -> tuple[Problem, int] | None:
+    """The goal's relevant units as a FOON of their own (same kitchen, rates, utensils) and the
+    goal's id there; None when the goal has no part or more than ``limit`` units (brute force)."""
+    part = sorted(problem.relevant_units(goal)) if goal in problem.derivable else []
+    if not part or len(part) > limit:
+        return None
+    foon = Foon()
+    for u in part:
+        foon.add_unit(problem.units[u])
+    sub = Problem(foon, problem.kitchen_items, problem.motion_rates, problem.utensils)
+    return sub, sub.foon.object_ids[problem.objects[goal]]

@@ -39,7 +39,8 @@ def _budget_goal(problem, objective: str) -> int:
 
 
 @pytest.mark.parametrize("objective", ["units", "success"])
-def test_the_tree_is_the_same_from_every_path_when_the_budget_runs_out(small, objective):
+def test_the_tree_is_the_same_from_every_path_when_the_budget_runs_out(small, objective, monkeypatch):
+    monkeypatch.setattr(canonical, "CONFLICTS", 300)  # small enough that some goal of each objective runs out
     problem = small
     goal = _budget_goal(problem, objective)
     options = AspOptions(objective=(objective,))
@@ -83,32 +84,15 @@ def replace_units(options: AspOptions, units) -> AspOptions:
     return replace(options, units=tuple(units))
 
 
-def test_without_a_budget_the_search_ends_at_a_smaller_or_equal_tree(small):
+def test_a_larger_budget_ends_at_a_smaller_or_equal_tree(small, monkeypatch):
     """The budget only cuts the search short: with more conflicts the tree is never larger in
     the order of unit ids, and the cost stays the same."""
     problem = small
     goal = _budget_goal(problem, "units")
     options = AspOptions()
     bounded = canonical_session(problem, options, goal).solve(goal)
-    saved = canonical.CONFLICTS
-    try:
-        canonical.CONFLICTS = 4 * saved
-        import foon2asp.asp.session as session_mod
-
-        longer = canonical_session(problem, options, goal)
-        # canonicalise reads its default at definition time: pass the larger budget explicitly
-        original = session_mod.canonicalise
-
-        def more(control, answer, deadline=None, conflicts=None):
-            return original(control, answer, deadline, 4 * saved)
-
-        session_mod.canonicalise = more
-        try:
-            tree = longer.solve(goal)
-        finally:
-            session_mod.canonicalise = original
-    finally:
-        canonical.CONFLICTS = saved
+    monkeypatch.setattr(canonical, "CONFLICTS", 4 * canonical.CONFLICTS)
+    tree = canonical_session(problem, options, goal).solve(goal)
     assert tree.extra["asp_cost"] == bounded.extra["asp_cost"]
     n = len(problem.units)
 
@@ -121,4 +105,4 @@ def test_without_a_budget_the_search_ends_at_a_smaller_or_equal_tree(small):
 def canonical_session(problem, options: AspOptions, goal: int) -> Session:
     """A fresh session as the canonical one of ``goal`` is built (asp.canonical.canonical_problem)."""
     view, part = canonical.canonical_problem(problem, [goal])
-    return Session(view, options, units=part)
+    return Session(view, options, units=part, goal=goal)

@@ -10,11 +10,10 @@ from foon2asp.asp import dominance, objectives
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
-from foon2asp.foon.model import Foon
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.synth import preset
 from foon2asp.tree.tasktree import measures
-from helpers import brute_force
+from helpers import brute_force, goal_part
 
 #: a user program that changes nothing but switches dominance off (a program may forbid anything)
 NOOP = ("noop", "% nothing\n")
@@ -78,14 +77,10 @@ def test_the_canonical_optimum_agrees_with_brute_force(tiny):
     p, _ = tiny
     checked = 0
     for g in sorted(p.derivable - p.kitchen):
-        part = sorted(p.relevant_units(g))
-        if not part or len(part) > 12:
+        found = goal_part(p, g)
+        if found is None:
             continue
-        foon = Foon()
-        for u in part:
-            foon.add_unit(p.units[u])
-        sub = Problem(foon, p.kitchen_items, p.motion_rates, p.utensils)
-        sg = sub.foon.object_ids[p.objects[g]]
+        sub, sg = found
         units = sub.units_for([sg])
         if not dominance.dominance_pairs(sub, units):
             continue

@@ -23,12 +23,11 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
 from foon2asp.batch import run as batch_run
 from foon2asp.cli.main import main
-from foon2asp.foon.model import Foon
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.synth import PRESETS, preset, shape
 from foon2asp.tree.upper import cheapest_tree
 from foon2asp.tree.validate import validate
-from helpers import best
+from helpers import best, goal_part
 
 WEIGHT = {"units": lambda problem, u: 1, "success": lambda problem, u: neglog_weight(problem.rates[u])}
 
@@ -121,14 +120,10 @@ def test_the_reference_agrees_with_brute_force_on_small_parts(tiny):
     p = tiny.problem
     checked = 0
     for g in tiny.goal_ids("all-objects"):
-        part = sorted(p.relevant_units(g)) if g in p.derivable else []
-        if not part or len(part) > 12:
+        found = goal_part(p, g)
+        if found is None:
             continue
-        foon = Foon()
-        for u in part:
-            foon.add_unit(p.units[u])
-        sub = Problem(foon, p.kitchen_items, p.motion_rates, p.utensils)
-        sg = sub.foon.object_ids[p.objects[g]]
+        sub, sg = found
         for objective, key in (("units", lambda m: m["units"]), ("depth", lambda m: m["depth"])):
             want, _ = best(sub, sg, key)
             got = reference(sub, sg, objective) if objective != "depth" else min_depth(sub, sg)

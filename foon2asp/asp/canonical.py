@@ -81,11 +81,11 @@ def _cur(u: int) -> clingo.Symbol:
 
 
 def canonicalise(
-    control: Control, answer: Answer, deadline: float | None = None, conflicts: int | None = CONFLICTS
+    control: Control, answer: Answer, deadline: float | None = None, conflicts: int | None = None
 ) -> tuple[Answer, bool]:
     """The smallest optimal tree (``answer`` has the proven optimum cost), and whether that is proven.
 
-    At most ``conflicts`` clasp conflicts in all (None: no budget) and, with a
+    At most ``conflicts`` clasp conflicts in all (None: :data:`CONFLICTS`) and, with a
     ``deadline``, no longer than that: the smallest tree found so far otherwise.
     The externals of the goal must be on; they are left as they are.  The
     solver configuration (opt-mode, models, projection, limit) is restored afterwards.
@@ -106,6 +106,8 @@ def canonicalise(
     def record(model: clingo.Model) -> None:
         found[:] = [read_model(model, proven=True)]
 
+    if conflicts is None:
+        conflicts = CONFLICTS
     on: set[int] = set()
     try:
         while True:
@@ -117,13 +119,11 @@ def canonicalise(
             on = tree
             found.clear()
             remaining = None if deadline is None else max(0.0, deadline - time.perf_counter())
-            if conflicts is not None:
-                if conflicts <= 0:
-                    break
-                conf.solve_limit = str(conflicts)
+            if conflicts <= 0:
+                break
+            conf.solve_limit = str(conflicts)
             result = control.solve(record, remaining)
-            if conflicts is not None:
-                conflicts -= control.stats().get("conflicts", conflicts)
+            conflicts -= control.stats().get("conflicts", conflicts)
             if found and found[0].units != best.units:
                 best = found[0]
                 continue

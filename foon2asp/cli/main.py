@@ -414,7 +414,7 @@ def solver_options(func):
             "--opt-strategy",
             callback=_opt_strategy,
             help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll;"
-            " default usc, or with --threads 2+ a portfolio of one bb and one usc solver.",
+            " default usc,oll,succinct, or with --threads 2+ a portfolio of one bb and one usc solver.",
         ),
         click.option(
             "--threads",
@@ -441,7 +441,7 @@ def strategy_options(func):
     return click.option(
         "--opt-strategy",
         callback=_opt_strategy,
-        help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll; default usc.",
+        help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll; default usc,oll,succinct.",
     )(func)
 
 
@@ -909,7 +909,7 @@ def _method_list(values: tuple[str, ...], default: list[str] | None = None) -> l
     "--opt-strategy",
     callback=_opt_strategy,
     help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll;"
-    " default usc (see foon2asp.asp.settings).",
+    " default usc,oll,succinct (see foon2asp.asp.settings).",
 )
 @click.option(
     "--threads",

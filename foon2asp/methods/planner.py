@@ -200,11 +200,13 @@ class BatchRunner:
     def _solve_pruned(self, goal: int, units: list[int], objects: set[int], bounds: Bounds) -> TaskTree:
         """Solve on the goal's part without the units no optimal tree uses, landmark units required."""
         keep = bounds.keep(goal, units)
-        if self.grounding == "whole" and 2 * len(keep) > len(self.parts.viable):
+        landmarks = bounds.landmarks(goal)
+        canonical = keep == units and not landmarks  # nothing pruned: this is the goal's canonical session
+        if not canonical and self.grounding == "whole" and 2 * len(keep) > len(self.parts.viable):
             return self._solve(goal)  # the pruned part is most of the FOON: the whole grounding is cheaper
         self.counts["solver"] += 1
         view = _view(self.problem, objects)
-        session = Session(view, replace(self._effective, units=tuple(keep)), require=bounds.landmarks(goal))
+        session = Session(view, replace(self._effective, units=tuple(keep)), require=landmarks, goal=goal)
         best = bounds.tree(goal) or ()
         tree = session.solve(goal, known=(best, bounds.cost(best)))
         tree.stats["pruned_units"] = len(units) - len(keep)

@@ -24,6 +24,7 @@ def encoding(name: str) -> str:
 #: the shipped encodings each encoding needs loaded with it (tree.lp defines use/1, reach/1, ...)
 DEPENDS: dict[str, tuple[str, ...]] = {
     "reachable": ("tree",),
+    "dominance": ("tree",),
     "units": ("tree",),
     "success": ("tree",),
     "inputs": ("tree",),
