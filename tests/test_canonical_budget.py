@@ -38,9 +38,9 @@ def _budget_goal(problem, objective: str) -> int:
     raise AssertionError("no goal of the small preset exhausts the canonical budget")
 
 
-@pytest.mark.parametrize("objective", ["units", "success"])
+@pytest.mark.parametrize("objective", ["units"])
 def test_the_tree_is_the_same_from_every_path_when_the_budget_runs_out(small, objective, monkeypatch):
-    monkeypatch.setattr(canonical, "CONFLICTS", 300)  # small enough that some goal of each objective runs out
+    monkeypatch.setattr(canonical, "CONFLICTS", 40)  # small enough that some goal of each objective runs out
     problem = small
     goal = _budget_goal(problem, objective)
     options = AspOptions(objective=(objective,))
