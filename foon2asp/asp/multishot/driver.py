@@ -55,6 +55,8 @@ class Driver:
         self.depth_mode = depth_mod.depth_mode(self.options, self.ranked)
         self.solves = 0
         self.last_stats: dict = {}
+        #: "budget" when a search for the smallest optimal tree of the current goal did not end
+        self.canonical_search: str | None = None
         self._state: dict = {}
 
     # -- one solve ---------------------------------------------------------
@@ -106,14 +108,21 @@ class Driver:
                 found = [Answer(a.units, a.cost, True, a.human) for a in found]
                 if self.options.canonical:
                     # several optimal trees: the one that depends only on the input
-                    found[0], _ = canonicalise(control, found[0], deadline)
+                    found[0], complete = canonicalise(control, found[0], deadline)
+                    self._searched(complete)
             elif found and mode == "optN" and finished and found[0].proven and self.options.canonical:
                 # the first tree is the canonical one; the others follow in id order
-                first, _ = canonicalise(control, found[0], deadline)
+                first, complete = canonicalise(control, found[0], deadline)
+                self._searched(complete)
                 found = [first] + [a for a in found if a.units != first.units][: max(0, count - 1)]
         finally:
             control.assign(dict.fromkeys(switched, False))
         return Shot(found, result.unsatisfiable is True, finished)
+
+    def _searched(self, complete: bool) -> None:
+        """Note a search for the smallest optimal tree that its budget (or time) ended."""
+        if not complete:
+            self.canonical_search = "budget"
 
     # -- one cost level ----------------------------------------------------
 
@@ -167,6 +176,7 @@ class Driver:
         deadline = None if not time_limit else t0 + time_limit
         self.solves = 0
         self.last_stats = {}
+        self.canonical_search = None
         meal = meal_of(goal)
         goal = meal if len(meal) > 1 else meal[0]
         if any(g not in self.session.goal_atoms for g in meal):
@@ -252,6 +262,8 @@ class Driver:
             refuted = self._state.get("refuted", [])
             extra["depth_refuted"] = {how: sum(1 for _, h in refuted if h == how) for how in ("grounder", "solver")}
         stats = dict(self.last_stats, solves=self.solves)
+        if self.canonical_search:
+            stats["canonical_search"] = self.canonical_search
         return TaskTree(
             method=method,
             status=status,
