@@ -85,15 +85,10 @@ class Parts:
 
     def __init__(self, problem: Problem):
         self.problem = problem
-        _, unit_level = problem.derivation_levels()
         #: units that fire in the kitchen's least fixpoint
-        self.viable: frozenset[int] = frozenset(unit_level)
+        self.viable: frozenset[int] = problem.viable_units
         #: object -> its viable producers
-        self.producers: dict[int, list[int]] = {}
-        for obj, units in problem.producers.items():
-            keep = [u for u in units if u in self.viable]
-            if keep:
-                self.producers[obj] = keep
+        self.producers: dict[int, list[int]] = problem.viable_producers
         self._bounds: dict[tuple[str, ...], Bounds] = {}
 
     def bounds(self, ranked_objectives: tuple[str, ...]) -> Bounds:
