@@ -36,8 +36,10 @@ from foon2asp.foon.demo import demo_dir
 from foon2asp.foon.loaders import FILE_NAMES, Dataset
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem
+from foon2asp.foon.treefiles import TreeFile, TreeUnit
 from foon2asp.methods.planner import solve_goals
 from foon2asp.report import draw
+from foon2asp.tree.results import BatchReport, MealRow, MissingResult, QueryResult, Report, Row
 from foon2asp.tree.serialize import tree_foon, tree_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
 
@@ -178,7 +180,7 @@ class CheckReport:
     """What ``check`` says about one tree: valid or not, the first problem, the optimum."""
 
     kb: KnowledgeBase
-    raw: check_mod.Report
+    raw: Report
 
     @property
     def valid(self) -> bool:
@@ -227,7 +229,7 @@ class Comparison:
     """One row per goal: the tree of every method, each judged by the validator."""
 
     kb: KnowledgeBase
-    raw: list[compare_mod.Row]
+    raw: list[Row]
 
     @property
     def rows(self) -> list[tuple[FoonObject, dict[str, Tree]]]:
@@ -246,7 +248,7 @@ class Missing:
     """The fewest objects to add to the kitchen so a goal can be made, and the tree then."""
 
     kb: KnowledgeBase
-    raw: queries.MissingResult
+    raw: MissingResult
 
     @property
     def status(self) -> str:
@@ -442,8 +444,8 @@ class KnowledgeBase:
         if isinstance(tree, Tree):
             if goal is not None and not isinstance(goal, str | int | FoonObject):
                 raise InputError("check a Tree against one goal (its own by default)")
-            units = [check_mod.TreeUnit(self.problem.units[u], i, None) for i, u in enumerate(tree.unit_ids, 1)]
-            tf = check_mod.TreeFile("<tree>", units, tree.goal, tree.method)
+            units = [TreeUnit(self.problem.units[u], i, None) for i, u in enumerate(tree.unit_ids, 1)]
+            tf = TreeFile("<tree>", units, tree.goal, tree.method)
             raw = check_mod.check_tree(self.problem, tf, tree.goal_id if goal is None else self.object_id(goal))
             raw.goal_source = "the tree's goal" if goal is None else "given"
             if optimum:
@@ -508,7 +510,7 @@ class KnowledgeBase:
         constraints: Constraints | None = None,
         opt_strategy: str | None = None,
         threads: int | None = None,
-    ) -> compare_mod.MealRow:
+    ) -> MealRow:
         """The meal's optimal tree (all ``goals`` at once) beside each goal's own optimum."""
         options = self.options(objective, time_limit, constraints, opt_strategy=opt_strategy, threads=threads)
         return compare_mod.compare_meal(self.problem, self.goal_ids(goals), method, options)
@@ -553,7 +555,7 @@ class KnowledgeBase:
         time_limit: float | None = None,
         name: str = "<program>",
         goal_nodes: GoalLike | Sequence[GoalLike] | None = None,
-    ) -> queries.QueryResult:
+    ) -> QueryResult:
         """Run an ASP ``program`` (text) with the facts; shown atoms come back with ids decoded.
 
         ``goal_nodes`` (default: the goals file's entries) become ``goal_node/2`` facts;
@@ -587,7 +589,7 @@ class KnowledgeBase:
         progress: bool | None = False,
         fsync: bool = True,
         scheduler: str | None = None,
-    ) -> batch_run.BatchReport:
+    ) -> BatchReport:
         """Many goals x methods into a resumable JSON-lines file (``output``; None keeps results in memory).
 
         ``grounding``: ``"whole"``, ``"per-goal"`` or ``"auto"`` (chosen from the FOON and the goals by

@@ -11,11 +11,12 @@ from click.testing import CliRunner
 
 from conftest import DEMO
 from foon2asp import methods
-from foon2asp.analysis.check import check_units, diagnose, read_trees
 from foon2asp.cli.main import main
 from foon2asp.errors import InputError
 from foon2asp.foon.goals import resolve_label
 from foon2asp.foon.parser import format_units, unit_lines
+from foon2asp.foon.treefiles import read_trees
+from foon2asp.tree.diagnose import check_units, diagnose
 from foon2asp.tree.validate import validate
 from helpers import build, goal_id, obj
 

@@ -28,13 +28,13 @@ pytest.importorskip("hypothesis")
 from hypothesis import HealthCheck, assume, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
-from foon2asp.analysis.check import read_trees  # noqa: E402
 from foon2asp.asp.facts import facts  # noqa: E402
 from foon2asp.cli.main import main  # noqa: E402
 from foon2asp.cli.params import SCHEDULER, SECONDS, int32  # noqa: E402
 from foon2asp.errors import BAD_CHAR, InputError  # noqa: E402
 from foon2asp.foon.loaders import read_goals, read_kitchen, read_motion, read_utensils  # noqa: E402
 from foon2asp.foon.parser import read_foon  # noqa: E402
+from foon2asp.foon.treefiles import read_trees  # noqa: E402
 
 EXAMPLES = int(os.environ.get("FUZZ_EXAMPLES", "25"))
 FUZZ = settings(

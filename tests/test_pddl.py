@@ -13,7 +13,6 @@ import pytest
 from click.testing import CliRunner
 
 from foon2asp.analysis import check as check_mod
-from foon2asp.analysis.plans import action_name, looks_like_plan, parse_plan, unit_of_action
 from foon2asp.asp.constraints import ConstraintSpec
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.options import AspOptions
@@ -21,6 +20,7 @@ from foon2asp.asp.session import Session
 from foon2asp.cli import main
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
+from foon2asp.foon.plans import action_name, looks_like_plan, parse_plan, unit_of_action
 from foon2asp.report import pddl
 
 

@@ -11,23 +11,16 @@ list of ``solve``-shaped JSON results, each with ``"valid"``.
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
-from foon2asp.analysis.check import check_units
 from foon2asp.asp.options import AspOptions
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.planner import BatchRunner
+from foon2asp.tree.diagnose import check_units
+from foon2asp.tree.results import MealRow, Row
 from foon2asp.tree.tasktree import TaskTree
 
 DEFAULT_METHODS = ("ids", "gbfs-h1", "gbfs-h2", "asp")
-
-
-@dataclass
-class Row:
-    """One goal: the tree of each method (``extra["valid"]`` set on each)."""
-
-    goal: int
-    trees: dict[str, TaskTree]
 
 
 def judge(problem: Problem, tree: TaskTree) -> TaskTree:
@@ -72,32 +65,6 @@ def compare_iter(
         for name, tree in trees.items():
             tree.method = name
         yield Row(g, trees)
-
-
-# ---------------------------------------------------------------- rendering
-
-
-@dataclass
-class MealRow:
-    """A meal's tree beside the single optima of its goals (``compare --together``)."""
-
-    goals: tuple[int, ...]
-    meal: TaskTree
-    singles: list[TaskTree]
-
-    def total(self) -> dict:
-        """The single optima added up (units, inputs; success multiplied); {} if one has no tree."""
-        if not all(t.has_tree for t in self.singles):
-            return {}
-        success = 1.0
-        for t in self.singles:
-            success *= t.cost.get("success", 1.0)
-        return {
-            "units": sum(t.cost["units"] for t in self.singles),
-            "success": float(f"{success:.6g}"),
-            "inputs": sum(t.cost["inputs"] for t in self.singles),
-            "depth": max(t.cost["depth"] or 0 for t in self.singles),
-        }
 
 
 def compare_meal(problem: Problem, goals: list[int], method: str = "asp", options: AspOptions | None = None) -> MealRow:

@@ -6,7 +6,8 @@
   made, then the fewest units (``encodings/missing.lp``), proven minimal; when
   no set helps, :func:`blocking_cycle` names a cycle that blocks the goal;
 * :func:`query` -- a user's program run with the facts, its shown atoms
-  decoded (object and unit ids become readable objects and units).
+  returned (:mod:`foon2asp.report.queries` prints them with object and unit
+  ids decoded).
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from foon2asp.asp.options import OBJECTIVES
 from foon2asp.asp.settings import solver_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
+from foon2asp.tree.results import MissingResult, QueryResult
 from foon2asp.tree.tasktree import Goals, executable_order, meal_of, measures
 
 # --------------------------------------------------------------------------- running
@@ -120,36 +122,6 @@ def with_kitchen(problem: Problem, extra: Iterable[int]) -> Problem:
     """The same problem with the objects ``extra`` (ids) added to the kitchen."""
     items = list(problem.kitchen_items) + [problem.objects[o] for o in extra]
     return Problem(problem.foon, items, problem.motion_rates, problem.utensils, problem.utensil_rule)
-
-
-@dataclass
-class MissingResult:
-    """What to add to the kitchen so ``goal`` can be made, and the tree it allows."""
-
-    goal: int
-    #: ``optimal`` (proven minimal), ``feasible`` (time ran out), ``unreachable``, ``unknown``
-    status: str
-    #: object ids to add, in id order
-    missing: list[int] = field(default_factory=list)
-    #: the tree (unit ids in executable order, with the added objects in the kitchen)
-    units: list[int] = field(default_factory=list)
-    cost: dict = field(default_factory=dict)
-    time_s: float = 0.0
-    #: why nothing helps, in words (only when unreachable)
-    reason: str | None = None
-    #: a cycle that blocks the goal: (object, unit) pairs, each unit makes its
-    #: object and needs the next object (the last needs the first)
-    cycle: list[tuple[int, int]] = field(default_factory=list)
-    #: objects leading from the goal to the cycle, as (object, unit) pairs
-    path: list[tuple[int, int]] = field(default_factory=list)
-    #: every object that may be added (relevant to the goal)
-    buyable: list[int] = field(default_factory=list)
-    #: every goal of a meal (``missing --together``; empty for one goal)
-    goals: tuple[int, ...] = ()
-
-    @property
-    def has_tree(self) -> bool:
-        return self.status in ("optimal", "feasible")
 
 
 #: the tree objectives ``missing`` can use after the fewest added objects
@@ -281,50 +253,6 @@ def blocking_cycle(problem: Problem, goal: int, reach: set[int]) -> tuple[list[t
 
 # --------------------------------------------------------------------------- query
 
-#: argument kinds of the vocabulary predicates: o = object id, u = unit id, - = other
-VOCABULARY: dict[tuple[str, int], str] = {
-    ("object", 1): "o",
-    ("label", 2): "o-",
-    ("state", 2): "o-",
-    ("ingredient", 2): "o-",
-    ("container", 2): "o-",
-    ("unit", 1): "u",
-    ("motion", 2): "u-",
-    ("input", 2): "uo",
-    ("required", 2): "uo",
-    ("output", 2): "uo",
-    ("product", 2): "uo",
-    ("success", 2): "u-",
-    ("neglog", 2): "u-",
-    ("kitchen", 1): "o",
-    ("goal_node", 2): "-o",
-    ("goal", 1): "o",
-    ("reach", 1): "o",
-    ("viable", 1): "u",
-    ("relevant", 1): "o",
-    ("candidate", 1): "u",
-    ("use", 1): "u",
-    ("fire", 1): "u",
-    ("had", 1): "o",
-    ("asked", 1): "o",
-    ("reachable", 1): "o",
-    ("unreachable", 1): "o",
-    ("needs", 2): "uo",
-    ("buyable", 1): "o",
-    ("add", 1): "o",
-}
-
-
-@dataclass
-class QueryResult:
-    status: str
-    answers: list[Answer]
-    time_s: float
-    #: clingo's info messages about the user's program (atoms no rule or fact defines)
-    warnings: list[str] = field(default_factory=list)
-    #: the encodings loaded, with the ones those asked for depend on
-    encodings: list[str] = field(default_factory=list)
-
 
 def shows(name: str, text: str) -> bool:
     """Does the program ``text`` have a ``#show`` statement of its own?"""
@@ -388,36 +316,3 @@ def query(
     warnings = [m.replace("<block>", name) for m in prog.control.messages if "does not occur in any rule head" in m]
     outcome = prog.solve(time_limit, max(models, 0))
     return QueryResult(outcome.status, outcome.answers, outcome.time_s, warnings, names)
-
-
-def _term(problem: Problem, sym: clingo.Symbol, kind: str = "-"):
-    """A symbol as plain data; object/unit ids (by kind, or as object(N)/unit(N)) decoded."""
-    if sym.type == clingo.SymbolType.Number:
-        n = sym.number
-        if kind == "o" and 0 <= n < len(problem.objects):
-            return {"object": n, **problem.objects[n].to_json()}
-        if kind == "u" and 0 <= n < len(problem.units):
-            return {"unit": n, **problem.units[n].to_json()}
-        return n
-    if sym.type == clingo.SymbolType.String:
-        return sym.string
-    if sym.type == clingo.SymbolType.Function and len(sym.arguments) == 1 and sym.name in ("object", "unit"):
-        arg = sym.arguments[0]
-        if arg.type == clingo.SymbolType.Number:
-            return _term(problem, arg, sym.name[0])
-    return str(sym)
-
-
-def decode(problem: Problem, sym: clingo.Symbol) -> dict:
-    """``{"atom", "predicate", "arguments"}`` with ids decoded (see :data:`VOCABULARY`)."""
-    if sym.type != clingo.SymbolType.Function:
-        return {"atom": str(sym), "predicate": None, "arguments": [_term(problem, sym)]}
-    kinds = VOCABULARY.get((sym.name, len(sym.arguments)), "-" * len(sym.arguments))
-    return {
-        "atom": str(sym),
-        "predicate": sym.name,
-        "arguments": [_term(problem, a, k) for a, k in zip(sym.arguments, kinds)],
-    }
-
-
-# --------------------------------------------------------------------------- output

@@ -70,6 +70,7 @@ from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.safejson import loads as safe_loads
 from foon2asp.methods.planner import GROUNDINGS, BatchRunner, Parts
+from foon2asp.tree.results import BatchReport
 from foon2asp.tree.serialize import tree_json
 
 #: --grounding: "auto" picks whole or per-goal with :func:`choose_grounding`
@@ -346,21 +347,6 @@ class ResultFile:
 
 
 # --- running ---
-
-
-@dataclass
-class BatchReport:
-    """What a batch did: counts, times and all records of the requested pairs."""
-
-    done: int
-    skipped: int
-    elapsed_s: float
-    records: list[dict]
-    workers: int
-    output: str | None
-    #: the grounding used, and why when --grounding auto chose it
-    grounding: str = ""
-    grounding_reason: str = ""
 
 
 def pending_tasks(

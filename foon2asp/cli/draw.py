@@ -6,6 +6,7 @@ from pathlib import Path
 
 import click
 
+from foon2asp.analysis.check import read_and_check
 from foon2asp.cli.main import guarded, load, main
 from foon2asp.report import draw as draw_mod
 
@@ -34,6 +35,6 @@ def draw(tree, data_dir, goal, output, fmt):
     if data_dir is not None:
         kb = load(data_dir, (), None, None, None, "starter", False)
         data, problem = kb.data, kb.problem
-    graph, count = draw_mod.file_graph(tree, data, problem, goal)
-    Path(output).write_bytes(draw_mod.render(graph, fmt))
-    click.echo(f"drew {count} tree(s) from {tree} -> {output}", err=True)
+    trees, reports = read_and_check(tree, data, problem, goal)
+    Path(output).write_bytes(draw_mod.render(draw_mod.file_graph(trees, reports, problem), fmt))
+    click.echo(f"drew {len(trees)} tree(s) from {tree} -> {output}", err=True)

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import json
 
-from foon2asp.analysis.check import Report, cycle_lines
 from foon2asp.foon.problem import Problem
+from foon2asp.foon.treefiles import TreeFile
 from foon2asp.report.registry import register
+from foon2asp.tree.diagnose import Finding, describe_unit
+from foon2asp.tree.results import Report
 from foon2asp.tree.serialize import number
 
 
@@ -16,6 +18,18 @@ def _cost_text(cost: dict) -> str:
         f"{cost.get('units')} units, success {number(cost.get('success'))}, "
         f"depth {depth if depth is not None else '- (goal not made)'}"
     )
+
+
+def cycle_lines(
+    problem: Problem, finding: Finding, tree: TreeFile | None = None, ids: list[int | None] | None = None
+) -> list[str]:
+    """The cycle of ``finding`` as indented lines, one object or unit per line."""
+    lines = []
+    for o, u in finding.cycle:
+        lines.append(f"    {problem.objects[o]}")
+        lines.append(f"      is made in this tree by {describe_unit(problem, u, tree, ids)}, which needs")
+    lines.append(f"    {problem.objects[finding.cycle[0][0]]}   (back to the start)")
+    return lines
 
 
 def report_text(problem: Problem, report: Report) -> str:

@@ -6,10 +6,10 @@ import csv
 import io
 import json
 
-from foon2asp.analysis.compare import MealRow, Row
 from foon2asp.foon.problem import Problem
 from foon2asp.report import registry
 from foon2asp.report.registry import register
+from foon2asp.tree.results import MealRow, Row
 from foon2asp.tree.serialize import json_list, number, tree_json
 from foon2asp.tree.tasktree import TaskTree
 

@@ -24,11 +24,13 @@ from pathlib import Path
 
 import graphviz
 
-from foon2asp.analysis.check import Finding, TreeFile, check_tree, check_units, read_trees, resolve_goal
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem
-from foon2asp.tree.tasktree import TaskTree, meal_of
+from foon2asp.foon.treefiles import TreeFile
+from foon2asp.tree.diagnose import Finding, check_units
+from foon2asp.tree.results import Report
+from foon2asp.tree.tasktree import TaskTree
 
 #: drawing formats and what ``dot`` calls them
 FORMATS = ("dot", "svg", "png", "pdf")
@@ -217,40 +219,38 @@ def _top_product(units: list[Unit]) -> FoonObject | None:
     return tops[0] if len(tops) == 1 else None
 
 
-def tree_file_marks(tree: TreeFile, data=None, problem: Problem | None = None, goal: str | None = None) -> Marks:
-    """Marks of a tree read from a file; with ``problem`` it is checked: goal, kitchen items, cycle."""
+def tree_file_marks(tree: TreeFile, problem: Problem | None = None, report: Report | None = None) -> Marks:
+    """Marks of a tree read from a file; with ``problem`` and its ``report`` (the tree checked):
+    goal, kitchen items, verdict and cycle."""
     units = [tu.unit for tu in tree.units]
-    if problem is None:
+    if problem is None or report is None:
         top = tree.goal or _top_product(units)
         return Marks(title=f"{top if top else tree.path} -- {len(units)} units", goal=top)
-    goals, _ = resolve_goal(data, problem, tree, goal)
-    goal_id = meal_of(goals)[0]
-    rep = check_tree(problem, tree, goals)
-    position = {u: k for k, u in enumerate(rep.ids) if u is not None}
+    goal = problem.objects[report.meal[0]]
+    position = {u: k for k, u in enumerate(report.ids) if u is not None}
     kitchen = frozenset(o for u in units for o in u.inputs if problem.foon.object_ids.get(o) in problem.kitchen)
-    verdict = "valid" if rep.valid else "INVALID"
+    verdict = "valid" if report.valid else "INVALID"
     return Marks(
-        title=f"{problem.objects[goal_id]} -- {len(units)} units, {verdict}",
-        goal=problem.objects[goal_id],
+        title=f"{goal} -- {len(units)} units, {verdict}",
+        goal=goal,
         kitchen=kitchen,
-        note=rep.finding.message if rep.finding is not None else "",
-        **cycle_marks(problem, rep.finding, position),
+        note=report.finding.message if report.finding is not None else "",
+        **cycle_marks(problem, report.finding, position),
     )
 
 
 def file_graph(
-    path: str | Path, data=None, problem: Problem | None = None, goal: str | None = None
-) -> tuple[graphviz.Digraph, int]:
-    """The drawing of every tree in a tree file (one cluster per tree when there are several)."""
-    trees = read_trees(path)
+    trees: list[TreeFile], reports: list[Report] | None = None, problem: Problem | None = None
+) -> graphviz.Digraph:
+    """The drawing of the trees of a tree file (one cluster per tree when there are several),
+    each checked when its ``reports`` (:func:`foon2asp.analysis.check.read_and_check`) are given."""
+    marks = [tree_file_marks(t, problem, reports[k] if reports else None) for k, t in enumerate(trees)]
     if len(trees) == 1:
-        t = trees[0]
-        return build_graph([tu.unit for tu in t.units], tree_file_marks(t, data, problem, goal)), 1
+        return build_graph([tu.unit for tu in trees[0].units], marks[0])
     g = graphviz.Digraph("task_trees")
     for k, t in enumerate(trees, 1):
-        units = [tu.unit for tu in t.units]
-        g.subgraph(build_graph(units, tree_file_marks(t, data, problem, goal), f"cluster_{k}", f"t{k}_"))
-    return g, len(trees)
+        g.subgraph(build_graph([tu.unit for tu in t.units], marks[k - 1], f"cluster_{k}", f"t{k}_"))
+    return g
 
 
 # ---------------------------------------------------------------- rendering

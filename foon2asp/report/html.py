@@ -13,14 +13,13 @@ from __future__ import annotations
 import html
 import json
 
-from foon2asp.analysis.compare import Row
-from foon2asp.batch.run import BatchReport
 from foon2asp.foon.foonjson import parse_json
 from foon2asp.foon.problem import Problem
 from foon2asp.report import draw
 from foon2asp.report.compare import summary, units_cell
 from foon2asp.report.registry import register
 from foon2asp.report.summary import _COLUMNS, _cell
+from foon2asp.tree.results import BatchReport, Row
 
 _STYLE = """
 body { font-family: Helvetica, Arial, sans-serif; margin: 1.5em; color: #222; }

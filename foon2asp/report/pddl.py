@@ -7,7 +7,7 @@ classical planner solves exactly the problem foon2asp solves:
 * one predicate ``(have ?o)``; every FOON object of the part is a constant
   ``o<id>`` (a comment table in both files says which object each is);
 * one action per functional unit, named ``u<id>-<motion>``
-  (:func:`foon2asp.analysis.plans.action_name`, so a plan maps back to the
+  (:func:`foon2asp.foon.plans.action_name`, so a plan maps back to the
   units): preconditions are the unit's *required* inputs (the utensil rule
   applied), effects its *products*; nothing is ever deleted;
 * ``:init`` holds the kitchen items of the part, ``:goal`` every goal.
@@ -29,10 +29,10 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
-from foon2asp.analysis.plans import action_name
 from foon2asp.asp.constraints import ConstraintSpec, motion_name, normalise
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.errors import InputError
+from foon2asp.foon.plans import action_name
 from foon2asp.foon.problem import Problem, walk_back
 
 #: objectives that PDDL can state (action costs per unit; "units" is plan length)

@@ -6,11 +6,74 @@ import json
 
 import clingo
 
-from foon2asp.analysis.queries import MissingResult, QueryResult, decode
 from foon2asp.foon.problem import Problem
 from foon2asp.report.registry import register
+from foon2asp.tree.results import MissingResult, QueryResult
 from foon2asp.tree.serialize import tree_text
 from foon2asp.tree.tasktree import TaskTree
+
+#: argument kinds of the vocabulary predicates: o = object id, u = unit id, - = other
+VOCABULARY: dict[tuple[str, int], str] = {
+    ("object", 1): "o",
+    ("label", 2): "o-",
+    ("state", 2): "o-",
+    ("ingredient", 2): "o-",
+    ("container", 2): "o-",
+    ("unit", 1): "u",
+    ("motion", 2): "u-",
+    ("input", 2): "uo",
+    ("required", 2): "uo",
+    ("output", 2): "uo",
+    ("product", 2): "uo",
+    ("success", 2): "u-",
+    ("neglog", 2): "u-",
+    ("kitchen", 1): "o",
+    ("goal_node", 2): "-o",
+    ("goal", 1): "o",
+    ("reach", 1): "o",
+    ("viable", 1): "u",
+    ("relevant", 1): "o",
+    ("candidate", 1): "u",
+    ("use", 1): "u",
+    ("fire", 1): "u",
+    ("had", 1): "o",
+    ("asked", 1): "o",
+    ("reachable", 1): "o",
+    ("unreachable", 1): "o",
+    ("needs", 2): "uo",
+    ("buyable", 1): "o",
+    ("add", 1): "o",
+}
+
+
+def _term(problem: Problem, sym: clingo.Symbol, kind: str = "-"):
+    """A symbol as plain data; object/unit ids (by kind, or as object(N)/unit(N)) decoded."""
+    if sym.type == clingo.SymbolType.Number:
+        n = sym.number
+        if kind == "o" and 0 <= n < len(problem.objects):
+            return {"object": n, **problem.objects[n].to_json()}
+        if kind == "u" and 0 <= n < len(problem.units):
+            return {"unit": n, **problem.units[n].to_json()}
+        return n
+    if sym.type == clingo.SymbolType.String:
+        return sym.string
+    if sym.type == clingo.SymbolType.Function and len(sym.arguments) == 1 and sym.name in ("object", "unit"):
+        arg = sym.arguments[0]
+        if arg.type == clingo.SymbolType.Number:
+            return _term(problem, arg, sym.name[0])
+    return str(sym)
+
+
+def decode(problem: Problem, sym: clingo.Symbol) -> dict:
+    """``{"atom", "predicate", "arguments"}`` with ids decoded (see :data:`VOCABULARY`)."""
+    if sym.type != clingo.SymbolType.Function:
+        return {"atom": str(sym), "predicate": None, "arguments": [_term(problem, sym)]}
+    kinds = VOCABULARY.get((sym.name, len(sym.arguments)), "-" * len(sym.arguments))
+    return {
+        "atom": str(sym),
+        "predicate": sym.name,
+        "arguments": [_term(problem, a, k) for a, k in zip(sym.arguments, kinds)],
+    }
 
 
 def _text(problem: Problem, value) -> str:

@@ -5,8 +5,8 @@ from __future__ import annotations
 import csv
 import io
 
-from foon2asp.batch.run import BatchReport
 from foon2asp.report.registry import register
+from foon2asp.tree.results import BatchReport
 
 _COLUMNS = [
     "method",

@@ -5,7 +5,7 @@
 (:func:`unit_of_action`).  A plan file as Fast Downward writes it has one
 ``(action-name args...)`` per line and ``;`` comment lines (``; cost = 42
 (unit cost)``).  :func:`plan_units` gives the FOON units it names, which
-:mod:`foon2asp.analysis.check` reads as a tree, so ``check`` judges a plan
+:mod:`foon2asp.foon.treefiles` reads as a tree, so ``check`` judges a plan
 exactly as a tree: validity, the first problem, the size beside the proven
 optimum.
 """

@@ -1,0 +1,174 @@
+"""Task trees read from files, in every form foon2asp and the earlier programs write.
+
+A tree file holds FOON text (units closed by ``//``, in the official dialect
+with ids or the ID-less one, as ``solve --format foon|foon-plain`` and the
+earlier search programs write; a leading ``//`` and ``#`` comment lines are
+fine; one tree per ``# task tree for GOAL (...)`` header line), FOON JSON
+(foon_api's ``{"functional_units": [...]}``, ``solve --format foon-json``; one
+tree or a list), foon2asp JSON (the list ``solve --format json`` prints, or one
+such result) or -- given the :class:`~foon2asp.foon.problem.Problem` whose unit
+ids the action names carry -- a plan (:mod:`foon2asp.foon.plans`).
+:func:`read_trees` tells them apart and gives each tree's units as written,
+with the file, line and step of each, and the goal and method when the file
+names them.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from foon2asp.errors import InputError
+from foon2asp.foon import foonjson, plans
+from foon2asp.foon.goals import parse_object_text
+from foon2asp.foon.loaders import object_from_json
+from foon2asp.foon.model import FoonObject, Unit
+from foon2asp.foon.parser import parse_lines
+from foon2asp.foon.problem import Problem
+from foon2asp.foon.safejson import loads as safe_loads
+from foon2asp.foon.safetext import lines_of, read_text
+
+
+@dataclass
+class TreeUnit:
+    """One unit as read from the tree file."""
+
+    unit: Unit
+    step: int  # 1-based position in the file
+    line: int | None  # line in the file (None when not known)
+
+
+@dataclass
+class TreeFile:
+    """One tree read from a file: its units and, when the file says, its goal."""
+
+    path: str
+    units: list[TreeUnit]
+    goal: FoonObject | None = None
+    method: str | None = None
+    line: int | None = None  # where this tree starts (JSON lists hold several)
+
+    def where(self, tu: TreeUnit) -> str:
+        return f"{self.path}:{tu.line}" if tu.line else f"{self.path} step {tu.step}"
+
+
+def _looks_like_json(text: str) -> bool:
+    return text.lstrip()[:1] in ("[", "{")
+
+
+#: the line ``solve --format foon`` writes before each tree (serialize.tree_foon)
+_HEADER = re.compile(
+    r"^#\s*task tree for (?P<goal>.+) \((?P<method>[^(),]+), (?P<status>[^(),]+), (?P<n>\d+) units?\)\s*$"
+)
+
+
+def _read_foon_tree(text: str, path: str) -> list[TreeFile]:
+    """One tree, or one per ``# task tree for GOAL (...)`` line (``solve --format foon``
+    for several goals); the goal and method of such a line are kept."""
+    lines = lines_of(text)
+    starts = [i for i, line in enumerate(lines) if _HEADER.match(line)]
+    if not starts or starts[0] != 0 and any(ln.strip() and not ln.startswith("#") for ln in lines[: starts[0]]):
+        starts = [0, *starts]
+    trees: list[TreeFile] = []
+    for k, start in enumerate(starts):
+        end = starts[k + 1] if k + 1 < len(starts) else len(lines)
+        # blank out the other trees' lines so that line numbers stay those of the file
+        part = [ln if start <= i < end else "" for i, ln in enumerate(lines)]
+        foon = parse_lines(part, path, strict=True)
+        header = _HEADER.match(lines[start])
+        goal = method = None
+        if header:
+            goal = parse_object_text(header["goal"]) or FoonObject.make(header["goal"])
+            method = header["method"].strip()
+        units = [TreeUnit(u, step, origin[1]) for step, (u, origin) in enumerate(zip(foon.units, foon.origins), 1)]
+        if not units and header is None:
+            continue
+        trees.append(TreeFile(path, units, goal, method, start + 1 if header else None))
+    if not trees or not any(t.units for t in trees) and not any(t.goal for t in trees):
+        raise InputError("no functional units in the tree file (expected FOON text or foon2asp JSON)", path)
+    return trees
+
+
+def _line_of(text: str, pos: int) -> int:
+    return text.count("\n", 0, pos) + 1
+
+
+def _json_unit(value: object, path: str, line: int, step: int) -> Unit:
+    if not isinstance(value, dict) or not isinstance(value.get("motion"), str):
+        raise InputError(f"unit {step} is not an object with a 'motion' string", path, line)
+    parts = []
+    for side in ("inputs", "outputs"):
+        items = value.get(side)
+        if not isinstance(items, list):
+            raise InputError(f"unit {step} has no '{side}' list", path, line)
+        parts.append(tuple(object_from_json(o, path, line) for o in items))
+    return Unit(" ".join(value["motion"].split()).lower().rstrip("*").strip(), parts[0], parts[1])
+
+
+def _is_foon_json(data: object) -> bool:
+    return isinstance(data, dict) and "functional_units" in data
+
+
+def _read_foon_json_trees(data: object, path: str) -> list[TreeFile]:
+    """FOON JSON (foon_api's schema): one tree, or a list of trees."""
+    trees = []
+    for doc in data if isinstance(data, list) else [data]:
+        foon = foonjson.parse_json(json.dumps(doc), path)
+        if not foon.units:
+            raise InputError("no functional units in the tree file", path)
+        units = [TreeUnit(u, step, None) for step, u in enumerate(foon.units, 1)]
+        trees.append(TreeFile(path, units))
+    return trees
+
+
+def _read_json_tree(text: str, path: str) -> list[TreeFile]:
+    data = safe_loads(text, path, checked=True)
+    if _is_foon_json(data) or (isinstance(data, list) and data and all(_is_foon_json(d) for d in data)):
+        return _read_foon_json_trees(data, path)
+    results = data if isinstance(data, list) else [data]
+    # the line each top-level result starts on, for messages
+    starts: list[int] = []
+    if isinstance(data, list):
+        dec = json.JSONDecoder()
+        pos = text.index("[") + 1
+        line, counted = 1, 0
+        for _ in results:
+            while text[pos] in " \t\r\n,":
+                pos += 1
+            line += text.count("\n", counted, pos)
+            counted = pos
+            starts.append(line)
+            pos = dec.raw_decode(text, pos)[1]
+    else:
+        starts.append(_line_of(text, len(text) - len(text.lstrip())))
+    trees = []
+    for result, line in zip(results, starts):
+        if not isinstance(result, dict) or not isinstance(result.get("units"), list):
+            raise InputError("expected a foon2asp result: an object with a 'units' list", path, line)
+        goal = object_from_json(result["goal"], path, line) if result.get("goal") is not None else None
+        units = [TreeUnit(_json_unit(u, path, line, i), i, None) for i, u in enumerate(result["units"], 1)]
+        method = result.get("method") if isinstance(result.get("method"), str) else None
+        trees.append(TreeFile(path, units, goal, method, line))
+    if not trees:
+        raise InputError("the JSON list holds no task tree", path, 1)
+    return trees
+
+
+def _read_plan(problem: Problem, text: str, path: str) -> list[TreeFile]:
+    plan = plans.parse_plan(text, path)
+    units = [TreeUnit(unit, step, line) for step, (unit, line) in enumerate(plans.plan_units(problem, plan), 1)]
+    method = "plan" if plan.cost is None else f"plan, reported cost {plan.cost:g}"
+    return [TreeFile(path, units, method=method)]
+
+
+def read_trees(path: str | Path, problem: Problem | None = None) -> list[TreeFile]:
+    """The tree(s) in ``path``: FOON text (one tree), FOON JSON or foon2asp JSON (one or more),
+    or (with ``problem``, whose unit ids the action names carry) a plan."""
+    text = read_text(path, "tree")
+    if _looks_like_json(text):
+        return _read_json_tree(text, str(path))
+    if problem is not None and plans.looks_like_plan(text):
+        return _read_plan(problem, text, str(path))
+    return _read_foon_tree(text, str(path))

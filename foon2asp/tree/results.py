@@ -1,0 +1,143 @@
+"""The answers the commands give, as plain values the renderers of :mod:`foon2asp.report` print.
+
+A :class:`Report` is ``check``'s verdict on one tree read from a file, a
+:class:`Row` (or :class:`MealRow`) one goal of ``compare``, a
+:class:`BatchReport` what a batch did, a :class:`MissingResult` what
+``missing`` would add to the kitchen and a :class:`QueryResult` the models of
+``query``.  They are made in :mod:`foon2asp.analysis` and :mod:`foon2asp.batch`
+and live here, below both, so that rendering them needs neither.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import clingo
+
+from foon2asp.foon.treefiles import TreeFile
+from foon2asp.tree.diagnose import Finding
+from foon2asp.tree.tasktree import TaskTree
+from foon2asp.tree.validate import Validation
+
+
+@dataclass
+class Report:
+    """Everything ``foon2asp check`` says about one tree."""
+
+    tree: TreeFile
+    goal: int
+    ids: list[int | None]  # FOON unit id per tree unit (None: unknown)
+    valid: bool
+    finding: Finding | None
+    validation: Validation | None
+    order_problem: str | None  # None when the order as written is executable
+    cost: dict
+    optimum: TaskTree | None = None
+    goal_source: str = ""
+    #: every goal when the tree is checked for a meal (else empty)
+    goals: tuple[int, ...] = ()
+
+    @property
+    def meal(self) -> tuple[int, ...]:
+        return self.goals or (self.goal,)
+
+
+@dataclass
+class Row:
+    """One goal: the tree of each method (``extra["valid"]`` set on each)."""
+
+    goal: int
+    trees: dict[str, TaskTree]
+
+
+@dataclass
+class MealRow:
+    """A meal's tree beside the single optima of its goals (``compare --together``)."""
+
+    goals: tuple[int, ...]
+    meal: TaskTree
+    singles: list[TaskTree]
+
+    def total(self) -> dict:
+        """The single optima added up (units, inputs; success multiplied); {} if one has no tree."""
+        if not all(t.has_tree for t in self.singles):
+            return {}
+        success = 1.0
+        for t in self.singles:
+            success *= t.cost.get("success", 1.0)
+        return {
+            "units": sum(t.cost["units"] for t in self.singles),
+            "success": float(f"{success:.6g}"),
+            "inputs": sum(t.cost["inputs"] for t in self.singles),
+            "depth": max(t.cost["depth"] or 0 for t in self.singles),
+        }
+
+
+@dataclass
+class BatchReport:
+    """What a batch did: counts, times and all records of the requested pairs."""
+
+    done: int
+    skipped: int
+    elapsed_s: float
+    records: list[dict]
+    workers: int
+    output: str | None
+    #: the grounding used, and why when --grounding auto chose it
+    grounding: str = ""
+    grounding_reason: str = ""
+
+
+@dataclass
+class MissingResult:
+    """What to add to the kitchen so ``goal`` can be made, and the tree it allows."""
+
+    goal: int
+    #: ``optimal`` (proven minimal), ``feasible`` (time ran out), ``unreachable``, ``unknown``
+    status: str
+    #: object ids to add, in id order
+    missing: list[int] = field(default_factory=list)
+    #: the tree (unit ids in executable order, with the added objects in the kitchen)
+    units: list[int] = field(default_factory=list)
+    cost: dict = field(default_factory=dict)
+    time_s: float = 0.0
+    #: why nothing helps, in words (only when unreachable)
+    reason: str | None = None
+    #: a cycle that blocks the goal: (object, unit) pairs, each unit makes its
+    #: object and needs the next object (the last needs the first)
+    cycle: list[tuple[int, int]] = field(default_factory=list)
+    #: objects leading from the goal to the cycle, as (object, unit) pairs
+    path: list[tuple[int, int]] = field(default_factory=list)
+    #: every object that may be added (relevant to the goal)
+    buyable: list[int] = field(default_factory=list)
+    #: every goal of a meal (``missing --together``; empty for one goal)
+    goals: tuple[int, ...] = ()
+
+    @property
+    def has_tree(self) -> bool:
+        return self.status in ("optimal", "feasible")
+
+
+class ShownModel(Protocol):
+    """What a query shows of one model (:class:`foon2asp.asp.control.Answer` is one)."""
+
+    @property
+    def cost(self) -> tuple[int, ...]: ...
+
+    @property
+    def symbols(self) -> list[clingo.Symbol]: ...
+
+
+@dataclass
+class QueryResult:
+    """The models of the user's program (``query``)."""
+
+    status: str
+    answers: Sequence[ShownModel]
+    time_s: float
+    #: clingo's info messages about the user's program (atoms no rule or fact defines)
+    warnings: list[str] = field(default_factory=list)
+    #: the encodings loaded, with the ones those asked for depend on
+    encodings: list[str] = field(default_factory=list)
