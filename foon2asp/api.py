@@ -30,6 +30,7 @@ from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.batch import cluster
 from foon2asp.batch import run as batch_run
+from foon2asp.batch.pool import BatchSpec
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.demo import demo_dir
@@ -596,7 +597,7 @@ class KnowledgeBase:
         :func:`foon2asp.batch.run.choose_grounding`; the report's ``grounding`` and ``grounding_reason`` say which).
         """
         options = self.options(objective, time_limit, constraints, opt_strategy=opt_strategy, threads=threads)
-        spec = batch_run.BatchSpec(self.problem, list(dict.fromkeys(methods)), options, grounding, shortcuts)
+        spec = BatchSpec(self.problem, list(dict.fromkeys(methods)), options, grounding, shortcuts)
         executor = None
         if scheduler:
             executor = cluster.executor(scheduler)

@@ -21,7 +21,7 @@ from foon2asp.asp import settings
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
-from foon2asp.batch import run as batch_run
+from foon2asp.batch import grounding
 from foon2asp.cli.main import main
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.synth import PRESETS, preset, shape
@@ -273,7 +273,7 @@ def test_every_command_solves_with_the_default(command, tmp_path, recorded):
 
 def test_auto_grounding_is_per_goal_on_the_shared_foon(shared_foon_dir):
     kb = foon2asp.load(shared_foon_dir)
-    mode, reason = batch_run.choose_grounding(kb.problem, kb.goal_ids("all-objects"))
+    mode, reason = grounding.choose_grounding(kb.problem, kb.goal_ids("all-objects"))
     assert mode == "per-goal" and "under 10 %" in reason
 
 
@@ -281,10 +281,10 @@ def test_auto_grounding_is_whole_on_a_hard_preset(monkeypatch):
     syn = preset("hard-4k")
     p = syn.problem()
     goals = [p.foon.object_ids[g] for g in syn.goals]
-    mode, reason = batch_run.choose_grounding(p, goals)
+    mode, reason = grounding.choose_grounding(p, goals)
     assert mode == "whole" and "10 % or more" in reason
-    monkeypatch.setattr(batch_run, "AUTO_MAX_WHOLE", 1000)
-    assert batch_run.choose_grounding(p, goals)[0] == "per-goal"
+    monkeypatch.setattr(grounding, "AUTO_MAX_WHOLE", 1000)
+    assert grounding.choose_grounding(p, goals)[0] == "per-goal"
 
 
 def test_batch_reports_the_grounding_it_chose(tmp_path, tiny):

@@ -16,7 +16,7 @@ from click.testing import CliRunner
 
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
-from foon2asp.batch.run import ResultFile, read_header, read_results
+from foon2asp.batch.results import ResultFile, read_header, read_results
 from foon2asp.cli.main import main
 from foon2asp.methods.bounds import Bounds
 from foon2asp.methods.planner import BatchRunner, solve_goals

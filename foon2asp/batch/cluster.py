@@ -13,7 +13,7 @@ import threading
 import uuid
 from collections.abc import Callable, Iterator
 
-from foon2asp.batch.run import BatchSpec, Worker
+from foon2asp.batch.pool import BatchSpec, Worker
 from foon2asp.errors import InputError
 
 _LOCAL = threading.local()
@@ -42,7 +42,7 @@ def _run_chunk(token: str, spec: BatchSpec, tasks: list[tuple[int, str]]) -> lis
 
 
 def executor(scheduler, chunk: int = 8) -> Callable[[BatchSpec, list[tuple[int, str]]], Iterator[tuple[int, str, str]]]:
-    """A batch executor for :func:`foon2asp.batch.run_batch` on ``scheduler``
+    """A batch executor for :func:`foon2asp.batch.run.run_batch` on ``scheduler``
     (an address such as ``tcp://host:8786`` or a ``distributed.Client``)."""
     distributed = _require()
 

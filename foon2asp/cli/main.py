@@ -19,7 +19,8 @@ from foon2asp.asp.constraints import ConstraintSpec, read_file, unknown_names
 from foon2asp.asp.facts import facts as facts_text
 from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.options import OBJECTIVES
-from foon2asp.batch import run as batch_mod
+from foon2asp.batch import grounding as grounding_mod
+from foon2asp.batch import results as batch_results
 from foon2asp.cli.options import EXIT_CODES, exit_code, progress_bar
 from foon2asp.cli.params import SCHEDULER, SECONDS, int32
 from foon2asp.errors import InputError, Terminated, escape
@@ -920,7 +921,7 @@ def _method_list(values: tuple[str, ...], default: list[str] | None = None) -> l
 )
 @click.option(
     "--grounding",
-    type=click.Choice(batch_mod.GROUNDING_CHOICES),
+    type=click.Choice(grounding_mod.GROUNDING_CHOICES),
     default="auto",
     show_default=True,
     help="One grounding for all goals, or a small grounding of each goal's relevant part; auto: per-goal when"
@@ -994,7 +995,7 @@ def batch(
         fsync=fsync,
         scheduler=scheduler,
     )
-    click.echo(report.render("summary", summary_fmt, batch_mod.summarize(outcome.records), outcome), nl=False)
+    click.echo(report.render("summary", summary_fmt, batch_results.summarize(outcome.records), outcome), nl=False)
     sys.exit(exit_code((r.get("status", "?"), r.get("valid")) for r in outcome.records))
 
 

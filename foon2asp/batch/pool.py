@@ -1,0 +1,135 @@
+"""The worker pool of a batch: runners built once per process, asked goal after goal.
+
+A :class:`Worker` holds the runners of one process (one per method, built
+once from a :class:`BatchSpec`); :func:`execute` runs (goal, method) tasks
+in this process or, with ``workers > 1``, in a process pool whose
+initializer builds each worker's runners once, and yields each result as one
+JSON line as it finishes (:mod:`foon2asp.batch.cluster` runs the same
+workers on a Dask cluster).
+
+Pool workers ignore SIGINT (the parent stops them) and exit when the
+parent dies, even by SIGKILL (``PR_SET_PDEATHSIG`` on Linux, and a thread
+watching the parent process elsewhere).
+"""
+
+from __future__ import annotations
+
+import ctypes
+import json
+import multiprocessing
+import os
+import signal
+import sys
+import threading
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+
+from foon2asp.analysis.compare import judge
+from foon2asp.asp.options import AspOptions
+from foon2asp.foon.problem import Problem
+from foon2asp.methods.planner import BatchRunner, Parts
+from foon2asp.tree.serialize import tree_json
+
+
+@dataclass
+class BatchSpec:
+    """Everything a process needs to build its runners (picklable)."""
+
+    problem: Problem
+    methods: list[str]
+    options: AspOptions = field(default_factory=AspOptions)
+    #: "whole" | "per-goal" | "auto" (resolved by run_batch with choose_grounding)
+    grounding: str = "whole"
+    shortcuts: bool = True
+
+
+class Worker:
+    """The runners of one process: built once, then asked goal after goal."""
+
+    def __init__(self, spec: BatchSpec):
+        self.spec = spec
+        parts = Parts(spec.problem)
+        self.runners = {
+            name: BatchRunner(name, spec.problem, spec.options, spec.grounding, spec.shortcuts, parts)
+            for name in spec.methods
+        }
+
+    def run(self, goal: int, method: str) -> str:
+        """The result of ``method`` for ``goal`` as one JSON line (with newline)."""
+        tree = judge(self.spec.problem, self.runners[method](goal))  # "valid", as compare gives it
+        record = tree_json(self.spec.problem, tree)
+        record["requested_method"] = method
+        return json.dumps(record, ensure_ascii=False) + "\n"
+
+    def run_many(self, tasks: list[tuple[int, str]]) -> list[tuple[int, str, str]]:
+        return [(goal, method, self.run(goal, method)) for goal, method in tasks]
+
+
+# --- the worker of a process pool (built by the pool's initializer) ---
+
+_WORKER: Worker | None = None
+
+
+def _exit_with_parent() -> None:
+    """Make this process exit when its parent dies (also by SIGKILL)."""
+    parent = os.getppid()
+    if sys.platform.startswith("linux"):
+        try:
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(1, signal.SIGTERM, 0, 0, 0)  # PR_SET_PDEATHSIG
+        except (OSError, AttributeError):  # pragma: no cover - no prctl
+            pass
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(0.5)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="parent-watch", daemon=True).start()
+
+
+def _init_worker(spec: BatchSpec) -> None:
+    global _WORKER
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # an interrupt is the parent's to handle
+    _exit_with_parent()
+    _WORKER = Worker(spec)
+
+
+def _run_in_worker(tasks: list[tuple[int, str]]) -> list[tuple[int, str, str]]:
+    assert _WORKER is not None, "worker not initialised"
+    return _WORKER.run_many(tasks)
+
+
+def _chunks(tasks: list[tuple[int, str]], size: int) -> Iterator[list[tuple[int, str]]]:
+    for i in range(0, len(tasks), size):
+        yield tasks[i : i + size]
+
+
+def execute(
+    spec: BatchSpec,
+    tasks: list[tuple[int, str]],
+    workers: int = 1,
+    chunk: int = 1,
+) -> Iterator[tuple[int, str, str]]:
+    """Run ``tasks``; yield ``(goal, method, json_line)`` as results finish.
+
+    With ``workers > 1`` a process pool runs them; when the caller stops (an
+    interrupt, an error) the pool's workers are terminated at once.
+    """
+    if workers <= 1:
+        worker = Worker(spec)
+        for goal, method in tasks:
+            yield goal, method, worker.run(goal, method)
+        return
+    if not tasks:
+        return
+    context = multiprocessing.get_context("spawn")
+    pool = context.Pool(workers, initializer=_init_worker, initargs=(spec,))
+    try:
+        for results in pool.imap_unordered(_run_in_worker, _chunks(tasks, max(1, chunk))):
+            yield from results
+        pool.close()
+    finally:
+        pool.terminate()
+        pool.join()
