@@ -69,7 +69,7 @@ def executable_order(problem: Problem, units: list[int] | set[int]) -> list[int]
     """``units`` sorted so each runs after the units that make its inputs.
 
     Units that can never fire (their inputs rest on a cycle) go last, in id
-    order; callers that need validity use :mod:`foon2asp.validate`.
+    order; callers that need validity use :mod:`foon2asp.tree.validate`.
     """
     units = sorted(set(units))
     _, level = problem.derivation_levels(units)
