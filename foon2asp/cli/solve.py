@@ -89,9 +89,10 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
         for index, tree in enumerate(progress_bar(trees, len(jobs), progress, f"solve {method}"), 1):
             if is_search(method):
                 tree.judge()  # "valid" for search baselines, as compare gives it
-            found = [t.raw for t in tree.with_alternatives]  # --models / --all-optimal: best first
+            ranked = tree.with_alternatives  # --models / --all-optimal: the further trees, best first
+            found = [t.raw for t in ranked]
             answers += [(t.status, t.extra.get("valid")) for t in found]
-            for t in tree.with_alternatives:
+            for t in ranked:
                 if t.note is not None:
                     warn(f"{t.goal.label}: {t.note}")
             if out_dir:
