@@ -8,6 +8,8 @@ from foon2asp.asp.settings import solver_args
 
 #: objective name -> encoding that defines it (all use objective(Name,Priority))
 OBJECTIVES: dict[str, str] = {"units": "units", "success": "success", "inputs": "inputs", "depth": "depth"}
+#: the summed motion cost of a motion-cost table (AspOptions.motion_costs, foon2asp.foon.motioncost)
+OBJECTIVES["cost"] = "cost"
 
 #: greedy retrieval inside the solver (AspOptions.heuristic -> encodings/greedy_NAME.lp)
 HEURISTICS = ("h1", "h2")
@@ -44,6 +46,9 @@ class AspOptions:
     heuristic: str | None = None
     #: among several optimal trees, return the lexicographically smallest (foon2asp.asp.canonical)
     canonical: bool = True
+    #: the objective "cost": motion -> integer weight, the cost in hundredths (foon2asp.foon.motioncost);
+    #: a motion not listed weighs 100 (cost 1); None: no table (the objective "cost" is refused)
+    motion_costs: dict[str, int] | None = None
 
     @property
     def method(self) -> str:
