@@ -33,7 +33,7 @@ class AspOptions:
     clingo_args: list[str] = field(default_factory=list)
     #: ground only these units (e.g. the goals' relevant units); None: all units
     units: tuple[int, ...] | None = None
-    #: only trees of at most this many sequential rounds (see foon2asp.depth)
+    #: only trees of at most this many sequential rounds (see foon2asp.asp.multishot.depth)
     max_depth: int | None = None
     #: at most this many units may be done by a person (success 1.0 for those)
     human_steps: int | None = None
@@ -58,7 +58,7 @@ class AspOptions:
 
     @property
     def driven(self) -> bool:
-        """Does solving need foon2asp.driver (more than one plain optimisation)?"""
+        """Does solving need foon2asp.asp.multishot.driver (more than one plain optimisation)?"""
         return bool(
             self.heuristic
             or self.max_depth is not None
