@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Protocol
 
+from foon2asp.foon.derive import least_fixpoint
 from foon2asp.foon.model import Foon, FoonObject, Unit
 
 UTENSIL_RULES = ("starter", "off")
@@ -147,35 +148,9 @@ class Problem:
         ``units`` are used when given.
         """
         pool = range(len(self.units)) if units is None else units
-        waiting: dict[int, int] = {}
-        users: dict[int, list[int]] = {}
-        obj_level: dict[int, int] = dict.fromkeys(self.kitchen, 0)
-        unit_level: dict[int, int] = {}
-        frontier: list[int] = []
-        for u in pool:
-            req = self.required[u]
-            waiting[u] = sum(1 for o in req if o not in obj_level)
-            for o in req:
-                if o not in obj_level:
-                    users.setdefault(o, []).append(u)
-            if waiting[u] == 0:
-                frontier.append(u)
-        level = 0
-        while frontier:
-            level += 1
-            new_objects = []
-            for u in frontier:
-                unit_level[u] = level
-                for o in self.products[u]:
-                    if o not in obj_level:
-                        obj_level[o] = level
-                        new_objects.append(o)
-            frontier = []
-            for o in new_objects:
-                for u in users.get(o, ()):
-                    waiting[u] -= 1
-                    if waiting[u] == 0:
-                        frontier.append(u)
+        derived, unit_level = least_fixpoint(self.kitchen, self.required, self.products, pool)
+        obj_level = dict.fromkeys(self.kitchen, 0)
+        obj_level.update(derived)
         return obj_level, unit_level
 
     @cached_property

@@ -69,6 +69,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from foon2asp.asp.facts import neglog_weight
+from foon2asp.foon.derive import least_fixpoint
 from foon2asp.foon.problem import Problem, walk_back
 from foon2asp.tree.upper import cheapest_sets
 
@@ -189,29 +190,10 @@ class Bounds:
         return None if tree is None else self.weight(tree)
 
     def _derives(self, units: set[int], goal: int) -> bool:
-        """Do ``units`` derive ``goal`` from the kitchen (forward chaining with counters)?"""
+        """Do ``units`` derive ``goal`` from the kitchen?"""
         kitchen = self.problem.kitchen
-        required, products = self.problem.required, self.problem.products
-        waiting: dict[int, int] = {}
-        users: dict[int, list[int]] = {}
-        ready = []
-        for u in units:
-            req = [i for i in required[u] if i not in kitchen]
-            waiting[u] = len(req)
-            for i in req:
-                users.setdefault(i, []).append(u)
-            if not req:
-                ready.append(u)
-        have: set[int] = set()
-        while ready:
-            for o in products[ready.pop()]:
-                if o not in have and o not in kitchen:
-                    have.add(o)
-                    for v in users.get(o, ()):
-                        waiting[v] -= 1
-                        if waiting[v] == 0:
-                            ready.append(v)
-        return goal in have or goal in kitchen
+        made, _ = least_fixpoint(kitchen, self.problem.required, self.problem.products, units)
+        return goal in made or goal in kitchen
 
     def closure(self, units: frozenset[int]) -> int:
         """A lower bound on the weight of any tree that contains ``units``."""
