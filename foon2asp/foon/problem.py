@@ -123,6 +123,28 @@ class Problem:
     def from_dataset(cls, data: DataLike, utensil_rule: str = "starter") -> Problem:
         return cls(data.foon, data.kitchen, data.motion, data.utensils, utensil_rule)
 
+    def with_kitchen(self, kitchen: Iterable[int]) -> Problem:
+        """The same problem with the kitchen ``kitchen`` (object ids): a smaller one for a
+        goal's part, or a larger one with objects added.
+
+        The unit tables (inputs, required inputs, products, producers, rates) do not
+        depend on the kitchen and are shared; nothing cached on this problem (the
+        fixpoint, the viable units) is carried over.  ``kitchen_items`` lists the
+        objects of the new kitchen: the original items that are in it, then the
+        added objects in id order.
+        """
+        ids = frozenset(kitchen)
+        view = Problem.__new__(Problem)
+        view.foon, view.motion_rates = self.foon, self.motion_rates
+        view.utensils, view.utensil_rule = self.utensils, self.utensil_rule
+        view.inputs, view.required, view.outputs = self.inputs, self.required, self.outputs
+        view.products, view.producers, view.rates = self.products, self.producers, self.rates
+        view.kitchen = ids
+        oid = self.foon.object_ids
+        items = [o for o in self.kitchen_items if oid.get(o) in ids]
+        view.kitchen_items = items + [self.objects[o] for o in sorted(ids - self.kitchen)]
+        return view
+
     @property
     def units(self) -> list[Unit]:
         return self.foon.units
