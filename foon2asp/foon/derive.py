@@ -24,34 +24,39 @@ def least_fixpoint(
     inputs (objects of ``start`` have level 0); its ``products`` get the unit's level
     (the least over their producers).  ``object_level`` holds the derived objects only,
     in the order they were derived (the objects of ``start`` are not in it);
-    ``unit_level`` holds every unit that fires.
+    ``unit_level`` holds every unit that fires, in the order they fire.
+
+    Breadth first: units fire in the order they become ready, so levels never
+    decrease along the queue, and a unit's level is one more than that of the input
+    that made it ready (the last of its inputs derived, so the highest).
     """
     waiting: dict[int, int] = {}
     users: dict[int, list[int]] = {}
-    obj_level: dict[int, int] = {}
     unit_level: dict[int, int] = {}
-    frontier: list[int] = []
+    queue: list[int] = []
     for u in units:
-        need = [o for o in required[u] if o not in start]
-        waiting[u] = len(need)
-        for o in need:
-            users.setdefault(o, []).append(u)
-        if not need:
-            frontier.append(u)
-    level = 0
-    while frontier:
-        level += 1
-        new_objects = []
-        for u in frontier:
-            unit_level[u] = level
-            for o in products[u]:
-                if o not in obj_level and o not in start:
-                    obj_level[o] = level
-                    new_objects.append(o)
-        frontier = []
-        for o in new_objects:
-            for u in users.get(o, ()):
-                waiting[u] -= 1
-                if waiting[u] == 0:
-                    frontier.append(u)
+        need = 0
+        for o in required[u]:
+            if o not in start:
+                need += 1
+                if o in users:
+                    users[o].append(u)
+                else:
+                    users[o] = [u]
+        if need:
+            waiting[u] = need
+        else:
+            unit_level[u] = 1
+            queue.append(u)
+    obj_level: dict[int, int] = {}
+    for u in queue:  # the queue grows while it is read
+        level = unit_level[u]
+        for o in products[u]:
+            if o not in obj_level and o not in start:
+                obj_level[o] = level
+                for v in users.get(o, ()):
+                    waiting[v] -= 1
+                    if not waiting[v]:
+                        unit_level[v] = level + 1
+                        queue.append(v)
     return obj_level, unit_level
