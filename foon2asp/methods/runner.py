@@ -174,7 +174,7 @@ class GoalRunner:
         ranked_objectives = ranked(self._effective)
         self._ranked = ranked_objectives
         #: the method's own objectives only add weights of used units (asp-depth's do not)
-        self._monotone = all(name in MONOTONE for name in ranked_objectives)
+        self._monotone = all(objective in MONOTONE for objective in ranked_objectives)
         #: the bounds of foon2asp.methods.bounds decide canonical trees and (with shortcuts) answer goals
         self._bounded = self.kind == "asp" and plain(self._effective) and bounds_supports(ranked_objectives)
         if self.kind == "asp":
