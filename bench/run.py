@@ -36,7 +36,7 @@ from foon2asp.asp.session import AspOptions  # noqa: E402
 from foon2asp.foon import goals as goals_mod  # noqa: E402
 from foon2asp.foon.loaders import Dataset  # noqa: E402
 from foon2asp.foon.problem import Problem  # noqa: E402
-from foon2asp.methods.planner import BatchRunner, Parts  # noqa: E402
+from foon2asp.methods.runner import GoalRunner, Parts  # noqa: E402
 from foon2asp.tree.validate import validate  # noqa: E402
 
 
@@ -63,7 +63,7 @@ def p1(foon_dir: Path) -> dict:
     parts = Parts(problem)
     for name in ("ids", "gbfs-h1", "gbfs-h2", "asp"):
         t = time.perf_counter()
-        run = BatchRunner(name, problem, AspOptions(opt_strategy="usc"), "per-goal", True, parts)
+        run = GoalRunner(name, problem, AspOptions(opt_strategy="usc"), "per-goal", True, parts)
         for g in goal_ids:
             tree = run(g)
             counts[(name, tree.status)] = counts.get((name, tree.status), 0) + 1
@@ -98,7 +98,7 @@ def p2(foon_dir: Path) -> dict:
     parts = Parts(problem)
     out = {}
     t0 = time.perf_counter()
-    gbfs = methods.runner("gbfs-h1", problem)
+    gbfs = methods.runner("gbfs-h1", problem, AspOptions())
     total, times, _ = _time_runner(gbfs, goal_ids)
     out["gbfs-h1"] = (total, times)
     print(f"    gbfs-h1                         total {total:7.3f} s  median {ms(statistics.median(times))}")
@@ -109,7 +109,7 @@ def p2(foon_dir: Path) -> dict:
     ]
     for label, options, grounding in variants:
         t = time.perf_counter()
-        runner = BatchRunner("asp", problem, options, grounding, True, parts)
+        runner = GoalRunner("asp", problem, options, grounding, True, parts)
         build = time.perf_counter() - t
         total, times, results = _time_runner(runner, goal_ids)
         optimal = sum(1 for r in results.values() if r.status == "optimal")
@@ -158,7 +158,7 @@ def p3_one(foon_dir: Path, factor: int, sample: int, seed: int) -> dict:
         "facts_s": facts_s,
     }
     # per-goal groundings: query time includes the goal's own grounding
-    runner = BatchRunner("asp", problem, AspOptions(opt_strategy="usc"), "per-goal", True, parts)
+    runner = GoalRunner("asp", problem, AspOptions(opt_strategy="usc"), "per-goal", True, parts)
     _, times, res = _time_runner(runner, goal_ids)
     row["per_goal"] = {
         "median_s": statistics.median(times),
@@ -169,7 +169,7 @@ def p3_one(foon_dir: Path, factor: int, sample: int, seed: int) -> dict:
     row["rss_after_per_goal_mb"] = peak_mb()
     # the whole grounding (viable units), then the same goals on it
     t = time.perf_counter()
-    whole = BatchRunner("asp", problem, AspOptions(opt_strategy="usc"), "whole", True, parts)
+    whole = GoalRunner("asp", problem, AspOptions(opt_strategy="usc"), "whole", True, parts)
     row["ground_whole_s"] = time.perf_counter() - t
     few = goal_ids[: max(10, sample // 10)]
     _, times, res2 = _time_runner(whole, few)

@@ -22,7 +22,7 @@ from foon2asp.batch.run import run_batch
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.synth import shape, synthesize
-from foon2asp.methods.planner import BatchRunner
+from foon2asp.methods.runner import GoalRunner
 from foon2asp.report.summary import render_summary
 from foon2asp.tree.serialize import tree_json
 from foon2asp.tree.validate import validate
@@ -89,7 +89,7 @@ def test_shortcut_matches_solver_exactly():
     h = goal_id(p, "h")
     for objective in (("units",), ("success",), ("inputs",)):
         options = AspOptions(objective=objective)
-        fast = BatchRunner("asp", p, options, "whole", shortcuts=True)
+        fast = GoalRunner("asp", p, options, "whole", shortcuts=True)
         fast(goal_id(p, "g"))  # the first answer comes from the solver (learns the method label)
         tree = fast(h)
         assert fast.counts["no-choice"] == 1
@@ -107,7 +107,7 @@ def test_batch_equals_solve_on_shared(shared_problem, tmp_path):
     records = {key(r): r for r in read_results(tmp_path / "r.jsonl")}
     assert len(records) == 2 * len(set(goal_ids))
     for name in ("asp", "gbfs-h1"):
-        run = methods.runner(name, p)
+        run = methods.runner(name, p, AspOptions())
         for g in goal_ids:
             single = tree_json(p, run(g))
             single["requested_method"] = name
@@ -337,7 +337,7 @@ def test_synthetic_copy_solves_like_base(shared_problem, tmp_path):
 
     copy_goal = q.foon.object_ids[_rename(obj, 2)]
     base_tree = Session(p).solve(base_goal)
-    runner = BatchRunner("asp", q, AspOptions(opt_strategy="usc"), "per-goal")
+    runner = GoalRunner("asp", q, AspOptions(opt_strategy="usc"), "per-goal")
     tree = runner(copy_goal)
     assert tree.status == base_tree.status == "optimal"
     assert len(tree.units) <= len(base_tree.units)

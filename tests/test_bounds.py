@@ -13,7 +13,7 @@ import pytest
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.options import AspOptions
 from foon2asp.methods.bounds import Bounds
-from foon2asp.methods.planner import BatchRunner, Parts, solve_goals
+from foon2asp.methods.runner import GoalRunner, Parts, solve_goals
 from foon2asp.tree.validate import validate
 from helpers import brute_force, build
 
@@ -91,7 +91,7 @@ def test_runner_answers_equal_the_canonical_tree(seed):
         options = AspOptions(objective=(ranked[0],))
         bounds = Bounds(problem, ranked)
         runners = [
-            BatchRunner("asp", problem, options, grounding, shortcuts)
+            GoalRunner("asp", problem, options, grounding, shortcuts)
             for grounding in ("whole", "per-goal")
             for shortcuts in (True, False)
         ]
@@ -130,8 +130,8 @@ def test_shared_foon_sample_equals_the_solver_without_shortcuts(shared_problem, 
     _, problem = shared_problem
     goals = list(range(len(problem.objects)))[::7]
     options = AspOptions(objective=(objective,))
-    fast = BatchRunner("asp", problem, options, "per-goal")
-    slow = BatchRunner("asp", problem, options, "whole", shortcuts=False)
+    fast = GoalRunner("asp", problem, options, "per-goal")
+    slow = GoalRunner("asp", problem, options, "whole", shortcuts=False)
     for goal in goals:
         a, b = fast(goal), slow(goal)
         assert a.status == b.status, goal

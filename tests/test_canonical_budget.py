@@ -18,7 +18,7 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
 from foon2asp.foon.synth import preset
 from foon2asp.methods.bounds import Bounds
-from foon2asp.methods.planner import BatchRunner, solve_goals
+from foon2asp.methods.runner import GoalRunner, solve_goals
 from foon2asp.tree.validate import validate
 from test_hard import reference
 
@@ -59,20 +59,17 @@ def test_the_tree_is_the_same_from_every_path_when_the_budget_runs_out(small, ob
     again = shared.solve(goal)
     assert again.stats.get("canonical_session") is True
     assert sorted(again.units) == want
-    # the planner's paths: the bounds tree when it is optimal (README, "Canonical trees"), else this tree
+    # the goal runner's paths: the bounds tree when it is optimal (README, "Canonical trees"), else this tree
     bounds = Bounds(problem, ranked(options))
     best = bounds.tree(goal)
     if best is not None and bounds.cost(best) == fresh.extra["asp_cost"]:
         want = sorted(best)
     trees = [
-        t
-        for order in (1, -1)
-        for t in solve_goals(problem, [*others, goal][::order], options=options)
-        if t.goal == goal
+        t for order in (1, -1) for t in solve_goals(problem, [*others, goal][::order], "asp", options) if t.goal == goal
     ]
     for grounding in ("whole", "per-goal"):
         for shortcuts in (True, False):
-            trees.append(BatchRunner("asp", problem, options, grounding, shortcuts=shortcuts)(goal))
+            trees.append(GoalRunner("asp", problem, options, grounding, shortcuts=shortcuts)(goal))
     for tree in trees:
         assert tree.status == "optimal" and tree.extra["asp_cost"] == fresh.extra["asp_cost"]
         assert sorted(tree.units) == want

@@ -11,6 +11,7 @@ from click.testing import CliRunner
 
 from conftest import DEMO
 from foon2asp import methods
+from foon2asp.asp.options import AspOptions
 from foon2asp.cli.main import main
 from foon2asp.errors import InputError
 from foon2asp.foon.goals import resolve_label
@@ -206,8 +207,8 @@ def write_tree(tmp_path, name, problem, units):
 def test_check_demo_valid_and_greedy_trap(tmp_path, demo_problem):
     data, problem = demo_problem
     g = resolve_label(data, problem, "scrambled egg")
-    asp = methods.runner("asp", problem)(g)
-    greedy = methods.runner("gbfs-h1", problem)(g)
+    asp = methods.runner("asp", problem, AspOptions())(g)
+    greedy = methods.runner("gbfs-h1", problem, AspOptions())(g)
     ok = cli("check", write_tree(tmp_path, "asp.txt", problem, asp.units), "--data", DEMO)
     assert ok.exit_code == 0, ok.output
     assert "Verdict: VALID" in ok.stdout and "this tree is the optimum" in ok.stdout
@@ -239,7 +240,7 @@ def test_check_exit_codes_on_json_with_several_trees(tmp_path):
 def test_check_order_as_written(tmp_path, demo_problem):
     data, problem = demo_problem
     g = resolve_label(data, problem, "tomato salad")
-    units = methods.runner("asp", problem)(g).units
+    units = methods.runner("asp", problem, AspOptions())(g).units
     res = cli(
         "check",
         write_tree(tmp_path, "rev.txt", problem, list(reversed(units))),
@@ -265,7 +266,7 @@ def shared_trees(shared_problem, tmp_path_factory):
     }
     paths = {}
     for name in ("asp", "gbfs-h1", "gbfs-h2"):
-        run = methods.runner(name, problem)
+        run = methods.runner(name, problem, AspOptions())
         for label, g in goals.items():
             tree = run(g)
             paths[label, name] = (write_tree(out, f"{label}-{name}.txt", problem, tree.units), tree)

@@ -16,7 +16,7 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
 from foon2asp.cli import main
 from foon2asp.foon import goals as goals_mod
-from foon2asp.methods.planner import BatchRunner
+from foon2asp.methods.runner import GoalRunner
 from foon2asp.tree.tasktree import measures
 from foon2asp.tree.validate import validate
 from helpers import build, goal_id
@@ -146,12 +146,12 @@ def test_unreachable_goal_is_named(demo_problem):
 def test_batch_runner_per_goal_grounding_takes_meals(demo_problem):
     data, p = demo_problem
     meal = (goals_mod.resolve_label(data, p, "tomato salad"), goals_mod.resolve_label(data, p, "scrambled egg"))
-    whole = BatchRunner("asp", p)(meal)
-    part = BatchRunner("asp", p, grounding="per-goal")(meal)
+    whole = GoalRunner("asp", p, AspOptions())(meal)
+    part = GoalRunner("asp", p, AspOptions(), grounding="per-goal")(meal)
     assert whole.status == part.status == "optimal"
     assert whole.cost["units"] == part.cost["units"] == 8
     with pytest.raises(Exception, match="ASP method"):
-        BatchRunner("ids", p)(meal)
+        GoalRunner("ids", p, AspOptions())(meal)
 
 
 @pytest.mark.parametrize(

@@ -392,14 +392,14 @@ def test_greedy_follows_heuristics_and_stays_valid():
     ]
     problem = build(units, ["k1", "k2", "k3"], {"pour": 0.9, "cut": 0.2})
     goal, goal2 = goal_id(problem, "goal"), goal_id(problem, "goal2")
-    h1_tree = methods.runner("asp-greedy-h1", problem)(goal)
-    h2_tree = methods.runner("asp-greedy-h2", problem)(goal)
+    h1_tree = methods.runner("asp-greedy-h1", problem, AspOptions())(goal)
+    h2_tree = methods.runner("asp-greedy-h2", problem, AspOptions())(goal)
     assert h1_tree.units == [0] and h2_tree.units == [1]
     assert h1_tree.status == h2_tree.status == "found"
     assert h1_tree.method == "asp-greedy-h1"
     # gbfs-h1 picks unit 2 for y and rests on the cycle; the solver's greedy stays valid
     assert not validate(problem, goal2, gbfs(problem, goal2, h1, "gbfs-h1").units).valid
-    tree = methods.runner("asp-greedy-h1", problem)(goal2)
+    tree = methods.runner("asp-greedy-h1", problem, AspOptions())(goal2)
     assert validate(problem, goal2, tree.units).valid and sorted(tree.units) == [3, 4, 5]
 
 
@@ -407,7 +407,7 @@ def test_greedy_follows_heuristics_and_stays_valid():
 def test_greedy_equals_gbfs_when_gbfs_is_valid(seed):
     problem = random_foon(seed)
     for name, score in (("h1", h1), ("h2", h2)):
-        run = methods.runner(f"asp-greedy-{name}", problem)
+        run = methods.runner(f"asp-greedy-{name}", problem, AspOptions())
         for g in made_goals(problem):
             tree = run(g)
             if tree.has_tree:
@@ -494,7 +494,7 @@ def test_shared_multishot_equals_fresh_control(shared, objective, every):
 def test_shared_greedy_matches_valid_gbfs(shared):
     problem, goals = shared
     for name, score in (("h1", h1), ("h2", h2)):
-        run = methods.runner(f"asp-greedy-{name}", problem)
+        run = methods.runner(f"asp-greedy-{name}", problem, AspOptions())
         same = 0
         for g in goals:
             tree = run(g)

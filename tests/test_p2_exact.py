@@ -17,7 +17,7 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.foon.synth import preset
 from foon2asp.methods import exact
 from foon2asp.methods.bounds import Bounds
-from foon2asp.methods.planner import BatchRunner, Parts
+from foon2asp.methods.runner import GoalRunner, Parts
 from helpers import brute_force, build
 
 RANKED = [("units",), ("success", "units"), ("inputs", "units")]
@@ -121,8 +121,8 @@ def test_runner_answers_by_branch_and_bound_and_falls_back_to_the_solver():
         problem = random_foon(seed)
         for ranked in RANKED:
             options = AspOptions(objective=(ranked[0],))
-            fast = BatchRunner("asp", problem, options, grounding)
-            slow = BatchRunner("asp", problem, options, grounding)
+            fast = GoalRunner("asp", problem, options, grounding)
+            slow = GoalRunner("asp", problem, options, grounding)
             slow.search_nodes = 0
             for goal in sorted(problem.derivable - problem.kitchen):
                 a, b = fast(goal), slow(goal)
@@ -143,7 +143,7 @@ def test_synthetic_foon_equals_the_solver():
     problem = preset("small").problem()
     parts = Parts(problem)
     bounds = parts.bounds(("units",))
-    solver = BatchRunner("asp", problem, AspOptions(), "per-goal")
+    solver = GoalRunner("asp", problem, AspOptions(), "per-goal")
     solver.search_nodes = 0
     settled = complete = 0
     for goal in sorted(problem.derivable - problem.kitchen)[::3]:
@@ -162,7 +162,7 @@ def test_synthetic_foon_equals_the_solver():
             assert tuple(sorted(answer.units)) == tree, goal
             complete += 1
         # without search nodes the runner's canonical step still settles it by the branch and bound
-        again = BatchRunner("asp", problem, AspOptions(), "per-goal", shortcuts=False)(goal)
+        again = GoalRunner("asp", problem, AspOptions(), "per-goal", shortcuts=False)(goal)
         assert tuple(sorted(again.units)) == tree, goal
     assert settled >= 20 and complete >= 5
 

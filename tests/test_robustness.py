@@ -19,7 +19,7 @@ from foon2asp.asp.session import Session
 from foon2asp.batch.results import ResultFile, read_header, read_results
 from foon2asp.cli.main import main
 from foon2asp.methods.bounds import Bounds
-from foon2asp.methods.planner import BatchRunner, solve_goals
+from foon2asp.methods.runner import GoalRunner, solve_goals
 from helpers import brute_force, build, goal_id
 
 REPO = Path(__file__).resolve().parent.parent
@@ -359,13 +359,13 @@ def test_canonical_tree_is_the_smallest_optimal_tree_in_every_grounding(seed):
         }
         for name, tree in trees.items():
             assert tuple(sorted(tree.units)) == want, (name, seed, g)
-        # the planner's canonical tree: the bounds tree when it is optimal, else the smallest optimal one
+        # the goal runner's canonical tree: the bounds tree when it is optimal, else the smallest optimal one
         bounds_tree = Bounds(problem).tree(g)
         if bounds_tree is not None and len(bounds_tree) == len(want):
             want = bounds_tree
         for grounding in ("whole", "per-goal"):
             for shortcuts in (True, False):
-                tree = BatchRunner("asp", problem, AspOptions(), grounding, shortcuts=shortcuts)(g)
+                tree = GoalRunner("asp", problem, AspOptions(), grounding, shortcuts=shortcuts)(g)
                 assert tuple(sorted(tree.units)) == want, (grounding, shortcuts, seed, g)
 
 
@@ -396,7 +396,7 @@ def test_a_goal_the_bounds_decide_gets_the_same_tree_everywhere(shared_problem, 
     (both groundings, with and without shortcuts, two workers) and the library all give the
     bounds tree, the canonical one."""
     _, problem = shared_problem
-    runner = BatchRunner("asp", problem, AspOptions(), "per-goal")
+    runner = GoalRunner("asp", problem, AspOptions(), "per-goal")
     bounds = Bounds(problem)
     goal = None
     for g in sorted(problem.derivable):
@@ -410,8 +410,8 @@ def test_a_goal_the_bounds_decide_gets_the_same_tree_everywhere(shared_problem, 
     assert goal is not None, "no goal where the bounds tree differs from the smallest optimal tree"
     want = list(bounds.tree(goal))
     assert len(want) == len(smallest.units)
-    trees = [next(iter(solve_goals(problem, [goal])))]
-    trees += [BatchRunner("asp", problem, AspOptions(), gr, sc)(goal) for gr in ("whole", "per-goal") for sc in (1, 0)]
+    trees = [next(iter(solve_goals(problem, [goal], "asp", AspOptions())))]
+    trees += [GoalRunner("asp", problem, AspOptions(), gr, sc)(goal) for gr in ("whole", "per-goal") for sc in (1, 0)]
     for tree in trees:
         assert tree.status == "optimal" and sorted(tree.units) == want
     label = problem.objects[goal].to_json()

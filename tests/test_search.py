@@ -7,6 +7,7 @@ import random
 import pytest
 
 from foon2asp import methods
+from foon2asp.asp.options import AspOptions
 from foon2asp.foon.goals import goal_id as goal_of
 from foon2asp.search import IDS, gbfs, h1, h2
 from foon2asp.tree.tasktree import measures
@@ -15,7 +16,7 @@ from helpers import best, brute_force, build, goal_id, obj
 
 
 def run(problem, name, goal):
-    return methods.runner(name, problem)(goal)
+    return methods.runner(name, problem, AspOptions())(goal)
 
 
 def test_registered():
@@ -271,7 +272,7 @@ def as_id(problem, label):
 def shared_trees(shared_problem):
     data, problem = shared_problem
     goals = [goal_of(problem, o) for o, _ in data.goals]
-    runs = {name: methods.runner(name, problem) for name in ("ids", "gbfs-h1", "gbfs-h2")}
+    runs = {name: methods.runner(name, problem, AspOptions()) for name in ("ids", "gbfs-h1", "gbfs-h2")}
     return problem, {problem.objects[g].label: (g, {n: r(g) for n, r in runs.items()}) for g in goals}
 
 

@@ -25,7 +25,7 @@ from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem, required_flags
 from foon2asp.foon.treefiles import TreeFile, read_trees
-from foon2asp.methods.planner import solve_goals
+from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.diagnose import Finding, check_units, describe_unit
 from foon2asp.tree.results import Report
 from foon2asp.tree.tasktree import Goals, meal_of, measures

@@ -11,11 +11,10 @@ list of ``solve``-shaped JSON results, each with ``"valid"``.
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import replace
 
 from foon2asp.asp.options import AspOptions
 from foon2asp.foon.problem import Problem
-from foon2asp.methods.planner import BatchRunner
+from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.diagnose import check_units
 from foon2asp.tree.results import MealRow, Row
 from foon2asp.tree.tasktree import TaskTree
@@ -57,11 +56,10 @@ def compare_iter(
 ) -> Iterator[Row]:
     """:func:`compare` one goal at a time: each row as soon as its goal is done."""
     options = options or AspOptions()
-    if options.units is None:
-        options = replace(options, units=problem.units_for(goals))
-    runners = {name: BatchRunner(name, problem, options) for name in dict.fromkeys(method_names)}
+    # each method's trees, one goal after another: a row as soon as every method has its goal's
+    answers = {name: solve_goals(problem, goals, name, options) for name in dict.fromkeys(method_names)}
     for g in goals:
-        trees = {name: judge(problem, run(g)) for name, run in runners.items()}
+        trees = {name: judge(problem, next(trees_of)) for name, trees_of in answers.items()}
         for name, tree in trees.items():
             tree.method = name
         yield Row(g, trees)
@@ -70,15 +68,13 @@ def compare_iter(
 def compare_meal(problem: Problem, goals: list[int], method: str = "asp", options: AspOptions | None = None) -> MealRow:
     """The meal's optimum (one tree for all ``goals``) and each goal's own optimum, all judged."""
     meal = tuple(dict.fromkeys(goals))
-    options = options or AspOptions()
-    if options.units is None:
-        options = replace(options, units=problem.units_for(meal))
-    run = BatchRunner(method, problem, options)
-    tree = run(meal)
+    # the meal's tree, then each goal's on the same runner
+    trees = solve_goals(problem, [meal, *meal], method, options or AspOptions())
+    tree = next(trees)
     if tree.has_tree:
         validations = [check_units(problem, g, tree.units)[0] for g in meal]
         tree.extra["valid"] = all(v.valid for v in validations)
     else:
         tree.extra["valid"] = False
-    singles = [judge(problem, run(g)) for g in meal]
+    singles = [judge(problem, single) for single in trees]
     return MealRow(meal, tree, singles)

@@ -120,8 +120,7 @@ def reachable(problem: Problem, objects: Iterable[int]) -> dict[int, bool]:
 
 def with_kitchen(problem: Problem, extra: Iterable[int]) -> Problem:
     """The same problem with the objects ``extra`` (ids) added to the kitchen."""
-    items = list(problem.kitchen_items) + [problem.objects[o] for o in extra]
-    return Problem(problem.foon, items, problem.motion_rates, problem.utensils, problem.utensil_rule)
+    return problem.with_kitchen(problem.kitchen.union(extra))
 
 
 #: the tree objectives ``missing`` can use after the fewest added objects

@@ -29,7 +29,7 @@ from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.treefiles import TreeFile, TreeUnit
-from foon2asp.methods.planner import solve_goals
+from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.results import MealRow, QueryResult
 
 #: a goal as the API takes it: a label, an object's text, ``"#ID"``, an object id or a FoonObject

@@ -34,7 +34,6 @@ the canonical one (marked in the tree's stats).
 
 from __future__ import annotations
 
-import copy
 import time
 from collections.abc import Iterable
 from typing import Any
@@ -61,9 +60,7 @@ def canonical_problem(problem: Problem, goals: Iterable[int]) -> tuple[Problem, 
     kitchen = frozenset(o for o in problem.kitchen if o in keep)
     if kitchen == problem.kitchen:
         return problem, part
-    view = copy.copy(problem)
-    view.kitchen = kitchen
-    return view, part
+    return problem.with_kitchen(kitchen), part
 
 
 def chain_facts(units: Iterable[int]) -> str:

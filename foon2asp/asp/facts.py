@@ -25,14 +25,10 @@ Vocabulary (stable, documented in docs/vocabulary.md):
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterable
 
 from foon2asp.foon.problem import Problem
-
-#: fixed-point scale of success weights: rates are exact to 1/SCALE, logs to 1/SCALE
-SCALE = 1000
-
+from foon2asp.tree.weights import neglog_weight, success_permille
 
 _ESCAPES = str.maketrans({"\\": "\\\\", '"': '\\"', "\n": "\\n", "\x00": None})
 
@@ -40,15 +36,6 @@ _ESCAPES = str.maketrans({"\\": "\\\\", '"': '\\"', "\n": "\\n", "\x00": None})
 def q(text: str) -> str:
     """``text`` as an escaped ASP string literal (same escaping as ``str(clingo.String(text))``)."""
     return '"' + text.translate(_ESCAPES) + '"'
-
-
-def success_permille(rate: float) -> int:
-    return max(1, min(SCALE, round(rate * SCALE)))
-
-
-def neglog_weight(rate: float) -> int:
-    """Integer weight round(-SCALE * ln p); summing it maximises the product of rates."""
-    return round(-math.log(success_permille(rate) / SCALE) * SCALE)
 
 
 def object_facts(problem: Problem, oid: int, leave_out: frozenset[str] = frozenset()) -> list[str]:

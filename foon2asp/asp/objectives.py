@@ -24,10 +24,10 @@ import math
 from collections.abc import Iterable
 
 from foon2asp.asp import dominance
-from foon2asp.asp.facts import SCALE, neglog_weight, success_permille
 from foon2asp.errors import InputError
 from foon2asp.foon.motioncost import DEFAULT_COST, motion_key, scaled
 from foon2asp.foon.problem import Problem
+from foon2asp.tree.weights import SCALE, UNIT_WEIGHTS, success_permille, total
 
 #: the tie-breaker appended to every objective list that lacks it
 TIE_BREAK = "units"
@@ -124,7 +124,8 @@ def human_order_facts(problem: Problem, units: Iterable[int] | None = None) -> s
     """``human_unit(P,U).``: the units with a positive success weight, heaviest (least
     likely) first, ties in FOON file order; a person does the first M used ones."""
     ids = range(len(problem.units)) if units is None else sorted(set(units))
-    weighted = [(neglog_weight(problem.rates[u]), u) for u in ids]
+    weight = UNIT_WEIGHTS["success"]
+    weighted = [(weight(problem, u), u) for u in ids]
     order = sorted(((-w, u) for w, u in weighted if w > 0))
     return "".join(f"human_unit({p},{u}).\n" for p, (_, u) in enumerate(order, 1))
 
@@ -158,4 +159,4 @@ def success_product(problem: Problem, units: Iterable[int], human: Iterable[int]
 def neglog_sum(problem: Problem, units: Iterable[int], human: Iterable[int] = ()) -> int:
     """The integer success cost the solver minimises (sum of the neglog weights)."""
     skip = set(human)
-    return sum(neglog_weight(problem.rates[u]) for u in units if u not in skip)
+    return total(problem, "success", (u for u in units if u not in skip))

@@ -299,9 +299,3 @@ class Session:
     def stats(self) -> dict:
         """Choices, conflicts, models and solve time of the last solve call."""
         return self.control.stats()
-
-
-def solve_goals(problem: Problem, goals: Iterable[int], options: AspOptions | None = None) -> list[TaskTree]:
-    """Solve each goal in turn on one grounding."""
-    session = Session(problem, options)
-    return [session.solve(g) for g in goals]

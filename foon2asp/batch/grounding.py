@@ -1,7 +1,7 @@
 """``--grounding auto``: whether a batch grounds the whole FOON once or each goal's part.
 
 :func:`choose_grounding` judges the FOON by its viable units and a sample of
-the goals' relevant parts (:class:`foon2asp.methods.planner.Parts`).
+the goals' relevant parts (:class:`foon2asp.methods.runner.Parts`).
 """
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ from __future__ import annotations
 import statistics
 
 from foon2asp.foon.problem import Problem
-from foon2asp.methods.planner import GROUNDINGS, Parts
+from foon2asp.methods.runner import GROUNDINGS, Parts
 
 #: --grounding: "auto" picks whole or per-goal with :func:`choose_grounding`
 GROUNDING_CHOICES = ("auto", *GROUNDINGS)

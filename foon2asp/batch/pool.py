@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from foon2asp.analysis.compare import judge
 from foon2asp.asp.options import AspOptions
 from foon2asp.foon.problem import Problem
-from foon2asp.methods.planner import BatchRunner, Parts
+from foon2asp.methods.runner import GoalRunner, Parts
 from foon2asp.tree.serialize import tree_json
 
 
@@ -51,7 +51,7 @@ class Worker:
         self.spec = spec
         parts = Parts(spec.problem)
         self.runners = {
-            name: BatchRunner(name, spec.problem, spec.options, spec.grounding, spec.shortcuts, parts)
+            name: GoalRunner(name, spec.problem, spec.options, spec.grounding, spec.shortcuts, parts)
             for name in spec.methods
         }
 

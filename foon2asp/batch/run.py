@@ -34,7 +34,7 @@ from foon2asp.batch.results import (
     read_results,
 )
 from foon2asp.errors import InputError
-from foon2asp.methods.planner import GROUNDINGS
+from foon2asp.methods.runner import GROUNDINGS
 from foon2asp.tree.results import BatchReport
 
 

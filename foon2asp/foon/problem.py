@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Protocol
 
+from foon2asp.foon.derive import least_fixpoint
 from foon2asp.foon.model import Foon, FoonObject, Unit
 
 UTENSIL_RULES = ("starter", "off")
@@ -122,6 +123,28 @@ class Problem:
     def from_dataset(cls, data: DataLike, utensil_rule: str = "starter") -> Problem:
         return cls(data.foon, data.kitchen, data.motion, data.utensils, utensil_rule)
 
+    def with_kitchen(self, kitchen: Iterable[int]) -> Problem:
+        """The same problem with the kitchen ``kitchen`` (object ids): a smaller one for a
+        goal's part, or a larger one with objects added.
+
+        The unit tables (inputs, required inputs, products, producers, rates) do not
+        depend on the kitchen and are shared; nothing cached on this problem (the
+        fixpoint, the viable units) is carried over.  ``kitchen_items`` lists the
+        objects of the new kitchen: the original items that are in it, then the
+        added objects in id order.
+        """
+        ids = frozenset(kitchen)
+        view = Problem.__new__(Problem)
+        view.foon, view.motion_rates = self.foon, self.motion_rates
+        view.utensils, view.utensil_rule = self.utensils, self.utensil_rule
+        view.inputs, view.required, view.outputs = self.inputs, self.required, self.outputs
+        view.products, view.producers, view.rates = self.products, self.producers, self.rates
+        view.kitchen = ids
+        oid = self.foon.object_ids
+        items = [o for o in self.kitchen_items if oid.get(o) in ids]
+        view.kitchen_items = items + [self.objects[o] for o in sorted(ids - self.kitchen)]
+        return view
+
     @property
     def units(self) -> list[Unit]:
         return self.foon.units
@@ -147,35 +170,9 @@ class Problem:
         ``units`` are used when given.
         """
         pool = range(len(self.units)) if units is None else units
-        waiting: dict[int, int] = {}
-        users: dict[int, list[int]] = {}
-        obj_level: dict[int, int] = dict.fromkeys(self.kitchen, 0)
-        unit_level: dict[int, int] = {}
-        frontier: list[int] = []
-        for u in pool:
-            req = self.required[u]
-            waiting[u] = sum(1 for o in req if o not in obj_level)
-            for o in req:
-                if o not in obj_level:
-                    users.setdefault(o, []).append(u)
-            if waiting[u] == 0:
-                frontier.append(u)
-        level = 0
-        while frontier:
-            level += 1
-            new_objects = []
-            for u in frontier:
-                unit_level[u] = level
-                for o in self.products[u]:
-                    if o not in obj_level:
-                        obj_level[o] = level
-                        new_objects.append(o)
-            frontier = []
-            for o in new_objects:
-                for u in users.get(o, ()):
-                    waiting[u] -= 1
-                    if waiting[u] == 0:
-                        frontier.append(u)
+        derived, unit_level = least_fixpoint(self.kitchen, self.required, self.products, pool)
+        obj_level = dict.fromkeys(self.kitchen, 0)
+        obj_level.update(derived)
         return obj_level, unit_level
 
     @cached_property

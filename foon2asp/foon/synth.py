@@ -52,7 +52,7 @@ def _unit(unit: Unit, copy: int) -> Unit:
 
 @dataclass
 class Synthetic:
-    """A synthetic data set (the same parts as :class:`~foon2asp.loaders.Dataset`)."""
+    """A synthetic data set (the same parts as :class:`~foon2asp.foon.loaders.Dataset`)."""
 
     foon: Foon
     kitchen: list[FoonObject]
@@ -369,45 +369,6 @@ def generate(
     return Synthetic(foon, kitchen_objects, goal_objects, motion, frozenset(_CONTAINERS))
 
 
-def _utensil_free(unit: Unit, obj: FoonObject) -> bool:
-    return (
-        obj.label in _CONTAINERS
-        and len(obj.ingredients) == 1
-        and any(o.label == obj.ingredients[0] and o.container == obj.label for o in unit.inputs)
-    )
-
-
-def _levels(foon: Foon, kitchen: set[FoonObject]) -> dict[FoonObject, int]:
-    """Least-fixpoint derivation levels over all units (to pick goals of mixed depth)."""
-    level = {o: 0 for o in kitchen}
-    waiting: dict[int, int] = {}
-    users: dict[FoonObject, list[int]] = {}
-    frontier = []
-    for u, unit in enumerate(foon.units):
-        need = {o for o in unit.inputs if o not in level and not _utensil_free(unit, o)}
-        waiting[u] = len(need)
-        for o in need:
-            users.setdefault(o, []).append(u)
-        if not need:
-            frontier.append(u)
-    t = 0
-    while frontier:
-        t += 1
-        new = []
-        for u in frontier:
-            for o in foon.units[u].outputs:
-                if o not in level and not o.is_bare():
-                    level[o] = t
-                    new.append(o)
-        frontier = []
-        for o in new:
-            for u in users.get(o, ()):
-                waiting[u] -= 1
-                if waiting[u] == 0:
-                    frontier.append(u)
-    return level
-
-
 def _pick_goals(
     foon: Foon,
     kitchen: set[FoonObject],
@@ -417,7 +378,10 @@ def _pick_goals(
     rng: random.Random,
     depth: int,
 ) -> list[FoonObject]:
-    levels = _levels(foon, kitchen)
+    # least-fixpoint derivation levels over all units (to pick goals of mixed depth)
+    problem = Problem(foon, list(kitchen), utensils=frozenset(_CONTAINERS))
+    level_ids = problem.derivation_levels()[0]
+    levels = {obj: level_ids[i] for obj, i in foon.object_ids.items() if i in level_ids}
     producers: dict[FoonObject, int] = {}
     for unit in foon.units:
         for o in unit.outputs:

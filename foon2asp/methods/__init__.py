@@ -13,7 +13,21 @@ from foon2asp.methods.registry import (
     get,
     names,
     register,
-    runner,
+    register_asp,
 )
+from foon2asp.methods.runner import GoalRunner, runner, solve_goals
 
-__all__ = ["METHODS", "Factory", "Method", "Runner", "effective_options", "get", "names", "register", "runner"]
+__all__ = [
+    "METHODS",
+    "Factory",
+    "GoalRunner",
+    "Method",
+    "Runner",
+    "effective_options",
+    "get",
+    "names",
+    "register",
+    "register_asp",
+    "runner",
+    "solve_goals",
+]

@@ -68,17 +68,13 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from foon2asp.asp.facts import neglog_weight
+from foon2asp.foon.derive import least_fixpoint
 from foon2asp.foon.problem import Problem, walk_back
 from foon2asp.tree.upper import cheapest_sets
+from foon2asp.tree.weights import lexicographic, total
 
 #: ranked objective lists (as :func:`foon2asp.asp.objectives.ranked` gives them) the bounds handle
 SUPPORTED = (("units",), ("success", "units"), ("inputs", "units"))
-
-_BASE = {
-    "success": lambda problem, u: neglog_weight(problem.rates[u]),
-    "inputs": lambda problem, u: len(problem.inputs[u]),
-}
 
 
 def supports(ranked: Iterable[str]) -> bool:
@@ -88,11 +84,7 @@ def supports(ranked: Iterable[str]) -> bool:
 
 def weights(problem: Problem, ranked: tuple[str, ...]) -> list[int]:
     """One non-negative weight per unit whose sum orders trees as ``ranked`` does."""
-    if ranked == ("units",):
-        return [1] * len(problem.units)
-    base = _BASE[ranked[0]]
-    scale = len(problem.units) + 1
-    return [base(problem, u) * scale + 1 for u in range(len(problem.units))]
+    return lexicographic(problem, ranked[0])
 
 
 def landmarks(
@@ -165,10 +157,7 @@ class Bounds:
     def cost(self, units: Iterable[int]) -> list[int]:
         """The cost vector the solver reports (``asp_cost``), in ranked order."""
         units = list(units)
-        if self.ranked == ("units",):
-            return [len(units)]
-        base = _BASE[self.ranked[0]]
-        return [sum(base(self.problem, u) for u in units), len(units)]
+        return [total(self.problem, name, units) for name in self.ranked]
 
     def tree(self, goal: int) -> tuple[int, ...] | None:
         """The bounds tree of ``goal`` (sorted unit ids), None when it is not derivable."""
@@ -189,29 +178,10 @@ class Bounds:
         return None if tree is None else self.weight(tree)
 
     def _derives(self, units: set[int], goal: int) -> bool:
-        """Do ``units`` derive ``goal`` from the kitchen (forward chaining with counters)?"""
+        """Do ``units`` derive ``goal`` from the kitchen?"""
         kitchen = self.problem.kitchen
-        required, products = self.problem.required, self.problem.products
-        waiting: dict[int, int] = {}
-        users: dict[int, list[int]] = {}
-        ready = []
-        for u in units:
-            req = [i for i in required[u] if i not in kitchen]
-            waiting[u] = len(req)
-            for i in req:
-                users.setdefault(i, []).append(u)
-            if not req:
-                ready.append(u)
-        have: set[int] = set()
-        while ready:
-            for o in products[ready.pop()]:
-                if o not in have and o not in kitchen:
-                    have.add(o)
-                    for v in users.get(o, ()):
-                        waiting[v] -= 1
-                        if waiting[v] == 0:
-                            ready.append(v)
-        return goal in have or goal in kitchen
+        made, _ = least_fixpoint(kitchen, self.problem.required, self.problem.products, units)
+        return goal in made or goal in kitchen
 
     def closure(self, units: frozenset[int]) -> int:
         """A lower bound on the weight of any tree that contains ``units``."""

@@ -1,9 +1,10 @@
 """The one registry of methods: ASP objectives and the search baselines.
 
-A method turns (problem, options) into a *runner*: a function from a goal
-object id (or, for ASP methods, a tuple of them: a meal, one tree for every
-goal) to a :class:`TaskTree`.  Runners are made once per problem, so a
-runner may keep state (the ASP runner keeps one grounding for all goals).
+A method is a name, a kind and what the goal runner (:mod:`foon2asp.methods.runner`)
+needs to answer with it: for an ASP method, how it adjusts the caller's options (the
+objective, the greedy heuristic) before the runner's sessions solve; for a search
+baseline, a factory turning (problem, options) into a *runner*, a function from a
+goal object id to a :class:`TaskTree` (made once per problem, so it may keep state).
 The CLI's ``solve``, ``compare`` and ``batch`` all look methods up here.
 """
 
@@ -13,7 +14,6 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 from foon2asp.asp.options import HEURISTICS, OBJECTIVES, AspOptions
-from foon2asp.asp.session import Session
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.search import IDS, gbfs, h1, h2
@@ -28,7 +28,8 @@ class Method:
     name: str
     kind: str  # "asp" or "search"
     description: str
-    factory: Factory
+    #: for search baselines: (problem, options) -> the runner of one goal at a time
+    factory: Factory | None = None
     #: for ASP methods: the options the method's sessions solve with, from the caller's
     adjust: Callable[[AspOptions], AspOptions] | None = None
 
@@ -36,21 +37,25 @@ class Method:
 METHODS: dict[str, Method] = {}
 
 
-def register(
-    name: str, kind: str, description: str, adjust: Callable[[AspOptions], AspOptions] | None = None
-) -> Callable[[Factory], Factory]:
-    """Decorator: register ``factory`` under ``name``."""
+def register(name: str, kind: str, description: str) -> Callable[[Factory], Factory]:
+    """Decorator: register the search baseline ``factory`` under ``name`` (ASP methods: :func:`register_asp`)."""
+    if kind == "asp":
+        raise ValueError(f"register the ASP method {name!r} with register_asp")
 
     def deco(factory: Factory) -> Factory:
-        METHODS[name] = Method(name, kind, description, factory, adjust)
+        METHODS[name] = Method(name, kind, description, factory)
         return factory
 
     return deco
 
 
-def effective_options(name: str, options: AspOptions | None = None) -> AspOptions:
+def register_asp(name: str, description: str, adjust: Callable[[AspOptions], AspOptions] | None = None) -> None:
+    """Register an ASP method: the goal runner solves it with ``adjust(options)``."""
+    METHODS[name] = Method(name, "asp", description, adjust=adjust)
+
+
+def effective_options(name: str, options: AspOptions) -> AspOptions:
     """The options an ASP method ``name`` solves with when called with ``options``."""
-    options = options or AspOptions()
     adjust = get(name).adjust
     return adjust(options) if adjust is not None else options
 
@@ -66,20 +71,7 @@ def names() -> list[str]:
     return list(METHODS)
 
 
-def runner(name: str, problem: Problem, options: AspOptions | None = None) -> Runner:
-    return get(name).factory(problem, options or AspOptions())
-
-
-@register("asp", "asp", "answer-set programming, proven optimal for --objective (default: units)")
-def _asp(problem: Problem, options: AspOptions) -> Runner:
-    return Session(problem, options).solve
-
-
-def _adjusted(adjust: Callable[[AspOptions], AspOptions]) -> Factory:
-    def factory(problem: Problem, options: AspOptions) -> Runner:
-        return Session(problem, adjust(options)).solve
-
-    return factory
+register_asp("asp", "answer-set programming, proven optimal for --objective (default: units)")
 
 
 def _objective_is(objective: str) -> Callable[[AspOptions], AspOptions]:
@@ -91,19 +83,16 @@ def _heuristic_is(heuristic: str) -> Callable[[AspOptions], AspOptions]:
 
 
 for _name in list(OBJECTIVES):
-    _adjust = _objective_is(_name)
-    register(f"asp-{_name}", "asp", f"ASP, proven optimal for the objective {_name!r}", _adjust)(_adjusted(_adjust))
+    register_asp(f"asp-{_name}", f"ASP, proven optimal for the objective {_name!r}", _objective_is(_name))
 
 
 _GREEDY = {"h1": "highest motion success rate", "h2": "fewest input nodes"}
 for _h in HEURISTICS:
-    _adjust = _heuristic_is(_h)
-    register(
+    register_asp(
         f"asp-greedy-{_h}",
-        "asp",
         f"ASP first model under #heuristic {_h} ({_GREEDY[_h]}), valid by construction",
-        _adjust,
-    )(_adjusted(_adjust))
+        _heuristic_is(_h),
+    )
 
 
 def _single(name: str, run: Callable[[int], TaskTree]) -> Runner:

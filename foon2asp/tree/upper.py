@@ -4,24 +4,21 @@
 sets of units (each object's cheapest well-founded tree, shared units counted
 once); :func:`cheapest_tree` takes the union of the goals' sets and makes it
 irredundant: units whose removal keeps every goal derivable are dropped,
-heaviest first.  The bounds of :mod:`foon2asp.methods.bounds` start from the
-same sets.  The solver uses it when it has no tree of its own within the time limit.
+heaviest first.  A unit weighs what it adds to the objective
+(:data:`foon2asp.tree.weights.UNIT_WEIGHTS`), ties going to fewer units
+(:func:`foon2asp.tree.weights.lexicographic`): the order the solver ranks trees
+in.  The bounds of :mod:`foon2asp.methods.bounds` start from the same sets.  The
+solver uses it when it has no tree of its own within the time limit.
 """
 
 from __future__ import annotations
 
 import heapq
-import math
 import time
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Iterable, Sequence
 
 from foon2asp.foon.problem import Problem
-
-#: objective name -> weight of a unit (the others, e.g. depth, count units)
-WEIGHTS: dict[str, Callable[[Problem, int], float]] = {
-    "success": lambda problem, u: -math.log(max(problem.rates[u], 1e-9)) + 1e-6,
-    "inputs": lambda problem, u: float(len(problem.inputs[u])),
-}
+from foon2asp.tree.weights import UNIT_WEIGHTS, lexicographic
 
 
 def cheapest_tree(
@@ -32,16 +29,16 @@ def cheapest_tree(
     prune_s: float = 0.5,
 ) -> list[int] | None:
     """The units of a tree that makes every goal from the kitchen, using only ``units``
-    (None: all); None when some goal cannot be made.  ``prune_s`` bounds the time spent
-    dropping redundant units."""
-    weight = WEIGHTS.get(objective, lambda problem, u: 1.0)
+    (None: all); None when some goal cannot be made.  ``objective``: a key of
+    :data:`~foon2asp.tree.weights.UNIT_WEIGHTS` (any other, e.g. depth, counts units).
+    ``prune_s`` bounds the time spent dropping redundant units."""
     wanted = set(goals)
-    w = [weight(problem, u) for u in range(len(problem.units))]
+    w = lexicographic(problem, objective if objective in UNIT_WEIGHTS else "units")
     sets = cheapest_sets(problem, w, units, wanted)
     if any(g not in sets for g in wanted):
         return None
     tree = set(frozenset().union(*(sets[g] for g in wanted)))
-    return _irredundant(problem, wanted, tree, weight, time.perf_counter() + prune_s)
+    return _irredundant(problem, wanted, tree, w, time.perf_counter() + prune_s)
 
 
 def cheapest_sets(
@@ -95,11 +92,9 @@ def cheapest_sets(
     return settled
 
 
-def _irredundant(
-    problem: Problem, goals: set[int], tree: set[int], weight: Callable[[Problem, int], float], deadline: float
-) -> list[int]:
-    """``tree`` without the units every goal can do without (heaviest first, until ``deadline``)."""
-    for u in sorted(tree, key=lambda u: (-weight(problem, u), u)):
+def _irredundant(problem: Problem, goals: set[int], tree: set[int], w: Sequence[int], deadline: float) -> list[int]:
+    """``tree`` without the units every goal can do without (heaviest by ``w`` first, until ``deadline``)."""
+    for u in sorted(tree, key=lambda u: (-w[u], u)):
         if time.perf_counter() > deadline:
             break
         rest = sorted(tree - {u})

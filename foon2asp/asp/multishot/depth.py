@@ -54,6 +54,7 @@ from typing import Any
 import clingo
 
 from foon2asp.asp.control import Control, deferred_signals
+from foon2asp.foon.derive import least_fixpoint
 
 
 class Levels:
@@ -126,31 +127,7 @@ class Levels:
 
     def _fixpoint(self) -> tuple[dict[int, int], dict[int, int]]:
         """Levels as in :meth:`Problem.derivation_levels` (kitchen items are level 0)."""
-        waiting = {u: len(req) for u, req in self.required.items()}
-        users: dict[int, list[int]] = {}
-        for u, req in self.required.items():
-            for o in req:
-                users.setdefault(o, []).append(u)
-        obj_level: dict[int, int] = {}
-        unit_level: dict[int, int] = {}
-        frontier = [u for u, n in waiting.items() if n == 0]
-        level = 0
-        while frontier:
-            level += 1
-            new_objects = []
-            for u in frontier:
-                unit_level[u] = level
-                for o in self.products[u]:
-                    if o not in obj_level:
-                        obj_level[o] = level
-                        new_objects.append(o)
-            frontier = []
-            for o in new_objects:
-                for u in users.get(o, ()):
-                    waiting[u] -= 1
-                    if waiting[u] == 0:
-                        frontier.append(u)
-        return obj_level, unit_level
+        return least_fixpoint(self.kitchen, self.required, self.products, self.required)
 
     def level(self, goal: int | tuple[int, ...]) -> int | None:
         """The least depth of any tree for ``goal`` (0 in the kitchen, None: no tree);

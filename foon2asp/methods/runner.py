@@ -1,8 +1,14 @@
-"""Runners for many goals: pruned groundings and exact shortcuts around the solver.
+"""The goal runner: the one path from goals to trees, for every registered method.
 
-Three ways to build the runner of a registered ASP method for a batch:
+:class:`GoalRunner` answers goal after goal for one method of
+:mod:`foon2asp.methods.registry`; :func:`solve_goals` is the entry point that
+``solve``, ``compare``, ``check``, ``batch`` and the library take, and
+:func:`runner` the runner of one method for a caller that asks goal by goal.  A
+search baseline is built once on the whole problem and asked goal by goal; an
+ASP method is solved around the solver, in one of two groundings, with shortcuts
+and pruning:
 
-* ``whole`` -- one grounding for all goals (:class:`~foon2asp.solver.Session`,
+* ``whole`` -- one grounding for all goals (:class:`~foon2asp.asp.session.Session`,
   the goal switched as an external), restricted to the *viable* units (units
   that fire in the kitchen's least fixpoint).  No other unit can ever be a
   candidate of a tree, so the answers do not change.
@@ -11,14 +17,15 @@ Three ways to build the runner of a registered ASP method for a batch:
   inputs, and so on (the encoding's ``candidate/1`` units), with the kitchen
   items among their inputs.  The cost of a query then depends on the size of
   the goal's part, not of the FOON; use it for very large FOONs.
-* shortcuts (both modes, on by default) that answer without the solver when
+* shortcuts (both groundings, on by default) that answer without the solver when
   the answer is forced:
 
   - the goal is not derivable from the kitchen: ``unreachable``;
   - every object of the relevant part has exactly one viable producer: the
     whole part is the only tree (each of its units is needed and together
     they fire), so it is the optimum of every objective that only adds
-    non-negative weights per used unit (:data:`MONOTONE`).
+    non-negative weights per used unit (:data:`MONOTONE`, weighed by
+    :data:`foon2asp.tree.weights.UNIT_WEIGHTS`).
 
   - the lower bound of :mod:`foon2asp.methods.bounds` meets its upper bound:
     the *bounds tree* (a valid tree built without the solver) is optimal
@@ -26,7 +33,7 @@ Three ways to build the runner of a registered ASP method for a batch:
   - otherwise the branch and bound of :mod:`foon2asp.methods.exact` finds the
     optimum and the canonical tree on the goal's part
     (``"shortcut": "branch-and-bound"``), unless it runs out of nodes
-    (:attr:`BatchRunner.search_nodes`).
+    (:attr:`GoalRunner.search_nodes`).
 
   Shortcuts are taken only for plain optimisation (no user programs, extra
   encodings, depth bounds, human steps, alternatives or greedy heuristics);
@@ -44,21 +51,15 @@ objectives the bounds handle, the bounds tree whenever it is optimal -- found
 by the shortcut, or by the solver proving an optimum of the same cost --
 else the lexicographically smallest optimal tree
 (:mod:`foon2asp.asp.canonical`).
-
-Search methods (kind ``search``) are built once on the whole problem, as
-:func:`foon2asp.methods.runner` does.
 """
 
 from __future__ import annotations
 
-import copy
 import time
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import replace
 from functools import cached_property
 
-from foon2asp import methods
-from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
@@ -67,17 +68,15 @@ from foon2asp.foon.problem import Problem, walk_back
 from foon2asp.methods.bounds import Bounds
 from foon2asp.methods.bounds import supports as bounds_supports
 from foon2asp.methods.exact import NODE_LIMIT, canonical_tree
+from foon2asp.methods.registry import Runner, effective_options, get
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
+from foon2asp.tree.weights import UNIT_WEIGHTS, total
 
 GROUNDINGS = ("whole", "per-goal")
 
-#: objectives whose cost is a sum of non-negative weights of the used units,
-#: with the cost term the solver reports for a tree (``asp_cost``)
-MONOTONE = {
-    "units": lambda problem, units: len(units),
-    "success": lambda problem, units: sum(neglog_weight(problem.rates[u]) for u in units),
-    "inputs": lambda problem, units: sum(len(problem.inputs[u]) for u in units),
-}
+#: objectives whose cost is a sum of non-negative weights of the used units (the cost
+#: term the solver reports for a tree, ``asp_cost``, is :func:`foon2asp.tree.weights.total`)
+MONOTONE = frozenset(UNIT_WEIGHTS)
 
 
 class Parts:
@@ -124,31 +123,42 @@ def plain(options: AspOptions) -> bool:
 
 
 def _view(problem: Problem, objects: set[int]) -> Problem:
-    """``problem`` with the kitchen cut down to ``objects`` (shares everything else)."""
-    view = copy.copy(problem)
-    view.kitchen = frozenset(o for o in objects if o in problem.kitchen)
-    return view
+    """``problem`` with the kitchen cut down to ``objects`` (the goal's part)."""
+    return problem.with_kitchen(o for o in objects if o in problem.kitchen)
 
 
-class BatchRunner:
-    """The runner of one registered method for many goals (see the module docstring)."""
+class GoalRunner:
+    """The runner of one registered method for many goals (see the module docstring).
+
+    ``options`` are the caller's: every solve of the runner uses them (with the
+    method's adjustments, :func:`~foon2asp.methods.registry.effective_options`).
+    ``goals``: the goals the runner will be asked, if known; an ASP method then grounds
+    only the units a tree for one of them can use (:meth:`Problem.units_for`), unless
+    ``options.units`` says otherwise.  ``parts``: the viable units and relevant parts of
+    ``problem`` when the caller has them (several runners share them).
+    """
 
     def __init__(
         self,
         name: str,
         problem: Problem,
-        options: AspOptions | None = None,
+        options: AspOptions,
         grounding: str = "whole",
         shortcuts: bool = True,
         parts: Parts | None = None,
+        goals: Iterable[Goals] | None = None,
     ):
         if grounding not in GROUNDINGS:
             raise ValueError(f"unknown grounding {grounding!r}")
+        method = get(name)
+        if goals is not None and method.kind == "asp" and options.units is None:
+            # no tree for one of these goals can use another unit
+            options = replace(options, units=problem.units_for({g for goal in goals for g in meal_of(goal)}))
         self.name = name
         self.problem = problem
-        self.options = options or AspOptions()
+        self.options = options
         self.grounding = grounding
-        self.kind = methods.get(name).kind
+        self.kind = method.kind
         self.parts = parts if parts is not None else Parts(problem)
         self.shortcuts = shortcuts and self.kind == "asp" and plain(self.options)
         #: how each goal was answered: "solver" | "unreachable" | "no-choice" | "bounds" | "branch-and-bound"
@@ -156,27 +166,34 @@ class BatchRunner:
         #: nodes the branch and bound (foon2asp.methods.exact) may search per goal before the solver is asked
         self.search_nodes = NODE_LIMIT
         self._label: str | None = None
-        self._whole: Callable[[Goals], TaskTree] | None = None
+        self._whole: Runner | None = None
         #: units the caller allows (options.units); a goal whose part lies inside them is answered exactly
         self._allowed = None if self.options.units is None else frozenset(self.options.units)
         #: the options the method's sessions use, and the ranked objectives the bounds see
-        self._effective = methods.effective_options(name, self.options) if self.kind == "asp" else self.options
+        self._effective = effective_options(name, self.options) if self.kind == "asp" else self.options
         ranked_objectives = ranked(self._effective)
         self._ranked = ranked_objectives
+        #: the method's own objectives only add weights of used units (asp-depth's do not)
+        self._monotone = all(objective in MONOTONE for objective in ranked_objectives)
         #: the bounds of foon2asp.methods.bounds decide canonical trees and (with shortcuts) answer goals
         self._bounded = self.kind == "asp" and plain(self._effective) and bounds_supports(ranked_objectives)
         if self.kind == "asp":
             self._label = self._effective.method
         else:
-            self._whole = methods.runner(name, problem, self.options)
+            assert method.factory is not None, f"search method {name!r} has no factory"
+            self._whole = method.factory(problem, self.options)
 
-    def _whole_runner(self) -> Callable[[Goals], TaskTree]:
+    def _session(self, problem: Problem, units: tuple[int, ...]) -> Runner:
+        """A session of the method grounding ``units`` of ``problem`` (a view, or the whole problem)."""
+        return Session(problem, replace(self._effective, units=units)).solve
+
+    def _whole_runner(self) -> Runner:
         """The one grounding of all viable (or allowed) units, built on first use."""
         if self._whole is None:
             units = self.options.units
             if units is None:
                 units = tuple(sorted(self.parts.viable))
-            self._whole = methods.runner(self.name, self.problem, replace(self.options, units=units))
+            self._whole = self._session(self.problem, tuple(units))
         return self._whole
 
     def _solve(self, goal: Goals) -> TaskTree:
@@ -187,8 +204,7 @@ class BatchRunner:
             units, objects, _ = self.parts.relevant(goal)
             if self._allowed is not None:
                 units = [u for u in units if u in self._allowed]
-            view = _view(self.problem, objects)
-            tree = methods.runner(self.name, view, replace(self.options, units=tuple(units)))(goal)
+            tree = self._session(_view(self.problem, objects), tuple(units))(goal)
         self._label = tree.method
         return tree
 
@@ -254,7 +270,7 @@ class BatchRunner:
         exact = self._allowed is None or self._allowed.issuperset(units)
         if not exact or goal not in self.parts.derivable:
             return self._solve(goal)
-        if self.shortcuts and not choice:
+        if self.shortcuts and not choice and self._monotone:
             self.counts["no-choice"] += 1
             return self._answer(goal, label, executable_order(self.problem, units), "no-choice", t0)
         if not self._bounded:
@@ -275,7 +291,7 @@ class BatchRunner:
 
     def _answer(self, goal: int, label: str, order: list[int], shortcut: str, t0: float) -> TaskTree:
         """An optimal tree found without the solver."""
-        asp_cost = [MONOTONE[name](self.problem, order) for name in self._ranked]
+        asp_cost = [total(self.problem, name, order) for name in self._ranked]
         return TaskTree(
             goal,
             label,
@@ -291,21 +307,27 @@ class BatchRunner:
 def solve_goals(
     problem: Problem,
     goals: Iterable[Goals],
-    method: str = "asp",
-    options: AspOptions | None = None,
+    method: str,
+    options: AspOptions,
     grounding: str = "whole",
     shortcuts: bool = True,
 ) -> Iterator[TaskTree]:
-    """The one path from goals to trees that ``solve``, ``compare``, ``check`` and the library take.
+    """The trees of ``method`` for ``goals``, in order, each solved when it is asked for.
+
+    The one "solve these goals" entry point: ``solve``, ``compare``, ``check`` and the
+    library call it; ``batch``, whose processes are handed goals one by one, builds the
+    same :class:`GoalRunner` once per process.  The runner is built here, at the call,
+    so a bad method or grounding is an error before any goal is solved.
 
     A goal is an object id, or a tuple of them (a meal: one tree for all).
     ASP methods ground only the units a tree for one of ``goals`` can use
     (:meth:`Problem.units_for`) unless ``options.units`` says otherwise.
     """
-    options = options or AspOptions()
     goals = list(goals)
-    if methods.get(method).kind == "asp" and options.units is None:
-        options = replace(options, units=problem.units_for({g for goal in goals for g in meal_of(goal)}))
-    runner = BatchRunner(method, problem, options, grounding, shortcuts)
-    for goal in goals:
-        yield runner(goal)
+    run = GoalRunner(method, problem, options, grounding, shortcuts, goals=goals)  # built now: errors come first
+    return map(run, goals)
+
+
+def runner(name: str, problem: Problem, options: AspOptions) -> Runner:
+    """The goal runner of method ``name`` for any goal of ``problem``, asked one goal at a time."""
+    return GoalRunner(name, problem, options)

@@ -1,0 +1,55 @@
+"""What a unit weighs under each objective that sums weights of the used units.
+
+The one table (:data:`UNIT_WEIGHTS`): ``units`` counts a unit once, ``success``
+weighs it ``round(-SCALE ln p)`` (:func:`neglog_weight`; the sum of these over a
+tree is what the solver minimises, so the least sum is the greatest product of
+success rates, up to the rounding), ``inputs`` by its input nodes as the FOON lists
+them.  The solver's facts (:mod:`foon2asp.asp.facts`), the objectives
+(:mod:`foon2asp.asp.objectives`), the cheapest-first trees
+(:mod:`foon2asp.tree.upper`), the bounds (:mod:`foon2asp.methods.bounds`) and the
+goal runner's answers without the solver (:mod:`foon2asp.methods.runner`) all read it.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable
+
+from foon2asp.foon.problem import Problem
+
+#: fixed-point scale of success weights: rates are exact to 1/SCALE, logs to 1/SCALE
+SCALE = 1000
+
+
+def success_permille(rate: float) -> int:
+    """The success rate in thousandths (1..SCALE), as the facts state it."""
+    return max(1, min(SCALE, round(rate * SCALE)))
+
+
+def neglog_weight(rate: float) -> int:
+    """Integer weight round(-SCALE * ln p); summing it maximises the product of rates."""
+    return round(-math.log(success_permille(rate) / SCALE) * SCALE)
+
+
+#: objective -> the non-negative integer weight of unit ``u`` of a problem
+UNIT_WEIGHTS: dict[str, Callable[[Problem, int], int]] = {
+    "units": lambda problem, u: 1,
+    "success": lambda problem, u: neglog_weight(problem.rates[u]),
+    "inputs": lambda problem, u: len(problem.inputs[u]),
+}
+
+
+def total(problem: Problem, objective: str, units: Iterable[int]) -> int:
+    """The cost of ``units`` under ``objective`` (a key of :data:`UNIT_WEIGHTS`)."""
+    weight = UNIT_WEIGHTS[objective]
+    return sum(weight(problem, u) for u in units)
+
+
+def lexicographic(problem: Problem, objective: str) -> list[int]:
+    """One weight per unit whose sum orders trees by ``objective``, then by the number of
+    units: ``w(u) * M + 1`` with ``M`` greater than the number of units (1 for ``units``)."""
+    if objective == "units":
+        return [1] * len(problem.units)
+    weight = UNIT_WEIGHTS[objective]
+    scale = len(problem.units) + 1
+    return [weight(problem, u) * scale + 1 for u in range(len(problem.units))]
