@@ -21,6 +21,7 @@ from functools import cached_property
 from typing import Protocol
 
 from foon2asp.foon.model import Foon, FoonObject, Unit
+from foon2asp.foon.motioncost import MotionCosts
 
 UTENSIL_RULES = ("starter", "off")
 
@@ -95,6 +96,9 @@ class Problem:
     motion_rates: dict[str, float] = field(default_factory=dict)
     utensils: frozenset[str] = frozenset()
     utensil_rule: str = "starter"
+    #: the motion-cost table of the request being answered (``--motion-cost``; set by
+    #: :meth:`foon2asp.api.KnowledgeBase.options`): every tree's measures then include its cost
+    motion_costs: MotionCosts | None = None
 
     def __post_init__(self) -> None:
         if self.utensil_rule not in UTENSIL_RULES:
