@@ -141,6 +141,11 @@ def test_draw_reads_unit_lists(tmp_path):
     assert res.exit_code == 0, res.stderr
     text = out.read_text()
     assert text.count("shape=box") == 7 and "smoothie" in text
+    res = run("draw", SMOOTHIES[2], "-o", out)
+    assert res.exit_code == 0 and out.read_text().count("shape=box") == 7
+    warnings = res.stderr.strip().splitlines()[:-1]
+    assert len(warnings) == 2 and all(w.startswith("foon2asp: warning: ") and "smoothie-3.json" in w for w in warnings)
+    one_line_error(run("draw", SMOOTHIES[2], "-o", out, "--strict"), "smoothie-3.json", "unit 6")
 
 
 # ------------------------------------------------------------ --kitchen leaves
@@ -389,8 +394,11 @@ def test_cost_is_reported_everywhere_a_table_is_given(tmp_path):
     assert "/ cost " in run("compare", "--data", "demo", "--goal", "tomato salad", "--motion-cost", costs).stdout
     res = run("missing", "--data", "demo", "--goal", "tomato salad", "--objective", "cost", "--motion-cost", costs)
     assert res.exit_code == 0 and "cost" in res.stdout
-    lines = run("check", tmp_path / "x", "--data", "demo")  # bad input stays one line
-    one_line_error(lines, "x")
+    # check reports the cost of the tree and of the optimum with a table
+    tree_file = tmp_path / "tree.json"
+    tree_file.write_text(tree.render("json"))
+    (checked,) = kb.check_all(tree_file, motion_cost=costs)
+    assert checked.cost["cost"] == tree.cost["cost"] == checked.optimum.cost["cost"]
     # a mapping in the library is a table too
     assert kb.solve("tomato salad", objective="cost", motion_cost={"cut": 0.25}).status == "optimal"
 

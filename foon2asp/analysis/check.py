@@ -231,11 +231,12 @@ def check_file(
 
 
 def read_and_check(
-    path: str | Path, data=None, problem: Problem | None = None, goal: str | None = None
+    path: str | Path, data=None, problem: Problem | None = None, goal: str | None = None, strict: bool = False
 ) -> tuple[list[TreeFile], list[Report] | None]:
-    """The trees of a tree file as ``draw`` shows them: read (FOON text or JSON) and, with
-    ``problem``, each checked for its goal (:func:`tree_goal`; no optimum); else no reports."""
-    trees = read_trees(path)
+    """The trees of a tree file as ``draw`` shows them: read (FOON text, JSON or a unit list;
+    ``strict``: a unit a unit list would skip is an error) and, with ``problem``, each checked
+    for its goal (:func:`tree_goal`; no optimum); else no reports."""
+    trees = read_trees(path, strict=strict)
     return trees, check_trees(data, problem, trees, goal) if problem is not None else None
 
 

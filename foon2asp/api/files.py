@@ -86,15 +86,20 @@ def draw_file(
     fmt: str | None = None,
     kb: KnowledgeBase | None = None,
     goal: str | None = None,
+    strict: bool = False,
+    warnings: list[str] | None = None,
 ) -> int:
     """Draw every tree of a tree file (any format :meth:`KnowledgeBase.check` reads) into ``output``;
     the format follows the extension unless ``fmt`` names one.  With ``kb`` the trees are checked:
     the goal (``goal``, else as :meth:`KnowledgeBase.check` finds it) is gold, kitchen items green,
-    a blocking cycle red.  Returns how many trees were drawn."""
+    a blocking cycle red.  Units of a unit list that are skipped or merged are added to
+    ``warnings`` (an error with ``strict``).  Returns how many trees were drawn."""
     fmt = fmt or draw.format_of(output)
     if fmt != "dot":
         draw.require_dot()
     data, problem = (kb.data, kb.problem) if kb is not None else (None, None)
-    trees, reports = read_and_check(tree, data, problem, goal)
+    trees, reports = read_and_check(tree, data, problem, goal, strict)
+    if warnings is not None:
+        warnings.extend(dict.fromkeys(w for t in trees for w in t.warnings))
     Path(output).write_bytes(draw.render(draw.file_graph(trees, reports, problem), fmt))
     return len(trees)

@@ -64,7 +64,11 @@ def _versus(v: CandidateVerdict, best: dict) -> str:
         text = f"{'cost ' if key == 'cost' else ''}{number(v.cost[key])}{unit}"
         if v.valid and key in best:
             diff = v.cost[key] - best[key]
-            text += " (= the optimum)" if diff == 0 else f" ({'+' if diff > 0 else ''}{number(round(diff, 2))} vs the optimum)"
+            text += (
+                " (= the optimum)"
+                if diff == 0
+                else f" ({'+' if diff > 0 else ''}{number(round(diff, 2))} vs the optimum)"
+            )
         parts.append(text)
     return ", ".join(parts)
 
