@@ -13,11 +13,15 @@ __version__ = "0.2.0"
 from foon2asp.api import (  # noqa: E402
     CheckReport,
     Comparison,
+    Consolidation,
     Constraints,
     KnowledgeBase,
     Missing,
     Options,
     Tree,
+    TreeVerdict,
+    check_tree,
+    consolidate,
     load,
 )
 from foon2asp.errors import InputError  # noqa: E402
@@ -26,11 +30,15 @@ from foon2asp.foon.model import FoonObject, Unit  # noqa: E402
 __all__ = [
     "__version__",
     "load",
+    "consolidate",
+    "check_tree",
     "KnowledgeBase",
     "Tree",
     "CheckReport",
     "Comparison",
     "Missing",
+    "Consolidation",
+    "TreeVerdict",
     "Constraints",
     "Options",
     "FoonObject",

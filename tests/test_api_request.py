@@ -131,7 +131,8 @@ def test_library_errors_speak_of_values_and_the_cli_of_flags(tmp_path):
     line = run("solve", "--foon", foon).stderr.strip()
     assert line == (
         f"foon2asp: error: no kitchen.json beside the FOON file (looked for {tmp_path / 'kitchen.json'});"
-        " give --kitchen FILE or --data DIR (--data demo for the demo data)"
+        " give --kitchen FILE, --kitchen leaves (every object no unit makes, e.g. for merged generated trees)"
+        " or --data DIR (--data demo for the demo data)"
     )
 
 

@@ -13,6 +13,10 @@ kitchen using only units of the tree, and the goal is made.  When it is not
 valid, the first problem is named: an unknown unit (with how the nearest FOON
 unit differs), else what :func:`foon2asp.tree.diagnose.diagnose` finds walking
 back from the goal -- a missing input or circular support.
+
+Without a FOON, :func:`check_alone` judges each tree of a file on its own
+(:func:`foon2asp.tree.validate.judge_alone`: kitchen = its leaves, goal = the
+products of its last unit): valid means every unit fires in the order written.
 """
 
 from __future__ import annotations
@@ -27,9 +31,9 @@ from foon2asp.foon.problem import Problem, required_flags
 from foon2asp.foon.treefiles import TreeFile, read_trees
 from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.diagnose import Finding, check_units, describe_unit
-from foon2asp.tree.results import Report
+from foon2asp.tree.results import AloneReport, Report
 from foon2asp.tree.tasktree import Goals, meal_of, measures
-from foon2asp.tree.validate import check_order, validate
+from foon2asp.tree.validate import check_order, judge_alone, validate
 
 # ---------------------------------------------------------------- matching
 
@@ -209,13 +213,15 @@ def check_file(
     goal_label: str | tuple[str, ...] | None = None,
     optimum: bool = True,
     among: list[int] | None = None,
+    strict: bool = False,
 ) -> list[Report]:
     """Check every tree (or plan) in ``path``; with ``optimum`` the ASP optimum is solved for
     each goal (for several ``goal_label``: the meal's optimum).
 
-    ``among`` (``--goals``): each tree's goal is the one of these it makes.
+    ``among`` (``--goals``): each tree's goal is the one of these it makes.  ``strict``: a unit
+    a unit list would skip with a warning (:attr:`TreeFile.warnings`) is an error.
     """
-    reports = check_trees(data, problem, read_trees(path, problem), goal_label, among)
+    reports = check_trees(data, problem, read_trees(path, problem, strict), goal_label, among)
     if optimum and reports:
         meals = list(dict.fromkeys(r.meal for r in reports))
         best = dict(zip(meals, solve_goals(problem, meals, "asp", AspOptions())))
@@ -225,9 +231,59 @@ def check_file(
 
 
 def read_and_check(
-    path: str | Path, data=None, problem: Problem | None = None, goal: str | None = None
+    path: str | Path, data=None, problem: Problem | None = None, goal: str | None = None, strict: bool = False
 ) -> tuple[list[TreeFile], list[Report] | None]:
-    """The trees of a tree file as ``draw`` shows them: read (FOON text or JSON) and, with
-    ``problem``, each checked for its goal (:func:`tree_goal`; no optimum); else no reports."""
-    trees = read_trees(path)
+    """The trees of a tree file as ``draw`` shows them: read (FOON text, JSON or a unit list;
+    ``strict``: a unit a unit list would skip is an error) and, with ``problem``, each checked
+    for its goal (:func:`tree_goal`; no optimum); else no reports."""
+    trees = read_trees(path, strict=strict)
     return trees, check_trees(data, problem, trees, goal) if problem is not None else None
+
+
+# ---------------------------------------------------------------- a tree on its own
+
+
+def alone_goal(tree: TreeFile, text: str) -> FoonObject:
+    """The object ``text`` names among the objects of ``tree`` (no FOON): an object's text as
+    foon2asp prints it, else the one object some unit of the tree makes with that label."""
+    units = [tu.unit for tu in tree.units]
+    parsed = goals_mod.parse_object_text(text.strip())
+    if parsed is not None:
+        return parsed
+    label = " ".join(text.split()).lower()
+    made = list(dict.fromkeys(o for u in units for o in u.outputs if not o.is_bare() and o.label == label))
+    if len(made) == 1:
+        return made[0]
+    if made:
+        listing = " | ".join(str(o) for o in made[:10])
+        raise InputError(f"label {text!r} names {len(made)} objects of the tree; give one with its text: {listing}")
+    if any(o.label == label for u in units for o in u.inputs + u.outputs):
+        return FoonObject.make(label)
+    raise InputError(f"no object of the tree is labelled {text!r}", tree.path)
+
+
+def check_alone(
+    path: str | Path,
+    goal_texts: tuple[str, ...] = (),
+    kitchen: list[FoonObject] | None = None,
+    utensils: frozenset[str] = frozenset(),
+    utensil_rule: str = "starter",
+    strict: bool = False,
+    kitchen_source: str = "its leaves",
+) -> list[AloneReport]:
+    """Judge every tree of the file ``path`` on its own (:func:`foon2asp.tree.validate.judge_alone`):
+    the kitchen is its leaves (or ``kitchen``), the goal the one of ``goal_texts`` (several: a
+    meal), else the one the file names, else the products of its last unit."""
+    reports = []
+    for tree in read_trees(path, strict=strict):
+        units = [tu.unit for tu in tree.units]
+        goal: FoonObject | tuple[FoonObject, ...] | None = None
+        source = "the products of its last unit"
+        if goal_texts:
+            goal = tuple(dict.fromkeys(alone_goal(tree, t) for t in goal_texts))
+            source = "--goal"
+        elif tree.goal is not None:
+            goal, source = (tree.goal,), "named in the file"
+        verdict = judge_alone(units, goal, kitchen, utensils, utensil_rule, [tu.step for tu in tree.units])
+        reports.append(AloneReport(tree, verdict, source, kitchen_source))
+    return reports

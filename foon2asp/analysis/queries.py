@@ -124,7 +124,7 @@ def with_kitchen(problem: Problem, extra: Iterable[int]) -> Problem:
 
 
 #: the tree objectives ``missing`` can use after the fewest added objects
-MISSING_OBJECTIVES = ("units", "success", "inputs")
+MISSING_OBJECTIVES = ("units", "success", "inputs", "cost")
 
 
 def objective_parts(
@@ -136,6 +136,13 @@ def objective_parts(
     parts += [(f"objective {n}", f"objective({n},{len(objective) - k}).\n") for k, n in enumerate(objective)]
     if "inputs" in objective:
         parts.append(("input_nodes", input_node_facts(problem, units)))
+    if "cost" in objective:
+        table = problem.motion_costs
+        if table is None:
+            raise InputError("the objective 'cost' needs a motion-cost table (--motion-cost FILE)")
+        parts.append(
+            ("motion costs", "".join(f"motion_cost({u},{table.weight(problem.units[u].motion)}).\n" for u in units))
+        )
     parts.append(("add_priority", f"add_priority({first}).\n"))
     return parts
 
@@ -150,7 +157,8 @@ def missing(
     threads: int = 1,
 ) -> MissingResult:
     """The fewest objects to add to the kitchen so ``goal`` can be made, then the best tree
-    by ``objective`` (``units``, ``success``, ``inputs``, lexicographic; default fewest units).
+    by ``objective`` (``units``, ``success``, ``inputs``, ``cost`` with the problem's
+    motion-cost table; lexicographic; default fewest units).
 
     ``goal`` may be a meal (a tuple of goals): the fewest objects so that one tree makes them all.
     """

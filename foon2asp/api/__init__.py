@@ -13,18 +13,22 @@ calls: :func:`load` reads the data, :class:`KnowledgeBase` answers
 :meth:`~KnowledgeBase.missing`, :meth:`~KnowledgeBase.query`,
 :meth:`~KnowledgeBase.batch`, :meth:`~KnowledgeBase.facts`) with the settings of
 one request (:class:`Options`), and the answers render themselves in every
-format of :mod:`foon2asp.report`.
+format of :mod:`foon2asp.report`.  Tree files without a FOON: :func:`check_tree`
+judges one on its own, :func:`consolidate` merges candidate trees of one recipe
+into one proven-best tree per goal.
 
 The modules: :mod:`~foon2asp.api.options` (the request), :mod:`~foon2asp.api.kb`
 (the knowledge base), :mod:`~foon2asp.api.results` (the answers),
 :mod:`~foon2asp.api.load` (reading data), :mod:`~foon2asp.api.files` (FOON files,
 programs, drawings of tree files, output files), :mod:`~foon2asp.api.catalog`
-(methods, objectives and the other names a front end offers).
+(methods, objectives and the other names a front end offers), :mod:`~foon2asp.api.trees`
+(tree files judged on their own, candidates consolidated).
 """
 
 from foon2asp.api.catalog import (
     COMPARE_METHODS,
     GROUNDINGS,
+    MOTION_COST_PRECISION,
     OBJECT_FILTERS,
     OBJECTIVES,
     UTENSIL_RULES,
@@ -44,6 +48,14 @@ from foon2asp.api.kb import GoalLike, KnowledgeBase
 from foon2asp.api.load import load
 from foon2asp.api.options import Constraints, Options, Settings
 from foon2asp.api.results import BatchRun, CheckReport, Comparison, Missing, Reachability, Tree
+from foon2asp.api.trees import (
+    CandidateReport,
+    ConsolidatedGoal,
+    Consolidation,
+    TreeVerdict,
+    check_tree,
+    consolidate,
+)
 
 __all__ = [
     "load",
@@ -58,6 +70,12 @@ __all__ = [
     "Missing",
     "Reachability",
     "BatchRun",
+    "check_tree",
+    "TreeVerdict",
+    "consolidate",
+    "Consolidation",
+    "ConsolidatedGoal",
+    "CandidateReport",
     "read_foons",
     "write_foon",
     "FOON_FORMATS",
@@ -72,4 +90,5 @@ __all__ = [
     "GROUNDINGS",
     "COMPARE_METHODS",
     "OBJECT_FILTERS",
+    "MOTION_COST_PRECISION",
 ]

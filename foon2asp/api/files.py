@@ -10,12 +10,13 @@ from foon2asp.analysis.check import read_and_check
 from foon2asp.api.kb import KnowledgeBase
 from foon2asp.asp.constraints import read_file
 from foon2asp.errors import InputError
-from foon2asp.foon import foonjson, parser
+from foon2asp.foon import foonjson, parser, unitlist
 from foon2asp.foon.model import Foon
 from foon2asp.report import draw
 
-#: the formats :func:`write_foon` writes: the official dialect with ids, the dialect without ids, FOON JSON
-FOON_FORMATS = ("foon", "foon-plain", "foon-json")
+#: the formats :func:`write_foon` writes: the official dialect with ids, the dialect without ids, FOON JSON,
+#: the unit-list JSON of generated trees (:mod:`foon2asp.foon.unitlist`)
+FOON_FORMATS = ("foon", "foon-plain", "foon-json", "units-json")
 
 
 def writable_dir(path: str | Path) -> Path:
@@ -45,7 +46,8 @@ def write_file(path: str | Path, text: str | bytes) -> None:
 
 
 def read_foons(paths: Iterable[str | Path], strict: bool = False) -> Foon:
-    """FOON files (text in either dialect, or FOON JSON) merged into one FOON, duplicate units once;
+    """FOON files (text in either dialect, FOON JSON, or the unit-list JSON of generated trees)
+    merged into one FOON, duplicate units once;
     ``strict``: a unit skipped with a warning is an error.  The warnings are ``.warnings``."""
     names = [str(p) for p in paths]
     for name in names:
@@ -64,6 +66,8 @@ def write_foon(foon: Foon, path: str | Path, fmt: str = "foon", header: str | No
         with open(path, "w", encoding="utf-8") as fh:
             if fmt == "foon-json":
                 fh.write(foonjson.dumps(foon.units, parser.id_map(foon), header))
+            elif fmt == "units-json":
+                fh.write(unitlist.dumps(foon.units))
             else:
                 parser.write_foon(foon, fh, header=header, dialect="plain" if fmt == "foon-plain" else "official")
     except OSError as exc:
@@ -82,15 +86,20 @@ def draw_file(
     fmt: str | None = None,
     kb: KnowledgeBase | None = None,
     goal: str | None = None,
+    strict: bool = False,
+    warnings: list[str] | None = None,
 ) -> int:
     """Draw every tree of a tree file (any format :meth:`KnowledgeBase.check` reads) into ``output``;
     the format follows the extension unless ``fmt`` names one.  With ``kb`` the trees are checked:
     the goal (``goal``, else as :meth:`KnowledgeBase.check` finds it) is gold, kitchen items green,
-    a blocking cycle red.  Returns how many trees were drawn."""
+    a blocking cycle red.  Units of a unit list that are skipped or merged are added to
+    ``warnings`` (an error with ``strict``).  Returns how many trees were drawn."""
     fmt = fmt or draw.format_of(output)
     if fmt != "dot":
         draw.require_dot()
     data, problem = (kb.data, kb.problem) if kb is not None else (None, None)
-    trees, reports = read_and_check(tree, data, problem, goal)
+    trees, reports = read_and_check(tree, data, problem, goal, strict)
+    if warnings is not None:
+        warnings.extend(dict.fromkeys(w for t in trees for w in t.warnings))
     Path(output).write_bytes(draw.render(draw.file_graph(trees, reports, problem), fmt))
     return len(trees)

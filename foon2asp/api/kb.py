@@ -7,7 +7,7 @@ as keywords (:class:`foon2asp.api.options.Settings`); goals are named as :data:`
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Unpack
 
@@ -27,6 +27,7 @@ from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.model import FoonObject
+from foon2asp.foon.motioncost import unit_weights
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.treefiles import TreeFile, TreeUnit
 from foon2asp.methods.runner import solve_goals
@@ -111,10 +112,22 @@ class KnowledgeBase:
 
     def options(self, options: Options | None = None, **settings: Unpack[Settings]) -> AspOptions:
         """The solver options an answer uses (defaults: see :mod:`foon2asp.asp.options`): names
-        checked, constraint programs read; constraint names no motion or label matches are warned about."""
+        checked, constraint programs read; constraint names no motion or label matches are warned about.
+
+        The request's motion-cost table becomes the solver's integer weights (hundredths) and the
+        problem's table (:attr:`Problem.motion_costs`: every tree's measures then include ``cost``);
+        the motions of the FOON the table lacks (each costs 1) are named in one warning."""
         request = Options.of(options, **settings)
         self.warnings.extend(unknown_names(self.problem, request.constraints))
-        return request.solver()
+        solver = request.solver()
+        table = request.motion_table()
+        self.problem.motion_costs = table
+        if table is None:
+            return solver
+        weights, warning = unit_weights(table, [u.motion for u in self.problem.units])
+        if warning is not None:
+            self.warnings.append(warning)
+        return replace(solver, motion_costs=weights)
 
     # -- answers ------------------------------------------------------------
 
@@ -168,11 +181,13 @@ class KnowledgeBase:
         optimum: bool = True,
         goals: Sequence[GoalLike] | str | Path | None = None,
         *,
+        strict: bool = False,
         options: Options | None = None,
         **settings: Unpack[Settings],
     ) -> CheckReport | list[CheckReport]:
         """Judge a tree: a :class:`Tree`, or a file (FOON text in either dialect, FOON JSON,
-        foon2asp JSON, or a plan as Fast Downward writes it for ``export pddl``).
+        foon2asp JSON, the unit-list JSON of generated trees, or a plan as Fast Downward writes
+        it for ``export pddl``).
 
         A :class:`Tree`, or a file holding one tree, gives one report; a file holding several
         gives a list, one per tree (:meth:`check_all`: always a list).
@@ -181,7 +196,10 @@ class KnowledgeBase:
         file names (a JSON result, or the ``# task tree for ...`` line ``solve --format
         foon`` writes), else the tree's only product no unit of it needs.
         With ``optimum`` the ASP optimum is solved with ``options`` for each goal (a meal's for a meal).
+        Units of a unit list that are skipped or merged are warned about (:attr:`warnings`; an
+        error with ``strict``).  A tree file judged without a FOON: :func:`foon2asp.api.check_tree`.
         """
+        solver = self.options(options, **settings)
         if isinstance(tree, Tree):
             if goal is not None and not isinstance(goal, str | int | FoonObject):
                 raise InputError("check a Tree against one goal (its own by default)")
@@ -203,9 +221,9 @@ class KnowledgeBase:
                 among = goals_mod.goals_from_file(self.problem, str(goals))
             elif goals is not None:
                 among = [self.object_id(g) for g in goals]
-            reports = check_mod.check_file(self.data, self.problem, tree, labels, False, among)
+            reports = check_mod.check_file(self.data, self.problem, tree, labels, False, among, strict)
+            self.warnings.extend(dict.fromkeys(w for r in reports for w in r.tree.warnings))
         if optimum and reports:
-            solver = self.options(options, **settings)
             # a Tree's own goal, a file's trees by meal (one goal: a meal of one)
             key = (lambda r: r.goal) if isinstance(tree, Tree) else (lambda r: r.meal)
             meals = list(dict.fromkeys(key(r) for r in reports))
@@ -222,11 +240,12 @@ class KnowledgeBase:
         optimum: bool = True,
         goals: Sequence[GoalLike] | str | Path | None = None,
         *,
+        strict: bool = False,
         options: Options | None = None,
         **settings: Unpack[Settings],
     ) -> list[CheckReport]:
         """:meth:`check` as a list, whatever the file holds (one report per tree)."""
-        found = self.check(tree, goal, optimum, goals, options=options, **settings)
+        found = self.check(tree, goal, optimum, goals, strict=strict, options=options, **settings)
         return found if isinstance(found, list) else [found]
 
     def compare(

@@ -31,7 +31,8 @@ def _beside(foon: Path, given: dict, warnings: list[str]) -> dict:
         elif key == "kitchen":
             raise InputError(
                 f"no {FILE_NAMES[key]} beside the FOON file (looked for {candidate});"
-                " give a kitchen file or a data folder ('demo' for the demo data)",
+                " give a kitchen file, kitchen='leaves' (every object no unit makes: merged generated"
+                " trees have no kitchen) or a data folder ('demo' for the demo data)",
                 hint=f"kitchen={candidate}",
             )
         else:
@@ -56,6 +57,9 @@ def load(
     With ``foon`` and no folder, the other files are read from beside the
     (first) FOON file when there; a missing ``kitchen.json`` is an error, a
     missing goals, motion or utensils file a warning saying what that means.
+    A FOON file may be FOON text, FOON JSON or the unit-list JSON of generated
+    trees (:mod:`foon2asp.foon.unitlist`).  ``kitchen="leaves"``: the kitchen is
+    every object no unit of the FOON makes (:mod:`foon2asp.foon.leaves`).
     """
     if path == "demo":
         path = demo_dir()
@@ -72,11 +76,16 @@ def load(
     data = Dataset.load(
         path, foon=foon_paths, kitchen=kitchen, goals=goals, motion=motion, utensils=utensils, strict=strict
     )
+    return knowledge_base(data, utensil_rule, beside)
+
+
+def knowledge_base(data: Dataset, utensil_rule: str = "starter", warnings: Sequence[str] = ()) -> KnowledgeBase:
+    """The knowledge base of data read already, with the warnings about it (and ``warnings``)."""
     problem = Problem.from_dataset(data, utensil_rule)
-    warnings = list(data.foon.warnings) + list(data.warnings) + beside
+    found = list(data.foon.warnings) + list(data.warnings) + list(warnings)
     unknown = problem.unknown_motions()
     if data.motion and unknown:
-        warnings.append(
+        found.append(
             f"{len(unknown)} motion(s) not in {data.paths.get('motion')} get success rate 0.5: {', '.join(unknown[:5])}"
         )
-    return KnowledgeBase(data, problem, warnings)
+    return KnowledgeBase(data, problem, found)

@@ -8,23 +8,31 @@ place that knows them.  The command line builds one per command from its flags.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
+from pathlib import Path
 from typing import TypedDict, Unpack, cast
 
 from foon2asp.asp.constraints import ConstraintSpec
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
+from foon2asp.foon.motioncost import MotionCosts, parse_motion_costs, read_motion_costs
 
 #: user constraints (an ASP file, rule texts, the forbid/require/max-units conveniences):
 #: the one value the command line fills from ``--constraint`` ... ``--max-units`` and the solver reads
 Constraints = ConstraintSpec
 
 
+#: a motion-cost table as a request takes it: a file (JSON object or motion<TAB>cost lines),
+#: a table read already, or a mapping motion -> cost
+MotionCostLike = str | Path | MotionCosts | Mapping[str, object]
+
+
 class Settings(TypedDict, total=False):
     """The keyword arguments every answer takes besides ``options=`` (see :class:`Options`)."""
 
     objective: str | Sequence[str]
+    motion_cost: MotionCostLike | None
     time_limit: float | None
     models: int
     all_optimal: bool
@@ -71,7 +79,7 @@ class Options:
     so a value can be built before the data is read.
     """
 
-    #: lexicographic, most important first: ``units``, ``success``, ``inputs``, ``depth``
+    #: lexicographic, most important first: ``units``, ``success``, ``inputs``, ``depth``, ``cost``
     objective: tuple[str, ...] = ("units",)
     constraints: Constraints = field(default_factory=Constraints)
     #: seconds per goal; the best tree so far is then ``feasible``
@@ -92,6 +100,9 @@ class Options:
     grounding: str = "auto"
     #: batch: answer without the solver when the answer is forced
     shortcuts: bool = True
+    #: the motion-cost table (``--motion-cost FILE``; :data:`MotionCostLike`): the objective
+    #: ``cost`` needs it, and with it every tree's measures include its ``cost``
+    motion_cost: MotionCostLike | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "objective", split_objective(self.objective))
@@ -117,11 +128,27 @@ class Options:
         return replace(base, **changes) if changes else base
 
     def ranked(self) -> tuple[str, ...]:
-        """The objective names, checked."""
+        """The objective names, checked (``cost`` needs a motion-cost table)."""
         for name in self.objective:
             if name not in OBJECTIVES:
                 raise InputError(f"unknown objective {name!r} (have {', '.join(OBJECTIVES)})")
+        if "cost" in self.objective and self.motion_cost is None:
+            raise InputError(
+                "the objective 'cost' needs a motion-cost table: motion_cost=FILE (a JSON object motion -> cost,"
+                " or motion<TAB>cost lines)",
+                hint="motion-cost",
+            )
         return self.objective
+
+    def motion_table(self) -> MotionCosts | None:
+        """The motion-cost table of the request, read and checked (None without one)."""
+        table = self.motion_cost
+        if table is None or isinstance(table, MotionCosts):
+            return table
+        if isinstance(table, Mapping):
+            lines = "".join(f"{motion}\t{cost}\n" for motion, cost in table.items())
+            return parse_motion_costs(lines, "motion_cost")
+        return read_motion_costs(table)
 
     @property
     def solver_settings(self) -> dict[str, object]:

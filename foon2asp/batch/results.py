@@ -122,6 +122,11 @@ def configuration(spec: BatchSpec) -> dict:
         "heuristic": o.heuristic,
         "canonical": o.canonical,
         "input_sha256": hashlib.sha256(facts(spec.problem).encode("utf-8")).hexdigest(),
+        **(
+            {"motion_costs": hashlib.sha256(json.dumps(o.motion_costs, sort_keys=True).encode()).hexdigest()[:16]}
+            if o.motion_costs is not None
+            else {}
+        ),
     }
 
 

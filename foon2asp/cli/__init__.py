@@ -10,6 +10,7 @@ from foon2asp.cli import (  # noqa: F401  (each module registers its command on 
     batch,
     check,
     compare,
+    consolidate,
     draw,
     export,
     facts,

@@ -6,13 +6,15 @@ import sys
 
 import click
 
-from foon2asp import report
+from foon2asp import api, report
 from foon2asp.cli.main import guarded, main
 from foon2asp.cli.options import data_options, format_option
+from foon2asp.cli.output import warn, warn_kb
+from foon2asp.errors import InputError
 
 
 @main.command()
-@click.argument("tree", type=click.Path())
+@click.argument("trees", nargs=-1, required=True, type=click.Path(), metavar="TREE [TREE...]")
 @data_options
 @click.option(
     "--goal",
@@ -20,7 +22,8 @@ from foon2asp.cli.options import data_options, format_option
     multiple=True,
     metavar="TEXT",
     help="The goal (a label, an object's text or #ID; repeat for a meal); default: the goal the file names"
-    " (a JSON result, or the '# task tree for ...' line of solve --format foon), else the tree's only sink.",
+    " (a JSON result, or the '# task tree for ...' line of solve --format foon), else the tree's only sink"
+    " (judged on its own: the products of its last unit).",
 )
 @click.option(
     "--goals",
@@ -33,16 +36,43 @@ from foon2asp.cli.options import data_options, format_option
     "--optimum/--no-optimum", default=True, show_default=True, help="Also solve the ASP optimum to compare with."
 )
 @guarded
-def check(tree, data, goal, goals, fmt, optimum):
-    """Check the task tree(s) in TREE (FOON text with // between units, FOON JSON or foon2asp JSON),
-    or a plan for a problem of 'export pddl' ('(action-name)' lines, as Fast Downward writes them).
+def check(trees, data, goal, goals, fmt, optimum):
+    """Check the task tree(s) in each TREE (FOON text with // between units, FOON JSON, foon2asp JSON,
+    or the unit-list JSON of generated trees), or a plan for a problem of 'export pddl'
+    ('(action-name)' lines, as Fast Downward writes them); one report per tree.
+
+    Without --data and --foon each tree is judged on its own: the kitchen is its leaves (every
+    object no unit of it makes; or --kitchen FILE), the goal the products of its last unit
+    (or --goal), and it is valid when every unit fires in the order written; the report names
+    the first unit that cannot and the object it waits for, or the cycle.
 
     \b
     Exit codes: 0 every tree valid; 1 some tree invalid; 2 bad input or usage;
     130 interrupted.
     """
-    kb = data.load(goals)
-    among = kb.select_goals((), goals) if goals else None
-    reports = kb.check_all(tree, list(goal) or None, optimum, among)
-    click.echo(report.render("check", fmt, kb.problem, [r.raw for r in reports]), nl=False)
+    reports: list = []
+    if data.data_dir is None and not data.foon:
+        if goals:
+            raise InputError("--goals needs a FOON (--data or --foon); to judge a tree on its own, use --goal")
+        for path in trees:
+            kitchen = None if data.kitchen in (None, "leaves") else data.kitchen
+            found = api.check_tree(
+                path,
+                list(goal) or None,
+                kitchen=kitchen,
+                utensils=data.utensils,
+                utensil_rule=data.utensil_rule,
+                strict=data.strict,
+            )
+            for warning in dict.fromkeys(w for v in found for w in v.warnings):
+                warn(warning)
+            reports += [v.raw for v in found]
+        click.echo(report.render("check", fmt, None, reports), nl=False)
+    else:
+        kb = data.load(goals)
+        among = kb.select_goals((), goals) if goals else None
+        for path in trees:
+            reports += [r.raw for r in kb.check_all(path, list(goal) or None, optimum, among, strict=data.strict)]
+            warn_kb(kb)
+        click.echo(report.render("check", fmt, kb.problem, reports), nl=False)
     sys.exit(0 if all(r.valid for r in reports) else 1)

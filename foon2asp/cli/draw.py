@@ -6,7 +6,8 @@ import click
 
 from foon2asp import api
 from foon2asp.cli.main import guarded, main
-from foon2asp.cli.options import DataArgs
+from foon2asp.cli.options import STRICT_HELP, DataArgs
+from foon2asp.cli.output import warn
 from foon2asp.report import draw as draw_mod
 
 
@@ -20,9 +21,11 @@ from foon2asp.report import draw as draw_mod
 @click.option(
     "--format", "fmt", type=click.Choice(draw_mod.FORMATS), help="Drawing format (default: from the extension)."
 )
+@click.option("--strict", is_flag=True, help=STRICT_HELP)
 @guarded
-def draw(tree, data_dir, goal, output, fmt):
-    """Draw a task tree file: FOON text (either dialect), FOON JSON or foon2asp JSON.
+def draw(tree, data_dir, goal, output, fmt, strict):
+    """Draw a task tree file: FOON text (either dialect), FOON JSON, foon2asp JSON or the unit-list
+    JSON of generated trees.
 
     Objects are ellipses, functional units boxes; with --data the goal is gold,
     kitchen items green, and the cycle that blocks an invalid tree red.
@@ -33,5 +36,8 @@ def draw(tree, data_dir, goal, output, fmt):
     kb = None
     if data_dir is not None:
         kb = DataArgs(data_dir, (), None, None, None, "starter", False).load()
-    count = api.draw_file(tree, output, fmt=fmt, kb=kb, goal=goal)
+    warnings: list[str] = []
+    count = api.draw_file(tree, output, fmt=fmt, kb=kb, goal=goal, strict=strict, warnings=warnings)
+    for warning in warnings:
+        warn(warning)
     click.echo(f"drew {count} tree(s) from {tree} -> {output}", err=True)

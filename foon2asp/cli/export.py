@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from foon2asp.cli.main import guarded, main
-from foon2asp.cli.options import constraint_options, data_options
+from foon2asp.cli.options import constraint_options, data_options, motion_cost_option, request_options
 from foon2asp.errors import InputError
 from foon2asp.report import pddl
 
@@ -26,8 +26,10 @@ def export():
     type=click.Choice(pddl.PDDL_OBJECTIVES),
     default="units",
     show_default=True,
-    help="units: plan length; success: integer action costs round(-1000 ln p) (:action-costs); inputs: input nodes.",
+    help="units: plan length; success: integer action costs round(-1000 ln p) (:action-costs); inputs: input nodes;"
+    " cost: the motion costs of --motion-cost in hundredths.",
 )
+@request_options({"motion_cost": "motion_cost"}, motion_cost_option())
 @click.option(
     "-o",
     "--output",
@@ -51,6 +53,7 @@ def export_pddl(data, goal, goals, objective, output, name, options):
         raise InputError("--goals all-objects cannot be one PDDL goal; name goals with --goal or a goals FILE")
     kb = data.load(goals)
     goal_ids = kb.select_goals(goal, goals)
+    kb.options(options)  # the motion-cost table, for --objective cost
     if not all(c.isalnum() or c in "-_" for c in name) or not name[:1].isalpha():
         raise InputError(f"--name must be a PDDL name (a letter, then letters, digits, - or _), not {name!r}")
     task = pddl.export(kb.problem, goal_ids, objective, options.constraints, name)

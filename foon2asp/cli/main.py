@@ -32,7 +32,11 @@ FLAG_WORDING: dict[str, Callable[[str], str]] = {
     ),
     "kitchen": lambda looked_for: (
         f"no kitchen.json beside the FOON file (looked for {looked_for});"
-        " give --kitchen FILE or --data DIR (--data demo for the demo data)"
+        " give --kitchen FILE, --kitchen leaves (every object no unit makes, e.g. for merged generated trees)"
+        " or --data DIR (--data demo for the demo data)"
+    ),
+    "motion-cost": lambda _: (
+        "--objective cost needs --motion-cost FILE (a JSON object motion -> cost, or motion<TAB>cost lines)"
     ),
     "human-steps": lambda objective: (
         "human steps only change the tree when 'success' is an objective (a person's step succeeds"

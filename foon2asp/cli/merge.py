@@ -19,11 +19,16 @@ from foon2asp.cli.output import warn
     type=click.Choice(api.FOON_FORMATS),
     default="foon",
     show_default=True,
-    help="foon: official dialect with ids; foon-plain: without ids; foon-json: foon_api's JSON.",
+    help="foon: official dialect with ids; foon-plain: without ids; foon-json: foon_api's JSON;"
+    " units-json: the unit-list JSON of generated trees.",
 )
 @guarded
 def merge(files, output, strict, fmt):
-    """Merge FOON subgraphs into one universal FOON (duplicate units merged)."""
+    """Merge FOON subgraphs into one universal FOON (duplicate units merged).
+
+    FILES may be FOON text, FOON JSON or the unit-list JSON of generated trees
+    ({input_nodes, motion_node, output_nodes} per unit).
+    """
     foon = api.read_foons(files, strict)
     for warning in foon.warnings:
         warn(warning)

@@ -26,7 +26,8 @@ from foon2asp.cli.output import EXIT_CODES, exit_code, progress_bar, warn_kb
 @goal_options
 @constraint_options
 @objective_option(
-    "After the fewest added objects, the best tree by these objectives (units, success, inputs), comma-separated."
+    "After the fewest added objects, the best tree by these objectives (units, success, inputs, cost with"
+    " --motion-cost), comma-separated."
 )
 @format_option("missing")
 @time_limit_option("Seconds per goal; the best answer so far is reported as 'feasible'.")

@@ -75,6 +75,12 @@ class DataArgs:
         return kb
 
 
+STRICT_HELP = "Treat skipped units of FOON and tree files (warnings) as errors."
+KITCHEN_HELP = (
+    "kitchen.json, or 'leaves': every object no unit of the FOON makes (merged generated trees have no kitchen)."
+)
+
+
 def data_options(func, with_kitchen: bool = True):
     """--data DIR and the per-file overrides, plus --utensil-rule and --strict, passed on as one
     ``data`` value (:class:`DataArgs`); ``with_kitchen=False`` leaves out ``--kitchen FILE``."""
@@ -102,10 +108,10 @@ def data_options(func, with_kitchen: bool = True):
             show_default=True,
             help="When a utensil holding one ingredient is not a required input.",
         ),
-        click.option("--strict", is_flag=True, help="Treat skipped FOON units (warnings) as errors."),
+        click.option("--strict", is_flag=True, help=STRICT_HELP),
     ]
     if with_kitchen:
-        opts.insert(2, click.option("--kitchen", type=click.Path(), help="kitchen.json"))
+        opts.insert(2, click.option("--kitchen", type=click.Path(), help=KITCHEN_HELP))
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
@@ -179,11 +185,25 @@ def progress_option(func):
 
 
 def objective_option(
-    help: str = "ASP objective(s), comma-separated, most important first.",
+    help: str = "ASP objective(s), comma-separated, most important first: units, success, inputs, depth, cost"
+    " (with --motion-cost), e.g. cost,units.",
 ):
-    """``--objective`` into ``options``."""
+    """``--objective`` and ``--motion-cost FILE`` into ``options``."""
     return request_options(
-        {"objective": "objective"}, click.option("--objective", default="units", show_default=True, help=help)
+        {"objective": "objective", "motion_cost": "motion_cost"},
+        click.option("--objective", default="units", show_default=True, help=help),
+        motion_cost_option(),
+    )
+
+
+def motion_cost_option():
+    """``--motion-cost FILE`` (the request's ``motion_cost``)."""
+    return click.option(
+        "--motion-cost",
+        type=click.Path(),
+        metavar="FILE",
+        help="Motion costs: a JSON object motion -> cost >= 0, or motion<TAB>cost lines; --objective cost minimises"
+        " their sum, and every result then reports its cost. " + api.MOTION_COST_PRECISION + ".",
     )
 
 

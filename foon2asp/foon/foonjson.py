@@ -235,7 +235,9 @@ def parse_json(text: str, path: str = "<string>", foon: Foon | None = None) -> F
     units = _lab_units(data)
     if units is None:
         raise InputError(
-            'expected FOON JSON ({"functional_units": [...]}) or a list of units {motion, inputs, outputs}', path
+            'expected FOON JSON ({"functional_units": [...]}), a list of units {motion, inputs, outputs}'
+            " or a list of units {input_nodes, motion_node, output_nodes}",
+            path,
         )
     for k, u in enumerate(units, 1):
         where = f"unit {k}"

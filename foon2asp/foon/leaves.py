@@ -16,6 +16,9 @@ from collections.abc import Iterable
 
 from foon2asp.foon.model import Foon, FoonObject, Unit
 
+#: the kitchen named this (``--kitchen leaves``, ``load(kitchen="leaves")``) is the FOON's leaves
+LEAVES = "leaves"
+
 
 def made(units: Iterable[Unit]) -> set[FoonObject]:
     """The objects some unit of ``units`` makes (outputs that are not bare and not its own inputs)."""

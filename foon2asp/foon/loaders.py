@@ -6,13 +6,14 @@ A data directory holds ``FOON.txt``, ``kitchen.json``, ``goal_nodes.json``,
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from foon2asp.errors import InputError
+from foon2asp.foon.leaves import LEAVES, leaves
 from foon2asp.foon.model import Foon, FoonObject
 from foon2asp.foon.parser import read_foons
+from foon2asp.foon.safejson import list_elements
 from foon2asp.foon.safejson import loads as safe_loads
 from foon2asp.foon.safetext import lines_of, read_text
 
@@ -29,30 +30,9 @@ def _read_text(path: Path, what: str) -> str:
     return read_text(path, what)
 
 
-def _line_of(text: str, pos: int) -> int:
-    return text.count("\n", 0, pos) + 1
-
-
 def _json_elements(text: str, path: str) -> list[tuple[object, int]]:
     """Elements of a top-level JSON list, each with the line it starts on."""
-    dec = json.JSONDecoder()
-    safe_loads(text, path, checked=True)
-    pos = len(text) - len(text.lstrip())
-    if text[pos : pos + 1] != "[":
-        raise InputError("expected a JSON list of objects", path, _line_of(text, pos))
-    pos += 1
-    out: list[tuple[object, int]] = []
-    line, counted = 1, 0  # lines are counted incrementally: linear in the file size
-    while True:
-        while pos < len(text) and text[pos] in " \t\r\n,":
-            pos += 1
-        if pos >= len(text) or text[pos] == "]":
-            return out
-        value, end = dec.raw_decode(text, pos)
-        line += text.count("\n", counted, pos)
-        counted = pos
-        out.append((value, line))
-        pos = end
+    return [(value, line) for value, line, _ in list_elements(text, path)]
 
 
 def object_from_json(value: object, path: str, line: int) -> FoonObject:
@@ -180,7 +160,9 @@ class Dataset:
         """Read a data directory; explicit file arguments override its files.
 
         ``goals``, ``motion`` and ``utensils`` are optional when absent from
-        the directory; ``FOON.txt`` and ``kitchen.json`` are required.
+        the directory; ``FOON.txt`` and ``kitchen.json`` are required, unless
+        ``kitchen`` is ``"leaves"`` (:data:`foon2asp.foon.leaves.LEAVES`): then
+        the kitchen is every object no unit of the FOON makes.
         """
         base = Path(data_dir) if data_dir is not None else None
         given = {"foon": foon, "kitchen": kitchen, "goals": goals, "motion": motion, "utensils": utensils}
@@ -203,9 +185,10 @@ class Dataset:
                 raise InputError("FOON file not found", str(p))
         one = {k: str(v) for k, v in paths.items() if k != "foon"}
         warnings: list[str] = []
+        units = read_foons(foon_paths, strict)
         return cls(
-            foon=read_foons(foon_paths, strict),
-            kitchen=read_kitchen(one["kitchen"]),
+            foon=units,
+            kitchen=leaves(units) if one["kitchen"] == LEAVES else read_kitchen(one["kitchen"]),
             goals=read_goals(one["goals"]) if "goals" in one else [],
             motion=read_motion(one["motion"], warnings) if "motion" in one else {},
             utensils=read_utensils(one["utensils"], warnings) if "utensils" in one else frozenset(),

@@ -7,6 +7,9 @@ Two dialects are read, line by line, so files may even mix them:
 * the official subgraph format (``O<id>\\tlabel\\t<0|1>``, ``S<id>\\t...``,
   ``M<id>\\tmotion\\t<start>\\t<end>``, CRLF, ``# Source:`` lines).
 
+A JSON file is FOON JSON (:mod:`foon2asp.foon.foonjson`) or the unit-list form
+of generated trees (:mod:`foon2asp.foon.unitlist`).
+
 ``//`` ends a unit; a line starting with ``#`` is a comment; blank lines are
 ignored.  Lines end at LF, CRLF or CR; a control character (NUL, VT, ...),
 NEL, U+2028/U+2029 or a byte that is not UTF-8 is an error naming
@@ -26,12 +29,14 @@ and foon_api load: ``O<id>\tlabel\t0``, ``S<id>\t...``,
 from __future__ import annotations
 
 import gc
+import json
 import re
 from collections.abc import Iterable
 from pathlib import Path
 from typing import TextIO
 
 from foon2asp.errors import InputError
+from foon2asp.foon import unitlist
 from foon2asp.foon.foonjson import looks_like_json, parse_json
 from foon2asp.foon.model import Foon, FoonObject, Unit, norm
 from foon2asp.foon.safetext import check_line, decode_error, lines_of, read_bytes
@@ -181,7 +186,7 @@ def read_foon(path: str | Path, foon: Foon | None = None, strict: bool = False) 
         with open(path, encoding="utf-8", newline="") as fh:
             head = fh.read(64)
             if looks_like_json(path, head):
-                return parse_json(head + fh.read(), str(path), foon)
+                return _json_foon(head + fh.read(), str(path), foon, strict)
             fh.seek(0)
             return parse_lines(fh, str(path), foon, strict)
     except OSError as exc:
@@ -193,6 +198,19 @@ def read_foon(path: str | Path, foon: Foon | None = None, strict: bool = False) 
         except UnicodeDecodeError as exc:
             raise decode_error(data, exc, str(path)) from None
         raise  # pragma: no cover - the bytes decode as a whole
+
+
+def _json_foon(text: str, path: str, foon: Foon | None, strict: bool) -> Foon:
+    """A JSON FOON file: the unit-list form of generated trees (:mod:`foon2asp.foon.unitlist`;
+    ``strict``: a unit it skips is an error), else FOON JSON (:func:`foonjson.parse_json`)."""
+    if text.lstrip()[:1] == "[":
+        try:
+            value = json.loads(text)
+        except (ValueError, RecursionError):
+            value = None  # the readers below report it, located
+        if unitlist.is_unit_list(value) or unitlist.is_unit_lists(value):
+            return unitlist.unit_list_foon(text, path, strict, foon)
+    return parse_json(text, path, foon)
 
 
 def read_foons(paths: Iterable[str | Path], strict: bool = False) -> Foon:

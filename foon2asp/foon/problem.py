@@ -22,6 +22,7 @@ from typing import Protocol
 
 from foon2asp.foon.derive import least_fixpoint
 from foon2asp.foon.model import Foon, FoonObject, Unit
+from foon2asp.foon.motioncost import MotionCosts
 
 UTENSIL_RULES = ("starter", "off")
 
@@ -96,6 +97,9 @@ class Problem:
     motion_rates: dict[str, float] = field(default_factory=dict)
     utensils: frozenset[str] = frozenset()
     utensil_rule: str = "starter"
+    #: the motion-cost table of the request being answered (``--motion-cost``; set by
+    #: :meth:`foon2asp.api.KnowledgeBase.options`): every tree's measures then include its cost
+    motion_costs: MotionCosts | None = None
 
     def __post_init__(self) -> None:
         if self.utensil_rule not in UTENSIL_RULES:
@@ -137,6 +141,7 @@ class Problem:
         view = Problem.__new__(Problem)
         view.foon, view.motion_rates = self.foon, self.motion_rates
         view.utensils, view.utensil_rule = self.utensils, self.utensil_rule
+        view.motion_costs = self.motion_costs
         view.inputs, view.required, view.outputs = self.inputs, self.required, self.outputs
         view.products, view.producers, view.rates = self.products, self.producers, self.rates
         view.kitchen = ids

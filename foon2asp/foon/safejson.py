@@ -66,6 +66,34 @@ def loads(text: str, path: str, checked: bool = False) -> object:
         raise InputError(f"bad JSON: {exc}", path) from None
 
 
+def list_elements(text: str, path: str, start: int | None = None) -> list[tuple[object, int, int]]:
+    """The elements of a JSON list, each with the line and the position it starts at.
+
+    ``start``: the position of a list's ``[`` inside ``text`` (already checked by
+    :func:`loads`); None: the top-level value of ``text``, checked here, which must be a list.
+    Lines are counted incrementally: linear in the size of the list.
+    """
+    if start is None:
+        loads(text, path, checked=True)
+        start = len(text) - len(text.lstrip())
+        if text[start : start + 1] != "[":
+            raise InputError("expected a JSON list of objects", path, text.count("\n", 0, start) + 1)
+    dec = json.JSONDecoder()
+    pos = start + 1
+    line, counted = text.count("\n", 0, start) + 1, start
+    out: list[tuple[object, int, int]] = []
+    while True:
+        while pos < len(text) and text[pos] in " \t\r\n,":
+            pos += 1
+        if pos >= len(text) or text[pos] == "]":
+            return out
+        value, end = dec.raw_decode(text, pos)
+        line += text.count("\n", counted, pos)
+        counted = pos
+        out.append((value, line, pos))
+        pos = end
+
+
 def load(path: str | Path, what: str) -> tuple[str, object]:
     """The checked text of the JSON file ``path`` and its value."""
     text = read_text(path, what)

@@ -6,7 +6,9 @@ earlier search programs write; a leading ``//`` and ``#`` comment lines are
 fine; one tree per ``# task tree for GOAL (...)`` header line), FOON JSON
 (foon_api's ``{"functional_units": [...]}``, ``solve --format foon-json``; one
 tree or a list), foon2asp JSON (the list ``solve --format json`` prints, or one
-such result) or -- given the :class:`~foon2asp.foon.problem.Problem` whose unit
+such result), the unit-list form of generated trees (:mod:`foon2asp.foon.unitlist`:
+one tree, or one per inner list; units it skips and repeats merged are in
+:attr:`TreeFile.warnings`, an error with ``strict``) or -- given the :class:`~foon2asp.foon.problem.Problem` whose unit
 ids the action names carry -- a plan (:mod:`foon2asp.foon.plans`).
 :func:`read_trees` tells them apart and gives each tree's units as written,
 with the file, line and step of each, and the goal and method when the file
@@ -17,11 +19,11 @@ from __future__ import annotations
 
 import json
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from foon2asp.errors import InputError
-from foon2asp.foon import foonjson, plans
+from foon2asp.foon import foonjson, plans, unitlist
 from foon2asp.foon.goals import parse_object_text
 from foon2asp.foon.loaders import object_from_json
 from foon2asp.foon.model import FoonObject, Unit
@@ -49,6 +51,8 @@ class TreeFile:
     goal: FoonObject | None = None
     method: str | None = None
     line: int | None = None  # where this tree starts (JSON lists hold several)
+    #: what the reader skipped or merged (one line each, naming the file and the unit)
+    warnings: list[str] = field(default_factory=list)
 
     def where(self, tu: TreeUnit) -> str:
         return f"{self.path}:{tu.line}" if tu.line else f"{self.path} step {tu.step}"
@@ -87,7 +91,9 @@ def _read_foon_tree(text: str, path: str) -> list[TreeFile]:
             continue
         trees.append(TreeFile(path, units, goal, method, start + 1 if header else None))
     if not trees or not any(t.units for t in trees) and not any(t.goal for t in trees):
-        raise InputError("no functional units in the tree file (expected FOON text or foon2asp JSON)", path)
+        raise InputError(
+            "no functional units in the tree file (expected FOON text, FOON JSON, foon2asp JSON or a unit list)", path
+        )
     return trees
 
 
@@ -123,8 +129,21 @@ def _read_foon_json_trees(data: object, path: str) -> list[TreeFile]:
     return trees
 
 
-def _read_json_tree(text: str, path: str) -> list[TreeFile]:
+def _read_unit_list_trees(text: str, path: str, strict: bool) -> list[TreeFile]:
+    """The unit-list form: one tree, or one per inner list; each unit's step is its number in its list."""
+    trees, warnings = unitlist.read_unit_lists(text, path, strict)
+    out = [TreeFile(path, [TreeUnit(u, k, line) for u, k, line in units], line=start) for units, start in trees]
+    out = [t for t in out if t.units] or out[:1]
+    if not any(t.units for t in out):
+        raise InputError("no usable unit in the tree file (every unit was skipped; see the warnings)", path)
+    out[0].warnings = warnings
+    return out
+
+
+def _read_json_tree(text: str, path: str, strict: bool = False) -> list[TreeFile]:
     data = safe_loads(text, path, checked=True)
+    if unitlist.is_unit_list(data) or unitlist.is_unit_lists(data):
+        return _read_unit_list_trees(text, path, strict)
     if _is_foon_json(data) or (isinstance(data, list) and data and all(_is_foon_json(d) for d in data)):
         return _read_foon_json_trees(data, path)
     results = data if isinstance(data, list) else [data]
@@ -146,7 +165,12 @@ def _read_json_tree(text: str, path: str) -> list[TreeFile]:
     trees = []
     for result, line in zip(results, starts):
         if not isinstance(result, dict) or not isinstance(result.get("units"), list):
-            raise InputError("expected a foon2asp result: an object with a 'units' list", path, line)
+            raise InputError(
+                "expected a foon2asp result (an object with a 'units' list) or a list of units"
+                " {input_nodes, motion_node, output_nodes}",
+                path,
+                line,
+            )
         goal = object_from_json(result["goal"], path, line) if result.get("goal") is not None else None
         units = [TreeUnit(_json_unit(u, path, line, i), i, None) for i, u in enumerate(result["units"], 1)]
         method = result.get("method") if isinstance(result.get("method"), str) else None
@@ -163,12 +187,13 @@ def _read_plan(problem: Problem, text: str, path: str) -> list[TreeFile]:
     return [TreeFile(path, units, method=method)]
 
 
-def read_trees(path: str | Path, problem: Problem | None = None) -> list[TreeFile]:
-    """The tree(s) in ``path``: FOON text (one tree), FOON JSON or foon2asp JSON (one or more),
-    or (with ``problem``, whose unit ids the action names carry) a plan."""
+def read_trees(path: str | Path, problem: Problem | None = None, strict: bool = False) -> list[TreeFile]:
+    """The tree(s) in ``path``: FOON text (one tree), FOON JSON, foon2asp JSON or unit lists (one
+    or more), or (with ``problem``, whose unit ids the action names carry) a plan.  ``strict``: a
+    unit of a unit list that would be skipped with a warning is an error."""
     text = read_text(path, "tree")
     if _looks_like_json(text):
-        return _read_json_tree(text, str(path))
+        return _read_json_tree(text, str(path), strict)
     if problem is not None and plans.looks_like_plan(text):
         return _read_plan(problem, text, str(path))
     return _read_foon_tree(text, str(path))

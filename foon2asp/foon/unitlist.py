@@ -27,7 +27,11 @@ field.  Units are numbered from 1 in messages.
 
 :func:`to_unit_list` and :func:`dumps` write the same form back
 (``container`` null when there is none), so ``read_unit_list(dumps(units))``
-gives the units again.
+gives the units again.  Several trees are a JSON list of unit lists
+(:func:`dumps_trees`, :func:`read_unit_lists`; ``solve --format units-json``
+for several goals); messages then name the tree too (``tree 2, unit 3``).
+FOON files (:func:`foon2asp.foon.parser.read_foon`) and tree files
+(:func:`foon2asp.foon.treefiles.read_trees`) in this form are read here.
 """
 
 from __future__ import annotations
@@ -37,8 +41,9 @@ from collections.abc import Iterable, Sequence
 from pathlib import Path
 
 from foon2asp.errors import InputError
-from foon2asp.foon.loaders import _json_elements
 from foon2asp.foon.model import Foon, FoonObject, Unit, norm
+from foon2asp.foon.safejson import list_elements
+from foon2asp.foon.safejson import loads as safe_loads
 from foon2asp.foon.safetext import check_text, read_text
 
 #: the keys of one unit, in the order generators write them
@@ -65,6 +70,14 @@ def is_unit_list(value: object) -> bool:
     if any(_OTHER_KEYS.intersection(v) for v in value):
         return False
     return any(any(k in v for k in KEYS) for v in value)
+
+
+def is_unit_lists(value: object) -> bool:
+    """Is ``value`` several trees in the unit-list form: a non-empty list of lists, each a
+    unit list or empty, one at least a unit list (``solve --format units-json`` of several goals)?"""
+    if not isinstance(value, list) or not value or not all(isinstance(v, list) for v in value):
+        return False
+    return all(not v or is_unit_list(v) for v in value) and any(v for v in value)
 
 
 def _short(text: str, keep: int = 40) -> str:
@@ -123,9 +136,12 @@ def _motion(value: object, path: str, line: int | None, where: str) -> str:
     return norm(_text(value, path, line, where, "'motion_node'")).rstrip("*").strip()
 
 
-def read_unit(value: object, path: str, line: int | None, k: int) -> tuple[Unit | None, str | None]:
-    """Unit ``k`` (from 1): ``(unit, None)``, or ``(None, why)`` when it cannot be used."""
-    where = f"unit {k}"
+def read_unit(
+    value: object, path: str, line: int | None, k: int, tree: int | None = None
+) -> tuple[Unit | None, str | None]:
+    """Unit ``k`` (from 1; of tree ``tree`` of several): ``(unit, None)``, or ``(None, why)`` when it
+    cannot be used."""
+    where = _where(k, tree)
     if not isinstance(value, dict):
         raise InputError(f"{where}: expected an object {{input_nodes, motion_node, output_nodes}}", path, line)
     missing = [key for key in KEYS if value.get(key) is None]
@@ -143,31 +159,39 @@ def read_unit(value: object, path: str, line: int | None, k: int) -> tuple[Unit 
     return Unit(motion, sides[0], sides[1]), None
 
 
+def _where(k: int, tree: int | None) -> str:
+    return f"tree {tree}, unit {k}" if tree is not None else f"unit {k}"
+
+
 def _elements(value_or_text: object, path: str) -> list[tuple[object, int | None]]:
     """The top-level entries, each with the line it starts on (None when given a value)."""
     if isinstance(value_or_text, str):
         check_text(value_or_text, path)
-        return list(_json_elements(value_or_text, path))
+        return [(v, line) for v, line, _ in list_elements(value_or_text, path)]
     if not isinstance(value_or_text, list):
         raise InputError("expected a JSON list of units {input_nodes, motion_node, output_nodes}", path)
     return [(v, None) for v in value_or_text]
 
 
-def read_units(
-    value_or_text: object, path: str, strict: bool = False
-) -> tuple[list[tuple[Unit, int, int | None]], list[str]]:
-    """``(unit, k, line)`` per distinct unit in file order (``k`` from 1), and the warnings."""
+#: a unit read: (unit, its number in the list from 1, the line it starts on or None)
+Located = tuple[Unit, int, int | None]
+
+
+def _read(
+    elements: list[tuple[object, int | None]], path: str, strict: bool, tree: int | None = None
+) -> tuple[list[Located], list[str]]:
+    """The distinct usable units of one list's ``elements``, and the warnings."""
     warnings: list[str] = []
-    out: list[tuple[Unit, int, int | None]] = []
+    out: list[Located] = []
     first: dict[tuple, int] = {}
     repeats: list[tuple[int, int]] = []
-    for k, (value, line) in enumerate(_elements(value_or_text, path), 1):
-        unit, why = read_unit(value, path, line, k)
+    for k, (value, line) in enumerate(elements, 1):
+        unit, why = read_unit(value, path, line, k, tree)
         if unit is None:
-            err = InputError(f"unit {k} cannot be used: {why} (skipped)", path, line)
+            where = _where(k, tree)
             if strict:
-                raise InputError(f"unit {k} cannot be used: {why}", path, line)
-            warnings.append(str(err))
+                raise InputError(f"{where} cannot be used: {why}", path, line)
+            warnings.append(str(InputError(f"{where} cannot be used: {why} (skipped)", path, line)))
             continue
         key = unit.key()
         if key in first:
@@ -179,8 +203,49 @@ def read_units(
         shown = ", ".join(f"unit {k} repeats unit {j}" for k, j in repeats[:5])
         more = f", ... ({len(repeats) - 5} more)" if len(repeats) > 5 else ""
         n = len(repeats)
-        warnings.append(f"{path}: {n} repeated unit{'s' if n > 1 else ''} merged ({shown}{more})")
+        of = f" in tree {tree}" if tree is not None else ""
+        warnings.append(f"{path}: {n} repeated unit{'s' if n > 1 else ''}{of} merged ({shown}{more})")
     return out, warnings
+
+
+def read_units(value_or_text: object, path: str, strict: bool = False) -> tuple[list[Located], list[str]]:
+    """``(unit, k, line)`` per distinct unit in file order (``k`` from 1), and the warnings."""
+    return _read(_elements(value_or_text, path), path, strict)
+
+
+def read_unit_lists(
+    value_or_text: object, path: str, strict: bool = False
+) -> tuple[list[tuple[list[Located], int | None]], list[str]]:
+    """The trees of a unit list (one tree) or of a list of unit lists (one tree each, as
+    ``solve --format units-json`` writes several goals): per tree its units as
+    :func:`read_units` gives them and the line it starts on (None when given a value); and
+    all the warnings."""
+    if not isinstance(value_or_text, str):
+        if not is_unit_lists(value_or_text):
+            units, warnings = read_units(value_or_text, path, strict)
+            return [(units, None)], warnings
+        assert isinstance(value_or_text, list)
+        located: list[tuple[list[tuple[object, int | None]], int | None]] = [
+            ([(v, None) for v in entries], None) for entries in value_or_text
+        ]
+    else:
+        text = value_or_text
+        value = safe_loads(text, path)
+        start = len(text) - len(text.lstrip())
+        if not isinstance(value, list):
+            raise InputError("expected a JSON list of objects", path, text.count("\n", 0, start) + 1)
+        top = list_elements(text, path, start)
+        if not is_unit_lists(value):
+            units, warnings = _read([(v, line) for v, line, _ in top], path, strict)
+            return [(units, text.count("\n", 0, start) + 1)], warnings
+        located = [([(v, at) for v, at, _ in list_elements(text, path, pos)], line) for _, line, pos in top]
+    trees: list[tuple[list[Located], int | None]] = []
+    warnings = []
+    for t, (entries, line) in enumerate(located, 1):
+        units, more = _read(entries, path, strict, t)
+        trees.append((units, line))
+        warnings += more
+    return trees, warnings
 
 
 def read_unit_list(value_or_text: object, path: str, strict: bool = False) -> tuple[list[Unit], list[str]]:
@@ -195,12 +260,14 @@ def read_unit_list_file(path: str | Path, strict: bool = False) -> tuple[list[Un
 
 
 def unit_list_foon(value_or_text: object, path: str, strict: bool = False, foon: Foon | None = None) -> Foon:
-    """The units of a unit list added to ``foon`` (a new one by default); each unit's origin is
-    ``(path, line)`` (the unit's number when no line is known); the warnings go to ``foon.warnings``."""
+    """The units of a unit list (or of a list of them) added to ``foon`` (a new one by default);
+    each unit's origin is ``(path, line)`` (the unit's number when no line is known); the
+    warnings go to ``foon.warnings``."""
     foon = foon if foon is not None else Foon()
-    units, warnings = read_units(value_or_text, path, strict)
-    for unit, k, line in units:
-        foon.add_unit(unit, (path, line if line is not None else k))
+    trees, warnings = read_unit_lists(value_or_text, path, strict)
+    for units, _ in trees:
+        for unit, k, line in units:
+            foon.add_unit(unit, (path, line if line is not None else k))
     foon.warnings.extend(warnings)
     return foon
 
@@ -225,3 +292,14 @@ def dumps(units: Sequence[Unit] | Iterable[Unit]) -> str:
     """The unit-list JSON of ``units`` (one line per unit)."""
     entries = [json.dumps(e, ensure_ascii=False) for e in to_unit_list(units)]
     return "[\n" + ",\n".join(entries) + "\n]\n" if entries else "[]\n"
+
+
+def dumps_trees(trees: Sequence[Sequence[Unit]]) -> str:
+    """One tree as :func:`dumps` writes it; several as a JSON list of unit lists (one line per unit)."""
+    if len(trees) == 1:
+        return dumps(trees[0])
+    parts = []
+    for tree in trees:
+        entries = [json.dumps(e, ensure_ascii=False) for e in to_unit_list(tree)]
+        parts.append("[\n" + ",\n".join(entries) + "\n]" if entries else "[]")
+    return "[\n" + ",\n".join(parts) + "\n]\n" if parts else "[]\n"

@@ -1,4 +1,5 @@
-"""The report of ``check``: text and JSON."""
+"""The report of ``check``: text and JSON, for a tree checked against a FOON (:class:`Report`)
+or judged on its own (:class:`AloneReport`: kitchen = its leaves, no FOON)."""
 
 from __future__ import annotations
 
@@ -8,16 +9,18 @@ from foon2asp.foon.problem import Problem
 from foon2asp.foon.treefiles import TreeFile
 from foon2asp.report.registry import register
 from foon2asp.tree.diagnose import Finding, describe_unit
-from foon2asp.tree.results import Report
+from foon2asp.tree.results import AloneReport, Report
 from foon2asp.tree.serialize import number
+from foon2asp.tree.validate import AloneVerdict
 
 
 def _cost_text(cost: dict) -> str:
     depth = cost.get("depth")
-    return (
+    text = (
         f"{cost.get('units')} units, success {number(cost.get('success'))}, "
         f"depth {depth if depth is not None else '- (goal not made)'}"
     )
+    return text + (f", cost {number(cost['cost'])}" if "cost" in cost else "")
 
 
 def cycle_lines(
@@ -114,11 +117,114 @@ def report_json(problem: Problem, report: Report) -> dict:
     return out
 
 
+# ---------------------------------------------------------------- a tree on its own
+
+
+def _alone_steps(v: AloneVerdict, positions: list[int]) -> str:
+    return " ".join(str(v.step(p)) for p in positions) or "-"
+
+
+def alone_text(report: AloneReport) -> str:
+    """The human-readable verdict on a tree judged on its own."""
+    tree, v = report.tree, report.verdict
+    head = f"Tree: {tree.path}" + (f" (line {tree.line})" if tree.line and tree.line > 1 else "")
+    if tree.method:
+        head += f"  method {tree.method}"
+    lines = [head, f"Judged on its own: kitchen = {report.kitchen_source} ({len(v.kitchen)} objects)"]
+    source = f"  ({report.goal_source})" if report.goal_source else ""
+    if len(v.goals) > 1:
+        lines.append(f"Meal of {len(v.goals)} goals{source}:")
+        lines += [f"  + {g}" for g in v.goals]
+    else:
+        lines.append(f"Goal: {v.goals[0] if v.goals else '-'}{source}")
+    lines.append(f"Units: {len(tree.units)}")
+    lines.append(f"Verdict: {'VALID' if report.valid else 'INVALID'}")
+    if report.valid:
+        lines.append("Order: every unit fires in the order written")
+        return "\n".join(lines) + "\n"
+    if v.cycle:
+        lines.append("Problem: circular support -- these units need each other and nothing starts the cycle:")
+        for o, p in v.cycle:
+            lines.append(f"    {o}")
+            lines.append(f"      is made by step {v.step(p)} ({tree.units[p - 1].unit.motion}), which needs")
+        lines.append(f"    {v.cycle[0][0]}   (back to the start)")
+    else:
+        lines.append(f"Problem: {v.problem}")
+    b = v.blocked
+    if b is not None and report.kind != "order":
+        later = f"only step {v.step(b.made_by)} makes it" if b.made_by else "no unit makes it"
+        lines.append(
+            f"First unit that cannot fire in order: step {v.step(b.step)} ({b.unit.motion}) waits for {b.waits_for} ({later})"
+        )
+    if v.valid:
+        lines.append(f"As a set: the units make the goal in another order (steps {_alone_steps(v, v.order)})")
+    else:
+        lines.append(f"Units that can fire (in order, steps): {_alone_steps(v, v.order)}")
+        if v.stuck:
+            lines.append(f"Units that never fire (steps): {_alone_steps(v, v.stuck)}")
+    return "\n".join(lines) + "\n"
+
+
+def alone_json(report: AloneReport) -> dict:
+    """The verdict as plain data: the keys of :func:`report_json` that apply, and what judging
+    on its own adds (``judged``, ``kitchen``, ``valid_as_set``, ``blocked``, ``stuck``)."""
+    tree, v = report.tree, report.verdict
+    b = v.blocked
+    goal = (
+        {"goals": [g.to_json() for g in v.goals]}
+        if len(v.goals) > 1
+        else {"goal": v.goals[0].to_json() if v.goals else None}
+    )
+    return {
+        "tree": tree.path,
+        **goal,
+        "goal_source": report.goal_source,
+        "method": tree.method,
+        "valid": report.valid,
+        "problem": report.kind,
+        "message": v.problem if not report.valid else None,
+        "cycle": [
+            {"object": o.to_json(), "unit": v.step(p), "motion": tree.units[p - 1].unit.motion} for o, p in v.cycle
+        ],
+        "judged": "on its own",
+        "kitchen_source": report.kitchen_source,
+        "kitchen": [o.to_json() for o in v.kitchen],
+        "valid_as_set": v.valid,
+        "blocked": None
+        if b is None
+        else {
+            "step": v.step(b.step),
+            "motion": b.unit.motion,
+            "waits_for": b.waits_for.to_json(),
+            "made_by": None if b.made_by is None else v.step(b.made_by),
+        },
+        "stuck": [v.step(p) for p in v.stuck],
+        "executable_order_steps": [v.step(p) for p in v.order],
+        "units": len(tree.units),
+    }
+
+
 @register("check", "text", "txt", "readable report per tree")
-def check_text(problem: Problem, reports: list[Report]) -> str:
-    return "\n".join(report_text(problem, r) for r in reports)
+def check_text(problem: Problem | None, reports: list[Report | AloneReport]) -> str:
+    return "\n".join(one_text(problem, r) for r in reports)
+
+
+def one_text(problem: Problem | None, report: Report | AloneReport) -> str:
+    """One report as ``check`` prints it."""
+    if isinstance(report, AloneReport):
+        return alone_text(report)
+    assert problem is not None
+    return report_text(problem, report)
+
+
+def one_json(problem: Problem | None, report: Report | AloneReport) -> dict:
+    """One report as ``check --format json`` lists it."""
+    if isinstance(report, AloneReport):
+        return alone_json(report)
+    assert problem is not None
+    return report_json(problem, report)
 
 
 @register("check", "json", "json", "a list of reports")
-def check_json(problem: Problem, reports: list[Report]) -> str:
-    return json.dumps([report_json(problem, r) for r in reports], indent=2) + "\n"
+def check_json(problem: Problem | None, reports: list[Report | AloneReport]) -> str:
+    return json.dumps([one_json(problem, r) for r in reports], indent=2) + "\n"

@@ -31,11 +31,13 @@ def units_cell(tree: TaskTree) -> str:
 
 
 def quality_cell(tree: TaskTree) -> str:
-    """``1.02e-10 / 13``: success product / depth (``-`` when the goal is never made)."""
+    """``1.02e-10 / 13``: success product / depth (``-`` when the goal is never made), and
+    ``/ cost 1.35`` with a motion-cost table."""
     if not tree.has_tree:
         return "-"
     depth = tree.cost.get("depth")
-    return f"{number(tree.cost.get('success', 0))} / {depth if depth is not None else '-'}"
+    cell = f"{number(tree.cost.get('success', 0))} / {depth if depth is not None else '-'}"
+    return cell + (f" / cost {number(tree.cost['cost'])}" if "cost" in tree.cost else "")
 
 
 def _header(name: str) -> str:

@@ -6,7 +6,9 @@ their step and motion; edges run input -> motion -> output.  There is one
 node per distinct object and one per unit.  The goal is gold with a double
 outline, kitchen items are green, units done by a person are orange and
 marked ``[human]``, and for an invalid tree the cycle that blocks it (its
-objects, units and edges) is red.
+objects, units and edges) is red.  Units may be coloured by what the caller
+says (:attr:`Marks.unit_colors`; ``consolidate``: by source file, striped when
+several files hold the unit).
 
 The graph is built in pure Python as DOT source with the ``graphviz``
 package; rendering it to SVG, PNG or PDF runs Graphviz's ``dot`` (Debian
@@ -61,6 +63,12 @@ class Marks:
     cycle_needed: frozenset[tuple[FoonObject, int]] = field(default_factory=frozenset)
     #: one line under the title (e.g. the problem of an invalid tree)
     note: str = ""
+    #: unit position -> fill colours (several: the box is striped, one stripe each; e.g. its sources)
+    unit_colors: dict[int, tuple[str, ...]] = field(default_factory=dict)
+    #: unit position -> a line added to its tooltip
+    unit_notes: dict[int, str] = field(default_factory=dict)
+    #: the legend under the title (None: :data:`LEGEND`)
+    legend: str | None = None
 
 
 def _esc(text: str) -> str:
@@ -98,7 +106,7 @@ def build_graph(
     g.attr(rankdir="TB", fontname="Helvetica", fontsize="12", labelloc="t", nodesep="0.25", ranksep="0.35")
     title = [_esc(marks.title)] if marks.title else []
     title += [f'<FONT COLOR="{CYCLE}">{_esc(line)}</FONT>' for line in _wrap(marks.note)] if marks.note else []
-    title.append(f'<FONT POINT-SIZE="9">{_esc(LEGEND)}</FONT>')
+    title.append(f'<FONT POINT-SIZE="9">{_esc(LEGEND if marks.legend is None else marks.legend)}</FONT>')
     g.attr(label="<" + "<BR/>".join(title) + ">")
     g.attr("node", fontname="Helvetica", fontsize="10")
     g.attr("edge", arrowsize="0.6")
@@ -125,14 +133,20 @@ def build_graph(
         text = f"{k + 1}. {unit.motion}"
         attrs = {"shape": "box", "style": "filled", "fillcolor": UNIT_FILL}
         classes = ["unit"]
+        colors = marks.unit_colors.get(k)
+        if colors:
+            attrs["fillcolor"] = ":".join(colors)
+            if len(colors) > 1:
+                attrs["style"] = "striped"
         if k in marks.human:
             text += "\n[human]"
-            attrs["fillcolor"] = HUMAN_FILL
+            attrs.update(fillcolor=HUMAN_FILL, style="filled")
             classes.append("human")
         if k in marks.cycle_units:
             attrs.update(color=CYCLE, penwidth="2.5", fontcolor=CYCLE)
             classes.append("cycle")
-        g.node(node, text, tooltip=str(unit), **{"class": " ".join(classes)}, **attrs)
+        tip = str(unit) + (f" -- {marks.unit_notes[k]}" if k in marks.unit_notes else "")
+        g.node(node, text, tooltip=tip, **{"class": " ".join(classes)}, **attrs)
         for obj in dict.fromkeys(unit.inputs):
             red = (obj, k) in marks.cycle_needed
             g.edge(ids[obj], node, **({"color": CYCLE, "penwidth": "2.5"} if red else {}))

@@ -17,7 +17,8 @@ well-founded task tree, and a tree in executable order is a plan; an optimal
 plan repeats no action, so the fewest actions is the fewest units.  With
 ``objective="success"`` each action costs its unit's integer weight
 round(-1000 ln p) (``:action-costs``), the weight ``--objective success``
-minimises; ``"inputs"`` costs the unit's number of input nodes.
+minimises; ``"inputs"`` costs the unit's number of input nodes; ``"cost"`` its
+motion's cost in hundredths (the problem's motion-cost table, ``--motion-cost``).
 
 Constraints that only remove units (``--forbid-motion``, ``--forbid-object``)
 are applied here as filters; general ``--rule``/``--constraint`` programs,
@@ -36,7 +37,7 @@ from foon2asp.foon.plans import action_name
 from foon2asp.foon.problem import Problem, walk_back
 
 #: objectives that PDDL can state (action costs per unit; "units" is plan length)
-PDDL_OBJECTIVES = ("units", "success", "inputs")
+PDDL_OBJECTIVES = ("units", "success", "inputs", "cost")
 
 
 @dataclass
@@ -129,9 +130,15 @@ def export(
     const = {o: f"o{o}" for o in objs}
     actions = {action_name(problem, u): u for u in units}
 
+    if objective == "cost" and problem.motion_costs is None:
+        raise InputError("the objective 'cost' needs a motion-cost table", hint="motion-cost")
+    motion_table = problem.motion_costs
+
     def cost_of(u: int) -> int:
         if objective == "success":
             return neglog_weight(problem.rates[u])
+        if motion_table is not None and objective == "cost":
+            return motion_table.weight(problem.units[u].motion)
         return len(problem.inputs[u])
 
     goal_lines = [f"; goal {const[g]}: {_comment(problem.objects[g])}" for g in goals]
@@ -140,6 +147,7 @@ def export(
         "units": "plan length = number of units",
         "success": "action cost = round(-1000 ln p) of the unit's motion success rate p",
         "inputs": "action cost = the unit's number of input nodes",
+        "cost": "action cost = the unit's motion cost in hundredths (--motion-cost)",
     }[objective]
     head = [
         "; written by foon2asp export pddl: a FOON problem as delete-free STRIPS",

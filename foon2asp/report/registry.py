@@ -1,7 +1,8 @@
 """The one registry of output formats, by kind of answer.
 
 A format renders one kind of answer -- ``trees`` (solve), ``compare``,
-``check``, ``reachable``, ``missing``, ``query``, ``summary`` (batch) -- to
+``check``, ``reachable``, ``missing``, ``query``, ``summary`` (batch),
+``consolidate`` -- to
 text, or to bytes for a ``binary`` format (the PNG and PDF drawings).  Every
 command and the library look formats up here, so a new format is one
 registration.

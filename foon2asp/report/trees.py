@@ -1,10 +1,12 @@
-"""Task trees as text, JSON, FOON text or JSON, and drawings (the formats of ``solve --format``)."""
+"""Task trees as text, JSON, FOON text or JSON, the unit-list JSON of generated trees, and
+drawings (the formats of ``solve --format``)."""
 
 from __future__ import annotations
 
 import json
 
 from foon2asp.foon.problem import Problem
+from foon2asp.foon.unitlist import dumps_trees
 from foon2asp.report import draw
 from foon2asp.report.registry import get, register
 from foon2asp.tree.serialize import to_json, tree_foon, tree_foon_json, tree_json, tree_text
@@ -35,6 +37,17 @@ def trees_foon_plain(problem: Problem, trees: list[TaskTree]) -> str:
 def trees_foon_json(problem: Problem, trees: list[TaskTree]) -> str:
     docs = [tree_foon_json(problem, t) for t in trees]
     return json.dumps(docs[0] if len(docs) == 1 else docs, indent=1) + "\n"
+
+
+@register(
+    "trees",
+    "units-json",
+    "json",
+    "the unit-list JSON of generated trees ({input_nodes, motion_node, output_nodes} per unit);"
+    " a list of them when there are several trees",
+)
+def trees_units_json(problem: Problem, trees: list[TaskTree]) -> str:
+    return dumps_trees([[problem.units[u] for u in t.units] for t in trees])
 
 
 def _drawing(fmt: str):

@@ -1,10 +1,12 @@
 """The answers the commands give, as plain values the renderers of :mod:`foon2asp.report` print.
 
-A :class:`Report` is ``check``'s verdict on one tree read from a file, a
+A :class:`Report` is ``check``'s verdict on one tree read from a file (an
+:class:`AloneReport` when the tree is judged on its own, without a FOON), a
 :class:`Row` (or :class:`MealRow`) one goal of ``compare``, a
 :class:`BatchReport` what a batch did, a :class:`MissingResult` what
 ``missing`` would add to the kitchen and a :class:`QueryResult` the models of
-``query``.  They are made in :mod:`foon2asp.analysis` and :mod:`foon2asp.batch`
+``query``; a :class:`Consolidation` is what ``consolidate`` says about one goal
+of several candidate trees.  They are made in :mod:`foon2asp.analysis` and :mod:`foon2asp.batch`
 and live here, below both, so that rendering them needs neither.
 """
 
@@ -12,14 +14,16 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from decimal import Decimal
 from typing import Protocol
 
 import clingo
 
-from foon2asp.foon.treefiles import TreeFile
+from foon2asp.foon.model import FoonObject
+from foon2asp.foon.treefiles import TreeFile, TreeUnit
 from foon2asp.tree.diagnose import Finding
 from foon2asp.tree.tasktree import TaskTree
-from foon2asp.tree.validate import Validation
+from foon2asp.tree.validate import AloneVerdict, Validation
 
 
 @dataclass
@@ -45,6 +49,85 @@ class Report:
 
 
 @dataclass
+class AloneReport:
+    """``check`` of a tree on its own (no FOON): the verdict of
+    :func:`foon2asp.tree.validate.judge_alone`; valid means the units fire in the order written
+    and make the goal."""
+
+    tree: TreeFile
+    verdict: AloneVerdict
+    #: where the goal came from: ``--goal``, ``named in the file`` or ``the products of its last unit``
+    goal_source: str = ""
+    #: where the kitchen came from: ``its leaves`` or a kitchen file
+    kitchen_source: str = "its leaves"
+
+    @property
+    def valid(self) -> bool:
+        return self.verdict.in_order
+
+    @property
+    def kind(self) -> str | None:
+        """The kind of the first problem: ``no-goal``, ``cycle``, ``missing-input``, ``order``
+        (the units fire only in another order) or ``goal-not-made``; None when valid."""
+        v = self.verdict
+        if v.in_order:
+            return None
+        if not v.goals:
+            return "no-goal"
+        if v.cycle:
+            return "cycle"
+        if v.missing is not None:
+            return "missing-input"
+        if v.blocked is not None:
+            return "order"
+        return "goal-not-made"
+
+
+@dataclass
+class Candidate:
+    """One candidate file of ``consolidate``: its units as read (distinct, in file order)."""
+
+    path: str
+    units: list[TreeUnit]
+    warnings: list[str] = field(default_factory=list)
+
+
+@dataclass
+class CandidateVerdict:
+    """A candidate judged for one goal of ``consolidate``: on its own units, in file order, from
+    the consolidation's kitchen; its measures in the merged FOON; the steps the result uses."""
+
+    candidate: Candidate
+    verdict: AloneVerdict
+    #: the merged FOON's unit id of each of its units
+    ids: list[int]
+    cost: dict
+    #: steps (numbers in its file, from 1) of its units that the consolidated tree uses
+    used: list[int]
+
+    @property
+    def valid(self) -> bool:
+        return self.verdict.in_order
+
+
+@dataclass
+class Consolidation:
+    """One goal (or one meal) of ``consolidate``: the proven-best tree of the merged candidates,
+    each unit's source files, every candidate's verdict and, when unreachable, what to add."""
+
+    goals: tuple[int, ...]
+    tree: TaskTree
+    #: per unit id of the merged FOON: the candidate files holding that unit, in the order given
+    sources: list[list[str]]
+    candidates: list[CandidateVerdict]
+    #: the fewest objects to add to the kitchen (only when the goal is unreachable)
+    missing: MissingResult | None = None
+    goal_source: str = ""
+    kitchen_source: str = "leaves"
+    kitchen: list[FoonObject] = field(default_factory=list)
+
+
+@dataclass
 class Row:
     """One goal: the tree of each method (``extra["valid"]`` set on each)."""
 
@@ -61,18 +144,23 @@ class MealRow:
     singles: list[TaskTree]
 
     def total(self) -> dict:
-        """The single optima added up (units, inputs; success multiplied); {} if one has no tree."""
+        """The single optima added up (units, inputs, cost; success multiplied); {} if one has no tree."""
         if not all(t.has_tree for t in self.singles):
             return {}
         success = 1.0
         for t in self.singles:
             success *= t.cost.get("success", 1.0)
-        return {
+        total = {
             "units": sum(t.cost["units"] for t in self.singles),
             "success": float(f"{success:.6g}"),
             "inputs": sum(t.cost["inputs"] for t in self.singles),
             "depth": max(t.cost["depth"] or 0 for t in self.singles),
         }
+        if all("cost" in t.cost for t in self.singles):
+            # exact: each cost has at most two decimals (foon2asp.foon.motioncost)
+            summed = sum((Decimal(str(t.cost["cost"])) for t in self.singles), Decimal(0))
+            total["cost"] = int(summed) if summed == summed.to_integral_value() else float(summed)
+        return total
 
 
 @dataclass

@@ -5,7 +5,9 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field
+from decimal import Decimal
 
+from foon2asp.foon.motioncost import MotionCosts, as_number
 from foon2asp.foon.problem import Problem
 
 STATUSES = ("optimal", "ranked", "feasible", "unreachable", "unknown", "found", "not-found")
@@ -80,7 +82,9 @@ def executable_order(problem: Problem, units: list[int] | set[int]) -> list[int]
 
 
 def measures(problem: Problem, goal: int | Iterable[int], units: list[int]) -> dict:
-    """Every measure of a tree: units, success product, input nodes, depth.
+    """Every measure of a tree: units, success product, input nodes, depth, and with a
+    motion-cost table (:attr:`Problem.motion_costs`) the summed cost of its motions (exact,
+    :func:`foon2asp.foon.motioncost.as_number`: 1.35, or 2 when whole).
 
     For a meal (several goals) the depth is the number of rounds until every
     goal is had: the greatest depth of its goals (None when one is not made).
@@ -91,9 +95,17 @@ def measures(problem: Problem, goal: int | Iterable[int], units: list[int]) -> d
         success *= problem.rates[u]
     levels = [obj_level.get(g) for g in meal_of(goal)]
     depth = None if any(d is None for d in levels) else max(d for d in levels if d is not None)
-    return {
+    out = {
         "units": len(units),
         "success": float(f"{success:.6g}"),
         "inputs": sum(len(problem.inputs[u]) for u in units),
         "depth": depth,
     }
+    if problem.motion_costs is not None:
+        out["cost"] = tree_cost(problem.motion_costs, (problem.units[u].motion for u in units))
+    return out
+
+
+def tree_cost(table: MotionCosts, motions: Iterable[str]) -> int | float:
+    """The summed cost of ``motions`` in ``table``, exact (a motion not listed costs 1)."""
+    return as_number(sum((table.cost(m) for m in motions), Decimal(0)))

@@ -118,6 +118,8 @@ class AloneVerdict:
     blocked: Blocked | None = None
     #: positions of the units that can never fire with these units
     stuck: list[int] = field(default_factory=list)
+    #: positions of the units that can fire, in an order in which they can (the set's fixpoint)
+    order: list[int] = field(default_factory=list)
     #: circular support: (object, position of the unit that makes it and needs the next pair's
     #: object); the last unit needs the first object
     cycle: list[tuple[FoonObject, int]] = field(default_factory=list)
@@ -128,17 +130,23 @@ class AloneVerdict:
     unmade: list[FoonObject] = field(default_factory=list)
     #: the first problem in words (None when valid and executable in order)
     problem: str | None = None
+    #: the number each position has in the file (units skipped by a reader leave gaps); empty: the positions
+    numbers: list[int] = field(default_factory=list)
+
+    def step(self, position: int) -> int:
+        """The number in the file of the unit at ``position`` (from 1), as messages name it."""
+        return self.numbers[position - 1] if self.numbers else position
 
 
-def _name(step: int, unit: Unit) -> str:
-    return f"step {step} ({unit.motion})"
+def _name(step: int, unit: Unit, v: AloneVerdict | None = None) -> str:
+    return f"step {v.step(step) if v is not None else step} ({unit.motion})"
 
 
 def _made_objects(unit: Unit) -> list[FoonObject]:
     return [o for o in unit.outputs if not o.is_bare()]
 
 
-def _default_goals(units: list[Unit]) -> tuple[FoonObject, ...]:
+def last_products(units: list[Unit]) -> tuple[FoonObject, ...]:
     """The products of the last unit that makes any (generated trees list their units in order)."""
     for unit in reversed(units):
         if _made_objects(unit):
@@ -152,6 +160,7 @@ def judge_alone(
     kitchen: list[FoonObject] | None = None,
     utensils: frozenset[str] = frozenset(),
     utensil_rule: str = "starter",
+    numbers: list[int] | None = None,
 ) -> AloneVerdict:
     """Judge a tree file on its own: ``units`` in file order, no FOON.
 
@@ -161,16 +170,17 @@ def judge_alone(
     on plain objects: in the given order (the first unit that cannot fire, the object
     it waits for and the later unit that makes it), then as a set (a fixpoint, as
     :func:`validate` does: a unit that never fires is explained by an object no unit
-    makes or by the cycle it rests on).
+    makes or by the cycle it rests on).  ``numbers``: each unit's number in its file, for
+    the messages (:meth:`AloneVerdict.step`); the verdict's fields hold positions.
     """
     start = list(kitchen) if kitchen is not None else leaves(units)
-    goals = _default_goals(units) if goal is None else (goal if isinstance(goal, tuple) else (goal,))
+    goals = last_products(units) if goal is None else (goal if isinstance(goal, tuple) else (goal,))
     need = [[o for o, f in zip(u.inputs, required_flags(u, utensils, utensil_rule)) if f] for u in units]
     makers: dict[FoonObject, list[int]] = {}
     for k, u in enumerate(units):
         for o in _made_objects(u):
             makers.setdefault(o, []).append(k)
-    verdict = AloneVerdict(False, False, goals, start)
+    verdict = AloneVerdict(False, False, goals, start, numbers=list(numbers or []))
 
     # in the order given
     have = set(start)
@@ -192,6 +202,7 @@ def judge_alone(
         for k in list(pending):
             if all(o in have for o in need[k]):
                 pending.remove(k)
+                verdict.order.append(k + 1)
                 have.update(_made_objects(units[k]))
                 progress = True
     verdict.stuck = [k + 1 for k in pending]
@@ -236,17 +247,17 @@ def _alone_problem(units: list[Unit], v: AloneVerdict) -> str | None:
         steps = []
         for i, (o, step) in enumerate(v.cycle):
             nxt = v.cycle[(i + 1) % len(v.cycle)][0]
-            steps.append(f"[{o}] is made by {_name(step, units[step - 1])}, which needs [{nxt}]")
+            steps.append(f"[{o}] is made by {_name(step, units[step - 1], v)}, which needs [{nxt}]")
         return "circular support: " + "; ".join(steps)
     if v.missing is not None and v.needed_by is not None:
         return (
-            f"missing input: {v.missing} is needed by {_name(v.needed_by, units[v.needed_by - 1])} "
+            f"missing input: {v.missing} is needed by {_name(v.needed_by, units[v.needed_by - 1], v)} "
             "but is not in the kitchen and no unit makes it"
         )
     if v.blocked is not None:
         b = v.blocked
-        later = f"which only {_name(b.made_by, units[b.made_by - 1])} makes" if b.made_by else "which no unit makes"
-        return f"{_name(b.step, b.unit)} cannot fire in the order given: it waits for {b.waits_for}, {later}"
+        later = f"which only {_name(b.made_by, units[b.made_by - 1], v)} makes" if b.made_by else "which no unit makes"
+        return f"{_name(b.step, b.unit, v)} cannot fire in the order given: it waits for {b.waits_for}, {later}"
     if v.unmade:
         return f"goal {v.unmade[0]} is not made by these units"
     return None

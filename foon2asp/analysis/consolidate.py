@@ -1,0 +1,147 @@
+"""Consolidating candidate trees of one recipe into one proven-best tree.
+
+A language model writes several candidate task trees for one recipe; each is a
+file in any form :func:`foon2asp.foon.treefiles.read_trees` reads (the unit-list
+JSON of :mod:`foon2asp.foon.unitlist` above all).  :func:`read_candidates` reads
+them, :func:`merge` puts their units into one FOON (exact duplicates once, each
+unit remembering the files it came from), and :func:`consolidate` answers, for
+each goal, with
+
+* the proven-best tree of the merged FOON for the request's objectives,
+  constraints and limits (:func:`foon2asp.methods.runner.solve_goals`, the path
+  ``solve`` takes), from the consolidation's kitchen (by default the merged
+  FOON's leaves, :mod:`foon2asp.foon.leaves`);
+* every candidate's verdict: is it executable on its own -- its own units, in
+  the order its file lists them, from the same kitchen, for the same goal
+  (:func:`foon2asp.tree.validate.judge_alone`) -- and if not, why; its measures
+  in the merged FOON (to set against the optimum) and which of its units the
+  tree uses.  A candidate executable on its own is a tree of the merged FOON, so
+  the optimum is never worse than it;
+* when the goal is unreachable, the fewest objects to add to the kitchen
+  (:func:`foon2asp.analysis.queries.missing`).
+
+The default goal (:func:`shared_goal`) is the product of the candidates' last
+units that most of them share (generated trees end with the dish).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterable, Sequence
+from pathlib import Path
+
+from foon2asp.analysis import queries
+from foon2asp.asp.options import AspOptions
+from foon2asp.errors import InputError
+from foon2asp.foon.model import Foon, FoonObject
+from foon2asp.foon.problem import Problem
+from foon2asp.foon.treefiles import TreeUnit, read_trees
+from foon2asp.methods.runner import solve_goals
+from foon2asp.tree.results import Candidate, CandidateVerdict, Consolidation
+from foon2asp.tree.tasktree import Goals, meal_of, measures
+from foon2asp.tree.validate import judge_alone, last_products
+
+
+def read_candidates(paths: Iterable[str | Path], strict: bool = False) -> list[Candidate]:
+    """Each file's units, distinct, in file order (a file holding several trees is one
+    candidate: the units of its trees in turn); ``strict``: a unit a unit list would skip is an error."""
+    out = []
+    for path in paths:
+        trees = read_trees(path, strict=strict)
+        seen: set[tuple] = set()
+        units: list[TreeUnit] = []
+        for tree in trees:
+            for tu in tree.units:
+                if tu.unit.key() not in seen:
+                    seen.add(tu.unit.key())
+                    units.append(tu)
+        warnings = [w for tree in trees for w in tree.warnings]
+        out.append(Candidate(str(path), units, warnings))
+    if not out:
+        raise InputError("no candidate tree given")
+    return out
+
+
+def merge(candidates: Sequence[Candidate]) -> tuple[Foon, list[list[str]]]:
+    """The merged FOON of the candidates (a unit in several files once, its origin the first)
+    and, per unit id, the files holding it in the order given."""
+    foon = Foon()
+    sources: list[list[str]] = []
+    for cand in candidates:
+        for tu in cand.units:
+            uid = foon.add_unit(tu.unit, (cand.path, tu.line if tu.line is not None else tu.step))
+            if uid == len(sources):
+                sources.append([])
+            if cand.path not in sources[uid]:
+                sources[uid].append(cand.path)
+    return foon, sources
+
+
+def goal_counts(candidates: Sequence[Candidate]) -> Counter[FoonObject]:
+    """How many candidates' last units make each object (the products of the last unit that makes any)."""
+    counts: Counter[FoonObject] = Counter()
+    for cand in candidates:
+        counts.update(set(last_products([tu.unit for tu in cand.units])))
+    return counts
+
+
+def candidate_goals(candidates: Sequence[Candidate]) -> list[tuple[FoonObject, int]]:
+    """Every product of a candidate's last unit with how many candidates share it, most shared
+    first (ties in the order the candidates name them)."""
+    counts = goal_counts(candidates)
+    order = list(dict.fromkeys(o for c in candidates for o in last_products([tu.unit for tu in c.units])))
+    return sorted(((o, counts[o]) for o in order), key=lambda pair: -pair[1])
+
+
+def shared_goal(candidates: Sequence[Candidate]) -> tuple[FoonObject, str]:
+    """The default goal: the product of the candidates' last units that most of them share,
+    and where it came from in words."""
+    ranked = candidate_goals(candidates)
+    if not ranked:
+        raise InputError("no candidate's last unit makes an object: name the goal", hint="no-goal")
+    obj, n = ranked[0]
+    return obj, f"the product of the last unit of {n} of {len(candidates)} candidates"
+
+
+def judge(problem: Problem, goals: tuple[int, ...], cand: Candidate, tree_units: Iterable[int]) -> CandidateVerdict:
+    """``cand`` for ``goals``: on its own units, in file order, from the problem's kitchen."""
+    units = [tu.unit for tu in cand.units]
+    index = {u.key(): i for i, u in enumerate(problem.units)}
+    ids = [index[u.key()] for u in units]
+    objects = tuple(problem.objects[g] for g in goals)
+    numbers = [tu.step for tu in cand.units]
+    verdict = judge_alone(units, objects, problem.kitchen_items, problem.utensils, problem.utensil_rule, numbers)
+    used = set(tree_units)
+    steps = [tu.step for tu, u in zip(cand.units, ids) if u in used]
+    return CandidateVerdict(cand, verdict, ids, measures(problem, goals, list(dict.fromkeys(ids))), steps)
+
+
+def consolidate(
+    problem: Problem,
+    candidates: Sequence[Candidate],
+    sources: list[list[str]],
+    goals: Sequence[Goals],
+    options: AspOptions | None = None,
+    goal_source: str = "",
+    kitchen_source: str = "leaves",
+) -> list[Consolidation]:
+    """For each of ``goals`` (an object id, or a tuple of them: a meal) of the merged FOON
+    ``problem``: the best tree, every candidate's verdict and, when unreachable, what to add."""
+    options = options or AspOptions()
+    out = []
+    for goal, tree in zip(goals, solve_goals(problem, goals, "asp", options)):
+        meal = meal_of(goal)
+        missing = None
+        if tree.status == "unreachable":
+            target: Goals = meal if len(meal) > 1 else meal[0]
+            objective = tuple(o for o in options.objective if o in queries.MISSING_OBJECTIVES) or ("units",)
+            missing = queries.missing(
+                problem, target, options.programs, options.time_limit, objective, options.opt_strategy, options.threads
+            )
+        verdicts = [judge(problem, meal, c, tree.units) for c in candidates]
+        out.append(
+            Consolidation(
+                meal, tree, sources, verdicts, missing, goal_source, kitchen_source, list(problem.kitchen_items)
+            )
+        )
+    return out

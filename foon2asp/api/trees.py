@@ -1,0 +1,276 @@
+"""Tree files without a FOON: judged on their own (:func:`check_tree`), and candidate trees of one
+recipe consolidated into one proven-best tree (:func:`consolidate`).
+
+>>> import foon2asp
+>>> [v.valid for v in foon2asp.check_tree("data/llm/smoothie-1.json")]
+[True]
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Unpack
+
+from foon2asp import report
+from foon2asp.analysis import check as check_mod
+from foon2asp.analysis import consolidate as consolidate_mod
+from foon2asp.api.kb import GoalLike, KnowledgeBase
+from foon2asp.api.load import knowledge_base
+from foon2asp.api.options import Options, Settings
+from foon2asp.api.results import Tree
+from foon2asp.errors import InputError
+from foon2asp.foon.leaves import LEAVES, leaves
+from foon2asp.foon.loaders import Dataset, read_goals, read_kitchen, read_motion, read_utensils
+from foon2asp.foon.model import FoonObject, Unit
+from foon2asp.tree.results import AloneReport, CandidateVerdict
+from foon2asp.tree.results import Consolidation as RawConsolidation
+
+
+@dataclass
+class TreeVerdict:
+    """A tree of a file judged on its own: valid when every unit fires in the order written
+    (from its leaves, or the kitchen given) and the goal is made."""
+
+    raw: AloneReport
+
+    @property
+    def valid(self) -> bool:
+        return self.raw.valid
+
+    @property
+    def valid_as_set(self) -> bool:
+        """Do the units make the goal in some order (as a set, the independent validator's verdict)?"""
+        return self.raw.verdict.valid
+
+    @property
+    def goals(self) -> list[FoonObject]:
+        return list(self.raw.verdict.goals)
+
+    @property
+    def kind(self) -> str | None:
+        """``no-goal``, ``cycle``, ``missing-input``, ``order`` or ``goal-not-made`` (None when valid)."""
+        return self.raw.kind
+
+    @property
+    def problem(self) -> str | None:
+        """The first problem in words (None for a valid tree)."""
+        return None if self.valid else self.raw.verdict.problem
+
+    @property
+    def cycle(self) -> list[tuple[FoonObject, Unit]]:
+        """Circular support: (object, unit making it) pairs; each unit needs the next object."""
+        return [(o, self.raw.tree.units[p - 1].unit) for o, p in self.raw.verdict.cycle]
+
+    @property
+    def warnings(self) -> list[str]:
+        """What reading the file skipped or merged (one line each, naming the file and the unit)."""
+        return list(self.raw.tree.warnings)
+
+    def to_dict(self) -> dict:
+        """One element of ``check --format json`` (a tree judged on its own)."""
+        return report.check.alone_json(self.raw)
+
+    def to_text(self) -> str:
+        return report.check.alone_text(self.raw)
+
+
+def check_tree(
+    path: str | Path,
+    goal: str | Sequence[str] | None = None,
+    *,
+    kitchen: str | Path | None = None,
+    utensils: str | Path | None = None,
+    utensil_rule: str = "starter",
+    strict: bool = False,
+) -> list[TreeVerdict]:
+    """Judge every tree of a tree file on its own, without a FOON (what ``check TREE`` does
+    without ``--data``/``--foon``): the kitchen is the tree's leaves (or the ``kitchen`` file),
+    the goal ``goal`` (a label or an object's text; several: a meal), else the one the file
+    names, else the products of its last unit."""
+    texts = () if goal is None else (goal,) if isinstance(goal, str) else tuple(goal)
+    items = None if kitchen in (None, LEAVES) else read_kitchen(str(kitchen))
+    source = "its leaves" if items is None else str(kitchen)
+    tools = read_utensils(str(utensils)) if utensils is not None else frozenset()
+    found = check_mod.check_alone(path, texts, items, tools, utensil_rule, strict, source)
+    return [TreeVerdict(r) for r in found]
+
+
+# ---------------------------------------------------------------- consolidating candidates
+
+
+@dataclass
+class CandidateReport:
+    """One candidate file for one goal: executable on its own or not, its measures, the units used."""
+
+    raw: CandidateVerdict
+
+    @property
+    def file(self) -> str:
+        return self.raw.candidate.path
+
+    @property
+    def valid(self) -> bool:
+        """Is it executable on its own (its units, in file order, from the consolidation's kitchen)?"""
+        return self.raw.valid
+
+    @property
+    def problem(self) -> str | None:
+        return None if self.raw.valid else self.raw.verdict.problem
+
+    @property
+    def cost(self) -> dict:
+        """Its measures in the merged FOON, as ``solve`` reports a tree's."""
+        return self.raw.cost
+
+    @property
+    def used_units(self) -> list[int]:
+        """The numbers (in its file, from 1) of its units that the consolidated tree uses."""
+        return list(self.raw.used)
+
+
+@dataclass
+class ConsolidatedGoal:
+    """One goal (or meal) of :func:`consolidate`: the proven-best tree, sources, verdicts, what to add."""
+
+    kb: KnowledgeBase
+    raw: RawConsolidation
+
+    @property
+    def goals(self) -> list[FoonObject]:
+        return [self.kb.problem.objects[g] for g in self.raw.goals]
+
+    @property
+    def goal(self) -> FoonObject:
+        return self.goals[0]
+
+    @property
+    def tree(self) -> Tree:
+        return Tree(self.kb, self.raw.tree)
+
+    @property
+    def status(self) -> str:
+        return self.raw.tree.status
+
+    @property
+    def cost(self) -> dict:
+        return self.raw.tree.cost
+
+    @property
+    def units(self) -> list[Unit]:
+        return self.tree.units
+
+    @property
+    def sources(self) -> list[list[str]]:
+        """The files holding each unit of the tree, in the order of :attr:`units`."""
+        return [list(self.raw.sources[u]) for u in self.raw.tree.units]
+
+    @property
+    def candidates(self) -> list[CandidateReport]:
+        return [CandidateReport(v) for v in self.raw.candidates]
+
+    @property
+    def missing(self) -> list[FoonObject]:
+        """The fewest objects to add to the kitchen (when the goal is unreachable; else empty)."""
+        m = self.raw.missing
+        return [self.kb.problem.objects[o] for o in m.missing] if m is not None else []
+
+    def to_dict(self) -> dict:
+        """One element of ``consolidate --format json``."""
+        return report.consolidate.consolidation_json(self.kb.problem, self.raw)
+
+
+@dataclass
+class Consolidation:
+    """What :func:`consolidate` found: one :class:`ConsolidatedGoal` per goal, the merged FOON (``kb``)."""
+
+    kb: KnowledgeBase
+    results: list[ConsolidatedGoal]
+
+    def __iter__(self) -> Iterator[ConsolidatedGoal]:
+        return iter(self.results)
+
+    def __len__(self) -> int:
+        return len(self.results)
+
+    def __getitem__(self, k: int) -> ConsolidatedGoal:
+        return self.results[k]
+
+    @property
+    def warnings(self) -> list[str]:
+        return self.kb.warnings
+
+    def to_list(self) -> list[dict]:
+        """``consolidate --format json`` as data: one object per goal."""
+        return [r.to_dict() for r in self.results]
+
+    def render(self, fmt: str = "text") -> str:
+        """The report in a format of ``consolidate --format`` (text, json, html, units-json)."""
+        return report.render("consolidate", fmt, self.kb.problem, [r.raw for r in self.results])
+
+
+def consolidate(
+    paths: Sequence[str | Path],
+    goal: GoalLike | Sequence[GoalLike] | None = None,
+    *,
+    goals: str | Path | None = None,
+    kitchen: str | Path | None = None,
+    motion: str | Path | None = None,
+    utensils: str | Path | None = None,
+    utensil_rule: str = "starter",
+    together: bool = False,
+    strict: bool = False,
+    options: Options | None = None,
+    **settings: Unpack[Settings],
+) -> Consolidation:
+    """Consolidate candidate trees of one recipe (files in any form :meth:`KnowledgeBase.check`
+    reads) into one proven-best tree per goal (:mod:`foon2asp.analysis.consolidate`).
+
+    The candidates' units are merged into one FOON (each unit remembering its files); the
+    kitchen is its leaves unless ``kitchen`` names a file.  ``goal``: a label, an object's
+    text or ``#ID`` of the merged FOON (several: one result each, or one meal with
+    ``together``); ``goals``: a goals file, or ``"all"`` (every product of a candidate's last
+    unit); neither: the product of the candidates' last units that most of them share.
+    ``options``/keywords: the request (objective, motion costs, constraints, time limit, ...).
+    """
+    if not paths:
+        raise InputError("no candidate tree given")
+    candidates = consolidate_mod.read_candidates(paths, strict)
+    foon, sources = consolidate_mod.merge(candidates)
+    names = [str(p) for p in paths]
+    given = None if kitchen in (None, LEAVES) else str(kitchen)
+    warnings: list[str] = []
+    data = Dataset(
+        foon=foon,
+        kitchen=leaves(foon) if given is None else read_kitchen(given),
+        goals=read_goals(str(goals)) if goals not in (None, "all") else [],
+        motion=read_motion(str(motion), warnings) if motion is not None else {},
+        utensils=read_utensils(str(utensils), warnings) if utensils is not None else frozenset(),
+        paths={"foon": ",".join(names), "kitchen": given or LEAVES},
+        warnings=warnings,
+    )
+    kb = knowledge_base(data, utensil_rule, [w for c in candidates for w in c.warnings])
+    solver = kb.options(options, **settings)
+    ids, source = _goals(kb, candidates, goal, goals)
+    jobs: list = [tuple(dict.fromkeys(ids))] if together else ids
+    kitchen_source = "leaves" if given is None else given
+    raw = consolidate_mod.consolidate(kb.problem, candidates, sources, jobs, solver, source, kitchen_source)
+    return Consolidation(kb, [ConsolidatedGoal(kb, r) for r in raw])
+
+
+def _goals(
+    kb: KnowledgeBase, candidates: list, goal: GoalLike | Sequence[GoalLike] | None, goals: str | Path | None
+) -> tuple[list[int], str]:
+    """The goal ids a consolidation answers and where they came from."""
+    if goal is not None:
+        return kb.goal_ids(goal), "given"
+    if goals == "all":
+        ranked = consolidate_mod.candidate_goals(candidates)
+        if not ranked:
+            raise InputError("no candidate's last unit makes an object: name the goal", hint="no-goal")
+        return [kb.object_id(o) for o, _ in ranked], "a product of a candidate's last unit"
+    if goals is not None:
+        return kb.select_goals((), goals), "the goals file"
+    obj, why = consolidate_mod.shared_goal(candidates)
+    return [kb.object_id(obj)], why

@@ -1,0 +1,85 @@
+"""``foon2asp consolidate``: candidate trees of one recipe -> one proven-best tree per goal."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from foon2asp import api
+from foon2asp.cli.main import guarded, main
+from foon2asp.cli.options import (
+    GOAL_HELP,
+    KITCHEN_HELP,
+    STRICT_HELP,
+    constraint_options,
+    format_option,
+    objective_option,
+    strategy_options,
+    time_limit_option,
+)
+from foon2asp.cli.output import EXIT_CODES, exit_code, warn
+
+
+@main.command(epilog=EXIT_CODES)
+@click.argument("trees", nargs=-1, required=True, type=click.Path(), metavar="TREES...")
+@click.option("--goal", "goal", multiple=True, metavar="TEXT", help=GOAL_HELP)
+@click.option(
+    "--goals",
+    "goals",
+    metavar="FILE|all",
+    help="A FILE of goal objects, or 'all': every product of a candidate's last unit. Default: the product of"
+    " the candidates' last units that most of them share.",
+)
+@click.option("--kitchen", type=click.Path(), help=KITCHEN_HELP + " Default: leaves.")
+@click.option("--motion", type=click.Path(), help="motion.txt (motion TAB success rate)")
+@click.option("--utensils", type=click.Path(), help="utensils.txt")
+@click.option(
+    "--utensil-rule",
+    type=click.Choice(api.UTENSIL_RULES),
+    default="starter",
+    show_default=True,
+    help="When a utensil holding one ingredient is not a required input.",
+)
+@click.option("--strict", is_flag=True, help=STRICT_HELP)
+@constraint_options
+@objective_option()
+@format_option("consolidate")
+@click.option(
+    "-o", "--output", type=click.Path(dir_okay=False), help="A FILE to write the report to (default: stdout)."
+)
+@time_limit_option("Seconds per goal; the best tree so far is reported as 'feasible'.")
+@click.option("--together", is_flag=True, help="A meal: one tree that makes every goal.")
+@strategy_options
+@guarded
+def consolidate(trees, goal, goals, kitchen, motion, utensils, utensil_rule, strict, fmt, output, together, options):
+    """Merge candidate task trees of one recipe (TREES: files in any form 'check' reads, e.g. the
+    unit-list JSON of generated trees) into one FOON and find, for each goal, its proven-best tree.
+
+    The kitchen is every object no unit makes (--kitchen leaves) unless --kitchen FILE is given.
+    Each unit of the tree names the files it comes from; each candidate gets a verdict: is it
+    executable on its own (its units, in file order, from that kitchen), why not, its measures
+    beside the optimum's and which of its units the tree uses.  An unreachable goal comes with
+    the fewest objects to add to the kitchen ('missing').
+    """
+    found = api.consolidate(
+        list(trees),
+        list(goal) or None,
+        goals=goals,
+        kitchen=kitchen,
+        motion=motion,
+        utensils=utensils,
+        utensil_rule=utensil_rule,
+        together=together,
+        strict=strict,
+        options=options,
+    )
+    for warning in found.warnings:
+        warn(warning)
+    text = found.render(fmt)
+    if output:
+        api.write_file(output, text)
+        click.echo(f"wrote the {fmt} report of {len(found)} goal(s) to {output}", err=True)
+    else:
+        click.echo(text, nl=False)
+    sys.exit(exit_code((r.status, None) for r in found))

@@ -1,0 +1,189 @@
+"""The report of ``consolidate``: text, JSON, HTML (the candidates table and the drawing of the
+result, its units coloured by source) and the result as unit-list JSON.
+
+The JSON is a list with one object per goal (one for a meal):
+``{"goal", "status", "cost", "units": [{..., "sources": [FILE, ...]}], "candidates":
+[{"file", "valid", "problem", "cost", "used_units"}], "missing": [...]}``; ``status`` and
+``cost`` are the tree's as ``solve`` reports them, ``goal`` is an object (a list of objects
+for a meal), ``problem`` the first problem of a candidate in words (null when it is
+executable on its own), ``used_units`` the numbers (in its file, from 1) of its units the
+tree uses, ``missing`` the fewest objects to add to the kitchen when the goal is unreachable.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+
+from foon2asp.foon.problem import Problem
+from foon2asp.foon.unitlist import dumps_trees
+from foon2asp.report import draw
+from foon2asp.report.html import page
+from foon2asp.report.registry import register
+from foon2asp.tree.results import CandidateVerdict, Consolidation
+from foon2asp.tree.serialize import number, tree_text
+
+#: fill colours of the candidate files, in the order given (repeated after the last)
+PALETTE = ("#9fc5e8", "#f6b26b", "#b6d7a8", "#d5a6bd", "#ffe599", "#a2c4c9", "#ea9999", "#b4a7d6")
+
+
+def goal_json(problem: Problem, c: Consolidation) -> dict | list:
+    objs = [problem.objects[g].to_json() for g in c.goals]
+    return objs[0] if len(objs) == 1 else objs
+
+
+def candidate_json(v: CandidateVerdict) -> dict:
+    return {
+        "file": v.candidate.path,
+        "valid": v.valid,
+        "problem": None if v.valid else v.verdict.problem,
+        "cost": v.cost,
+        "used_units": v.used,
+    }
+
+
+def consolidation_json(problem: Problem, c: Consolidation) -> dict:
+    """One goal's object of ``consolidate --format json``."""
+    missing = c.missing.missing if c.missing is not None else []
+    return {
+        "goal": goal_json(problem, c),
+        "status": c.tree.status,
+        "cost": c.tree.cost,
+        "units": [{**problem.units[u].to_json(), "sources": list(c.sources[u])} for u in c.tree.units],
+        "candidates": [candidate_json(v) for v in c.candidates],
+        "missing": [problem.objects[o].to_json() for o in missing],
+    }
+
+
+def _versus(v: CandidateVerdict, best: dict) -> str:
+    """``7 units (+1 vs the optimum), cost 2.1 (+0.3)``: a valid candidate's measures beside the optimum's."""
+    parts = []
+    for key, unit in (("units", " units"), ("cost", "")):
+        if key not in v.cost:
+            continue
+        text = f"{'cost ' if key == 'cost' else ''}{number(v.cost[key])}{unit}"
+        if v.valid and key in best:
+            diff = v.cost[key] - best[key]
+            text += (
+                " (= the optimum)"
+                if diff == 0
+                else f" ({'+' if diff > 0 else ''}{number(round(diff, 2))} vs the optimum)"
+            )
+        parts.append(text)
+    return ", ".join(parts)
+
+
+def candidate_line(v: CandidateVerdict, best: dict, width: int) -> str:
+    verdict = "valid  " if v.valid else "INVALID"
+    used = " ".join(map(str, v.used)) or "none"
+    line = f"  {v.candidate.path:<{width}}  {verdict}  {_versus(v, best)}; the tree uses its steps: {used}"
+    return line + ("" if v.valid else f"\n  {'':<{width}}  why: {v.verdict.problem}")
+
+
+def consolidation_text(problem: Problem, c: Consolidation) -> str:
+    """One goal's report: the tree with each unit's sources, then every candidate's verdict."""
+    lines = tree_text(problem, c.tree).rstrip("\n").split("\n")
+    top = 2 if len(c.goals) == 1 else 2 + len(c.goals)  # the goal heading and the method line
+    head, rest = lines[:top], lines[top:]
+    if c.goal_source:
+        head[0] += f"  ({c.goal_source})"
+    n = len(c.candidates)
+    head.append(
+        f"Merged: {n} candidate{'s' if n != 1 else ''}, {len(problem.units)} distinct units;"
+        f" kitchen: {c.kitchen_source} ({len(c.kitchen)} objects)"
+    )
+    for k, u in enumerate(c.tree.units):
+        head += rest[3 * k : 3 * k + 3] + [f"       from: {', '.join(c.sources[u])}"]
+    head += rest[3 * len(c.tree.units) :]
+    if c.missing is not None:
+        if c.missing.missing:
+            added = "; ".join(str(problem.objects[o]) for o in c.missing.missing)
+            head.append(f"Missing: add to the kitchen {added} ({c.missing.status})")
+        else:
+            head.append(f"Missing: no set of objects helps ({c.missing.reason or c.missing.status})")
+    head.append("Candidates (each on its own units, in file order, from this kitchen):")
+    width = max(len(v.candidate.path) for v in c.candidates)
+    head += [candidate_line(v, c.tree.cost, width) for v in c.candidates]
+    return "\n".join(head) + "\n"
+
+
+@register("consolidate", "text", "txt", "readable report per goal: the tree, each unit's sources, the candidates")
+def consolidate_text(problem: Problem, results: list[Consolidation]) -> str:
+    return "\n".join(consolidation_text(problem, c) for c in results)
+
+
+@register("consolidate", "json", "json", "a list with one object per goal (see foon2asp.report.consolidate)")
+def consolidate_json(problem: Problem, results: list[Consolidation]) -> str:
+    return "[\n" + ",\n".join(json.dumps(consolidation_json(problem, c)) for c in results) + "\n]\n"
+
+
+@register("consolidate", "units-json", "json", "the tree of each goal in the unit-list form of generated trees")
+def consolidate_units(problem: Problem, results: list[Consolidation]) -> str:
+    return dumps_trees([[problem.units[u] for u in c.tree.units] for c in results])
+
+
+# ---------------------------------------------------------------- HTML
+
+
+def _esc(text: object) -> str:
+    return html.escape(str(text), quote=True)
+
+
+def colors(results: list[Consolidation]) -> dict[str, str]:
+    """The fill colour of each candidate file."""
+    files = list(dict.fromkeys(v.candidate.path for c in results for v in c.candidates))
+    return {f: PALETTE[k % len(PALETTE)] for k, f in enumerate(files)}
+
+
+def result_graph(problem: Problem, c: Consolidation, fill: dict[str, str], prefix: str = ""):
+    """The drawing of the tree, each unit filled with the colours of the files holding it."""
+    marks = draw.tree_marks(problem, c.tree)
+    marks.unit_colors = {k: tuple(fill[f] for f in c.sources[u]) for k, u in enumerate(c.tree.units)}
+    marks.unit_notes = {k: "from " + ", ".join(c.sources[u]) for k, u in enumerate(c.tree.units)}
+    marks.legend = (
+        "gold: goal · green: in the kitchen · units coloured by the candidate files holding them (striped: several)"
+    )
+    units = [problem.units[u] for u in c.tree.units]
+    return draw.build_graph(units, marks, prefix=prefix)
+
+
+def _table(c: Consolidation, fill: dict[str, str]) -> list[str]:
+    rows = [
+        '<table class="candidates"><thead><tr><th>candidate</th><th>verdict</th><th>units</th><th>cost</th>'
+        "<th>steps the tree uses</th><th>why not executable on its own</th></tr></thead><tbody>"
+    ]
+    for v in c.candidates:
+        swatch = f'<span style="background:{fill[v.candidate.path]}">&nbsp;&nbsp;&nbsp;</span> '
+        cls = "valid" if v.valid else "invalid"
+        rows.append(
+            f'<tr class="{cls}"><td>{swatch}{_esc(v.candidate.path)}</td>'
+            f'<td class="{cls}">{"valid" if v.valid else "INVALID"}</td>'
+            f'<td class="num">{_esc(v.cost.get("units"))}</td><td class="num">{_esc(number(v.cost.get("cost", "-")))}</td>'
+            f"<td>{_esc(' '.join(map(str, v.used)) or '-')}</td><td>{_esc(v.verdict.problem or '')}</td></tr>"
+        )
+    return rows + ["</tbody></table>"]
+
+
+@register("consolidate", "html", "html", "HTML page: the candidates table and the drawing of the result by source")
+def consolidate_html(problem: Problem, results: list[Consolidation]) -> str:
+    fill = colors(results)
+    body = []
+    for k, c in enumerate(results, 1):
+        goal = " + ".join(str(problem.objects[g]) for g in c.goals)
+        cost = ", ".join(f"{key} {number(val)}" for key, val in c.tree.cost.items())
+        body.append(f'<section class="goal" id="goal-{k}"><h2>{_esc(goal)}</h2>')
+        body.append(
+            f"<p>{_esc(c.goal_source)}; {_esc(c.tree.method)}: <b>{_esc(c.tree.status)}</b>"
+            + (f" ({_esc(cost)})" if cost else "")
+            + "</p>"
+        )
+        body += _table(c, fill)
+        if c.missing is not None:
+            added = "; ".join(str(problem.objects[o]) for o in c.missing.missing) or "nothing helps"
+            body.append(f'<p class="problem">unreachable from this kitchen; to add: {_esc(added)}</p>')
+        if c.tree.has_tree and c.tree.units:
+            draw.require_dot()
+            svg = draw.inline_svg(draw.svg_text(result_graph(problem, c, fill)), f"c{k}-")
+            body.append(f'<figure class="tree valid">{svg}</figure>')
+        body.append("</section>")
+    return page("foon2asp: candidate trees consolidated", body)
