@@ -4,13 +4,14 @@ by the independent validator (tree/validate.py): on the demo data and on a synth
 from __future__ import annotations
 
 import json
+import random
 
 import pytest
 
 from conftest import DEMO
 from foon2asp import methods
 from foon2asp.analysis.compare import judge
-from foon2asp.asp.objectives import ranked
+from foon2asp.asp.objectives import motion_cost_weights, ranked
 from foon2asp.asp.options import AspOptions
 from foon2asp.batch.pool import BatchSpec, Worker
 from foon2asp.errors import InputError
@@ -22,18 +23,30 @@ from foon2asp.tree.tasktree import TaskTree, measures
 from foon2asp.tree.validate import validate
 from foon2asp.tree.weights import total
 
-CASES = ("demo", "small")
+CASES = ("demo", "tiny", "small")
 
 
 @pytest.fixture(scope="module", params=CASES)
-def case(request) -> tuple[Problem, list[int]]:
-    """The problem and its goals: every object of the demo data, the preset's goals."""
+def case(request) -> tuple[str, Problem, list[int]]:
+    """The case's name, problem and goals: every object of the demo data, the preset's goals."""
     if request.param == "demo":
         problem = Problem.from_dataset(Dataset.load(DEMO))
-        return problem, list(range(len(problem.objects)))
+        return request.param, problem, list(range(len(problem.objects)))
     syn = preset(request.param)
     problem = syn.problem()
-    return problem, [problem.foon.object_ids[g] for g in syn.goals]
+    return request.param, problem, [problem.foon.object_ids[g] for g in syn.goals]
+
+
+@pytest.fixture(scope="module")
+def options(case) -> AspOptions:
+    """The default options with a motion-cost table (in hundredths), which the objective
+    ``cost`` needs and every other objective ignores: seeded random costs, but on the
+    small preset every motion costs 1 (with random costs the proof of one of its goals
+    takes from seconds to minutes)."""
+    name, problem, _ = case
+    rng = random.Random(11)
+    motions = sorted({u.motion for u in problem.units})
+    return AspOptions(motion_costs={m: 100 if name == "small" else rng.randint(0, 300) for m in motions})
 
 
 def derivable(problem: Problem, goal: int) -> bool:
@@ -54,22 +67,26 @@ def objective_of(name: str) -> str:
     return ranked(methods.effective_options(name, AspOptions()))[0]
 
 
-def value(problem: Problem, objective: str, goals, units: list[int]) -> int:
+def value(problem: Problem, objective: str, goals, units: list[int], options: AspOptions) -> int:
     """The tree's value under ``objective``: the depth, or the sum of unit weights the solver minimises."""
     if objective == "depth":
         return measures(problem, goals, units)["depth"]
+    if objective == "cost":
+        assert options.motion_costs is not None
+        weights = motion_cost_weights(problem, options.motion_costs)
+        return sum(weights[u] for u in units)
     return total(problem, objective, units)
 
 
 @pytest.fixture(scope="module")
-def trees(case) -> dict[str, list[TaskTree]]:
+def trees(case, options) -> dict[str, list[TaskTree]]:
     """Each method's trees for the case's goals, through the one entry point."""
-    problem, goals = case
-    return {name: list(solve_goals(problem, goals, name, AspOptions())) for name in methods.names()}
+    _, problem, goals = case
+    return {name: list(solve_goals(problem, goals, name, options)) for name in methods.names()}
 
 
 def test_every_method_answers_every_goal_and_the_validator_agrees(case, trees):
-    problem, goals = case
+    _, problem, goals = case
     for name, answers in trees.items():
         assert [t.goal for t in answers] == goals, name
         for tree in answers:
@@ -91,8 +108,8 @@ def test_every_method_answers_every_goal_and_the_validator_agrees(case, trees):
                 assert tree.cost == measures(problem, tree.goal, tree.units), (name, tree.goal)
 
 
-def test_every_optimum_is_no_worse_than_any_valid_tree_of_another_method(case, trees):
-    problem, goals = case
+def test_every_optimum_is_no_worse_than_any_valid_tree_of_another_method(case, trees, options):
+    _, problem, goals = case
     for name, answers in trees.items():
         if kind(name) != "exact":
             continue
@@ -100,43 +117,43 @@ def test_every_optimum_is_no_worse_than_any_valid_tree_of_another_method(case, t
         for i, tree in enumerate(answers):
             if not tree.has_tree:
                 continue
-            best = value(problem, objective, tree.goal, tree.units)
+            best = value(problem, objective, tree.goal, tree.units, options)
             for other, theirs in trees.items():
                 rival = theirs[i]
                 if rival.has_tree and validate(problem, rival.goal, rival.units).valid:
-                    assert best <= value(problem, objective, rival.goal, rival.units), (name, other, tree.goal)
+                    assert best <= value(problem, objective, rival.goal, rival.units, options), (name, other, tree.goal)
 
 
-def test_meals_through_the_runner(case, trees):
+def test_meals_through_the_runner(case, trees, options):
     """A meal of two goals: one valid tree for both from every ASP method, between the
     single optima (at least the larger, at most their sum; for depth: the larger)."""
-    problem, goals = case
+    _, problem, goals = case
     meal = tuple(g for g in goals if g not in problem.kitchen and derivable(problem, g))[:2]
     assert len(meal) == 2
     for name in methods.names():
         if kind(name) == "search":
             with pytest.raises(InputError, match="meals"):
-                next(solve_goals(problem, [meal], name, AspOptions()))
+                next(solve_goals(problem, [meal], name, options))
             continue
-        together, *singles = solve_goals(problem, [meal, *meal], name, AspOptions())
+        together, *singles = solve_goals(problem, [meal, *meal], name, options)
         assert together.has_tree and together.meal == meal, name
         assert all(validate(problem, g, together.units).valid for g in meal), name
         assert [t.goal for t in singles] == list(meal)
         if kind(name) != "exact":
             continue
         objective = objective_of(name)
-        got = value(problem, objective, meal, together.units)
-        alone = [value(problem, objective, t.goal, t.units) for t in singles]
+        got = value(problem, objective, meal, together.units, options)
+        alone = [value(problem, objective, t.goal, t.units, options) for t in singles]
         assert max(alone) <= got <= (max(alone) if objective == "depth" else sum(alone)), (name, got, alone)
 
 
 @pytest.mark.parametrize("grounding", ["whole", "per-goal"])
-def test_batch_workers_build_the_same_runner(case, trees, grounding):
+def test_batch_workers_build_the_same_runner(case, trees, options, grounding):
     """A batch worker's lines (either grounding) have the trees' status and the validator's "valid"."""
-    problem, goals = case
+    _, problem, goals = case
     index = {json.dumps(u.to_json(), sort_keys=True): i for i, u in enumerate(problem.units)}
     names = methods.names()
-    worker = Worker(BatchSpec(problem, names, AspOptions(), grounding))
+    worker = Worker(BatchSpec(problem, names, options, grounding))
     for name in names:
         for goal, tree in zip(goals, trees[name]):
             record = json.loads(worker.run(goal, name))
