@@ -3,7 +3,7 @@
 Importing this package registers the formats of every kind of answer.
 """
 
-from foon2asp.report import check, compare, draw, html, pddl, queries, summary, trees
+from foon2asp.report import check, compare, draw, gantt, html, pddl, queries, summary, trees
 from foon2asp.report.registry import FORMATS, Format, get, names, register, render, render_bytes
 
 __all__ = [
@@ -17,6 +17,7 @@ __all__ = [
     "check",
     "compare",
     "draw",
+    "gantt",
     "html",
     "pddl",
     "queries",

@@ -1,0 +1,301 @@
+"""The library entry point: :func:`schedule` a goal's task tree, or choose tree and schedule together.
+
+Objective (lexicographic): the shortest makespan, proven; then the fewest
+units done by a ``human`` agent; then (``joint``) the tree objective of the
+options (``units`` by default).  For a fixed tree the schedule is optimal for
+that tree; ``joint=True`` proves the makespan minimal over every valid tree
+of the goal (never longer than the given tree's, which is reported beside it).
+
+Statuses: ``optimal`` (makespan proven minimal), ``feasible`` (the time limit
+ended the search: the best schedule found, at worst the baseline's),
+``unschedulable`` (a unit of the tree no agent can do; joint: no valid tree
+can be scheduled),
+``unreachable`` (no tree makes the goal), ``unknown`` (no tree was found in
+time).  Every answer carries the list-scheduling baseline and the lower bounds
+(:mod:`foon2asp.schedule.model`).
+
+A shortcut: when the baseline meets the lower bound and uses no more human
+units than the units only a person can do, it is optimal and no solver runs.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+
+from foon2asp.asp import dominance, encodings, objectives
+from foon2asp.asp.facts import OPTIONAL, facts
+from foon2asp.asp.options import OBJECTIVES, AspOptions
+from foon2asp.asp.settings import solver_args
+from foon2asp.errors import InputError
+from foon2asp.foon.problem import Problem
+from foon2asp.schedule import encode
+from foon2asp.schedule.model import (
+    Entry,
+    Instance,
+    bounds,
+    compact,
+    earliest,
+    human_units,
+    instance,
+    list_schedule,
+    makespan,
+    tails,
+)
+from foon2asp.schedule.result import ScheduleResult
+from foon2asp.schedule.spec import HUMAN, ScheduleSpec
+from foon2asp.tree.tasktree import TaskTree, executable_order, goal_fields, measures
+
+#: the encoding chosen by measurement (BENCHMARKS.md, "Schedules")
+DEFAULT_ENCODING = "steps"
+
+#: clasp's optimisation strategy for schedules when the options set none (BENCHMARKS.md)
+OPT_STRATEGY = "bb"
+
+#: tree objectives joint scheduling supports (depth needs the multi-shot driver)
+JOINT_OBJECTIVES = ("units", "success", "inputs")
+
+
+def _args(options: AspOptions) -> list[str]:
+    return solver_args(options.opt_strategy or OPT_STRATEGY, options.threads, options.portfolio)
+
+
+def _forced_human(inst: Instance) -> int:
+    """Units only a person can do (every schedule gives them to one)."""
+    return sum(1 for u in inst.units if inst.durations[u] and set(inst.durations[u]) == {HUMAN})
+
+
+def _solve(
+    inst: Instance,
+    windows: dict[int, tuple[int, int]],
+    horizon: int | None,
+    floor: int,
+    options: AspOptions,
+    encoding: str,
+    time_limit: float | None,
+    tree_parts: list[tuple[str, str]] | None = None,
+    levels: int = 0,
+    tail: dict[int, int] | None = None,
+) -> encode.Solution:
+    user = [name for name, _ in options.programs] if tree_parts else []
+    args = _args(options)
+    if encoding == "steps":
+        assert horizon is not None
+        return encode.solve_steps(inst, windows, horizon, args, tree_parts or (), levels, time_limit, user, floor)
+    if encoding == "dl":
+        tail = tail or {u: inst.min_duration(u) for u in windows}
+        return encode.solve_dl(inst, windows, horizon, args, tree_parts or (), levels, time_limit, user, floor, tail)
+    raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(encode.ENCODINGS)})")
+
+
+def _none(problem: Problem, tree: TaskTree, spec: ScheduleSpec, status: str, reason: str | None, t0: float):
+    agents = [name for name, _ in spec.agent_list()]
+    return ScheduleResult(problem, tree, status, agents, reason=reason, time_s=time.perf_counter() - t0)
+
+
+def schedule_fixed(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    encoding: str = DEFAULT_ENCODING,
+    time_limit: float | None = None,
+    shortcut: bool = True,
+) -> ScheduleResult:
+    """The optimal schedule of ``tree``'s units."""
+    t0 = time.perf_counter()
+    if not tree.has_tree:
+        status = "unreachable" if tree.status in ("unreachable", "not-found") else "unknown"
+        return _none(problem, tree, spec, status, tree.extra.get("reason"), t0)
+    inst = instance(problem, tree.units, spec)
+    agents = [name for name, _ in inst.agents]
+    bad = inst.incapable()
+    if bad:
+        why = f"no agent can do unit {bad[0]} ({problem.units[bad[0]].motion})"
+        return _none(problem, tree, spec, "unschedulable", why, t0)
+    if len(earliest(inst)) < len(inst.units):
+        return _none(problem, tree, spec, "unschedulable", "some unit of the tree never has its inputs", t0)
+    b = bounds(inst)
+    base = list_schedule(inst)
+    ub = makespan(base)
+    stats: dict = {"encoding": encoding}
+    if shortcut and ub == b.lower and human_units(base) == _forced_human(inst):
+        stats["shortcut"] = "baseline meets the lower bound"
+        return ScheduleResult(
+            problem, tree, "optimal", agents, base, b, ub, time_s=time.perf_counter() - t0, stats=stats
+        )
+    head, tail = earliest(inst), tails(inst)
+    windows = {u: (head[u], ub - tail[u]) for u in inst.units}
+    sol = _solve(inst, windows, ub, b.lower, options, encoding, time_limit, tail=tail)
+    stats.update(sol.stats)
+    entries = base
+    if sol.entries is not None and makespan(sol.entries) <= ub:
+        entries = compact(inst, sol.entries)
+    status = "optimal" if sol.proven else "feasible"
+    return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
+
+
+def _check_joint(options: AspOptions) -> tuple[str, ...]:
+    ranked = objectives.ranked(options)
+    wrong = [o for o in ranked if o not in JOINT_OBJECTIVES]
+    if wrong or options.max_depth is not None or not ranked:
+        raise InputError(
+            f"joint scheduling chooses trees by {', '.join(JOINT_OBJECTIVES)} only, not by depth or heuristics"
+        )
+    if options.human_steps is not None:
+        raise InputError("joint scheduling counts a person's units through a human agent, not human steps")
+    return ranked
+
+
+def _dominance(problem: Problem, inst: Instance, ranked: tuple[str, ...]) -> str:
+    """``dom(V,U)`` facts (encodings/dominance.lp) for the tree dominance of
+    :mod:`foon2asp.asp.dominance` where V also takes no longer than U for every kind that can
+    do U and uses no resource U does not: then V can replace U in a schedule (on U's agent,
+    in U's time, what it needs is had earlier), nothing gets worse, so an optimum without U exists."""
+    out = []
+    for v, u, extra in dominance.dominance_pairs(problem, inst.units, ranked):
+        dv, du = inst.durations[v], inst.durations[u]
+        if all(k in dv and dv[k] <= d for k, d in du.items()) and set(inst.uses[v]) <= set(inst.uses[u]):
+            out.append(f"dom({v},{u}).\n")
+            out += [f"dom_extra({v},{u},{o}).\n" for o in extra]
+    return "".join(out)
+
+
+def tree_parts(problem: Problem, meal: tuple[int, ...], inst: Instance, options: AspOptions) -> list:
+    """The tree encoding, its objectives and facts for the goals ``meal`` over the candidate
+    units of ``inst``, as programs for joint scheduling; the tree objective takes priorities
+    1..n; units a no worse unit can replace are left out (:func:`_dominance`) when no user
+    program asks for more."""
+    ranked = _check_joint(options)
+    units = list(inst.units)
+    names = ["tree", *(OBJECTIVES[o] for o in ranked)]
+    parts = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(names)]
+    n = len(ranked)
+    parts.append(("objective", "".join(f"objective({o},{n - i}).\n" for i, o in enumerate(ranked))))
+    if "inputs" in ranked:
+        parts.append(("input nodes", objectives.input_node_facts(problem, units)))
+    parts.append(("goal", "".join(f"goal({g}).\n" for g in meal)))
+    if not options.programs:
+        parts.append(("encodings/dominance.lp", encodings.encoding("dominance")))
+        parts.append(("dominated units", _dominance(problem, inst, ranked)))
+    parts += list(options.programs)
+    keep = {"neglog"} if "success" in ranked else set()
+    leave_out = [] if options.programs else [p for p in OPTIONAL if p not in keep]
+    return [("facts", facts(problem, units=units, leave_out=leave_out)), *parts]
+
+
+def schedule_joint(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    fixed: ScheduleResult,
+    encoding: str = DEFAULT_ENCODING,
+    time_limit: float | None = None,
+    shortcut: bool = True,
+) -> ScheduleResult:
+    """The tree and schedule chosen together; ``fixed`` is ``tree``'s own schedule."""
+    t0 = time.perf_counter()
+    meal = tree.meal
+    cands = list(problem.units_for(meal))
+    inst = instance(problem, cands, spec)
+    start = earliest(inst)
+    made = {
+        g: min((start[u] + inst.min_duration(u) for u in start if g in problem.products[u]), default=None)
+        for g in meal
+        if g not in problem.kitchen
+    }
+    floor = max((t for t in made.values() if t is not None), default=0)
+    if fixed.has_schedule:
+        horizon = fixed.makespan
+        assert horizon is not None
+    else:
+        horizon = sum(max(inst.durations[u].values()) for u in start)
+    stats: dict = {"encoding": encoding, "candidates": len(cands)}
+    if (
+        shortcut
+        and fixed.status == "optimal"
+        and tree.status == "optimal"
+        and horizon == floor
+        and not spec.has_human()
+    ):
+        stats["shortcut"] = "the given tree's makespan meets the lower bound over every tree"
+        return replace(fixed, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
+    windows = {u: (s, horizon - inst.min_duration(u)) for u, s in start.items()}
+    windows = {u: w for u, w in windows.items() if w[0] <= w[1]}
+    parts = tree_parts(problem, meal, inst, options)
+    levels = len(objectives.ranked(options))
+    sol = _solve(inst, windows, horizon, floor, options, encoding, time_limit, parts, levels)
+    stats.update(sol.stats)
+    elapsed = time.perf_counter() - t0
+    if sol.unsatisfiable:
+        why = "no valid tree of the goal can be scheduled"
+        return ScheduleResult(
+            problem,
+            tree,
+            "unschedulable",
+            fixed.agents,
+            joint=True,
+            fixed=fixed,
+            reason=why,
+            time_s=elapsed,
+            stats=stats,
+        )
+    if sol.entries is None:  # the given tree's schedule is the best found (proven: optimal)
+        status = "optimal" if sol.proven and fixed.status == "optimal" else "feasible"
+        return replace(fixed, status=status, joint=True, fixed=fixed, time_s=elapsed, stats=stats)
+    units = list(sol.units)
+    sub = inst.restrict(units)
+    entries: list[Entry] = compact(sub, sol.entries)
+    chosen = TaskTree(
+        method=f"{tree.method}+schedule",
+        status="optimal" if sol.proven else "feasible",
+        units=executable_order(problem, units),
+        cost=measures(problem, meal, units),
+        **goal_fields(meal),
+    )
+    status = "optimal" if sol.proven else "feasible"
+    return ScheduleResult(
+        problem,
+        chosen,
+        status,
+        fixed.agents,
+        entries,
+        bounds(sub),
+        makespan(list_schedule(sub)),
+        joint=True,
+        fixed=fixed,
+        time_s=time.perf_counter() - t0,
+        stats=stats,
+    )
+
+
+def schedule(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec | None = None,
+    options: AspOptions | None = None,
+    joint: bool = False,
+    time_limit: float | None = None,
+    encoding: str = DEFAULT_ENCODING,
+    shortcut: bool = True,
+) -> ScheduleResult:
+    """Schedule ``tree`` (a goal's task tree, e.g. the optimal one for ``options``) on the agents
+    of ``spec`` (default: one robot, every unit 1 s).
+
+    ``joint``: choose the tree with the schedule (the tree objective of ``options`` breaks
+    ties), the result's ``fixed`` holding ``tree``'s own schedule.  ``time_limit`` (seconds;
+    default ``options.time_limit``) bounds each of the two solves.  ``encoding``: ``steps``
+    or ``dl`` (:mod:`foon2asp.schedule.encode`).  ``shortcut=False`` always runs the solver.
+    """
+    spec = spec or ScheduleSpec()
+    options = options or AspOptions()
+    if encoding not in encode.ENCODINGS:
+        raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(encode.ENCODINGS)})")
+    if joint:
+        _check_joint(options)
+    limit = options.time_limit if time_limit is None else time_limit
+    fixed = schedule_fixed(problem, tree, spec, options, encoding, limit, shortcut)
+    if not joint or not tree.has_tree:
+        return replace(fixed, joint=joint) if joint else fixed
+    return schedule_joint(problem, tree, spec, options, fixed, encoding, limit, shortcut)
