@@ -339,14 +339,21 @@ def sequence(inst: Instance, entries: Iterable[Entry]) -> list[Entry]:
 
 
 def partition(entries: list[Entry], slots: int) -> list[list[Entry]] | None:
-    """``entries`` (by start) in ``slots`` lanes with no overlap in a lane
-    (None: more than ``slots`` overlap somewhere); greedy by start, which needs no more."""
+    """``entries`` (by start) in ``slots`` lanes with no overlap in a lane (None: more than
+    ``slots`` overlap somewhere); greedy by start, which needs no more.  Units of duration 0
+    occupy nobody: they go in the first lane, outside its order."""
     lanes: list[list[Entry]] = [[] for _ in range(slots)]
+    instant = []
     for e in entries:
+        if e.start == e.end:
+            instant.append(e)
+            continue
         lane = next((lane for lane in lanes if not lane or lane[-1].end <= e.start), None)
         if lane is None:
             return None
         lane.append(e)
+    if slots:
+        lanes[0] += instant
     return lanes
 
 
@@ -379,9 +386,10 @@ def compact(inst: Instance, entries: list[Entry]) -> list[Entry]:
             if done:
                 before[e.unit].add(min(done, key=lambda d: (d.end, d.unit)).unit)
         placed[e.unit] = e
-    chains = [[e for e in seq if e.agent == name] for name, _ in inst.agents]
+    timed = [e for e in seq if e.start < e.end]  # units of duration 0 occupy nobody
+    chains = [[e for e in timed if e.agent == name] for name, _ in inst.agents]
     for r, cap in inst.capacity.items():
-        chains += partition([e for e in seq if r in inst.uses[e.unit]], cap) or []
+        chains += partition([e for e in timed if r in inst.uses[e.unit]], cap) or []
     for chain in chains:
         for a, b in zip(chain, chain[1:]):
             before[b.unit].add(a.unit)
