@@ -8,7 +8,7 @@ import random
 
 import pytest
 
-from foon2asp.schedule import ScheduleSpec, schedule
+from foon2asp.schedule import ScheduleSpec, joint, schedule
 from foon2asp.schedule.check import check_schedule
 from foon2asp.schedule.spec import HUMAN, Durations, agent_names
 from foon2asp.tree.tasktree import TaskTree, executable_order
@@ -246,8 +246,10 @@ def longer_tree_shorter_chain():
     )
 
 
-@pytest.mark.parametrize("encoding", ENCODINGS)
-def test_joint_is_strictly_shorter_with_a_larger_tree(encoding):
+@pytest.mark.parametrize("encoding, one_encoding", [(e, k) for e in ENCODINGS for k in (False, True)])
+def test_joint_is_strictly_shorter_with_a_larger_tree(encoding, one_encoding, monkeypatch):
+    if one_encoding:
+        monkeypatch.setattr(joint, "candidate_trees", lambda *a, **k: joint.Trees([], False))
     problem = longer_tree_shorter_chain()
     g = goal_id(problem, "g")
     _, smallest = best(problem, g, lambda m: m["units"])
@@ -276,8 +278,11 @@ def random_choice_foon(rng: random.Random):
     return build(units, ["k0", "k1"])
 
 
-@pytest.mark.parametrize("seed", range(8))
-def test_joint_equals_brute_force_over_every_tree(seed):
+@pytest.mark.parametrize("seed, one_encoding", [(s, s % 2 == 1) for s in range(10)])
+def test_joint_equals_brute_force_over_every_tree(seed, one_encoding, monkeypatch):
+    """Tree by tree (foon2asp.schedule.joint) and, with no tree listed, in one encoding."""
+    if one_encoding:
+        monkeypatch.setattr(joint, "candidate_trees", lambda *a, **k: joint.Trees([], False))
     rng = random.Random(100 + seed)
     problem = random_choice_foon(rng)
     g = goal_id(problem, "g")
@@ -293,6 +298,7 @@ def test_joint_equals_brute_force_over_every_tree(seed):
     for encoding in ENCODINGS:
         r = schedule(problem, tree, spec, joint=True, encoding=encoding, shortcut=False)
         assert r.status == "optimal" and r.makespan == want, encoding
+        assert r.stats["joint"] == ("one encoding" if one_encoding else "tree by tree") or spec.has_human()
         assert r.makespan <= r.fixed.makespan == brute_schedule(problem, tree.units, spec)[0]
         assert check_schedule(problem, r.to_dict(), spec) is None
 

@@ -108,30 +108,30 @@ def _entries_of_steps(
     return assign_agents(inst.restrict(units), kind, start)
 
 
-def solve_steps(
+def _steps_once(
     inst: Instance,
     windows: dict[int, tuple[int, int]],
     horizon: int,
+    floor: int,
     args: Sequence[str],
-    tree_parts: Sequence[tuple[str, str]] = (),
-    levels: int = 0,
-    time_limit: float | None = None,
-    user: Sequence[str] = (),
-    floor: int = 0,
-) -> Solution:
-    """Solve with the time-step encoding; ``horizon`` (ms) bounds the makespan (a known
-    schedule's), ``floor`` is a lower bound; ``tree_parts`` (joint scheduling): the tree
-    encoding and its facts."""
+    tree_parts: Sequence[tuple[str, str]],
+    levels: int,
+    optimise: bool,
+    time_limit: float | None,
+    user: Sequence[str],
+) -> tuple[Solution, bool]:
+    """One grounding and solve of the time-step encoding with makespan at most ``horizon``
+    (``optimise``: the lexicographic objective, else any schedule); (solution, finished)."""
     scale = divisor(inst)
-    steps = -(-horizon // scale)
+    steps = horizon // scale
     fixed = not tree_parts
     parts = [
         ("encodings/schedule_steps.lp", encodings.encoding("schedule_steps")),
         ("schedule facts", schedule_facts(inst, scale, windows, fixed, agents=False)),
-        ("horizon", f"horizon({steps}).\nfloor({floor // scale}).\n" + _priorities(levels)),
+        ("horizon", f"horizon({steps}).\nfloor({-(-floor // scale)}).\n" + _priorities(levels)),
         *tree_parts,
     ]
-    control = Control(["--opt-mode=opt", *args])
+    control = Control(["--opt-mode=opt" if optimise else "--opt-mode=ignore", *args])
     t0 = time.perf_counter()
     control.add_all(parts, user=user)
     control.ground()
@@ -140,17 +140,80 @@ def solve_steps(
 
     def on_model(model: clingo.Model) -> None:
         best["atoms"] = model.symbols(shown=True)
-        best["proven"] = model.optimality_proven
 
+    if not optimise:
+        control.ctl.configuration.solve.models = "1"  # type: ignore[union-attr]
     result = control.solve(on_model, time_limit)
-    stats = {"encoding": "steps", "step_ms": scale, "horizon_steps": steps, "ground_s": round(ground_s, 6)}
-    stats.update(control.stats())
+    stats = {"step_ms": scale, "horizon_steps": steps, "ground_s": round(ground_s, 6), **control.stats()}
     if "atoms" not in best:
-        return Solution(None, False, bool(result.unsatisfiable), (), stats)
-    atoms = best["atoms"]
-    units = _used(atoms) if not fixed else inst.units
-    entries = _entries_of_steps(inst, atoms, scale, units)
-    return Solution(entries, bool(result.finished or best["proven"]), False, units, stats)
+        return Solution(None, False, bool(result.unsatisfiable), (), stats), result.finished
+    units = _used(best["atoms"]) if not fixed else inst.units
+    entries = _entries_of_steps(inst, best["atoms"], scale, units)
+    return Solution(entries, result.finished, False, units, stats), result.finished
+
+
+def solve_steps(
+    inst: Instance,
+    head: dict[int, int],
+    tail: dict[int, int],
+    horizon: int,
+    args: Sequence[str],
+    tree_parts: Sequence[tuple[str, str]] = (),
+    levels: int = 0,
+    time_limit: float | None = None,
+    user: Sequence[str] = (),
+    floor: int = 0,
+    ties: bool = True,
+) -> Solution:
+    """Solve with the time-step encoding by descending horizons: a schedule of makespan
+    ``horizon`` (ms) is known; while a shorter one may exist (above ``floor``, a lower bound),
+    ask for one within the known makespan minus the step, each unit starting between its
+    ``head`` and the horizon minus its ``tail``; then, when there are tie-breakers (a human
+    kind, or the tree objective of joint scheduling), optimise them at the proven makespan.
+    ``tree_parts`` (joint scheduling): the tree encoding and its facts.  The solution's
+    entries are None when the known schedule is the best (proven or not)."""
+    t0 = time.perf_counter()
+    deadline = None if time_limit is None else t0 + time_limit
+    scale = divisor(inst)
+    fixed = not tree_parts
+    known, found = horizon, None
+    proven = unsat = False
+    stats: dict[str, Any] = {"encoding": "steps", "horizons": 0}
+
+    def left() -> float | None:
+        return None if deadline is None else max(0.0, deadline - time.perf_counter())
+
+    def windows(h: int) -> dict[int, tuple[int, int]] | None:
+        w = {u: (e, h - tail[u]) for u, e in head.items() if u in tail and e <= h - tail[u]}
+        return None if fixed and len(w) < len(inst.units) else w
+
+    while True:
+        h = known - scale
+        if h < floor or (w := windows(h)) is None:
+            proven = True
+            break
+        stats["horizons"] += 1
+        sol, finished = _steps_once(inst, w, h, floor, args, tree_parts, levels, False, left(), user)
+        stats.update(sol.stats)
+        if not finished:
+            break
+        if sol.entries is None:
+            proven = True
+            break
+        found, known = sol, makespan(sol.entries)
+    breakers = levels or any(k == HUMAN for k in inst.kinds)
+    if proven and breakers and (ties or found is not None) and (w := windows(known)) is not None:
+        # the tie-breakers at the proven makespan
+        sol, finished = _steps_once(inst, w, known, known, args, tree_parts, levels, True, left(), user)
+        stats.update(sol.stats)
+        stats["tie_breakers"] = "proven" if finished else "time"
+        if sol.entries is not None:
+            found = sol
+        elif finished:
+            unsat = found is None  # no schedule within the known makespan: none at all
+    if found is None:
+        return Solution(None, proven and not unsat, unsat, (), stats)
+    return Solution(found.entries, proven, False, found.units, stats)
 
 
 def _used(atoms: Sequence[clingo.Symbol]) -> tuple[int, ...]:
@@ -176,6 +239,7 @@ def solve_dl(
     user: Sequence[str] = (),
     floor: int = 0,
     tail: dict[int, int] | None = None,
+    ties: bool = True,
 ) -> Solution:
     """Solve with clingo-dl: descending makespan bounds from ``horizon`` (ms, a known
     schedule's, None: none) to ``floor`` (a lower bound), then the tie-breakers under the
@@ -245,7 +309,8 @@ def solve_dl(
             proven, unsat = True, opt is None
             break
         opt = makespan(best["entries"])
-    if proven and opt is not None and (levels or any(k == HUMAN for k in inst.kinds)):
+    breakers = levels or any(k == HUMAN for k in inst.kinds)
+    if proven and opt is not None and breakers and (ties or best.get("entries") is not None):
         # the tie-breakers under the proven makespan
         switch(opt)
         conf.opt_mode, conf.models = "opt", "0"

@@ -154,6 +154,37 @@ def earliest(inst: Instance) -> dict[int, int]:
     return start
 
 
+def joint_tails(inst: Instance, goals: Iterable[int], products: dict[int, tuple[int, ...]]) -> dict[int, int]:
+    """For joint scheduling (``inst`` holds every candidate unit): each unit's minimum duration
+    plus the shortest chain after it to a unit making a goal, through units that need what it
+    makes (reverse Dijkstra).  A schedule's first makers of what is needed form a tree as short
+    as its own, in which every unit is followed by such a chain, so a bound on the makespan
+    bounds each start by it.  ``products``: unit -> the objects it makes; units that lead to
+    no goal are left out."""
+    wanted = set(goals)
+    users: dict[int, list[int]] = {}
+    for v in inst.units:
+        for _, ms in inst.needs[v]:
+            for m in ms:
+                users.setdefault(m, []).append(v)
+    queue = [(inst.min_duration(u), u) for u in inst.units if inst.durations[u] and wanted & set(products[u])]
+    heapq.heapify(queue)
+    out: dict[int, int] = {}
+    consumers: dict[int, list[int]] = {}
+    for m, vs in users.items():
+        for v in vs:
+            consumers.setdefault(v, []).append(m)
+    while queue:
+        q, v = heapq.heappop(queue)
+        if v in out:
+            continue
+        out[v] = q
+        for m in consumers.get(v, ()):
+            if m not in out and inst.durations[m]:
+                heapq.heappush(queue, (q + inst.min_duration(m), m))
+    return out
+
+
 def tails(inst: Instance) -> dict[int, int]:
     """Each unit's minimum duration plus the longest chain of minimum durations of the units
     that must wait for it (:attr:`Instance.preds`) -- a lower bound on the time from its start

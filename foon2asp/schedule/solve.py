@@ -29,15 +29,17 @@ from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.asp.settings import solver_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
-from foon2asp.schedule import encode
+from foon2asp.schedule import encode, joint
 from foon2asp.schedule.model import (
     Entry,
     Instance,
     bounds,
     compact,
+    divisor,
     earliest,
     human_units,
     instance,
+    joint_tails,
     list_schedule,
     makespan,
     tails,
@@ -76,15 +78,24 @@ def _solve(
     tree_parts: list[tuple[str, str]] | None = None,
     levels: int = 0,
     tail: dict[int, int] | None = None,
+    ties: bool = True,
 ) -> encode.Solution:
+    """Solve with ``encoding``; ``ties``: optimise the tie-breakers even when the known schedule
+    (of makespan ``horizon``) stays the best (a better one always has them optimised)."""
     user = [name for name, _ in options.programs] if tree_parts else []
     args = _args(options)
     if encoding == "steps":
         assert horizon is not None
-        return encode.solve_steps(inst, windows, horizon, args, tree_parts or (), levels, time_limit, user, floor)
+        head = {u: e for u, (e, _) in windows.items()}
+        tail = tail or {u: inst.min_duration(u) for u in windows}
+        return encode.solve_steps(
+            inst, head, tail, horizon, args, tree_parts or (), levels, time_limit, user, floor, ties
+        )
     if encoding == "dl":
         tail = tail or {u: inst.min_duration(u) for u in windows}
-        return encode.solve_dl(inst, windows, horizon, args, tree_parts or (), levels, time_limit, user, floor, tail)
+        return encode.solve_dl(
+            inst, windows, horizon, args, tree_parts or (), levels, time_limit, user, floor, tail, ties
+        )
     raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(encode.ENCODINGS)})")
 
 
@@ -184,6 +195,71 @@ def tree_parts(problem: Problem, meal: tuple[int, ...], inst: Instance, options:
     return [("facts", facts(problem, units=units, leave_out=leave_out)), *parts]
 
 
+def _by_trees(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    fixed: ScheduleResult,
+    encoding: str,
+    shortcut: bool,
+    inst: Instance,
+    start: dict[int, int],
+    tail: dict[int, int],
+    horizon: int,
+    parts: list,
+    ties: bool,
+    deadline: float | None,
+) -> tuple[ScheduleResult | None, bool]:
+    """Joint scheduling tree by tree (:mod:`foon2asp.schedule.joint`): (result, proven), the
+    result None when there are too many trees to look at (or no time to list them), or when no
+    tree beats the given one and ``ties`` asks for the tie-breakers over every tree of its
+    makespan (then ``proven`` says its makespan is the optimum)."""
+    bound = horizon - divisor(inst) if fixed.has_schedule else horizon
+    left = None if deadline is None else max(0.0, deadline - time.perf_counter())
+    found = joint.candidate_trees(inst, start, tail, bound, parts, _args(options), left)
+    if not found.complete:
+        return None, False
+    ranked = objectives.ranked(options)
+    fixed_units = tuple(sorted(tree.units))
+
+    def lower(units: tuple[int, ...]) -> int:
+        sub = inst.restrict(units)
+        head = earliest(sub)
+        chain = max((head[u] + sub.min_duration(u) for u in units), default=0)
+        return max(chain, -(-sum(sub.min_duration(u) for u in units) // len(sub.agents)))
+
+    def solve(units: tuple[int, ...], limit: float | None) -> ScheduleResult:
+        if units == fixed_units and fixed.status == "optimal":
+            return fixed
+        given = TaskTree(
+            method=f"{tree.method}+schedule",
+            status="optimal",
+            units=executable_order(problem, list(units)),
+            cost=measures(problem, tree.meal, list(units)),
+            **goal_fields(tree.meal),
+        )
+        return schedule_fixed(problem, given, spec, options, encoding, limit, shortcut)
+
+    def key(r: ScheduleResult) -> tuple:
+        return (r.makespan, len(r.human), joint.tree_cost(problem, r.tree.units, r.human, ranked))
+
+    left = None if deadline is None else max(0.0, deadline - time.perf_counter())
+    best, proven = joint.best_tree(found.trees, lower, solve, key, left)
+    if fixed.has_schedule and (best is None or key(fixed) <= key(best)):
+        if ties:
+            return None, proven and fixed.status == "optimal"
+        best = fixed
+    stats = {"joint": "tree by tree", "trees": len(found.trees)}
+    if best is None:
+        if not proven:
+            return None, False
+        why = "no valid tree of the goal can be scheduled"
+        return ScheduleResult(problem, tree, "unschedulable", fixed.agents, joint=True, fixed=fixed, reason=why), True
+    status = "optimal" if proven and best.status == "optimal" else "feasible"
+    return replace(best, status=status, joint=True, fixed=fixed, stats={**best.stats, **stats}), proven
+
+
 def schedule_joint(
     problem: Problem,
     tree: TaskTree,
@@ -221,12 +297,24 @@ def schedule_joint(
     ):
         stats["shortcut"] = "the given tree's makespan meets the lower bound over every tree"
         return replace(fixed, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
-    windows = {u: (s, horizon - inst.min_duration(u)) for u, s in start.items()}
-    windows = {u: w for u, w in windows.items() if w[0] <= w[1]}
+    tail = joint_tails(inst, meal, {u: problem.products[u] for u in inst.units})
+    windows = {u: (s, horizon - tail[u]) for u, s in start.items() if u in tail and s <= horizon - tail[u]}
     parts = tree_parts(problem, meal, inst, options)
+    deadline = None if time_limit is None else t0 + time_limit
+    ties = spec.has_human() or tree.status != "optimal"
+    by_trees, proven = _by_trees(
+        problem, tree, spec, options, fixed, encoding, shortcut, inst, start, tail, horizon, parts, ties, deadline
+    )
+    if by_trees is not None:
+        by_trees.stats = {**stats, **by_trees.stats}
+        by_trees.time_s = time.perf_counter() - t0
+        return by_trees
+    if proven:  # no tree beats the given one's makespan: only the tie-breakers are left
+        floor = horizon
+    left = None if deadline is None else max(0.0, deadline - time.perf_counter())
     levels = len(objectives.ranked(options))
-    sol = _solve(inst, windows, horizon, floor, options, encoding, time_limit, parts, levels)
-    stats.update(sol.stats)
+    sol = _solve(inst, windows, horizon, floor, options, encoding, left, parts, levels, tail, ties)
+    stats.update(sol.stats, joint="tie-breakers in one encoding" if proven else "one encoding")
     elapsed = time.perf_counter() - t0
     if sol.unsatisfiable:
         why = "no valid tree of the goal can be scheduled"
