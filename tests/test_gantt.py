@@ -25,7 +25,9 @@ def record():
         ["k"],
     )
     spec = ScheduleSpec((("arm", 1), ("human", 1)), Durations({"cut <&>": 2000, "mix": 1000}))
-    tree = TaskTree(goal=goal_id(problem, "g"), method="given", status="optimal", units=executable_order(problem, [0, 1, 2]))
+    tree = TaskTree(
+        goal=goal_id(problem, "g"), method="given", status="optimal", units=executable_order(problem, [0, 1, 2])
+    )
     return schedule(problem, tree, spec).to_dict()
 
 

@@ -163,8 +163,8 @@ def test_a_unit_nobody_can_do_is_unschedulable():
 def test_unreachable_goal():
     problem = build([("m", ["a"], ["g"])], ["k"])
     tree = TaskTree(goal=goal_id(problem, "g"), method="given", status="unreachable")
-    for joint in (False, True):
-        r = schedule(problem, tree, joint=joint)
+    for together in (False, True):
+        r = schedule(problem, tree, joint=together)
         assert r.status == "unreachable" and r.to_dict()["makespan"] is None
 
 

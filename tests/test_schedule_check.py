@@ -23,7 +23,9 @@ def case():
         ["k", KNIFE],
     )
     spec = ScheduleSpec((("arm", 2), ("human", 1)), Durations({"cut": 2000, "mix": 1000}, {"human": {"mix": 500}}))
-    tree = TaskTree(goal=goal_id(problem, "g"), method="given", status="optimal", units=executable_order(problem, [0, 1, 2]))
+    tree = TaskTree(
+        goal=goal_id(problem, "g"), method="given", status="optimal", units=executable_order(problem, [0, 1, 2])
+    )
     record = schedule(problem, tree, spec, shortcut=False).to_dict()
     assert check_schedule(problem, record, spec) is None
     return problem, spec, record
@@ -62,8 +64,11 @@ def test_one_unit_per_agent_at_a_time(case):
 
 def test_capabilities(case):
     problem, _, record = case
-    spec = ScheduleSpec((("arm", 2), ("human", 1)), Durations({"cut": 2000, "mix": 1000}, {"human": {"mix": 500}}),
-                        {"human": frozenset({"cut"})})
+    spec = ScheduleSpec(
+        (("arm", 2), ("human", 1)),
+        Durations({"cut": 2000, "mix": 1000}, {"human": {"mix": 500}}),
+        {"human": frozenset({"cut"})},
+    )
     assert "cannot do 'mix'" in check_schedule(problem, record, spec)
 
 

@@ -25,7 +25,8 @@ from decimal import Decimal
 
 from foon2asp.asp.objectives import success_product
 from foon2asp.foon.problem import Problem
-from foon2asp.schedule.model import Bounds, Entry, human_units
+from foon2asp.schedule.bounds import Bounds
+from foon2asp.schedule.model import Entry, human_units
 from foon2asp.schedule.spec import HUMAN, TICKS, kind_of
 from foon2asp.tree.serialize import goal_heading, tree_json
 from foon2asp.tree.tasktree import TaskTree

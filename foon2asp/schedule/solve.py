@@ -30,17 +30,16 @@ from foon2asp.asp.settings import solver_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule import encode, joint
+from foon2asp.schedule.bounds import bounds, list_schedule
 from foon2asp.schedule.model import (
     Entry,
     Instance,
-    bounds,
     compact,
     divisor,
     earliest,
     human_units,
     instance,
     joint_tails,
-    list_schedule,
     makespan,
     tails,
 )
