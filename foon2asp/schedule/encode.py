@@ -55,6 +55,44 @@ class Solution:
     stats: dict = field(default_factory=dict)
 
 
+@dataclass
+class Job:
+    """What both encodings solve: an instance, each unit's earliest start (``head``) and least
+    time from its start to the end (``tail``), a known makespan (``horizon``, ms; None: none)
+    and a lower bound (``floor``); for joint scheduling ``tree_parts`` (tree.lp, its
+    objectives and facts; ``levels`` objectives, ``user`` the names of user programs)."""
+
+    inst: Instance
+    head: dict[int, int]
+    tail: dict[int, int]
+    horizon: int | None
+    floor: int = 0
+    args: Sequence[str] = ()
+    tree_parts: Sequence[tuple[str, str]] = ()
+    levels: int = 0
+    user: Sequence[str] = ()
+    #: optimise the tie-breakers even when the known schedule stays the best
+    ties: bool = True
+
+    @property
+    def fixed(self) -> bool:
+        return not self.tree_parts
+
+    @property
+    def breakers(self) -> bool:
+        """Are there tie-breakers: the tree objective, or a human kind?"""
+        return bool(self.levels) or any(k == HUMAN for k in self.inst.kinds)
+
+    def windows(self, horizon: int) -> dict[int, tuple[int, int]] | None:
+        """Each unit's start window within ``horizon``; None when a given unit has none."""
+        w = {
+            u: (e, horizon - self.tail[u])
+            for u, e in self.head.items()
+            if u in self.tail and e <= horizon - self.tail[u]
+        }
+        return None if self.fixed and len(w) < len(self.inst.units) else w
+
+
 def schedule_facts(
     inst: Instance, scale: int, windows: dict[int, tuple[int, int]], fixed: bool, agents: bool, tail: dict | None = None
 ) -> str:
@@ -108,32 +146,21 @@ def _entries_of_steps(
     return assign_agents(inst.restrict(units), kind, start)
 
 
-def _steps_once(
-    inst: Instance,
-    windows: dict[int, tuple[int, int]],
-    horizon: int,
-    floor: int,
-    args: Sequence[str],
-    tree_parts: Sequence[tuple[str, str]],
-    levels: int,
-    optimise: bool,
-    time_limit: float | None,
-    user: Sequence[str],
-) -> tuple[Solution, bool]:
+def _steps_once(job: Job, windows: dict, horizon: int, floor: int, optimise: bool, time_limit: float | None):
     """One grounding and solve of the time-step encoding with makespan at most ``horizon``
     (``optimise``: the lexicographic objective, else any schedule); (solution, finished)."""
+    inst = job.inst
     scale = divisor(inst)
     steps = horizon // scale
-    fixed = not tree_parts
     parts = [
         ("encodings/schedule_steps.lp", encodings.encoding("schedule_steps")),
-        ("schedule facts", schedule_facts(inst, scale, windows, fixed, agents=False)),
-        ("horizon", f"horizon({steps}).\nfloor({-(-floor // scale)}).\n" + _priorities(levels)),
-        *tree_parts,
+        ("schedule facts", schedule_facts(inst, scale, windows, job.fixed, agents=False)),
+        ("horizon", f"horizon({steps}).\nfloor({-(-floor // scale)}).\n" + _priorities(job.levels)),
+        *job.tree_parts,
     ]
-    control = Control(["--opt-mode=opt" if optimise else "--opt-mode=ignore", *args])
+    control = Control(["--opt-mode=opt" if optimise else "--opt-mode=ignore", *job.args])
     t0 = time.perf_counter()
-    control.add_all(parts, user=user)
+    control.add_all(parts, user=job.user)
     control.ground()
     ground_s = time.perf_counter() - t0
     best: dict[str, Any] = {}
@@ -147,53 +174,35 @@ def _steps_once(
     stats = {"step_ms": scale, "horizon_steps": steps, "ground_s": round(ground_s, 6), **control.stats()}
     if "atoms" not in best:
         return Solution(None, False, bool(result.unsatisfiable), (), stats), result.finished
-    units = _used(best["atoms"]) if not fixed else inst.units
+    units = _used(best["atoms"]) if not job.fixed else inst.units
     entries = _entries_of_steps(inst, best["atoms"], scale, units)
     return Solution(entries, result.finished, False, units, stats), result.finished
 
 
-def solve_steps(
-    inst: Instance,
-    head: dict[int, int],
-    tail: dict[int, int],
-    horizon: int,
-    args: Sequence[str],
-    tree_parts: Sequence[tuple[str, str]] = (),
-    levels: int = 0,
-    time_limit: float | None = None,
-    user: Sequence[str] = (),
-    floor: int = 0,
-    ties: bool = True,
-) -> Solution:
+def solve_steps(job: Job, time_limit: float | None = None) -> Solution:
     """Solve with the time-step encoding by descending horizons: a schedule of makespan
-    ``horizon`` (ms) is known; while a shorter one may exist (above ``floor``, a lower bound),
-    ask for one within the known makespan minus the step, each unit starting between its
-    ``head`` and the horizon minus its ``tail``; then, when there are tie-breakers (a human
-    kind, or the tree objective of joint scheduling), optimise them at the proven makespan.
-    ``tree_parts`` (joint scheduling): the tree encoding and its facts.  The solution's
-    entries are None when the known schedule is the best (proven or not)."""
+    ``job.horizon`` is known; while a shorter one may exist (above ``job.floor``), ask for one
+    within the known makespan minus the step (:meth:`Job.windows`); then, when there are
+    tie-breakers, optimise them at the proven makespan.  The solution's entries are None when
+    the known schedule is the best (proven or not)."""
+    assert job.horizon is not None
     t0 = time.perf_counter()
     deadline = None if time_limit is None else t0 + time_limit
-    scale = divisor(inst)
-    fixed = not tree_parts
-    known, found = horizon, None
+    scale = divisor(job.inst)
+    known, found = job.horizon, None
     proven = unsat = False
     stats: dict[str, Any] = {"encoding": "steps", "horizons": 0}
 
     def left() -> float | None:
         return None if deadline is None else max(0.0, deadline - time.perf_counter())
 
-    def windows(h: int) -> dict[int, tuple[int, int]] | None:
-        w = {u: (e, h - tail[u]) for u, e in head.items() if u in tail and e <= h - tail[u]}
-        return None if fixed and len(w) < len(inst.units) else w
-
     while True:
         h = known - scale
-        if h < floor or (w := windows(h)) is None:
+        if h < job.floor or (w := job.windows(h)) is None:
             proven = True
             break
         stats["horizons"] += 1
-        sol, finished = _steps_once(inst, w, h, floor, args, tree_parts, levels, False, left(), user)
+        sol, finished = _steps_once(job, w, h, job.floor, False, left())
         stats.update(sol.stats)
         if not finished:
             break
@@ -201,10 +210,9 @@ def solve_steps(
             proven = True
             break
         found, known = sol, makespan(sol.entries)
-    breakers = levels or any(k == HUMAN for k in inst.kinds)
-    if proven and breakers and (ties or found is not None) and (w := windows(known)) is not None:
+    if proven and job.breakers and (job.ties or found is not None) and (w := job.windows(known)) is not None:
         # the tie-breakers at the proven makespan
-        sol, finished = _steps_once(inst, w, known, known, args, tree_parts, levels, True, left(), user)
+        sol, finished = _steps_once(job, w, known, known, True, left())
         stats.update(sol.stats)
         stats["tie_breakers"] = "proven" if finished else "time"
         if sol.entries is not None:
@@ -228,35 +236,24 @@ def _dl_theory():
     return ClingoDLTheory()
 
 
-def solve_dl(
-    inst: Instance,
-    windows: dict[int, tuple[int, int]],
-    horizon: int | None,
-    args: Sequence[str],
-    tree_parts: Sequence[tuple[str, str]] = (),
-    levels: int = 0,
-    time_limit: float | None = None,
-    user: Sequence[str] = (),
-    floor: int = 0,
-    tail: dict[int, int] | None = None,
-    ties: bool = True,
-) -> Solution:
-    """Solve with clingo-dl: descending makespan bounds from ``horizon`` (ms, a known
-    schedule's, None: none) to ``floor`` (a lower bound), then the tie-breakers under the
-    optimum (when there are any: a human kind, or the tree objective of joint scheduling)."""
+def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
+    """Solve with clingo-dl: descending makespan bounds from ``job.horizon`` (None: no known
+    schedule) to ``job.floor``, then the tie-breakers under the optimum (when there are any).
+    The solution's entries are None when the known schedule is the best (proven or not)."""
+    inst, horizon, floor, levels = job.inst, job.horizon, job.floor, job.levels
     theory = _dl_theory()
     step = divisor(inst)
-    fixed = not tree_parts
+    windows = {u: (e, e) for u, e in job.head.items() if u in job.tail}
     parts = [
         ("encodings/schedule_dl.lp", encodings.encoding("schedule_dl")),
-        ("schedule facts", schedule_facts(inst, 1, windows, fixed, agents=True, tail=tail)),
+        ("schedule facts", schedule_facts(inst, 1, windows, job.fixed, agents=True, tail=job.tail)),
         ("priorities", _priorities(levels)),
-        *tree_parts,
+        *job.tree_parts,
     ]
-    control = Control(["--opt-mode=ignore", *args], theory=theory)
+    control = Control(["--opt-mode=ignore", *job.args], theory=theory)
     t0 = time.perf_counter()
     deadline = None if time_limit is None else t0 + time_limit
-    control.add_all(parts, user=user)
+    control.add_all(parts, user=job.user)
     control.ground()
     stats: dict[str, Any] = {"encoding": "dl", "ground_s": round(time.perf_counter() - t0, 6), "bounds": 0}
     conf: Any = control.ctl.configuration.solve
@@ -309,8 +306,7 @@ def solve_dl(
             proven, unsat = True, opt is None
             break
         opt = makespan(best["entries"])
-    breakers = levels or any(k == HUMAN for k in inst.kinds)
-    if proven and opt is not None and breakers and (ties or best.get("entries") is not None):
+    if proven and opt is not None and job.breakers and (job.ties or best.get("entries") is not None):
         # the tie-breakers under the proven makespan
         switch(opt)
         conf.opt_mode, conf.models = "opt", "0"
@@ -320,5 +316,5 @@ def solve_dl(
     if best.get("entries") is None:
         # unsatisfiable, or the known schedule (of makespan horizon) is optimal, or no time
         return Solution(None, proven, unsat, (), stats)
-    units = _used(best["atoms"]) if not fixed else inst.units
+    units = _used(best["atoms"]) if not job.fixed else inst.units
     return Solution(best["entries"], proven, False, units, stats)

@@ -68,33 +68,33 @@ def _forced_human(inst: Instance) -> int:
 
 def _solve(
     inst: Instance,
-    windows: dict[int, tuple[int, int]],
+    head: dict[int, int],
+    tail: dict[int, int],
     horizon: int | None,
     floor: int,
     options: AspOptions,
     encoding: str,
     time_limit: float | None,
     tree_parts: list[tuple[str, str]] | None = None,
-    levels: int = 0,
-    tail: dict[int, int] | None = None,
     ties: bool = True,
 ) -> encode.Solution:
-    """Solve with ``encoding``; ``ties``: optimise the tie-breakers even when the known schedule
-    (of makespan ``horizon``) stays the best (a better one always has them optimised)."""
-    user = [name for name, _ in options.programs] if tree_parts else []
-    args = _args(options)
+    """Solve with ``encoding`` (:class:`foon2asp.schedule.encode.Job` says what the values are)."""
+    job = encode.Job(
+        inst,
+        head,
+        tail,
+        horizon,
+        floor,
+        _args(options),
+        tree_parts or (),
+        len(objectives.ranked(options)) if tree_parts else 0,
+        [name for name, _ in options.programs] if tree_parts else [],
+        ties,
+    )
     if encoding == "steps":
-        assert horizon is not None
-        head = {u: e for u, (e, _) in windows.items()}
-        tail = tail or {u: inst.min_duration(u) for u in windows}
-        return encode.solve_steps(
-            inst, head, tail, horizon, args, tree_parts or (), levels, time_limit, user, floor, ties
-        )
+        return encode.solve_steps(job, time_limit)
     if encoding == "dl":
-        tail = tail or {u: inst.min_duration(u) for u in windows}
-        return encode.solve_dl(
-            inst, windows, horizon, args, tree_parts or (), levels, time_limit, user, floor, tail, ties
-        )
+        return encode.solve_dl(job, time_limit)
     raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(encode.ENCODINGS)})")
 
 
@@ -134,9 +134,7 @@ def schedule_fixed(
         return ScheduleResult(
             problem, tree, "optimal", agents, base, b, ub, time_s=time.perf_counter() - t0, stats=stats
         )
-    head, tail = earliest(inst), tails(inst)
-    windows = {u: (head[u], ub - tail[u]) for u in inst.units}
-    sol = _solve(inst, windows, ub, b.lower, options, encoding, time_limit, tail=tail)
+    sol = _solve(inst, earliest(inst), tails(inst), ub, b.lower, options, encoding, time_limit, ties=spec.has_human())
     stats.update(sol.stats)
     entries = base
     if sol.entries is not None and makespan(sol.entries) <= ub:
@@ -297,7 +295,6 @@ def schedule_joint(
         stats["shortcut"] = "the given tree's makespan meets the lower bound over every tree"
         return replace(fixed, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
     tail = joint_tails(inst, meal, {u: problem.products[u] for u in inst.units})
-    windows = {u: (s, horizon - tail[u]) for u, s in start.items() if u in tail and s <= horizon - tail[u]}
     parts = tree_parts(problem, meal, inst, options)
     deadline = None if time_limit is None else t0 + time_limit
     ties = spec.has_human() or tree.status != "optimal"
@@ -311,8 +308,7 @@ def schedule_joint(
     if proven:  # no tree beats the given one's makespan: only the tie-breakers are left
         floor = horizon
     left = None if deadline is None else max(0.0, deadline - time.perf_counter())
-    levels = len(objectives.ranked(options))
-    sol = _solve(inst, windows, horizon, floor, options, encoding, left, parts, levels, tail, ties)
+    sol = _solve(inst, start, tail, horizon, floor, options, encoding, left, parts, ties)
     stats.update(sol.stats, joint="tie-breakers in one encoding" if proven else "one encoding")
     elapsed = time.perf_counter() - t0
     if sol.unsatisfiable:
