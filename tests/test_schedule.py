@@ -9,6 +9,7 @@ import random
 import pytest
 
 from foon2asp.schedule import ScheduleSpec, joint, schedule
+from foon2asp.schedule import solve as solve_mod
 from foon2asp.schedule.check import check_schedule
 from foon2asp.schedule.spec import HUMAN, Durations, agent_names
 from foon2asp.tree.tasktree import TaskTree, executable_order
@@ -246,10 +247,19 @@ def longer_tree_shorter_chain():
     )
 
 
-@pytest.mark.parametrize("encoding, one_encoding", [(e, k) for e in ENCODINGS for k in (False, True)])
-def test_joint_is_strictly_shorter_with_a_larger_tree(encoding, one_encoding, monkeypatch):
-    if one_encoding:
-        monkeypatch.setattr(joint, "candidate_trees", lambda *a, **k: joint.Trees([], False))
+JOINT_WAYS = {
+    "tree by tree": None,
+    "tree by tree, least work first": lambda mp: mp.setattr(
+        joint, "candidate_trees", lambda *a, **k: joint.Trees([], False)
+    ),
+    "one encoding": lambda mp: mp.setattr(solve_mod, "_by_trees", lambda *a, **k: (None, False)),
+}
+
+
+@pytest.mark.parametrize("encoding, way", [(e, w) for e in ENCODINGS for w in JOINT_WAYS])
+def test_joint_is_strictly_shorter_with_a_larger_tree(encoding, way, monkeypatch):
+    if JOINT_WAYS[way]:
+        JOINT_WAYS[way](monkeypatch)
     problem = longer_tree_shorter_chain()
     g = goal_id(problem, "g")
     _, smallest = best(problem, g, lambda m: m["units"])
@@ -278,11 +288,12 @@ def random_choice_foon(rng: random.Random):
     return build(units, ["k0", "k1"])
 
 
-@pytest.mark.parametrize("seed, one_encoding", [(s, s % 2 == 1) for s in range(10)])
-def test_joint_equals_brute_force_over_every_tree(seed, one_encoding, monkeypatch):
-    """Tree by tree (foon2asp.schedule.joint) and, with no tree listed, in one encoding."""
-    if one_encoding:
-        monkeypatch.setattr(joint, "candidate_trees", lambda *a, **k: joint.Trees([], False))
+@pytest.mark.parametrize("seed, way", [(s, list(JOINT_WAYS)[s % 3]) for s in range(12)])
+def test_joint_equals_brute_force_over_every_tree(seed, way, monkeypatch):
+    """Tree by tree (foon2asp.schedule.joint): the trees listed, or asked for least work
+    first; and tree and schedule in one encoding."""
+    if JOINT_WAYS[way]:
+        JOINT_WAYS[way](monkeypatch)
     rng = random.Random(100 + seed)
     problem = random_choice_foon(rng)
     g = goal_id(problem, "g")
@@ -298,7 +309,7 @@ def test_joint_equals_brute_force_over_every_tree(seed, one_encoding, monkeypatc
     for encoding in ENCODINGS:
         r = schedule(problem, tree, spec, joint=True, encoding=encoding, shortcut=False)
         assert r.status == "optimal" and r.makespan == want, encoding
-        assert r.stats["joint"] == ("one encoding" if one_encoding else "tree by tree") or spec.has_human()
+        assert r.stats["joint"] == way or spec.has_human()
         assert r.makespan <= r.fixed.makespan == brute_schedule(problem, tree.units, spec)[0]
         assert check_schedule(problem, r.to_dict(), spec) is None
 

@@ -180,48 +180,22 @@ def _steps_once(job: Job, windows: dict, horizon: int, floor: int, optimise: boo
 
 
 def solve_steps(job: Job, time_limit: float | None = None) -> Solution:
-    """Solve with the time-step encoding by descending horizons: a schedule of makespan
-    ``job.horizon`` is known; while a shorter one may exist (above ``job.floor``), ask for one
-    within the known makespan minus the step (:meth:`Job.windows`); then, when there are
-    tie-breakers, optimise them at the proven makespan.  The solution's entries are None when
-    the known schedule is the best (proven or not)."""
+    """Solve with the time-step encoding: one lexicographic optimisation (makespan, then the
+    tie-breakers) within the known makespan ``job.horizon``, no makespan below ``job.floor``.
+    The makespan is proven when the search ends, or when a schedule meets the floor."""
     assert job.horizon is not None
-    t0 = time.perf_counter()
-    deadline = None if time_limit is None else t0 + time_limit
-    scale = divisor(job.inst)
-    known, found = job.horizon, None
-    proven = unsat = False
-    stats: dict[str, Any] = {"encoding": "steps", "horizons": 0}
-
-    def left() -> float | None:
-        return None if deadline is None else max(0.0, deadline - time.perf_counter())
-
-    while True:
-        h = known - scale
-        if h < job.floor or (w := job.windows(h)) is None:
-            proven = True
-            break
-        stats["horizons"] += 1
-        sol, finished = _steps_once(job, w, h, job.floor, False, left())
-        stats.update(sol.stats)
-        if not finished:
-            break
-        if sol.entries is None:
-            proven = True
-            break
-        found, known = sol, makespan(sol.entries)
-    if proven and job.breakers and (job.ties or found is not None) and (w := job.windows(known)) is not None:
-        # the tie-breakers at the proven makespan
-        sol, finished = _steps_once(job, w, known, known, True, left())
-        stats.update(sol.stats)
-        stats["tie_breakers"] = "proven" if finished else "time"
-        if sol.entries is not None:
-            found = sol
-        elif finished:
-            unsat = found is None  # no schedule within the known makespan: none at all
-    if found is None:
-        return Solution(None, proven and not unsat, unsat, (), stats)
-    return Solution(found.entries, proven, False, found.units, stats)
+    stats: dict[str, Any] = {"encoding": "steps"}
+    windows = job.windows(job.horizon)
+    if windows is None:  # a unit cannot start and still end in time: no schedule within the horizon
+        return Solution(None, True, True, (), stats)
+    sol, finished = _steps_once(job, windows, job.horizon, job.floor, True, time_limit)
+    stats.update(sol.stats)
+    if sol.entries is None:
+        return Solution(None, finished, finished and bool(sol.unsatisfiable), (), stats)
+    proven = finished or makespan(sol.entries) <= job.floor
+    if not finished:
+        stats["tie_breakers"] = "time"
+    return Solution(sol.entries, proven, False, sol.units, stats)
 
 
 def _used(atoms: Sequence[clingo.Symbol]) -> tuple[int, ...]:

@@ -111,8 +111,11 @@ def schedule_fixed(
     encoding: str = DEFAULT_ENCODING,
     time_limit: float | None = None,
     shortcut: bool = True,
+    within: int | None = None,
 ) -> ScheduleResult:
-    """The optimal schedule of ``tree``'s units."""
+    """The optimal schedule of ``tree``'s units.  ``within`` (ms; joint scheduling): only a
+    schedule of at most that makespan matters; when there is none the status is
+    ``unschedulable`` (reason: not within), found faster than the optimum of a longer one."""
     t0 = time.perf_counter()
     if not tree.has_tree:
         status = "unreachable" if tree.status in ("unreachable", "not-found") else "unknown"
@@ -129,6 +132,8 @@ def schedule_fixed(
     base = list_schedule(inst)
     ub = makespan(base)
     stats: dict = {"encoding": encoding}
+    if within is not None and (b.lower > within or ub > within):
+        return _within(problem, tree, spec, options, encoding, time_limit, inst, b, within, t0)
     if shortcut and ub == b.lower and human_units(base) == _forced_human(inst):
         stats["shortcut"] = "baseline meets the lower bound"
         return ScheduleResult(
@@ -140,6 +145,37 @@ def schedule_fixed(
     if sol.entries is not None and makespan(sol.entries) <= ub:
         entries = compact(inst, sol.entries)
     status = "optimal" if sol.proven else "feasible"
+    return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
+
+
+def _within(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    encoding: str,
+    time_limit: float | None,
+    inst: Instance,
+    b,
+    within: int,
+    t0: float,
+) -> ScheduleResult:
+    """:func:`schedule_fixed` when the baseline is longer than ``within``: is there a schedule
+    of at most ``within``, and the best one if so?"""
+    agents = [name for name, _ in inst.agents]
+    if b.lower > within:
+        return _none(problem, tree, spec, "unschedulable", f"no schedule within {within} ms", t0)
+    known = within + divisor(inst) if encoding == "dl" else within  # dl asks below its horizon first
+    sol = _solve(
+        inst, earliest(inst), tails(inst), known, b.lower, options, encoding, time_limit, ties=spec.has_human()
+    )
+    stats = {"encoding": encoding, **sol.stats}
+    if sol.entries is None:
+        status = "unschedulable" if sol.proven or sol.unsatisfiable else "unknown"
+        return _none(problem, tree, spec, status, f"no schedule within {within} ms", t0)
+    entries = compact(inst, sol.entries)
+    status = "optimal" if sol.proven else "feasible"
+    ub = makespan(list_schedule(inst))
     return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
 
 
@@ -212,21 +248,26 @@ def _by_trees(
     result None when there are too many trees to look at (or no time to list them), or when no
     tree beats the given one and ``ties`` asks for the tie-breakers over every tree of its
     makespan (then ``proven`` says its makespan is the optimum)."""
-    bound = horizon - divisor(inst) if fixed.has_schedule else horizon
+    within = horizon - divisor(inst) if fixed.has_schedule else horizon
     left = None if deadline is None else max(0.0, deadline - time.perf_counter())
-    found = joint.candidate_trees(inst, start, tail, bound, parts, _args(options), left)
-    if not found.complete:
+    found = joint.candidate_trees(inst, start, tail, within, parts, _args(options), left)
+    if not found.complete and (deadline is not None and time.perf_counter() >= deadline):
         return None, False
     ranked = objectives.ranked(options)
     fixed_units = tuple(sorted(tree.units))
 
-    def lower(units: tuple[int, ...]) -> int:
+    def bound(units: tuple[int, ...]) -> tuple:
+        """A lower bound on the key of the tree's schedule: chain and work bounds, the units
+        only a person can do, and (no person among the agents) the tree objective."""
         sub = inst.restrict(units)
         head = earliest(sub)
         chain = max((head[u] + sub.min_duration(u) for u in units), default=0)
-        return max(chain, -(-sum(sub.min_duration(u) for u in units) // len(sub.agents)))
+        low = max(chain, -(-sum(sub.min_duration(u) for u in units) // len(sub.agents)))
+        if spec.has_human():
+            return (low, _forced_human(sub), ())
+        return (low, 0, joint.tree_cost(problem, units, (), ranked))
 
-    def solve(units: tuple[int, ...], limit: float | None) -> ScheduleResult:
+    def solve(units: tuple[int, ...], limit: float | None, within: int | None) -> ScheduleResult:
         if units == fixed_units and fixed.status == "optimal":
             return fixed
         given = TaskTree(
@@ -236,18 +277,24 @@ def _by_trees(
             cost=measures(problem, tree.meal, list(units)),
             **goal_fields(tree.meal),
         )
-        return schedule_fixed(problem, given, spec, options, encoding, limit, shortcut)
+        return schedule_fixed(problem, given, spec, options, encoding, limit, shortcut, within)
 
     def key(r: ScheduleResult) -> tuple:
         return (r.makespan, len(r.human), joint.tree_cost(problem, r.tree.units, r.human, ranked))
 
     left = None if deadline is None else max(0.0, deadline - time.perf_counter())
-    best, proven = joint.best_tree(found.trees, lower, solve, key, left)
+    if found.complete:
+        best, proven = joint.best_tree(found.trees, bound, solve, key, left)
+    else:  # too many to list: one at a time, least work first
+        levels = len(ranked)
+        best, proven = joint.best_by_work(
+            inst, start, tail, within, parts, _args(options), levels, bound, solve, key, left
+        )
     if fixed.has_schedule and (best is None or key(fixed) <= key(best)):
         if ties:
             return None, proven and fixed.status == "optimal"
         best = fixed
-    stats = {"joint": "tree by tree", "trees": len(found.trees)}
+    stats = {"joint": "tree by tree" if found.complete else "tree by tree, least work first"}
     if best is None:
         if not proven:
             return None, False
