@@ -15,7 +15,12 @@ from foon2asp.schedule.spec import HUMAN, Durations, agent_names
 from foon2asp.tree.tasktree import TaskTree, executable_order
 from helpers import as_obj, best, brute_force, build, goal_id
 
-ENCODINGS = ("steps", "dl")
+try:
+    import clingodl  # noqa: F401
+
+    ENCODINGS: tuple[str, ...] = ("steps", "dl")
+except ImportError:  # the dl encoding needs clingo-dl (pip install 'foon2asp[dl]')
+    ENCODINGS = ("steps",)
 
 
 def given(problem, goal, units, status="optimal") -> TaskTree:
@@ -374,4 +379,4 @@ def test_both_encodings_agree_on_shared_goals(shared_foon_dir):
             assert r.status == "optimal", (label, encoding)
             assert check_schedule(kb.problem, r.to_dict(), spec) is None
             got[encoding] = r.makespan
-        assert got["steps"] == got["dl"], label
+        assert len(set(got.values())) == 1, (label, got)

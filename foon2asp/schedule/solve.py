@@ -9,13 +9,17 @@ of the goal (never longer than the given tree's, which is reported beside it).
 Statuses: ``optimal`` (makespan proven minimal), ``feasible`` (the time limit
 ended the search: the best schedule found, at worst the baseline's),
 ``unschedulable`` (a unit of the tree no agent can do; joint: no valid tree
-can be scheduled),
-``unreachable`` (no tree makes the goal), ``unknown`` (no tree was found in
-time).  Every answer carries the list-scheduling baseline and the lower bounds
-(:mod:`foon2asp.schedule.model`).
+can be scheduled), ``unreachable`` (no tree makes the goal), ``unknown`` (no
+tree was found in time).  Every answer carries the list-scheduling baseline
+and the lower bounds (:mod:`foon2asp.schedule.bounds`).
 
 A shortcut: when the baseline meets the lower bound and uses no more human
 units than the units only a person can do, it is optimal and no solver runs.
+
+Joint scheduling first schedules the given tree, then looks tree by tree
+(:mod:`foon2asp.schedule.joint`) at the trees that could be shorter; only when
+even asking for them least work first runs out of time does it solve tree and
+schedule in one encoding (tree.lp beside the schedule encoding).
 """
 
 from __future__ import annotations
