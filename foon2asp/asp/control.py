@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import clingo
+import clingo.ast
 
 from foon2asp.asp.constraints import check_syntax, clingo_error
 from foon2asp.errors import InputError
@@ -149,16 +150,33 @@ class SolveResult:
     time_s: float
 
 
-class Control:
-    """A clingo control with named programs, one-line errors and time-limited solving."""
+def _theory_first(theory, on_model: Callable[[clingo.Model], bool | None] | None):
+    """``on_model`` after ``theory`` has seen the model (it reads the theory's assignment)."""
 
-    def __init__(self, args: Sequence[str] = (), message_limit: int = 20) -> None:
+    def both(model: clingo.Model) -> bool | None:
+        theory.on_model(model)
+        return on_model(model) if on_model is not None else None
+
+    return both
+
+
+class Control:
+    """A clingo control with named programs, one-line errors and time-limited solving.
+
+    ``theory``: a clingo theory (e.g. clingo-dl's ``ClingoDLTheory``) that programs are
+    rewritten for, that is prepared after each grounding and sees every model first.
+    """
+
+    def __init__(self, args: Sequence[str] = (), message_limit: int = 20, theory=None) -> None:
         self.messages: list[str] = []
         self.user_programs: list[tuple[str, str]] = []
+        self.theory = theory
         try:
             self.ctl = clingo.Control(list(args), logger=self._log, message_limit=message_limit)
         except RuntimeError as exc:
             raise InputError(f"bad solver option: {' '.join(str(exc).split())}") from None
+        if theory is not None:
+            theory.register(self.ctl)
 
     def _log(self, code: clingo.MessageCode, message: str) -> None:
         self.messages.append(" ".join(message.split()))
@@ -170,7 +188,11 @@ class Control:
             self.user_programs.append((name, text))
         try:
             with deferred_signals():
-                self.ctl.add(part, list(params), text)
+                if self.theory is None:
+                    self.ctl.add(part, list(params), text)
+                else:  # a theory (clingo-dl) rewrites the program; it is added to the base part
+                    with clingo.ast.ProgramBuilder(self.ctl) as builder:
+                        clingo.ast.parse_string(text, lambda stm: self.theory.rewrite_ast(stm, builder.add))
         except RuntimeError:
             raise clingo_error(self.messages, name) from None
 
@@ -200,6 +222,8 @@ class Control:
         try:
             with deferred_signals():  # grounding cannot be interrupted: a signal waits for its end
                 self.ctl.ground([(name, [_symbol(a) for a in args]) for name, args in parts])
+                if self.theory is not None:
+                    self.theory.prepare(self.ctl)
         except RuntimeError:
             for name, text in self.user_programs:
                 check_syntax(name, text)
@@ -240,6 +264,8 @@ class Control:
         """
         t0 = time.perf_counter()
         deadline = None if time_limit is None else t0 + max(0.0, time_limit)
+        if self.theory is not None:
+            on_model = _theory_first(self.theory, on_model)
         with deferred_signals():
             self._last_stats: dict = {}
             with self.ctl.solve(

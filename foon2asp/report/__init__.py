@@ -3,7 +3,7 @@
 Importing this package registers the formats of every kind of answer.
 """
 
-from foon2asp.report import check, compare, consolidate, draw, html, pddl, queries, summary, trees
+from foon2asp.report import check, compare, consolidate, draw, gantt, html, pddl, queries, summary, trees
 from foon2asp.report.registry import FORMATS, Format, get, names, register, render, render_bytes
 
 __all__ = [
@@ -18,6 +18,7 @@ __all__ = [
     "compare",
     "consolidate",
     "draw",
+    "gantt",
     "html",
     "pddl",
     "queries",

@@ -1,0 +1,135 @@
+#!/usr/bin/env python3
+"""Benchmark of schedules (BENCHMARKS.md, "Schedules").
+
+The reachable goals of ../shared/foon (their minimum-unit trees), on 1, 2 and 3
+agents, with every unit taking 1 s and with the duration table
+bench/durations.json; for each encoding (steps, dl) the fixed tree and
+``--joint``: how many makespans are proven, the share proven within the
+targets (fixed tree 1 s, joint 10 s), median and max time per goal, and the
+makespan against the list-scheduling baseline and the lower bound.  Every
+schedule is checked by foon2asp.schedule.check.
+
+Usage:  python bench/schedule.py --shared ../shared [--encodings steps,dl] [--agents robot=1,arm=2,arm=3]
+        [--limit 10] [--joint-limit 10] [--no-joint] [--no-shortcut] [--goals-table arm=2]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import sys
+import time
+from pathlib import Path
+
+from machine import describe  # noqa: E402  (bench/machine.py)
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+import foon2asp  # noqa: E402
+from foon2asp.schedule import ScheduleSpec, schedule  # noqa: E402
+from foon2asp.schedule.check import check_schedule  # noqa: E402
+
+TABLE = ROOT / "bench" / "durations.json"
+TARGET = {"fixed": 1.0, "joint": 10.0}
+
+
+def run(kb, trees, spec, encoding, joint, limit, shortcut) -> list[dict]:
+    out = []
+    for tree in trees:
+        t0 = time.perf_counter()
+        r = schedule(kb.problem, tree, spec, joint=joint, time_limit=limit, encoding=encoding, shortcut=shortcut)
+        elapsed = time.perf_counter() - t0
+        d = r.to_dict()
+        bad = check_schedule(kb.problem, d, spec)
+        if bad:
+            raise SystemExit(f"invalid schedule for {d['goal']['label']}: {bad}")
+        out.append(
+            {
+                "goal": d["goal"]["label"],
+                "units": len(r.tree.units),
+                "status": r.status,
+                "makespan": d["makespan"],
+                "baseline": d["baseline"].get("makespan"),
+                "lower": d["bounds"].get("lower"),
+                "fixed": d.get("fixed_tree", {}).get("makespan"),
+                "time_s": elapsed,
+                "solver": "shortcut" not in r.stats,
+            }
+        )
+    return out
+
+
+def row(label: str, rs: list[dict], mode: str) -> str:
+    times = [r["time_s"] for r in rs]
+    proven = sum(r["status"] == "optimal" for r in rs)
+    fast = sum(r["status"] == "optimal" and r["time_s"] <= TARGET[mode] for r in rs)
+    solver = sum(r["solver"] for r in rs)
+    made = [r for r in rs if r["makespan"] is not None]
+    gain = sum(r["baseline"] - r["makespan"] for r in made) / max(1e-9, sum(r["baseline"] for r in made))
+    at_lower = sum(r["makespan"] == r["lower"] for r in made)
+    shorter = sum(r["fixed"] is not None and r["makespan"] < r["fixed"] for r in made) if mode == "joint" else "-"
+    return (
+        f"| {label} | {proven}/{len(rs)} | {fast}/{len(rs)} | {solver} | {statistics.median(times):.3f} |"
+        f" {max(times):.3f} | {100 * gain:.1f}% | {at_lower} | {shorter} |"
+    )
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--shared", default=str(ROOT.parent / "shared"))
+    ap.add_argument("--encodings", default="steps,dl")
+    ap.add_argument("--agents", default="robot=1;arm=2;arm=3", help="agent sets separated by ';'")
+    ap.add_argument("--limit", type=float, default=10.0, help="time limit per goal, fixed tree (s)")
+    ap.add_argument("--joint-limit", type=float, default=10.0, help="time limit per goal and solve, joint (s)")
+    ap.add_argument("--no-joint", action="store_true")
+    ap.add_argument("--no-shortcut", action="store_true", help="always run the solver")
+    ap.add_argument("--goals-table", default="arm=2", help="agents of the per-goal table (duration table, steps)")
+    ap.add_argument("--json", help="write every result as JSON lines here")
+    args = ap.parse_args()
+    print(f"machine: {describe()}")
+    kb = foon2asp.load(Path(args.shared) / "foon")
+    trees = [t.raw for t in kb.solve("all") if t.has_tree]
+    print(f"{len(trees)} reachable goals of {args.shared}/foon (minimum-unit trees)")
+    shortcut = not args.no_shortcut
+    records = []
+    header = (
+        "| agents, durations, mode, encoding | proven | within target | to solver | median s | max s |"
+        " gain over baseline | at lower bound | joint shorter |\n|---|---|---|---|---|---|---|---|---|"
+    )
+    print(header)
+    per_goal: dict[str, list[dict]] = {}
+    for agents in args.agents.split(";"):
+        for durations in (None, TABLE):
+            spec = ScheduleSpec.from_files(agents, durations)
+            dname = "1 s" if durations is None else "table"
+            for encoding in args.encodings.split(","):
+                for mode in ("fixed",) if args.no_joint else ("fixed", "joint"):
+                    limit = args.limit if mode == "fixed" else args.joint_limit
+                    rs = run(kb, trees, spec, encoding, mode == "joint", limit, shortcut)
+                    print(row(f"{agents}, {dname}, {mode}, {encoding}", rs, mode), flush=True)
+                    for r in rs:
+                        records.append({"agents": agents, "durations": dname, "mode": mode, "encoding": encoding, **r})
+                    if agents == args.goals_table and durations is not None and encoding == "steps":
+                        per_goal[mode] = rs
+    if per_goal.get("fixed"):
+        print(f"\nper goal, {args.goals_table}, duration table, steps (makespan / baseline / lower bound, s):")
+        print("| goal | units | makespan | baseline | lower bound | time s | joint | joint time s |")
+        print("|---|---|---|---|---|---|---|---|")
+        joint = {r["goal"]: r for r in per_goal.get("joint", [])}
+        for r in per_goal["fixed"]:
+            j = joint.get(r["goal"], {})
+            jm = f"{j['makespan']:g} ({j['status']})" if j else "-"
+            jt = f"{j['time_s']:.2f}" if j else "-"
+            status = "" if r["status"] == "optimal" else f" ({r['status']})"
+            print(
+                f"| {r['goal']} | {r['units']} | {r['makespan']:g}{status} | {r['baseline']:g} | {r['lower']:g} |"
+                f" {r['time_s']:.2f} | {jm} | {jt} |"
+            )
+    if args.json:
+        Path(args.json).write_text("".join(json.dumps(r) + "\n" for r in records), encoding="utf-8")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,147 @@
+"""Lower bounds on the makespan and the list-scheduling baseline of an instance
+(:class:`foon2asp.schedule.model.Instance`; times in milliseconds).
+
+* chain: the longest chain of minimum durations (each unit at its least duration over the
+  kinds that can do it; a unit waits for the first maker of each object it needs);
+* work: the total minimum work over the number of agents, rounded up;
+* energy: energetic reasoning over time windows (:func:`energy_bound`), at least both.
+
+The baseline is list scheduling, longest remaining chain first (:func:`list_schedule`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from foon2asp.schedule.model import Entry, Instance, divisor, earliest, tails
+from foon2asp.schedule.spec import HUMAN
+
+
+@dataclass(frozen=True)
+class Bounds:
+    """Lower bounds on the makespan (milliseconds)."""
+
+    #: the longest chain of minimum durations
+    chain: int
+    #: total minimum work over the number of agents, rounded up
+    work: int
+    #: energetic reasoning over windows (:func:`energy_bound`); at least the other two
+    energy: int = 0
+
+    @property
+    def lower(self) -> int:
+        return max(self.chain, self.work, self.energy)
+
+
+def _window_length(c: list[int], m: int) -> float:
+    """The least L > 0 with sum(min(c_i, L)) <= m L: the shortest window that can hold parts
+    of length c_i on m agents (0 when m >= len(c))."""
+    c = sorted(x for x in c if x > 0)
+    n = len(c)
+    prefix = 0
+    for j in range(n + 1):  # L in [c[j-1], c[j]): n - j parts longer than L
+        slope = m - (n - j)
+        low = c[j - 1] if j else 0
+        high = c[j] if j < n else math.inf
+        if slope > 0:
+            root = max(low, prefix / slope)
+            if root < high or j == n:
+                return root
+        if j < n:
+            prefix += c[j]
+    return math.inf  # pragma: no cover - slope is m > 0 at j == n
+
+
+def energy_bound(inst: Instance, start: dict[int, int], tail: dict[int, int], floor: int, step: int) -> int:
+    """Energetic reasoning: in a schedule of makespan C, unit u (minimum duration d, earliest
+    start r, at least q from its start to the end) runs at least ``min(d, r + d - a, q - b)``
+    within ``[a, C - b]``, and those parts fit on the m agents only if that window is at least
+    :func:`_window_length` long; so no C strictly between a + b and a + b + that length is
+    possible.  The bound is the least C >= ``floor``, a multiple of ``step`` (every makespan
+    of a left-justified schedule is a sum of durations), outside all those gaps, for a over
+    the heads and b over the tails of the units."""
+    m = len(inst.agents)
+    d = {u: inst.min_duration(u) for u in inst.units}
+    gaps = []
+    for a in sorted({start[u] for u in inst.units}):
+        for b in sorted({tail[u] - d[u] for u in inst.units}):
+            length = _window_length([min(d[u], start[u] + d[u] - a, tail[u] - b) for u in inst.units], m)
+            if length > 0:
+                gaps.append((a + b, a + b + length))
+    best = -(-floor // step) * step
+    moved = True
+    while moved:
+        moved = False
+        for low, high in gaps:
+            if low < best < high:
+                best = math.ceil(high / step) * step
+                moved = True
+    return best
+
+
+def bounds(inst: Instance) -> Bounds:
+    """The chain, work and energy bounds (each unit at its minimum duration over the kinds that can do it)."""
+    start = earliest(inst)
+    if len(start) < len(inst.units):
+        raise ValueError("some unit never becomes ready")
+    chain = max((start[u] + inst.min_duration(u) for u in inst.units), default=0)
+    work = -(-sum(inst.min_duration(u) for u in inst.units) // len(inst.agents))
+    return Bounds(chain, work, energy_bound(inst, start, tails(inst), max(chain, work), divisor(inst)))
+
+
+def list_schedule(inst: Instance) -> list[Entry]:
+    """List scheduling, longest remaining chain first (:func:`tails`): whenever an agent is
+    free, the ready unit with the longest chain starts on the free agent that can do it
+    soonest (shortest duration, then not a person, then the first agent), if its resources
+    allow; nobody waits while a unit it could do is ready (a non-delay schedule)."""
+    prio = tails(inst)
+    waiting = {u: {o for o, _ in inst.needs[u]} for u in inst.units}
+    users: dict[int, list[tuple[int, int]]] = {}
+    for v in inst.units:
+        for o, ms in inst.needs[v]:
+            for m in ms:
+                users.setdefault(m, []).append((v, o))
+    ready = {u for u in inst.units if not waiting[u]}
+    free = {name: True for name, _ in inst.agents}
+    in_use = dict.fromkeys(inst.capacity, 0)
+    running: list[Entry] = []
+    out: list[Entry] = []
+    t = 0
+    while len(out) < len(inst.units) or running:
+        for e in [e for e in running if e.end <= t]:
+            running.remove(e)
+            free[e.agent] = True
+            for r in inst.uses[e.unit]:
+                in_use[r] -= 1
+            for v, o in users.get(e.unit, ()):
+                if o in waiting[v]:
+                    waiting[v].discard(o)
+                    if not waiting[v]:
+                        ready.add(v)
+        for u in sorted(ready, key=lambda u: (-prio[u], u)):
+            if any(in_use[r] >= inst.capacity[r] for r in inst.uses[u]):
+                continue
+            choice = [
+                (d, kind == HUMAN, k, name)
+                for k, (name, kind) in enumerate(inst.agents)
+                if free[name] and (d := inst.durations[u].get(kind)) is not None
+            ]
+            if not choice:
+                continue
+            d, _, _, name = min(choice)
+            free[name] = False
+            for r in inst.uses[u]:
+                in_use[r] += 1
+            ready.discard(u)
+            entry = Entry(u, name, t, t + d)
+            running.append(entry)
+            out.append(entry)
+        if any(e.end <= t for e in running):
+            continue  # units of duration 0 end at once
+        if not running:
+            if len(out) < len(inst.units):
+                raise ValueError("list scheduling is stuck: a unit no agent can do, or one never ready")
+            break
+        t = min(e.end for e in running)
+    return out

@@ -1,0 +1,294 @@
+"""The two schedule encodings and their solving: time steps (plain ASP) and clingo-dl.
+
+``steps`` (``asp/encodings/schedule_steps.lp``): time is cut into steps of the
+greatest common divisor of the durations, every unit chooses a start step and
+a kind of agent, and clasp minimises the number of late steps, then the human
+units (and, for joint scheduling, the tree objective) in one lexicographic
+optimisation.  Agents of a kind are not told apart (at most N of N agents busy
+per step), so there is no symmetry among them; they are dealt afterwards by
+:func:`foon2asp.schedule.model.assign_agents`.
+
+``dl`` (``asp/encodings/schedule_dl.lp``): start times are clingo-dl integer
+variables in milliseconds, each unit chooses an agent (symmetry broken by unit
+order) and every two units on one agent or one resource lane are ordered by a
+choice.  clingo-dl has no objective of its own, so the makespan is minimised by
+descending bounds: after each schedule of makespan M, a bound ``mk <= M - g``
+(g the divisor of the durations) is switched on through the part ``bound(b)``,
+until no schedule is left; then one more solve under the proven bound
+minimises the human units and the tree objective.
+
+Both read the same facts (:func:`schedule_facts`); labels and kinds enter as
+escaped strings (:func:`foon2asp.asp.facts.q`), so they never change the program.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import clingo
+
+from foon2asp.asp import encodings
+from foon2asp.asp.control import Control
+from foon2asp.asp.facts import q
+from foon2asp.errors import InputError
+from foon2asp.schedule.model import Entry, Instance, assign_agents, divisor, makespan
+from foon2asp.schedule.spec import HUMAN
+
+ENCODINGS = ("steps", "dl")
+
+
+@dataclass
+class Solution:
+    """What an encoding ended with."""
+
+    #: the best schedule found (None: none)
+    entries: list[Entry] | None = None
+    #: its makespan is proven minimal
+    proven: bool = False
+    #: no schedule exists (for joint scheduling: for no valid tree)
+    unsatisfiable: bool = False
+    #: the units scheduled (joint: the chosen tree)
+    units: tuple[int, ...] = ()
+    stats: dict = field(default_factory=dict)
+
+
+@dataclass
+class Job:
+    """What both encodings solve: an instance, each unit's earliest start (``head``) and least
+    time from its start to the end (``tail``), a known makespan (``horizon``, ms; None: none)
+    and a lower bound (``floor``); for joint scheduling ``tree_parts`` (tree.lp, its
+    objectives and facts; ``levels`` objectives, ``user`` the names of user programs)."""
+
+    inst: Instance
+    head: dict[int, int]
+    tail: dict[int, int]
+    horizon: int | None
+    floor: int = 0
+    args: Sequence[str] = ()
+    tree_parts: Sequence[tuple[str, str]] = ()
+    levels: int = 0
+    user: Sequence[str] = ()
+    #: optimise the tie-breakers even when the known schedule stays the best
+    ties: bool = True
+
+    @property
+    def fixed(self) -> bool:
+        return not self.tree_parts
+
+    @property
+    def breakers(self) -> bool:
+        """Are there tie-breakers: the tree objective, or a human kind?"""
+        return bool(self.levels) or any(k == HUMAN for k in self.inst.kinds)
+
+    def windows(self, horizon: int) -> dict[int, tuple[int, int]] | None:
+        """Each unit's start window within ``horizon``; None when a given unit has none."""
+        w = {
+            u: (e, horizon - self.tail[u])
+            for u, e in self.head.items()
+            if u in self.tail and e <= horizon - self.tail[u]
+        }
+        return None if self.fixed and len(w) < len(self.inst.units) else w
+
+
+def schedule_facts(
+    inst: Instance, scale: int, windows: dict[int, tuple[int, int]], fixed: bool, agents: bool, tail: dict | None = None
+) -> str:
+    """The facts both encodings read; times divided by ``scale``; ``fixed``: the units are
+    given (``use/1`` facts), else tree.lp chooses them; ``agents``: ``agent(K,I)`` facts (dl)."""
+    lines = ["% schedule"]
+    if any(d == 0 for table in inst.durations.values() for d in table.values()):
+        lines.append("zeros.")
+    makers: set[tuple[int, int]] = set()
+    for kind, n in inst.kinds.items():
+        lines.append(f"kind({q(kind)},{n}).")
+        if agents:
+            lines += [f"agent({q(kind)},{i})." for i in range(1, n + 1)]
+        if kind == HUMAN:
+            lines.append(f"human_kind({q(kind)}).")
+    for u in inst.units:
+        if u not in windows:
+            continue  # never ready, or nobody can do it: no tree uses it
+        if fixed:
+            lines.append(f"use({u}).")
+        lines += [f"can({u},{q(kind)},{d // scale})." for kind, d in inst.durations[u].items()]
+        e, last = windows[u]
+        lines.append(f"window({u},{e // scale},{last // scale}).")
+        if tail is not None:
+            lines.append(f"tail({u},{tail[u] // scale}).")
+        for o, ms in inst.needs[u]:
+            lines.append(f"need({u},{o}).")
+            makers.update((m, o) for m in ms if m in windows)
+        lines += [f"uses({u},{q(r)})." for r in inst.uses[u]]
+    lines += [f"maker({m},{o})." for m, o in sorted(makers)]
+    lines += [f"capacity({q(r)},{c})." for r, c in inst.capacity.items()]
+    return "\n".join(lines) + "\n"
+
+
+def _priorities(levels: int) -> str:
+    """The makespan above the human units above ``levels`` tree objectives (priorities 1..levels)."""
+    return f"priority(makespan,{levels + 2}).\npriority(human,{levels + 1}).\n"
+
+
+def _entries_of_steps(
+    inst: Instance, atoms: Sequence[clingo.Symbol], scale: int, units: tuple[int, ...]
+) -> list[Entry]:
+    """The schedule of a model: kinds and start steps, the agents dealt per kind."""
+    kind: dict[int, str] = {}
+    start: dict[int, int] = {}
+    for s in atoms:
+        if s.name == "on" and len(s.arguments) == 2:
+            kind[s.arguments[0].number] = s.arguments[1].string
+        elif s.name == "start" and len(s.arguments) == 2:
+            start[s.arguments[0].number] = s.arguments[1].number * scale
+    return assign_agents(inst.restrict(units), kind, start)
+
+
+def _steps_once(job: Job, windows: dict, horizon: int, floor: int, optimise: bool, time_limit: float | None):
+    """One grounding and solve of the time-step encoding with makespan at most ``horizon``
+    (``optimise``: the lexicographic objective, else any schedule); (solution, finished)."""
+    inst = job.inst
+    scale = divisor(inst)
+    steps = horizon // scale
+    parts = [
+        ("encodings/schedule_steps.lp", encodings.encoding("schedule_steps")),
+        ("schedule facts", schedule_facts(inst, scale, windows, job.fixed, agents=False)),
+        ("horizon", f"horizon({steps}).\nfloor({-(-floor // scale)}).\n" + _priorities(job.levels)),
+        *job.tree_parts,
+    ]
+    control = Control(["--opt-mode=opt" if optimise else "--opt-mode=ignore", *job.args])
+    t0 = time.perf_counter()
+    control.add_all(parts, user=job.user)
+    control.ground()
+    ground_s = time.perf_counter() - t0
+    best: dict[str, Any] = {}
+
+    def on_model(model: clingo.Model) -> None:
+        best["atoms"] = model.symbols(shown=True)
+
+    if not optimise:
+        control.ctl.configuration.solve.models = "1"  # type: ignore[union-attr]
+    result = control.solve(on_model, time_limit)
+    stats = {"step_ms": scale, "horizon_steps": steps, "ground_s": round(ground_s, 6), **control.stats()}
+    if "atoms" not in best:
+        return Solution(None, False, bool(result.unsatisfiable), (), stats), result.finished
+    units = _used(best["atoms"]) if not job.fixed else inst.units
+    entries = _entries_of_steps(inst, best["atoms"], scale, units)
+    return Solution(entries, result.finished, False, units, stats), result.finished
+
+
+def solve_steps(job: Job, time_limit: float | None = None) -> Solution:
+    """Solve with the time-step encoding: one lexicographic optimisation (makespan, then the
+    tie-breakers) within the known makespan ``job.horizon``, no makespan below ``job.floor``.
+    The makespan is proven when the search ends, or when a schedule meets the floor."""
+    assert job.horizon is not None
+    stats: dict[str, Any] = {"encoding": "steps"}
+    windows = job.windows(job.horizon)
+    if windows is None:  # a unit cannot start and still end in time: no schedule within the horizon
+        return Solution(None, True, True, (), stats)
+    sol, finished = _steps_once(job, windows, job.horizon, job.floor, True, time_limit)
+    stats.update(sol.stats)
+    if sol.entries is None:
+        return Solution(None, finished, finished and bool(sol.unsatisfiable), (), stats)
+    proven = finished or makespan(sol.entries) <= job.floor
+    if not finished:
+        stats["tie_breakers"] = "time"
+    return Solution(sol.entries, proven, False, sol.units, stats)
+
+
+def _used(atoms: Sequence[clingo.Symbol]) -> tuple[int, ...]:
+    return tuple(sorted(s.arguments[0].number for s in atoms if s.name == "use" and len(s.arguments) == 1))
+
+
+def _dl_theory():
+    try:
+        from clingodl import ClingoDLTheory
+    except ImportError:
+        raise InputError("the dl schedule encoding needs clingo-dl: pip install clingo-dl") from None
+    return ClingoDLTheory()
+
+
+def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
+    """Solve with clingo-dl: descending makespan bounds from ``job.horizon`` (None: no known
+    schedule) to ``job.floor``, then the tie-breakers under the optimum (when there are any).
+    The solution's entries are None when the known schedule is the best (proven or not)."""
+    inst, horizon, floor, levels = job.inst, job.horizon, job.floor, job.levels
+    theory = _dl_theory()
+    step = divisor(inst)
+    windows = {u: (e, e) for u, e in job.head.items() if u in job.tail}
+    parts = [
+        ("encodings/schedule_dl.lp", encodings.encoding("schedule_dl")),
+        ("schedule facts", schedule_facts(inst, 1, windows, job.fixed, agents=True, tail=job.tail)),
+        ("priorities", _priorities(levels)),
+        *job.tree_parts,
+    ]
+    control = Control(["--opt-mode=ignore", *job.args], theory=theory)
+    t0 = time.perf_counter()
+    deadline = None if time_limit is None else t0 + time_limit
+    control.add_all(parts, user=job.user)
+    control.ground()
+    stats: dict[str, Any] = {"encoding": "dl", "ground_s": round(time.perf_counter() - t0, 6), "bounds": 0}
+    conf: Any = control.ctl.configuration.solve
+    conf.models = "1"
+    names = {(kind, int(name.rsplit("-", 1)[1])): name for name, kind in inst.agents}
+    best: dict[str, Any] = {}
+
+    def on_model(model: clingo.Model) -> None:
+        values = {str(sym): int(val) for sym, val in theory.assignment(model.thread_id)}
+        zero = values.get("0", 0)
+        atoms = model.symbols(shown=True)
+        entries = []
+        for a in atoms:
+            if a.name == "on" and len(a.arguments) == 3:
+                u, kind, i = a.arguments[0].number, a.arguments[1].string, a.arguments[2].number
+                s = values.get(f"s({u})", zero) - zero
+                entries.append(Entry(u, names[(kind, i)], s, s + inst.durations[u][kind]))
+        best["entries"], best["atoms"] = entries, atoms
+
+    def left() -> float | None:
+        return None if deadline is None else max(0.0, deadline - time.perf_counter())
+
+    grounded: set[int] = set()
+    active: list[int] = []
+
+    def switch(b: int) -> None:
+        """Ground bound(b) once; switch it on, the previous bound off."""
+        if b not in grounded:
+            control.ground([("bound", [clingo.Number(b)])])
+            grounded.add(b)
+        off = {clingo.Function("bounded", [clingo.Number(a)]): False for a in active}
+        control.assign({**off, clingo.Function("bounded", [clingo.Number(b)]): True})
+        active[:] = [b]
+
+    opt = horizon
+    proven = unsat = False
+    while True:
+        bound = None if opt is None else opt - step
+        if bound is not None and bound < floor:
+            proven = True
+            break
+        if bound is not None:
+            switch(bound)
+        stats["bounds"] += 1
+        before = best.get("entries")
+        result = control.solve(on_model, left())
+        if not result.finished:
+            break
+        if best.get("entries") is before:  # no schedule under this bound
+            proven, unsat = True, opt is None
+            break
+        opt = makespan(best["entries"])
+    if proven and opt is not None and job.breakers and (job.ties or best.get("entries") is not None):
+        # the tie-breakers under the proven makespan
+        switch(opt)
+        conf.opt_mode, conf.models = "opt", "0"
+        result = control.solve(on_model, left())
+        stats["tie_breakers"] = "proven" if result.finished else "time"
+    stats.update(control.stats())
+    if best.get("entries") is None:
+        # unsatisfiable, or the known schedule (of makespan horizon) is optimal, or no time
+        return Solution(None, proven, unsat, (), stats)
+    units = _used(best["atoms"]) if not job.fixed else inst.units
+    return Solution(best["entries"], proven, False, units, stats)

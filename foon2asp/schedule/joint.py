@@ -1,0 +1,186 @@
+"""Joint scheduling by trees: every tree that could beat a known makespan, each scheduled alone.
+
+A schedule's first makers of what is needed form a tree of their own that is
+as short, in which every unit makes the goal or something another unit needs.
+So the joint optimum is the best fixed-tree optimum over such trees whose
+work (each unit at its least duration) fits the agents within the known
+makespan and whose units can each end within it (``asp/encodings/schedule_trees.lp``
+enumerates them).  They are scheduled one by one (:func:`foon2asp.schedule.solve.schedule_fixed`),
+lowest lower bound first, stopping when the next lower bound reaches the best
+makespan found: the best is then proven.  Ties go to the fewest human units,
+then the tree objective.  When there are more than :data:`MAX_TREES` such trees,
+:func:`best_by_work` asks for them one at a time, least work first (each tree
+found is excluded from the next question), until the work of the next one
+over the number of agents exceeds the best makespan found.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from functools import partial
+from typing import Any
+
+import clingo
+
+from foon2asp.asp import encodings
+from foon2asp.asp.control import Control
+from foon2asp.asp.objectives import neglog_sum
+from foon2asp.foon.problem import Problem
+from foon2asp.schedule.model import Instance, divisor
+
+#: the most trees listed at once
+MAX_TREES = 200
+
+_TREES = ("encodings/schedule_trees.lp", encodings.encoding("schedule_trees"))
+
+
+@dataclass
+class Trees:
+    """The trees found (sorted unit ids), complete unless the cap or the time limit ended it."""
+
+    trees: list[tuple[int, ...]]
+    complete: bool
+
+
+def _bound_facts(inst: Instance, head: dict[int, int], tail: dict[int, int], horizon: int) -> str:
+    """work/2, too_late/1 and capacity/1 for ``schedule_trees.lp`` (times in steps of the divisor)."""
+    g = divisor(inst)
+    late = [u for u in inst.units if u not in head or u not in tail or head[u] + tail[u] > horizon]
+    lines = [f"work({u},{inst.min_duration(u) // g})." for u in inst.units if inst.durations[u]]
+    lines += [f"too_late({u})." for u in late]
+    lines.append(f"capacity({len(inst.agents) * (horizon // g)}).")
+    return "\n".join(lines) + "\n"
+
+
+def candidate_trees(
+    inst: Instance,
+    head: dict[int, int],
+    tail: dict[int, int],
+    horizon: int,
+    tree_parts: Sequence[tuple[str, str]],
+    args: Sequence[str],
+    time_limit: float | None,
+    cap: int | None = None,
+) -> Trees:
+    """The trees (over ``inst``'s candidate units; ``tree_parts``: tree.lp and its facts) whose
+    work fits the agents within ``horizon`` and whose units can each end within it."""
+    cap = MAX_TREES if cap is None else cap
+    g = divisor(inst)
+    late = [u for u in inst.units if u not in head or u not in tail or head[u] + tail[u] > horizon]
+    lines = [f"work({u},{inst.min_duration(u) // g})." for u in inst.units if inst.durations[u]]
+    lines += [f"too_late({u})." for u in late]
+    lines.append(f"capacity({len(inst.agents) * (horizon // g)}).")
+    parts = [
+        *tree_parts,
+        ("encodings/schedule_trees.lp", encodings.encoding("schedule_trees")),
+        ("bounds", "\n".join(lines) + "\n"),
+    ]
+    control = Control(["--opt-mode=ignore", "--models=0", *args])
+    control.add_all(parts)
+    control.ground()
+    found: list[tuple[int, ...]] = []
+
+    def on_model(model: clingo.Model) -> bool:
+        found.append(tuple(sorted(s.arguments[0].number for s in model.symbols(shown=True) if s.name == "use")))
+        return len(found) <= cap
+
+    result = control.solve(on_model, time_limit)
+    return Trees(found[:cap], result.finished and len(found) <= cap)
+
+
+def tree_cost(problem: Problem, units: Sequence[int], human: Sequence[int], ranked: Sequence[str]) -> tuple:
+    """The tree objective of ``units`` as the solver ranks it (a person's unit succeeds for sure)."""
+    out: list[Any] = []
+    for name in ranked:
+        if name == "units":
+            out.append(len(units))
+        elif name == "success":
+            out.append(neglog_sum(problem, units, human))
+        elif name == "inputs":
+            out.append(sum(len(problem.inputs[u]) for u in units))
+    return (*out, tuple(sorted(units)))
+
+
+def best_tree(
+    trees: list[tuple[int, ...]],
+    bound: Callable[[tuple[int, ...]], tuple],
+    solve: Callable[[tuple[int, ...], float | None, int | None], Any],
+    key: Callable[[Any], tuple],
+    time_limit: float | None,
+) -> tuple[Any, bool]:
+    """The best result of ``solve`` (a tree, the time left, the best makespan so far: only a
+    schedule as short matters) over ``trees`` by ``key`` (makespan, human units, tree
+    objective), lowest ``bound`` first (a lower bound on a tree's key, known before solving):
+    a tree whose bound is no better than the best key is not solved, and no later one is.
+    (best, proven): proven when every tree solved was solved to its optimum."""
+    t0 = time.perf_counter()
+    best, proven = None, True
+    for t in sorted(trees, key=bound):
+        if best is not None and bound(t) >= key(best):
+            break  # sorted: no later tree can beat the best
+        left = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
+        if left == 0.0:
+            return best, False
+        r = solve(t, left, None if best is None else best.makespan)
+        if r.status not in ("optimal", "unschedulable"):  # unschedulable: none as short as the best
+            proven = False
+        if r.has_schedule and (best is None or key(r) < key(best)):
+            best = r
+    return best, proven
+
+
+def _record_tree(model: clingo.Model, into: dict) -> None:
+    into["units"] = tuple(sorted(s.arguments[0].number for s in model.symbols(shown=True) if s.name == "use"))
+
+
+def best_by_work(
+    inst: Instance,
+    head: dict[int, int],
+    tail: dict[int, int],
+    horizon: int,
+    tree_parts: Sequence[tuple[str, str]],
+    args: Sequence[str],
+    levels: int,
+    bound: Callable[[tuple[int, ...]], tuple],
+    solve: Callable[[tuple[int, ...], float | None, int | None], Any],
+    key: Callable[[Any], tuple],
+    time_limit: float | None,
+) -> tuple[Any, bool]:
+    """Like :func:`best_tree` over the same trees, asked for one at a time, least work first
+    (a fresh grounding each time, the trees seen excluded): no tree after one whose work over
+    the agents exceeds the best makespan can reach it.  (best, proven)."""
+    t0 = time.perf_counter()
+    m = len(inst.agents)
+    facts = _bound_facts(inst, head, tail, horizon)
+    order = f"#minimize {{ D@{levels + 1},U : use(U), work(U,D) }}.\n"
+    seen: list[tuple[int, ...]] = []
+    best, proven = None, True
+    while True:
+        left = None if time_limit is None else time_limit - (time.perf_counter() - t0)
+        if left is not None and left <= 0:
+            return best, False
+        cuts = "".join(
+            ":- " + ", ".join(f"use({u})" for u in t) + f", #count {{ U : use(U) }} = {len(t)}.\n" for t in seen
+        )
+        control = Control(["--opt-mode=opt", *args])
+        control.add_all([*tree_parts, _TREES, ("bounds", facts), ("least work first", order + cuts)])
+        control.ground()
+        last: dict[str, Any] = {}
+        result = control.solve(partial(_record_tree, into=last), left)
+        if not result.finished:
+            return best, False
+        if "units" not in last:
+            return best, proven  # no tree left
+        t = last["units"]
+        seen.append(t)
+        work = sum(inst.min_duration(u) for u in t)
+        if best is not None and -(-work // m) > best.makespan:
+            return best, proven
+        if best is None or bound(t) < key(best):
+            left = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
+            r = solve(t, left, None if best is None else best.makespan)
+            proven = proven and r.status in ("optimal", "unschedulable")
+            if r.has_schedule and (best is None or key(r) < key(best)):
+                best = r

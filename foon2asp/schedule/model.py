@@ -1,0 +1,308 @@
+"""The scheduling problem of a set of units, its bounds and the list-scheduling baseline.
+
+An :class:`Instance` holds, for the units of a tree (or every candidate unit
+of a goal, for joint scheduling), how long each takes on each kind of agent
+that can do it (whole milliseconds, :data:`~foon2asp.schedule.spec.TICKS` per
+second), which units must end before it starts, and the limited resources its
+inputs use.
+
+Precedence: unit V starts once each of its *required* inputs (required as
+:func:`foon2asp.foon.problem.required_flags` and :class:`~foon2asp.foon.problem.Problem`
+say: the utensil rule may leave an input out) that is not a kitchen item has
+been made by a unit of the set that has ended.  When each such object has one
+maker in the set, V waits for every unit that makes one of its required
+inputs.  When it has several (on ../shared/foon the last unit of the ``rib``
+tree makes again the ``baking tray, contains {ribs}`` its third unit needs),
+V waits for the first of them to end: waiting for all of them would make the
+tree wait for itself, while the object is had as soon as one has made it --
+the validator's rule (:mod:`foon2asp.tree.validate`), in time.
+
+Times are integers throughout; an :class:`Entry` places one unit on one agent
+over ``[start, end)``.  A unit of duration 0 occupies nobody.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+from foon2asp.foon.problem import Problem
+from foon2asp.schedule.spec import HUMAN, ScheduleSpec, kind_of
+
+
+@dataclass(frozen=True)
+class Entry:
+    """Unit ``unit`` (a FOON unit id) done by ``agent`` over ``[start, end)`` (milliseconds)."""
+
+    unit: int
+    agent: str
+    start: int
+    end: int
+
+
+@dataclass
+class Instance:
+    """Durations, needs and resources of a set of units, with the agents."""
+
+    units: tuple[int, ...]
+    motion: dict[int, str]
+    #: unit -> kind -> milliseconds, for the kinds that can do it (none: nobody can)
+    durations: dict[int, dict[str, int]]
+    #: unit -> (object, its makers in the set) for each required input that is not a kitchen item
+    needs: dict[int, tuple[tuple[int, tuple[int, ...]], ...]]
+    #: unit -> the resource labels with a capacity its inputs use
+    uses: dict[int, tuple[str, ...]]
+    #: (name, kind) of every agent
+    agents: list[tuple[str, str]]
+    #: kind -> number of agents
+    kinds: dict[str, int]
+    #: resource label -> capacity (only the resources some unit uses)
+    capacity: dict[str, int] = field(default_factory=dict)
+
+    @property
+    def preds(self) -> dict[int, tuple[int, ...]]:
+        """unit -> the units that must end before it starts: sole makers of a needed object."""
+        return {u: tuple(sorted({ms[0] for _, ms in self.needs[u] if len(ms) == 1})) for u in self.units}
+
+    def min_duration(self, u: int) -> int:
+        return min(self.durations[u].values())
+
+    def restrict(self, units: Iterable[int]) -> Instance:
+        """The instance of ``units`` alone (a tree chosen among the candidates)."""
+        keep = tuple(sorted(set(units)))
+        mine = set(keep)
+        needs = {u: tuple((o, tuple(m for m in ms if m in mine)) for o, ms in self.needs[u]) for u in keep}
+        uses = {u: self.uses[u] for u in keep}
+        used = {r for rs in uses.values() for r in rs}
+        return Instance(
+            keep,
+            {u: self.motion[u] for u in keep},
+            {u: self.durations[u] for u in keep},
+            needs,
+            uses,
+            self.agents,
+            self.kinds,
+            {r: c for r, c in self.capacity.items() if r in used},
+        )
+
+    def incapable(self) -> list[int]:
+        """The units no agent can do."""
+        return [u for u in self.units if not self.durations[u]]
+
+
+def instance(problem: Problem, units: Iterable[int], spec: ScheduleSpec) -> Instance:
+    """The scheduling instance of ``units`` (FOON unit ids) with the agents of ``spec``."""
+    ids = tuple(sorted(set(units)))
+    kinds = dict(spec.agents)
+    makers: dict[int, list[int]] = {}
+    for u in ids:
+        for o in problem.products[u]:
+            makers.setdefault(o, []).append(u)
+    durations, needs, uses = {}, {}, {}
+    labels = {o.label for o in problem.objects}
+    limited = {label: cap for label, cap in spec.resources.items() if label in labels}
+    for u in ids:
+        unit = problem.units[u]
+        durations[u] = {k: spec.durations.of(k, unit.motion) for k in kinds if spec.can(k, unit.motion)}
+        objs = [o for o in problem.required[u] if o not in problem.kitchen]
+        needs[u] = tuple((o, tuple(m for m in makers.get(o, ()) if m != u)) for o in objs)
+        uses[u] = tuple(sorted({o.label for o in unit.inputs if o.label in limited}))
+    used = {r for rs in uses.values() for r in rs}
+    capacity = {r: c for r, c in limited.items() if r in used}
+    motion = {u: problem.units[u].motion for u in ids}
+    return Instance(ids, motion, durations, needs, uses, spec.agent_list(), kinds, capacity)
+
+
+def earliest(inst: Instance) -> dict[int, int]:
+    """The earliest start of each unit at minimum durations: a unit starts no sooner than the
+    first maker of each object it needs ends (for joint scheduling, over every candidate: a
+    tree holds at least one maker of each).  Knuth's generalisation of Dijkstra's algorithm
+    to these max-of-min equations; units no agent can do, or never ready, are left out."""
+    users: dict[int, list[int]] = {}
+    for u in inst.units:
+        for o, _ in inst.needs[u]:
+            users.setdefault(o, []).append(u)
+    waiting = {u: len(inst.needs[u]) for u in inst.units}
+    makes: dict[int, list[int]] = {}
+    for u in inst.units:
+        for o, ms in inst.needs[u]:
+            for m in ms:
+                makes.setdefault(m, []).append(o)
+    start: dict[int, int] = {}
+    made: dict[int, int] = {}
+    queue: list[tuple[int, int, int]] = []  # (time, 0: unit ready | 1: object made, id)
+    for u in inst.units:
+        if waiting[u] == 0:
+            heapq.heappush(queue, (0, 0, u))
+    while queue:
+        t, what, x = heapq.heappop(queue)
+        if what == 0:
+            if x in start or not inst.durations[x]:
+                continue
+            start[x] = t
+            for o in dict.fromkeys(makes.get(x, ())):
+                if o not in made:
+                    heapq.heappush(queue, (t + inst.min_duration(x), 1, o))
+        elif x not in made:
+            made[x] = t
+            for v in users.get(x, ()):
+                waiting[v] -= 1
+                if waiting[v] == 0:
+                    heapq.heappush(queue, (max(made[o] for o, _ in inst.needs[v]), 0, v))
+    return start
+
+
+def joint_tails(inst: Instance, goals: Iterable[int], products: dict[int, tuple[int, ...]]) -> dict[int, int]:
+    """For joint scheduling (``inst`` holds every candidate unit): each unit's minimum duration
+    plus the shortest chain after it to a unit making a goal, through units that need what it
+    makes (reverse Dijkstra).  A schedule's first makers of what is needed form a tree as short
+    as its own, in which every unit is followed by such a chain, so a bound on the makespan
+    bounds each start by it.  ``products``: unit -> the objects it makes; units that lead to
+    no goal are left out."""
+    wanted = set(goals)
+    users: dict[int, list[int]] = {}
+    for v in inst.units:
+        for _, ms in inst.needs[v]:
+            for m in ms:
+                users.setdefault(m, []).append(v)
+    queue = [(inst.min_duration(u), u) for u in inst.units if inst.durations[u] and wanted & set(products[u])]
+    heapq.heapify(queue)
+    out: dict[int, int] = {}
+    consumers: dict[int, list[int]] = {}
+    for m, vs in users.items():
+        for v in vs:
+            consumers.setdefault(v, []).append(m)
+    while queue:
+        q, v = heapq.heappop(queue)
+        if v in out:
+            continue
+        out[v] = q
+        for m in consumers.get(v, ()):
+            if m not in out and inst.durations[m]:
+                heapq.heappush(queue, (q + inst.min_duration(m), m))
+    return out
+
+
+def tails(inst: Instance) -> dict[int, int]:
+    """Each unit's minimum duration plus the longest chain of minimum durations of the units
+    that must wait for it (:attr:`Instance.preds`) -- a lower bound on the time from its start
+    to the end, and the priority of list scheduling."""
+    preds = inst.preds
+    succs: dict[int, list[int]] = {u: [] for u in inst.units}
+    for v in inst.units:
+        for u in preds[v]:
+            succs[u].append(v)
+    left = {u: len(succs[u]) for u in inst.units}
+    stack = [u for u in inst.units if left[u] == 0]
+    out: dict[int, int] = {}
+    while stack:
+        u = stack.pop()
+        out[u] = inst.min_duration(u) + max((out[v] for v in succs[u]), default=0)
+        for p in preds[u]:
+            left[p] -= 1
+            if left[p] == 0:
+                stack.append(p)
+    for u in inst.units:  # on a cycle (an invalid tree): its own duration
+        out.setdefault(u, inst.min_duration(u))
+    return out
+
+
+def divisor(inst: Instance) -> int:
+    """The greatest common divisor of every duration (1 when all are 0)."""
+    g = 0
+    for table in inst.durations.values():
+        for d in table.values():
+            g = math.gcd(g, d)
+    return g or 1
+
+
+def makespan(entries: Iterable[Entry]) -> int:
+    return max((e.end for e in entries), default=0)
+
+
+def sequence(inst: Instance, entries: Iterable[Entry]) -> list[Entry]:
+    """``entries`` in an order they can fire in: by start, and among units that start at once
+    a maker before the unit that needs what it made (units of duration 0)."""
+    pending = sorted(entries, key=lambda e: (e.start, e.end, e.unit))
+    out: list[Entry] = []
+    ended: dict[int, int] = {}
+    while pending:
+        pick = 0
+        for k, e in enumerate(pending):
+            if all(any(ended.get(m, e.start + 1) <= e.start for m in ms) for _, ms in inst.needs[e.unit]):
+                pick = k
+                break
+        e = pending.pop(pick)
+        out.append(e)
+        ended[e.unit] = e.end
+    return out
+
+
+def partition(entries: list[Entry], slots: int) -> list[list[Entry]] | None:
+    """``entries`` (by start) in ``slots`` lanes with no overlap in a lane (None: more than
+    ``slots`` overlap somewhere); greedy by start, which needs no more.  Units of duration 0
+    occupy nobody: they go in the first lane, outside its order."""
+    lanes: list[list[Entry]] = [[] for _ in range(slots)]
+    instant = []
+    for e in entries:
+        if e.start == e.end:
+            instant.append(e)
+            continue
+        lane = next((lane for lane in lanes if not lane or lane[-1].end <= e.start), None)
+        if lane is None:
+            return None
+        lane.append(e)
+    if slots:
+        lanes[0] += instant
+    return lanes
+
+
+def assign_agents(inst: Instance, kind_of_unit: dict[int, str], start: dict[int, int]) -> list[Entry]:
+    """Entries for units placed by kind (at most N running at once per kind of N agents):
+    each kind's intervals dealt to its agents by :func:`partition`."""
+    out = []
+    for kind, n in inst.kinds.items():
+        mine = [
+            Entry(u, "", start[u], start[u] + inst.durations[u][kind]) for u, k in kind_of_unit.items() if k == kind
+        ]
+        lanes = partition(sorted(mine, key=lambda e: (e.start, e.end, e.unit)), n)
+        if lanes is None:
+            raise ValueError(f"more than {n} units of kind {kind!r} run at once")
+        names = [name for name, k in inst.agents if k == kind]
+        out += [Entry(e.unit, names[i], e.start, e.end) for i, lane in enumerate(lanes) for e in lane]
+    return sequence(inst, out)
+
+
+def compact(inst: Instance, entries: list[Entry]) -> list[Entry]:
+    """The same assignment and sequences with every unit started as early as they allow: each
+    agent's units and each resource's lanes keep their order, and each needed object still
+    comes from the same maker.  No unit starts later, so the makespan does not grow."""
+    seq = sequence(inst, entries)
+    before: dict[int, set[int]] = {e.unit: set() for e in seq}
+    placed: dict[int, Entry] = {}
+    for e in seq:
+        for _, ms in inst.needs[e.unit]:
+            done = [placed[m] for m in ms if m in placed and placed[m].end <= e.start]
+            if done:
+                before[e.unit].add(min(done, key=lambda d: (d.end, d.unit)).unit)
+        placed[e.unit] = e
+    timed = [e for e in seq if e.start < e.end]  # units of duration 0 occupy nobody
+    chains = [[e for e in timed if e.agent == name] for name, _ in inst.agents]
+    for r, cap in inst.capacity.items():
+        chains += partition([e for e in timed if r in inst.uses[e.unit]], cap) or []
+    for chain in chains:
+        for a, b in zip(chain, chain[1:]):
+            before[b.unit].add(a.unit)
+    end: dict[int, int] = {}
+    out = []
+    for e in seq:  # every edge goes forward in this order
+        s = max((end[p] for p in before[e.unit] if p in end), default=0)
+        end[e.unit] = s + (e.end - e.start)
+        out.append(Entry(e.unit, e.agent, s, end[e.unit]))
+    return out
+
+
+def human_units(entries: Iterable[Entry]) -> int:
+    return sum(1 for e in entries if kind_of(e.agent) == HUMAN)

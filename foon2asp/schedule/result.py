@@ -1,0 +1,172 @@
+"""A schedule for one goal: its JSON shape (:meth:`ScheduleResult.to_dict`) and text timeline.
+
+JSON (one object per goal; times in seconds, exact to 0.001 s)::
+
+    {"goal": OBJ, "status": "optimal" | "feasible" | "unschedulable" | "unreachable",
+     "makespan": 7.5,
+     "bounds": {"chain": 6.0, "work": 5.5, "energy": 6.5, "lower": 6.5},
+     "baseline": {"method": "longest-chain-first", "makespan": 8.0},
+     "agents": ["arm-1", "arm-2", "human-1"],
+     "schedule": [{"unit": {"motion", "inputs", "outputs"}, "agent": "arm-1", "start": 0.0, "end": 1.0}, ...],
+     "tree": {...},                       # foon2asp.tree.serialize.tree_json of the scheduled tree
+     "success": 0.012, "human_units": 1, "joint": false, "encoding": "steps", "time_s": 0.01,
+     "fixed_tree": {"status", "makespan", "units"}}   # joint scheduling only: the given tree's
+
+A meal has ``"goals"`` instead of ``"goal"``, as in tree_json.  ``bounds`` and
+``baseline`` are ``{}`` and ``makespan`` null when there is no schedule;
+``reason`` says why (``unschedulable``: the unit no agent can do).
+``schedule`` is sorted by start, then agent.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from decimal import Decimal
+
+from foon2asp.asp.objectives import success_product
+from foon2asp.foon.problem import Problem
+from foon2asp.schedule.bounds import Bounds
+from foon2asp.schedule.model import Entry, human_units
+from foon2asp.schedule.spec import HUMAN, TICKS, kind_of
+from foon2asp.tree.serialize import goal_heading, tree_json
+from foon2asp.tree.tasktree import TaskTree
+
+STATUSES = ("optimal", "feasible", "unschedulable", "unreachable", "unknown")
+
+#: the baseline's name in the JSON
+BASELINE = "longest-chain-first"
+
+
+def seconds(ticks: int | None) -> float | None:
+    """Milliseconds as seconds (exact: every millisecond count is a short decimal)."""
+    return None if ticks is None else float(Decimal(ticks) / TICKS)
+
+
+def seconds_text(ticks: int | None) -> str:
+    """``1.5``, ``2``, ``0.125``: seconds with the digits they need."""
+    if ticks is None:
+        return "-"
+    whole, rest = divmod(ticks, TICKS)
+    return str(whole) if not rest else f"{whole}.{rest:03d}".rstrip("0")
+
+
+@dataclass
+class ScheduleResult:
+    """The schedule of one goal's tree (or, joint, of the tree chosen with it)."""
+
+    problem: Problem
+    #: the scheduled tree (joint: the chosen one)
+    tree: TaskTree
+    status: str
+    agents: list[str]
+    entries: list[Entry] = field(default_factory=list)
+    bounds: Bounds | None = None
+    #: makespan of list scheduling, longest remaining chain first
+    baseline: int | None = None
+    joint: bool = False
+    #: joint scheduling: the result for the given tree alone
+    fixed: ScheduleResult | None = None
+    reason: str | None = None
+    time_s: float = 0.0
+    stats: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        order = {name: k for k, name in enumerate(self.agents)}
+        self.entries = sorted(self.entries, key=lambda e: (e.start, order.get(e.agent, 0), e.end, e.unit))
+
+    @property
+    def has_schedule(self) -> bool:
+        return self.status in ("optimal", "feasible")
+
+    @property
+    def makespan(self) -> int | None:
+        """Milliseconds (None without a schedule)."""
+        return max((e.end for e in self.entries), default=0) if self.has_schedule else None
+
+    @property
+    def human(self) -> list[int]:
+        """The units done by a person."""
+        return [e.unit for e in self.entries if kind_of(e.agent) == HUMAN]
+
+    def success(self) -> float | None:
+        """The product of the motion success rates of the units done by robots (a person's step succeeds)."""
+        if not self.has_schedule:
+            return None
+        return success_product(self.problem, [e.unit for e in self.entries], self.human)
+
+    def to_dict(self) -> dict:
+        """The JSON shape of the module docstring."""
+        tree = tree_json(self.problem, self.tree)
+        goal = {k: tree[k] for k in ("goal", "goals") if k in tree}
+        b = self.bounds
+        out: dict = {
+            **goal,
+            "status": self.status,
+            "makespan": seconds(self.makespan),
+            "bounds": {}
+            if b is None
+            else {
+                "chain": seconds(b.chain),
+                "work": seconds(b.work),
+                "energy": seconds(b.energy),
+                "lower": seconds(b.lower),
+            },
+            "baseline": {} if self.baseline is None else {"method": BASELINE, "makespan": seconds(self.baseline)},
+            "agents": list(self.agents),
+            "schedule": [
+                {
+                    "unit": self.problem.units[e.unit].to_json(),
+                    "agent": e.agent,
+                    "start": seconds(e.start),
+                    "end": seconds(e.end),
+                }
+                for e in self.entries
+            ],
+            "tree": tree,
+            "success": self.success(),
+            "human_units": human_units(self.entries) if self.has_schedule else None,
+            "joint": self.joint,
+            "encoding": self.stats.get("encoding"),
+            "time_s": round(self.time_s, 6),
+        }
+        if self.reason:
+            out["reason"] = self.reason
+        if self.fixed is not None:
+            f = self.fixed
+            out["fixed_tree"] = {"status": f.status, "makespan": seconds(f.makespan), "units": len(f.tree.units)}
+        return out
+
+    def headline(self) -> str:
+        """``Status: optimal  Makespan: 7.5 s  (list scheduling 8 s; lower bound 6 s: chain 6 s, work 5.5 s)``."""
+        line = f"Status: {self.status}"
+        if self.has_schedule:
+            b = self.bounds
+            line += f"  Makespan: {seconds_text(self.makespan)} s"
+            if b is not None and self.baseline is not None:
+                line += (
+                    f"  (list scheduling {seconds_text(self.baseline)} s; lower bound {seconds_text(b.lower)} s:"
+                    f" chain {seconds_text(b.chain)} s, work {seconds_text(b.work)} s, energy {seconds_text(b.energy)} s)"
+                )
+        if self.fixed is not None:
+            line += f"  Given tree: {seconds_text(self.fixed.makespan)} s ({self.fixed.status})"
+        if self.reason:
+            line += f"  ({self.reason})"
+        return line
+
+    def to_text(self) -> str:
+        """The goal, the headline, then one timeline per agent: ``start - end  motion -> products``."""
+        lines = [goal_heading(self.problem, self.tree), self.headline()]
+        if self.has_schedule:
+            lines.append(f"Units: {len(self.entries)}  Agents: {', '.join(self.agents)}")
+        width = max((len(seconds_text(e.end)) for e in self.entries), default=1)
+        for agent in self.agents:
+            mine = [e for e in self.entries if e.agent == agent]
+            if not self.has_schedule:
+                break
+            lines.append(f"  {agent}:" + ("" if mine else " (idle)"))
+            for e in mine:
+                unit = self.problem.units[e.unit]
+                made = "; ".join(str(o) for o in unit.outputs if not o.is_bare())
+                span = f"{seconds_text(e.start):>{width}} - {seconds_text(e.end):>{width}}"
+                lines.append(f"    {span}  {unit.motion}" + (f" -> {made}" if made else ""))
+        return "\n".join(lines) + "\n"

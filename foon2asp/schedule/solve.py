@@ -1,0 +1,435 @@
+"""The library entry point: :func:`schedule` a goal's task tree, or choose tree and schedule together.
+
+Objective (lexicographic): the shortest makespan, proven; then the fewest
+units done by a ``human`` agent; then (``joint``) the tree objective of the
+options (``units`` by default).  For a fixed tree the schedule is optimal for
+that tree; ``joint=True`` proves the makespan minimal over every valid tree
+of the goal (never longer than the given tree's, which is reported beside it).
+
+Statuses: ``optimal`` (makespan proven minimal), ``feasible`` (the time limit
+ended the search: the best schedule found, at worst the baseline's),
+``unschedulable`` (a unit of the tree no agent can do; joint: no valid tree
+can be scheduled), ``unreachable`` (no tree makes the goal), ``unknown`` (no
+tree was found in time).  Every answer carries the list-scheduling baseline
+and the lower bounds (:mod:`foon2asp.schedule.bounds`).
+
+A shortcut: when the baseline meets the lower bound and uses no more human
+units than the units only a person can do, it is optimal and no solver runs.
+
+Joint scheduling first schedules the given tree, then looks tree by tree
+(:mod:`foon2asp.schedule.joint`) at the trees that could be shorter; only when
+even asking for them least work first runs out of time does it solve tree and
+schedule in one encoding (tree.lp beside the schedule encoding).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+
+from foon2asp.asp import dominance, encodings, objectives
+from foon2asp.asp.facts import OPTIONAL, facts
+from foon2asp.asp.options import OBJECTIVES, AspOptions
+from foon2asp.asp.settings import solver_args
+from foon2asp.errors import InputError
+from foon2asp.foon.problem import Problem
+from foon2asp.schedule import encode, joint
+from foon2asp.schedule.bounds import bounds, list_schedule
+from foon2asp.schedule.model import (
+    Entry,
+    Instance,
+    compact,
+    divisor,
+    earliest,
+    human_units,
+    instance,
+    joint_tails,
+    makespan,
+    tails,
+)
+from foon2asp.schedule.result import ScheduleResult
+from foon2asp.schedule.spec import HUMAN, ScheduleSpec
+from foon2asp.tree.tasktree import TaskTree, executable_order, goal_fields, measures
+
+#: the encoding chosen by measurement (BENCHMARKS.md, "Schedules")
+DEFAULT_ENCODING = "steps"
+
+#: clasp's optimisation strategy for schedules when the options set none (BENCHMARKS.md)
+OPT_STRATEGY = "bb"
+
+#: tree objectives joint scheduling supports (depth needs the multi-shot driver)
+JOINT_OBJECTIVES = ("units", "success", "inputs")
+
+
+def _args(options: AspOptions) -> list[str]:
+    return solver_args(options.opt_strategy or OPT_STRATEGY, options.threads, options.portfolio)
+
+
+def _forced_human(inst: Instance) -> int:
+    """Units only a person can do (every schedule gives them to one)."""
+    return sum(1 for u in inst.units if inst.durations[u] and set(inst.durations[u]) == {HUMAN})
+
+
+def _solve(
+    inst: Instance,
+    head: dict[int, int],
+    tail: dict[int, int],
+    horizon: int | None,
+    floor: int,
+    options: AspOptions,
+    encoding: str,
+    time_limit: float | None,
+    tree_parts: list[tuple[str, str]] | None = None,
+    ties: bool = True,
+) -> encode.Solution:
+    """Solve with ``encoding`` (:class:`foon2asp.schedule.encode.Job` says what the values are)."""
+    job = encode.Job(
+        inst,
+        head,
+        tail,
+        horizon,
+        floor,
+        _args(options),
+        tree_parts or (),
+        len(objectives.ranked(options)) if tree_parts else 0,
+        [name for name, _ in options.programs] if tree_parts else [],
+        ties,
+    )
+    if encoding == "steps":
+        return encode.solve_steps(job, time_limit)
+    if encoding == "dl":
+        return encode.solve_dl(job, time_limit)
+    raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(encode.ENCODINGS)})")
+
+
+def _none(problem: Problem, tree: TaskTree, spec: ScheduleSpec, status: str, reason: str | None, t0: float):
+    agents = [name for name, _ in spec.agent_list()]
+    return ScheduleResult(problem, tree, status, agents, reason=reason, time_s=time.perf_counter() - t0)
+
+
+def schedule_fixed(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    encoding: str = DEFAULT_ENCODING,
+    time_limit: float | None = None,
+    shortcut: bool = True,
+    within: int | None = None,
+) -> ScheduleResult:
+    """The optimal schedule of ``tree``'s units.  ``within`` (ms; joint scheduling): only a
+    schedule of at most that makespan matters; when there is none the status is
+    ``unschedulable`` (reason: not within), found faster than the optimum of a longer one."""
+    t0 = time.perf_counter()
+    if not tree.has_tree:
+        status = "unreachable" if tree.status in ("unreachable", "not-found") else "unknown"
+        return _none(problem, tree, spec, status, tree.extra.get("reason"), t0)
+    inst = instance(problem, tree.units, spec)
+    agents = [name for name, _ in inst.agents]
+    bad = inst.incapable()
+    if bad:
+        why = f"no agent can do unit {bad[0]} ({problem.units[bad[0]].motion})"
+        return _none(problem, tree, spec, "unschedulable", why, t0)
+    if len(earliest(inst)) < len(inst.units):
+        return _none(problem, tree, spec, "unschedulable", "some unit of the tree never has its inputs", t0)
+    b = bounds(inst)
+    base = list_schedule(inst)
+    ub = makespan(base)
+    stats: dict = {"encoding": encoding}
+    if within is not None and (b.lower > within or ub > within):
+        return _within(problem, tree, spec, options, encoding, time_limit, inst, b, within, t0)
+    if shortcut and ub == b.lower and human_units(base) == _forced_human(inst):
+        stats["shortcut"] = "baseline meets the lower bound"
+        return ScheduleResult(
+            problem, tree, "optimal", agents, base, b, ub, time_s=time.perf_counter() - t0, stats=stats
+        )
+    sol = _solve(inst, earliest(inst), tails(inst), ub, b.lower, options, encoding, time_limit, ties=spec.has_human())
+    stats.update(sol.stats)
+    entries = base
+    if sol.entries is not None and makespan(sol.entries) <= ub:
+        entries = compact(inst, sol.entries)
+    status = "optimal" if sol.proven else "feasible"
+    return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
+
+
+def _within(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    encoding: str,
+    time_limit: float | None,
+    inst: Instance,
+    b,
+    within: int,
+    t0: float,
+) -> ScheduleResult:
+    """:func:`schedule_fixed` when the baseline is longer than ``within``: is there a schedule
+    of at most ``within``, and the best one if so?"""
+    agents = [name for name, _ in inst.agents]
+    if b.lower > within:
+        return _none(problem, tree, spec, "unschedulable", f"no schedule within {within} ms", t0)
+    known = within + divisor(inst) if encoding == "dl" else within  # dl asks below its horizon first
+    sol = _solve(
+        inst, earliest(inst), tails(inst), known, b.lower, options, encoding, time_limit, ties=spec.has_human()
+    )
+    stats = {"encoding": encoding, **sol.stats}
+    if sol.entries is None:
+        status = "unschedulable" if sol.proven or sol.unsatisfiable else "unknown"
+        return _none(problem, tree, spec, status, f"no schedule within {within} ms", t0)
+    entries = compact(inst, sol.entries)
+    status = "optimal" if sol.proven else "feasible"
+    ub = makespan(list_schedule(inst))
+    return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
+
+
+def _check_joint(options: AspOptions) -> tuple[str, ...]:
+    ranked = objectives.ranked(options)
+    wrong = [o for o in ranked if o not in JOINT_OBJECTIVES]
+    if wrong or options.max_depth is not None or not ranked:
+        raise InputError(
+            f"joint scheduling chooses trees by {', '.join(JOINT_OBJECTIVES)} only, not by depth or heuristics"
+        )
+    if options.human_steps is not None:
+        raise InputError("joint scheduling counts a person's units through a human agent, not human steps")
+    return ranked
+
+
+def _dominance(problem: Problem, inst: Instance, ranked: tuple[str, ...]) -> str:
+    """``dom(V,U)`` facts (encodings/dominance.lp) for the tree dominance of
+    :mod:`foon2asp.asp.dominance` where V also takes no longer than U for every kind that can
+    do U and uses no resource U does not: then V can replace U in a schedule (on U's agent,
+    in U's time, what it needs is had earlier), nothing gets worse, so an optimum without U exists."""
+    out = []
+    for v, u, extra in dominance.dominance_pairs(problem, inst.units, ranked):
+        dv, du = inst.durations[v], inst.durations[u]
+        if all(k in dv and dv[k] <= d for k, d in du.items()) and set(inst.uses[v]) <= set(inst.uses[u]):
+            out.append(f"dom({v},{u}).\n")
+            out += [f"dom_extra({v},{u},{o}).\n" for o in extra]
+    return "".join(out)
+
+
+def tree_parts(problem: Problem, meal: tuple[int, ...], inst: Instance, options: AspOptions) -> list:
+    """The tree encoding, its objectives and facts for the goals ``meal`` over the candidate
+    units of ``inst``, as programs for joint scheduling; the tree objective takes priorities
+    1..n; units a no worse unit can replace are left out (:func:`_dominance`) when no user
+    program asks for more."""
+    ranked = _check_joint(options)
+    units = list(inst.units)
+    names = ["tree", *(OBJECTIVES[o] for o in ranked)]
+    parts = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(names)]
+    n = len(ranked)
+    parts.append(("objective", "".join(f"objective({o},{n - i}).\n" for i, o in enumerate(ranked))))
+    if "inputs" in ranked:
+        parts.append(("input nodes", objectives.input_node_facts(problem, units)))
+    parts.append(("goal", "".join(f"goal({g}).\n" for g in meal)))
+    if not options.programs:
+        parts.append(("encodings/dominance.lp", encodings.encoding("dominance")))
+        parts.append(("dominated units", _dominance(problem, inst, ranked)))
+    parts += list(options.programs)
+    keep = {"neglog"} if "success" in ranked else set()
+    leave_out = [] if options.programs else [p for p in OPTIONAL if p not in keep]
+    return [("facts", facts(problem, units=units, leave_out=leave_out)), *parts]
+
+
+def _by_trees(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    fixed: ScheduleResult,
+    encoding: str,
+    shortcut: bool,
+    inst: Instance,
+    start: dict[int, int],
+    tail: dict[int, int],
+    horizon: int,
+    parts: list,
+    ties: bool,
+    deadline: float | None,
+) -> tuple[ScheduleResult | None, bool]:
+    """Joint scheduling tree by tree (:mod:`foon2asp.schedule.joint`): (result, proven), the
+    result None when there are too many trees to look at (or no time to list them), or when no
+    tree beats the given one and ``ties`` asks for the tie-breakers over every tree of its
+    makespan (then ``proven`` says its makespan is the optimum)."""
+    within = horizon - divisor(inst) if fixed.has_schedule else horizon
+    left = None if deadline is None else max(0.0, deadline - time.perf_counter())
+    found = joint.candidate_trees(inst, start, tail, within, parts, _args(options), left)
+    if not found.complete and (deadline is not None and time.perf_counter() >= deadline):
+        return None, False
+    ranked = objectives.ranked(options)
+    fixed_units = tuple(sorted(tree.units))
+
+    def bound(units: tuple[int, ...]) -> tuple:
+        """A lower bound on the key of the tree's schedule: chain and work bounds, the units
+        only a person can do, and (no person among the agents) the tree objective."""
+        sub = inst.restrict(units)
+        head = earliest(sub)
+        chain = max((head[u] + sub.min_duration(u) for u in units), default=0)
+        low = max(chain, -(-sum(sub.min_duration(u) for u in units) // len(sub.agents)))
+        if spec.has_human():
+            return (low, _forced_human(sub), ())
+        return (low, 0, joint.tree_cost(problem, units, (), ranked))
+
+    def solve(units: tuple[int, ...], limit: float | None, within: int | None) -> ScheduleResult:
+        if units == fixed_units and fixed.status == "optimal":
+            return fixed
+        given = TaskTree(
+            method=f"{tree.method}+schedule",
+            status="optimal",
+            units=executable_order(problem, list(units)),
+            cost=measures(problem, tree.meal, list(units)),
+            **goal_fields(tree.meal),
+        )
+        return schedule_fixed(problem, given, spec, options, encoding, limit, shortcut, within)
+
+    def key(r: ScheduleResult) -> tuple:
+        return (r.makespan, len(r.human), joint.tree_cost(problem, r.tree.units, r.human, ranked))
+
+    left = None if deadline is None else max(0.0, deadline - time.perf_counter())
+    if found.complete:
+        best, proven = joint.best_tree(found.trees, bound, solve, key, left)
+    else:  # too many to list: one at a time, least work first
+        levels = len(ranked)
+        best, proven = joint.best_by_work(
+            inst, start, tail, within, parts, _args(options), levels, bound, solve, key, left
+        )
+    if fixed.has_schedule and (best is None or key(fixed) <= key(best)):
+        if ties:
+            return None, proven and fixed.status == "optimal"
+        best = fixed
+    stats = {"joint": "tree by tree" if found.complete else "tree by tree, least work first"}
+    if best is None:
+        if not proven:
+            return None, False
+        why = "no valid tree of the goal can be scheduled"
+        return ScheduleResult(problem, tree, "unschedulable", fixed.agents, joint=True, fixed=fixed, reason=why), True
+    status = "optimal" if proven and best.status == "optimal" else "feasible"
+    return replace(best, status=status, joint=True, fixed=fixed, stats={**best.stats, **stats}), proven
+
+
+def schedule_joint(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    fixed: ScheduleResult,
+    encoding: str = DEFAULT_ENCODING,
+    time_limit: float | None = None,
+    shortcut: bool = True,
+) -> ScheduleResult:
+    """The tree and schedule chosen together; ``fixed`` is ``tree``'s own schedule."""
+    t0 = time.perf_counter()
+    meal = tree.meal
+    cands = list(problem.units_for(meal))
+    inst = instance(problem, cands, spec)
+    start = earliest(inst)
+    made = {
+        g: min((start[u] + inst.min_duration(u) for u in start if g in problem.products[u]), default=None)
+        for g in meal
+        if g not in problem.kitchen
+    }
+    floor = max((t for t in made.values() if t is not None), default=0)
+    if fixed.has_schedule:
+        horizon = fixed.makespan
+        assert horizon is not None
+    else:
+        horizon = sum(max(inst.durations[u].values()) for u in start)
+    stats: dict = {"encoding": encoding, "candidates": len(cands)}
+    if (
+        shortcut
+        and fixed.status == "optimal"
+        and tree.status == "optimal"
+        and horizon == floor
+        and not spec.has_human()
+    ):
+        stats["shortcut"] = "the given tree's makespan meets the lower bound over every tree"
+        return replace(fixed, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
+    tail = joint_tails(inst, meal, {u: problem.products[u] for u in inst.units})
+    parts = tree_parts(problem, meal, inst, options)
+    deadline = None if time_limit is None else t0 + time_limit
+    ties = spec.has_human() or tree.status != "optimal"
+    by_trees, proven = _by_trees(
+        problem, tree, spec, options, fixed, encoding, shortcut, inst, start, tail, horizon, parts, ties, deadline
+    )
+    if by_trees is not None:
+        by_trees.stats = {**stats, **by_trees.stats}
+        by_trees.time_s = time.perf_counter() - t0
+        return by_trees
+    if proven:  # no tree beats the given one's makespan: only the tie-breakers are left
+        floor = horizon
+    left = None if deadline is None else max(0.0, deadline - time.perf_counter())
+    sol = _solve(inst, start, tail, horizon, floor, options, encoding, left, parts, ties)
+    stats.update(sol.stats, joint="tie-breakers in one encoding" if proven else "one encoding")
+    elapsed = time.perf_counter() - t0
+    if sol.unsatisfiable:
+        why = "no valid tree of the goal can be scheduled"
+        return ScheduleResult(
+            problem,
+            tree,
+            "unschedulable",
+            fixed.agents,
+            joint=True,
+            fixed=fixed,
+            reason=why,
+            time_s=elapsed,
+            stats=stats,
+        )
+    if sol.entries is None:  # the given tree's schedule is the best found (proven: optimal)
+        status = "optimal" if sol.proven and fixed.status == "optimal" else "feasible"
+        return replace(fixed, status=status, joint=True, fixed=fixed, time_s=elapsed, stats=stats)
+    units = list(sol.units)
+    sub = inst.restrict(units)
+    entries: list[Entry] = compact(sub, sol.entries)
+    chosen = TaskTree(
+        method=f"{tree.method}+schedule",
+        status="optimal" if sol.proven else "feasible",
+        units=executable_order(problem, units),
+        cost=measures(problem, meal, units),
+        **goal_fields(meal),
+    )
+    status = "optimal" if sol.proven else "feasible"
+    return ScheduleResult(
+        problem,
+        chosen,
+        status,
+        fixed.agents,
+        entries,
+        bounds(sub),
+        makespan(list_schedule(sub)),
+        joint=True,
+        fixed=fixed,
+        time_s=time.perf_counter() - t0,
+        stats=stats,
+    )
+
+
+def schedule(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec | None = None,
+    options: AspOptions | None = None,
+    joint: bool = False,
+    time_limit: float | None = None,
+    encoding: str = DEFAULT_ENCODING,
+    shortcut: bool = True,
+) -> ScheduleResult:
+    """Schedule ``tree`` (a goal's task tree, e.g. the optimal one for ``options``) on the agents
+    of ``spec`` (default: one robot, every unit 1 s).
+
+    ``joint``: choose the tree with the schedule (the tree objective of ``options`` breaks
+    ties), the result's ``fixed`` holding ``tree``'s own schedule.  ``time_limit`` (seconds;
+    default ``options.time_limit``) bounds each of the two solves.  ``encoding``: ``steps``
+    or ``dl`` (:mod:`foon2asp.schedule.encode`).  ``shortcut=False`` always runs the solver.
+    """
+    spec = spec or ScheduleSpec()
+    options = options or AspOptions()
+    if encoding not in encode.ENCODINGS:
+        raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(encode.ENCODINGS)})")
+    if joint:
+        _check_joint(options)
+    limit = options.time_limit if time_limit is None else time_limit
+    fixed = schedule_fixed(problem, tree, spec, options, encoding, limit, shortcut)
+    if not joint or not tree.has_tree:
+        return replace(fixed, joint=joint) if joint else fixed
+    return schedule_joint(problem, tree, spec, options, fixed, encoding, limit, shortcut)

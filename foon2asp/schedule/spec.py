@@ -1,0 +1,250 @@
+"""What a schedule is for: the agents, how long each motion takes, who can do what, shared resources.
+
+* **Agents** (:func:`parse_agents`): ``KIND=N[,KIND=N...]``, default ``robot=1``;
+  agents are numbered per kind (``arm-1``, ``arm-2``, ``human-1``).  A kind is a
+  letter followed by letters, digits or ``_``; the kind ``human`` is a person.
+* **Durations** (:func:`load_durations`): JSON ``{motion: seconds}``, or
+  ``{KIND: {motion: seconds}}`` per kind; a key whose value is an object is a
+  kind, a key whose value is a number a motion (for every kind).  ``"*"`` is a
+  default: as a motion key, for the motions not listed; as a kind key (an
+  object), for the kinds not listed.  The duration of motion M for kind K is
+  the first of: K's table at M, K's table at ``"*"``, the top level at M, the
+  top level at ``"*"``, 1 second.  (K's table is the ``"*"`` kind's when K is
+  not listed.)  Without a file every unit takes 1 second.
+* **Precision**: durations are non-negative decimals, exact to :data:`PRECISION`
+  (0.001 s): they are read as decimals (never binary floats) and kept as whole
+  milliseconds; a finer value (``0.0005``) is an error, as is one above
+  :data:`MAX_SECONDS`.
+* **Capabilities** (:func:`load_capabilities`): JSON ``{KIND: [motion, ...]}``,
+  the motions each kind can do; a kind not listed can do every motion.
+* **Resources** (:func:`load_resources`): JSON ``{label: capacity}``: at most
+  ``capacity`` (a whole number >= 1) units whose inputs include an object with
+  that label run at the same time.
+
+Motions and labels are compared as objects hold them (case-folded, runs of
+white space as one space).  Every error is one :class:`~foon2asp.errors.InputError`
+naming the file (and line) and the entry.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from decimal import Decimal, InvalidOperation
+from pathlib import Path
+
+from foon2asp.errors import InputError
+from foon2asp.foon import safejson
+from foon2asp.foon.model import norm
+
+#: the kind of agent that is a person (success 1.0, counted by the tie-breaker)
+HUMAN = "human"
+
+#: durations are exact to this many seconds (kept as whole units of it)
+PRECISION = Decimal("0.001")
+#: time unit of every integer time in :mod:`foon2asp.schedule`: milliseconds per second
+TICKS = 1000
+#: the longest duration accepted (seconds); sums of durations stay within clingo's integers
+MAX_SECONDS = 100_000
+
+DEFAULT_AGENTS = (("robot", 1),)
+#: the most agents of one kind
+MAX_AGENTS = 64
+
+_KIND = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
+
+
+def agent_names(kinds: tuple[tuple[str, int], ...]) -> list[tuple[str, str]]:
+    """``(name, kind)`` of every agent, numbered per kind: ``arm-1``, ``arm-2``, ``human-1``."""
+    return [(f"{kind}-{i}", kind) for kind, n in kinds for i in range(1, n + 1)]
+
+
+def kind_of(agent: str) -> str:
+    """The kind of an agent name (``arm-2`` -> ``arm``)."""
+    return agent.rsplit("-", 1)[0]
+
+
+def parse_agents(text: str | None) -> tuple[tuple[str, int], ...]:
+    """``KIND=N[,KIND=N...]`` as ``((kind, n), ...)`` in the order given (None or empty: ``robot=1``)."""
+    if text is None or not text.strip():
+        return DEFAULT_AGENTS
+    out: dict[str, int] = {}
+    for part in text.split(","):
+        kind, eq, count = (s.strip() for s in part.partition("="))
+        if not eq:
+            raise InputError(f"agents {text!r}: {part.strip()!r} is not KIND=N (e.g. arm=2,human=1)")
+        if not _KIND.match(kind):
+            raise InputError(f"agents {text!r}: kind {kind!r} must be a letter, then letters, digits or _")
+        if not count.isdigit() or not 1 <= int(count) <= MAX_AGENTS:
+            raise InputError(f"agents {text!r}: the number of {kind!r} agents must be a whole number 1..{MAX_AGENTS}")
+        if kind in out:
+            raise InputError(f"agents {text!r}: kind {kind!r} is given twice")
+        out[kind] = int(count)
+    return tuple(out.items())
+
+
+def _line_of(text: str, *keys: str) -> int | None:
+    """The line of the JSON key path ``keys`` in ``text`` (each key searched after the one before)."""
+    pos = 0
+    for key in keys:
+        found = text.find(json.dumps(key), pos)
+        if found < 0:
+            found = text.find(json.dumps(key, ensure_ascii=False), pos)
+        if found < 0:
+            return None
+        pos = found + 1
+    return text.count("\n", 0, pos) + 1
+
+
+def _read(path: str | Path, what: str) -> tuple[str, object]:
+    """The text of a JSON file and its value, numbers as :class:`~decimal.Decimal` (exact)."""
+    text, _ = safejson.load(path, what)
+    return text, json.loads(text, parse_float=Decimal, parse_int=Decimal)
+
+
+def _entry(keys: tuple[str, ...]) -> str:
+    return " / ".join(json.dumps(k, ensure_ascii=False) for k in keys)
+
+
+def seconds_to_ticks(value: object, path: str, text: str, keys: tuple[str, ...]) -> int:
+    """A duration in seconds as whole milliseconds; an error names the file, line and entry."""
+    line = _line_of(text, *keys)
+    where = _entry(keys)
+    if isinstance(value, bool) or not isinstance(value, Decimal):
+        raise InputError(
+            f"duration {where} must be a number of seconds, not {json.dumps(value, default=str)}", path, line
+        )
+    if not value.is_finite() or value < 0:
+        raise InputError(f"duration {where} must be at least 0, not {value}", path, line)
+    if value > MAX_SECONDS:
+        raise InputError(f"duration {where} is {value} s, above the limit of {MAX_SECONDS} s", path, line)
+    try:
+        ticks = value / PRECISION
+        whole = ticks.to_integral_value()
+    except InvalidOperation:  # pragma: no cover - bounded above, so never too many digits
+        raise InputError(f"duration {where} is not a decimal number", path, line) from None
+    if ticks != whole:
+        raise InputError(f"duration {where} is {value} s: finer than the precision of {PRECISION} s", path, line)
+    return int(whole)
+
+
+@dataclass(frozen=True)
+class Durations:
+    """Durations in milliseconds by kind and motion (see the module docstring for the lookup)."""
+
+    #: motion -> ms for every kind (``"*"``: the default motion)
+    motions: Mapping[str, int] = field(default_factory=dict)
+    #: kind -> motion -> ms (kind ``"*"``: kinds not listed; motion ``"*"``: the kind's default)
+    kinds: Mapping[str, Mapping[str, int]] = field(default_factory=dict)
+
+    def of(self, kind: str, motion: str) -> int:
+        """How long ``motion`` takes an agent of ``kind``, in milliseconds."""
+        motion = norm(motion)
+        table = self.kinds.get(kind, self.kinds.get("*", {}))
+        for source in (table, self.motions):
+            if motion in source:
+                return source[motion]
+            if "*" in source:
+                return source["*"]
+        return TICKS
+
+
+def load_durations(path: str | Path) -> Durations:
+    """Read a durations file (``{motion: seconds}`` or ``{KIND: {motion: seconds}}``)."""
+    p = str(path)
+    text, doc = _read(path, "durations file")
+    if not isinstance(doc, dict):
+        raise InputError("a durations file is a JSON object {motion: seconds} or {KIND: {motion: seconds}}", p, 1)
+    motions: dict[str, int] = {}
+    kinds: dict[str, dict[str, int]] = {}
+    for key, value in doc.items():
+        if isinstance(value, dict):
+            if key != "*" and not _KIND.match(key):
+                raise InputError(
+                    f"kind {json.dumps(key)} must be a letter, then letters, digits or _", p, _line_of(text, key)
+                )
+            kinds[key] = {
+                norm(m) if m != "*" else "*": seconds_to_ticks(v, p, text, (key, m)) for m, v in value.items()
+            }
+        else:
+            motions[norm(key) if key != "*" else "*"] = seconds_to_ticks(value, p, text, (key,))
+    return Durations(motions, kinds)
+
+
+def load_capabilities(path: str | Path) -> dict[str, frozenset[str]]:
+    """Read a capabilities file ``{KIND: [motion, ...]}``: kind -> the motions it can do."""
+    p = str(path)
+    text, doc = _read(path, "capabilities file")
+    if not isinstance(doc, dict):
+        raise InputError("a capabilities file is a JSON object {KIND: [motion, ...]}", p, 1)
+    out: dict[str, frozenset[str]] = {}
+    for kind, motions in doc.items():
+        line = _line_of(text, kind)
+        if not _KIND.match(kind):
+            raise InputError(f"kind {json.dumps(kind)} must be a letter, then letters, digits or _", p, line)
+        if not isinstance(motions, list) or not all(isinstance(m, str) for m in motions):
+            raise InputError(f"capabilities of {json.dumps(kind)} must be a list of motion names", p, line)
+        out[kind] = frozenset(norm(m) for m in motions)
+    return out
+
+
+def load_resources(path: str | Path) -> dict[str, int]:
+    """Read a resources file ``{label: capacity}``: label -> how many units using it may run at once."""
+    p = str(path)
+    text, doc = _read(path, "resources file")
+    if not isinstance(doc, dict):
+        raise InputError("a resources file is a JSON object {label: capacity}", p, 1)
+    out: dict[str, int] = {}
+    for label, cap in doc.items():
+        if isinstance(cap, bool) or not isinstance(cap, Decimal) or cap != cap.to_integral_value() or cap < 1:
+            raise InputError(
+                f"capacity of {json.dumps(label, ensure_ascii=False)} must be a whole number of at least 1",
+                p,
+                _line_of(text, label),
+            )
+        if not norm(label):
+            raise InputError("a resource label must not be empty", p, _line_of(text, label))
+        out[norm(label)] = min(int(cap), 10**6)
+    return out
+
+
+@dataclass(frozen=True)
+class ScheduleSpec:
+    """The agents (``((kind, n), ...)``), durations, capabilities and resources of a schedule."""
+
+    agents: tuple[tuple[str, int], ...] = DEFAULT_AGENTS
+    durations: Durations = field(default_factory=Durations)
+    #: kind -> motions it can do; a kind not listed can do every motion
+    capabilities: Mapping[str, frozenset[str]] = field(default_factory=dict)
+    #: object label -> capacity
+    resources: Mapping[str, int] = field(default_factory=dict)
+
+    @classmethod
+    def from_files(
+        cls,
+        agents: str | None = None,
+        durations: str | Path | None = None,
+        capabilities: str | Path | None = None,
+        resources: str | Path | None = None,
+    ) -> ScheduleSpec:
+        """The spec of an ``--agents`` text and the three files (each optional)."""
+        return cls(
+            parse_agents(agents),
+            load_durations(durations) if durations is not None else Durations(),
+            load_capabilities(capabilities) if capabilities is not None else {},
+            load_resources(resources) if resources is not None else {},
+        )
+
+    def agent_list(self) -> list[tuple[str, str]]:
+        """``(name, kind)`` of every agent."""
+        return agent_names(self.agents)
+
+    def can(self, kind: str, motion: str) -> bool:
+        """Can an agent of ``kind`` do ``motion``?"""
+        allowed = self.capabilities.get(kind)
+        return allowed is None or norm(motion) in allowed
+
+    def has_human(self) -> bool:
+        return any(kind == HUMAN for kind, _ in self.agents)

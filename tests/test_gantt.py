@@ -1,0 +1,63 @@
+"""Gantt charts of schedules: lanes, boxes, colours, fixed positions, every format."""
+
+from __future__ import annotations
+
+import re
+import shutil
+
+import pytest
+
+from foon2asp import report
+from foon2asp.report import gantt
+from foon2asp.report.draw import HUMAN_FILL, UNIT_FILL
+from foon2asp.schedule import ScheduleSpec, schedule
+from foon2asp.schedule.spec import Durations
+from foon2asp.tree.tasktree import TaskTree, executable_order
+from helpers import build, goal_id
+
+needs_dot = pytest.mark.skipif(shutil.which("neato") is None, reason="Graphviz is not installed")
+
+
+@pytest.fixture
+def record():
+    problem = build(
+        [("cut <&>", ["k"], ["a"]), ("cut <&>", ["k"], ["b"]), ("mix", ["a", "b"], ["g"])],
+        ["k"],
+    )
+    spec = ScheduleSpec((("arm", 1), ("human", 1)), Durations({"cut <&>": 2000, "mix": 1000}))
+    tree = TaskTree(
+        goal=goal_id(problem, "g"), method="given", status="optimal", units=executable_order(problem, [0, 1, 2])
+    )
+    return schedule(problem, tree, spec).to_dict()
+
+
+def test_dot_places_one_box_per_unit_in_its_lane(record):
+    src = gantt.gantt_graph(record).source
+    boxes = re.findall(r'\bu\d+ \[label=(<[^>]*>|""|\S+) .*?fillcolor="([^"]+)".*?pos="([\d.]+),([\d.-]+)!"', src)
+    assert len(boxes) == 3
+    lanes = {e["agent"] for e in record["schedule"]}
+    assert lanes == {"arm-1", "human-1"}
+    colours = sorted(c for _, c, _, _ in boxes)
+    assert colours == sorted([UNIT_FILL if e["agent"] == "arm-1" else HUMAN_FILL for e in record["schedule"]])
+    assert "label=<cut &lt;&amp;&gt;>" in src  # labels are escaped
+    # the two cuts run at once, in different lanes: same x, different y
+    cuts = [(x, y) for label, _, x, y in boxes if "cut" in label]
+    assert len(cuts) == 2 and cuts[0][0] == cuts[1][0] and cuts[0][1] != cuts[1][1]
+
+
+@needs_dot
+def test_every_format(record, tmp_path):
+    svg = gantt.gantt_svg(record)
+    assert svg.lstrip().startswith("<?xml") and ">arm&#45;1<" in svg and ">human&#45;1<" in svg and ">mix<" in svg
+    for ext, magic in (("png", b"\x89PNG"), ("pdf", b"%PDF"), ("svg", b"<?xml")):
+        path = gantt.draw_gantt(record, tmp_path / f"chart.{ext}")
+        assert path.read_bytes().startswith(magic)
+    both = report.render("schedule", "svg", [record, record])
+    assert both.count(">mix<") == 2
+    assert report.render_bytes("schedule", "png", [record]).startswith(b"\x89PNG")
+    assert report.names("schedule") == ["dot", "svg", "png", "pdf"]
+
+
+def test_a_schedule_without_units_still_draws(record):
+    empty = dict(record, schedule=[], status="unschedulable", makespan=None, baseline={})
+    assert "unschedulable" in gantt.gantt_graph(empty).source
