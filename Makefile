@@ -45,6 +45,7 @@ bench: install
 	$(BIN)/python bench/run.py --shared $(SHARED)
 	$(BIN)/python bench/p2.py --shared $(SHARED)
 	$(BIN)/python bench/hard.py --shared $(SHARED) $(HARD_ARGS)
+	$(BIN)/python bench/schedule.py --shared $(SHARED)
 
 # only the hard table; e.g. make bench-hard HARD_ARGS="--presets small --limit 5"
 bench-hard: install

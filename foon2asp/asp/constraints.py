@@ -1,9 +1,9 @@
 """User constraints: ASP files, rule texts and convenience flags as programs.
 
 Everything here becomes a list of ``(name, text)`` programs for
-:attr:`foon2asp.solver.AspOptions.programs`.  The convenience flags
+:attr:`foon2asp.asp.options.AspOptions.programs`.  The convenience flags
 (``--forbid-motion`` and friends) are generated ASP text in which every motion
-or label is written with :func:`foon2asp.facts.q`, so a label is always a
+or label is written with :func:`foon2asp.asp.facts.q`, so a label is always a
 string constant and can never add code.  Files and ``--rule`` texts are the
 user's own code; they are checked on their own first, so a syntax error or an
 unsafe variable is reported as one line naming the file (or rule) and line.

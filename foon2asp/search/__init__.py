@@ -3,7 +3,7 @@
 They are faithful to the earlier FOON search programs, weaknesses included:
 neither checks that the tree it returns is well-founded, so a greedy tree may
 rest on a cycle (``foon2asp check`` and ``foon2asp compare`` report that).
-All read the semantics from :class:`~foon2asp.problem.Problem`:
+All read the semantics from :class:`~foon2asp.foon.problem.Problem`:
 ``required`` (the utensil rule), ``producers`` (outputs with no state,
 ingredient or container are not products) and ``kitchen``.
 
