@@ -7,7 +7,8 @@ This is where the default semantics live (see README, "Semantics"):
 * utensil rule ``starter``: an input is not required when it is a utensil
   holding exactly one ingredient and another input of the same unit is that
   ingredient inside that utensil (``off`` makes every input required);
-* an output with no states, ingredients or container is not a product.
+* an output with no states, ingredients or container is not a product
+  (:func:`product_outputs`; at hierarchy levels 1 and 2 see foon2asp.foon.matching).
 
 Everything downstream (facts, search methods, validator) reads this class,
 so the semantics are stated exactly once.
@@ -50,6 +51,15 @@ def required_flags(unit: Unit, utensils: frozenset[str], rule: str = "starter") 
         )
         flags.append(not skip)
     return flags
+
+
+def product_outputs(unit: Unit) -> list[FoonObject]:
+    """The outputs of ``unit`` that count as made: the non-bare ones; a unit projected to
+    hierarchy level 1 or 2 (:class:`foon2asp.foon.matching.LevelUnit`) lists its own."""
+    made = getattr(unit, "made", None)
+    if made is None:
+        return [o for o in unit.outputs if not o.is_bare()]
+    return [o for o in unit.outputs if o in made]
 
 
 def walk_back(
@@ -110,7 +120,7 @@ class Problem:
             self.inputs.append(ins)
             self.required.append(tuple(dict.fromkeys(i for i, f in zip(ins, flags) if f)))
             self.outputs.append(tuple(oid[o] for o in unit.outputs))
-            self.products.append(tuple(dict.fromkeys(oid[o] for o in unit.outputs if not o.is_bare())))
+            self.products.append(tuple(dict.fromkeys(oid[o] for o in product_outputs(unit))))
         self.producers: dict[int, list[int]] = {}
         for u, prods in enumerate(self.products):
             for o in prods:

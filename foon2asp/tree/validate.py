@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from foon2asp.foon.model import FoonObject
-from foon2asp.foon.problem import Problem, required_flags
+from foon2asp.foon.problem import Problem, product_outputs, required_flags
 
 
 @dataclass
@@ -31,7 +31,7 @@ def _required(problem: Problem, u: int) -> list[FoonObject]:
 
 
 def _products(problem: Problem, u: int) -> list[FoonObject]:
-    return [o for o in problem.units[u].outputs if not o.is_bare()]
+    return product_outputs(problem.units[u])
 
 
 def validate(problem: Problem, goal: FoonObject | int, units: list[int]) -> Validation:
