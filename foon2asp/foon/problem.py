@@ -105,6 +105,9 @@ class Problem:
     motion_rates: dict[str, float] = field(default_factory=dict)
     utensils: frozenset[str] = frozenset()
     utensil_rule: str = "starter"
+    #: objects that count as available for viability though not kitchen items: what a
+    #: substitute stands in for (foon2asp.foon.substitutes.with_substitutes); a tree may make them too
+    substitutable: frozenset[int] = frozenset()
 
     def __post_init__(self) -> None:
         if self.utensil_rule not in UTENSIL_RULES:
@@ -160,6 +163,7 @@ class Problem:
         waiting: dict[int, int] = {}
         users: dict[int, list[int]] = {}
         obj_level: dict[int, int] = dict.fromkeys(self.kitchen, 0)
+        obj_level.update(dict.fromkeys(self.substitutable, 0))  # what substitutes stand in for
         unit_level: dict[int, int] = {}
         frontier: list[int] = []
         for u in pool:
