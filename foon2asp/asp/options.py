@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from foon2asp.asp.settings import solver_args
+from foon2asp.foon.substitutes import Substitute
 
 #: objective name -> encoding that defines it (all use objective(Name,Priority))
 OBJECTIVES: dict[str, str] = {"units": "units", "success": "success", "inputs": "inputs", "depth": "depth"}
@@ -44,6 +45,11 @@ class AspOptions:
     heuristic: str | None = None
     #: among several optimal trees, return the lexicographically smallest (foon2asp.asp.canonical)
     canonical: bool = True
+    #: labels that may stand in for others (foon2asp.foon.substitutes): the fewest (cheapest)
+    #: substitutions rank above the objectives (foon2asp.asp.substitutes)
+    substitutes: tuple[Substitute, ...] = ()
+    #: at most this many substitutions per tree
+    max_substitutions: int | None = None
 
     @property
     def method(self) -> str:

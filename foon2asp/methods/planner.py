@@ -62,6 +62,7 @@ from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
+from foon2asp.asp.substitutes import prepare as with_substitutes
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem, walk_back
 from foon2asp.methods.bounds import Bounds
@@ -119,6 +120,7 @@ def plain(options: AspOptions) -> bool:
         and not options.programs
         and not options.encodings
         and not options.heuristic
+        and not options.substitutes
         and all(name in MONOTONE for name in ranked(options))
     )
 
@@ -145,8 +147,8 @@ class BatchRunner:
         if grounding not in GROUNDINGS:
             raise ValueError(f"unknown grounding {grounding!r}")
         self.name = name
-        self.problem = problem
         self.options = options or AspOptions()
+        self.problem = problem = with_substitutes(problem, self.options)
         self.grounding = grounding
         self.kind = methods.get(name).kind
         self.parts = parts if parts is not None else Parts(problem)
@@ -303,6 +305,7 @@ def solve_goals(
     (:meth:`Problem.units_for`) unless ``options.units`` says otherwise.
     """
     options = options or AspOptions()
+    problem = with_substitutes(problem, options)
     goals = list(goals)
     if methods.get(method).kind == "asp" and options.units is None:
         options = replace(options, units=problem.units_for({g for goal in goals for g in meal_of(goal)}))
