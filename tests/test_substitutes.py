@@ -18,7 +18,7 @@ from foon2asp.asp.facts import facts
 from foon2asp.asp.objectives import encoding_names
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.asp.session import Session
-from foon2asp.asp.substitutes import report, substitute_facts
+from foon2asp.asp.substitutes import report, substitute_facts, validate_with
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
@@ -273,8 +273,48 @@ def test_special_labels_stay_data(tmp_path, label):
     text = facts(problem) + substitute_facts(problem, subs)
     assert text.count("substitute(") == 1
     # a user program that reads the labels makes the session write them as facts
-    options = AspOptions(substitutes=subs, programs=[("reads labels", "seen(L) :- label(_,L).\n")])
-    tree = Session(problem, options).solve(goal)
+    program = "seen(L) :- label(_,L).\n#show seen/1.\n"
+    options = AspOptions(substitutes=subs, programs=[("reads labels", program)])
+    seen: set[str] = set()
+
+    def on_model(model) -> None:
+        seen.update(s.arguments[0].string for s in model.symbols(shown=True) if s.name == "seen")
+
+    tree = Session(problem, options).solve(goal, on_model=on_model)
+    assert seen == {label.lower(), "onion", "pan"}
     assert tree.status == "optimal" and len(tree.units) == 1
     assert tree.extra["substitutions"] == [{"needed": "onion, chopped", "used": f"{label.lower()}, chopped"}]
     assert report(problem, [goal], tree.units, subs) == tree.extra["substitutions"]
+
+
+def test_validator_accepts_a_tree_that_relies_on_substitutes():
+    problem = _soup()
+    goal = goal_id(problem, obj("soup", "cooked"))
+    subs = parse_substitutes("onion: red onion\n")
+    cook = [u for u, unit in enumerate(problem.units) if unit.motion == "cook"]
+    assert not validate(problem, goal, cook).valid
+    verdict, used = validate_with(problem, goal, cook, subs)
+    assert verdict.valid and used == [{"needed": "onion, chopped", "used": "red onion, chopped"}]
+    verdict, used = validate_with(problem, goal, cook, parse_substitutes("onion: shallot\n"))
+    assert not verdict.valid and "onion, chopped" in (verdict.problem or "") and used == []
+    # the goal itself is never stood in for
+    soup = build([("cook", [obj("onion", "chopped")], [obj("soup", "cooked")])], [obj("stew", "cooked")])
+    verdict, _ = validate_with(soup, goal_id(soup, obj("soup", "cooked")), [], parse_substitutes("soup: stew"))
+    assert not verdict.valid
+
+
+def test_substitutes_at_a_level_with_normalised_labels():
+    from foon2asp.foon.matching import Projection, Texts
+
+    problem = _soup()
+    projection = Projection(1, Texts(normalize=True))
+    foon = projection.foon(problem.foon)
+    kitchen = projection.objects(problem.kitchen_items[:1] + problem.kitchen_items[2:])  # no chopped red onion
+    level1 = Problem(foon, kitchen)
+    subs = projection.substitutes(parse_substitutes("Onions: red onions=2, onion\n"))
+    assert subs == (Substitute("onion", "red onion", 2),)
+    goal = level1.foon.object_ids[FoonObject("soup")]
+    [tree] = solve_goals(level1, [goal], options=AspOptions(substitutes=subs))
+    # at level 1 chopping passes the onion through: the red onion stands in for the onion
+    assert [level1.units[u].motion for u in tree.units] == ["cook"]
+    assert tree.extra["substitutions"] == [{"needed": "onion", "used": "red onion"}]
