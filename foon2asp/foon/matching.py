@@ -48,8 +48,8 @@ from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.model import Foon, FoonObject, Unit, norm
 from foon2asp.foon.parser import state_parts
-from foon2asp.foon.safetext import lines_of, read_text
-from foon2asp.foon.substitutes import Substitute
+from foon2asp.foon.safetext import read_text
+from foon2asp.foon.substitutes import Substitute, entries
 
 LEVELS = (1, 2, 3)
 
@@ -165,10 +165,7 @@ def parse_synonyms(text: str, path: str = "<synonyms>", normalize: bool = False)
     texts = Texts(normalize)
     table: dict[str, str] = {}
     lines: dict[str, int] = {}
-    for lineno, line in enumerate(lines_of(text), 1):
-        body = line.strip()
-        if not body or body.startswith("#"):
-            continue
+    for lineno, body in entries(text):
         name, eq, canonical = body.partition("=")
         if not eq:
             raise InputError(f"expected 'name = canonical name', got {body[:60]!r}", path, lineno)

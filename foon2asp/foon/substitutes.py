@@ -26,7 +26,7 @@ viability counts them as available.
 from __future__ import annotations
 
 import copy
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -96,12 +96,17 @@ def _from_json(value: object, path: str) -> dict[tuple[str, str], Substitute]:
     return out
 
 
-def _from_lines(text: str, path: str) -> dict[tuple[str, str], Substitute]:
-    out: dict[tuple[str, str], Substitute] = {}
+def entries(text: str) -> Iterator[tuple[int, str]]:
+    """``(line number, stripped line)`` of the lines that are neither blank nor ``#`` comments."""
     for lineno, line in enumerate(lines_of(text), 1):
         body = line.strip()
-        if not body or body.startswith("#"):
-            continue
+        if body and not body.startswith("#"):
+            yield lineno, body
+
+
+def _from_lines(text: str, path: str) -> dict[tuple[str, str], Substitute]:
+    out: dict[tuple[str, str], Substitute] = {}
+    for lineno, body in entries(text):
         needed, colon, rest = body.partition(":")
         if not colon:
             raise InputError(f"expected 'label: substitute, ...', got {body[:60]!r}", path, lineno)
