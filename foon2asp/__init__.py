@@ -16,6 +16,7 @@ from foon2asp.api import (  # noqa: E402
     Constraints,
     KnowledgeBase,
     Missing,
+    Options,
     Tree,
     load,
 )
@@ -31,6 +32,7 @@ __all__ = [
     "Comparison",
     "Missing",
     "Constraints",
+    "Options",
     "FoonObject",
     "Unit",
     "InputError",

@@ -34,14 +34,28 @@ def char_name(ch: str) -> str:
 
 
 class InputError(Exception):
-    """Bad input. ``str(err)`` is a one-line message ``FILE:LINE[:COLUMN]: what``."""
+    """Bad input. ``str(err)`` is a one-line message ``FILE:LINE[:COLUMN]: what``.
 
-    def __init__(self, message: str, path: str | None = None, line: int | None = None, column: int | None = None):
+    ``hint`` (``KEY`` or ``KEY=VALUE``) lets a front end word the remedy in its own terms (the
+    command line names its flags: :data:`foon2asp.cli.main.FLAG_WORDING`); the message itself
+    speaks of values.
+    """
+
+    def __init__(
+        self,
+        message: str,
+        path: str | None = None,
+        line: int | None = None,
+        column: int | None = None,
+        *,
+        hint: str | None = None,
+    ):
         super().__init__(message)
         self.message = message
         self.path = path
         self.line = line
         self.column = column
+        self.hint = hint
 
     def __str__(self) -> str:
         where = ""

@@ -129,7 +129,7 @@ def test_meal_with_depth_bound_and_models(demo_problem):
     assert "scrambled egg" not in bounded.extra["reason"]
     assert Session(p, AspOptions(max_depth=4)).solve(meal).cost["units"] == 8
     two = Session(p, AspOptions(models=2)).solve(meal)
-    alts = [two] + two.extra.get("_alternatives", [])
+    alts = [two] + two.alternatives
     assert len(alts) == 2 and alts[0].units != alts[1].units
     assert all(validate(p, g, t.units).valid for t in alts for g in meal)
 

@@ -1,10 +1,13 @@
 """The one wrapper around :class:`clingo.Control` that solving and queries share.
 
-It adds named programs and grounds them so that a syntax or grounding error
-becomes one :class:`~foon2asp.errors.InputError` naming the program (a user
-file, ``--rule #N``, ...), and it solves with an optional time limit on the
-asynchronous solve handle, so a time-out or an interrupt stops clingo's
-search through the handle (never by tearing the control down mid-call).
+It adds named programs to named parts (``#program NAME(P, ...)``: the
+``base`` part by default) and grounds parts with their arguments, so that a
+syntax or grounding error becomes one :class:`~foon2asp.errors.InputError`
+naming the program (a user file, ``--rule #N``, ...) or what was grounded (the
+depth rounds, ...); it sets the solve mode (:meth:`Control.solving`), adds
+guarded nogoods, and solves with an optional time limit on the asynchronous
+solve handle, so a time-out or an interrupt stops clingo's search through the
+handle (never by tearing the control down mid-call).
 
 Signals: while a clingo call runs (adding, grounding, solving, backend
 updates) SIGINT and SIGTERM are *deferred* (:func:`deferred_signals`): the
@@ -24,6 +27,7 @@ import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from typing import Any
 
 import clingo
 
@@ -37,6 +41,20 @@ _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
 #: between programs added in one call: each starts in the base part, as a separate add would
 _JOIN = "\n#program base.\n"
+
+#: solve mode -> clingo's opt-mode, number of models (None: as many as asked for) and projection
+MODES: dict[str, tuple[str, str | None, str]] = {
+    "opt": ("opt", "0", "no"),
+    "optN": ("optN", None, "project"),
+    "first": ("ignore", "1", "no"),
+}
+
+#: a part to ground: its name and its arguments
+Part = tuple[str, Sequence[int | clingo.Symbol]]
+
+
+def _symbol(value: int | clingo.Symbol) -> clingo.Symbol:
+    return clingo.Number(value) if isinstance(value, int) else value
 
 
 class _Deferral:
@@ -145,14 +163,14 @@ class Control:
     def _log(self, code: clingo.MessageCode, message: str) -> None:
         self.messages.append(" ".join(message.split()))
 
-    def add(self, name: str, text: str, user: bool = False) -> None:
-        """Add program ``text`` (called ``name`` in errors) to the base part."""
+    def add(self, name: str, text: str, user: bool = False, part: str = "base", params: Sequence[str] = ()) -> None:
+        """Add program ``text`` (called ``name`` in errors) to ``part``, whose parameters are ``params``."""
         self.messages.clear()
         if user:
             self.user_programs.append((name, text))
         try:
             with deferred_signals():
-                self.ctl.add("base", [], text)
+                self.ctl.add(part, list(params), text)
         except RuntimeError:
             raise clingo_error(self.messages, name) from None
 
@@ -172,17 +190,42 @@ class Control:
         if shipped:
             self.add("program", _JOIN.join(shipped))
 
-    def ground(self, parts: Sequence[tuple[str, Sequence[clingo.Symbol]]] = (("base", ()),)) -> None:
-        """Ground ``parts``; on an error the user programs are checked one by one to name the culprit."""
+    def ground(self, parts: Sequence[Part] = (("base", ()),), what: str | None = None) -> None:
+        """Ground ``parts``: each a part's name and its arguments (numbers or symbols).
+
+        On an error the user programs are checked one by one to name the culprit; else the
+        error is clingo's first message, said to be about ``what`` (e.g. "grounding the depth rounds").
+        """
         self.messages.clear()
         try:
             with deferred_signals():  # grounding cannot be interrupted: a signal waits for its end
-                self.ctl.ground([(name, list(args)) for name, args in parts])
+                self.ctl.ground([(name, [_symbol(a) for a in args]) for name, args in parts])
         except RuntimeError:
             for name, text in self.user_programs:
                 check_syntax(name, text)
             msg = self.messages[0] if self.messages else "error"
-            raise InputError(msg.replace("<block>", "program")) from None
+            raise InputError(msg.replace("<block>", "program"), what) from None
+
+    def extend(self, name: str, text: str, parts: Sequence[Part] = (), what: str | None = None) -> None:
+        """Add ``text`` as a part of its own, ``name``, and ground it together with ``parts``
+        (multi-shot: facts and parts grounded after the first grounding)."""
+        with deferred_signals():  # one section: the part is never left added but not grounded
+            self.add(name, text, part=name)
+            self.ground([(name, ()), *parts], what)
+
+    @contextmanager
+    def solving(self, mode: str = "opt", count: int = 1) -> Iterator[None]:
+        """Solve in ``mode`` inside the body: "opt" (the best model), "optN" (up to ``count``
+        distinct optimal models, projected on the shown atoms) or "first" (the first model,
+        no optimisation).  The previous configuration is restored afterwards."""
+        conf: Any = self.ctl.configuration.solve
+        saved = (conf.opt_mode, conf.models, conf.project)
+        opt_mode, models, project = MODES[mode]
+        conf.opt_mode, conf.models, conf.project = opt_mode, models or str(count), project
+        try:
+            yield
+        finally:
+            conf.opt_mode, conf.models, conf.project = saved
 
     def solve(
         self,
@@ -232,6 +275,31 @@ class Control:
         with deferred_signals():
             for atom, value in externals.items():
                 self.ctl.assign_external(atom, value)
+
+    def has_atom(self, atom: clingo.Symbol) -> bool:
+        """Did the grounder keep ``atom`` (it may be true in some model)?"""
+        return self.ctl.symbolic_atoms[atom] is not None
+
+    def guard(self, atoms: Iterable[clingo.Symbol]) -> int:
+        """A nogood forbidding ``atoms`` together, behind a fresh external that is off: the
+        guard's literal (switch it on to enforce the nogood; :meth:`release` removes it)."""
+        body = []
+        for atom in atoms:
+            grounded = self.ctl.symbolic_atoms[atom]
+            if grounded is None:
+                raise ValueError(f"{atom} is not a grounded atom")
+            body.append(grounded.literal)
+        with deferred_signals(), self.ctl.backend() as backend:
+            guard = backend.add_atom()
+            backend.add_external(guard, clingo.TruthValue.False_)
+            backend.add_rule([], [guard] + body)
+        return guard
+
+    def release(self, guards: Iterable[int]) -> None:
+        """Remove the nogoods of ``guards`` (their externals become false for good)."""
+        with deferred_signals():
+            for guard in guards:
+                self.ctl.release_external(guard)
 
     def facts_of(self, name: str, arity: int) -> set[clingo.Symbol]:
         """Atoms of ``name/arity`` the grounder derived as facts."""

@@ -13,6 +13,8 @@ objective   minimises                                                   encoding
             greatest product of motion success rates (see PRECISION)
 ``inputs``  total number of input nodes of the tree's units             inputs.lp
 ``depth``   sequential rounds to make the goal (multi-shot, depth.py)   depth.lp
+``cost``    summed motion cost of the units, in hundredths (exact; the    cost.lp
+            table of AspOptions.motion_costs, foon2asp.foon.motioncost)
 =========== ========================================================== ==============
 """
 
@@ -23,6 +25,8 @@ from collections.abc import Iterable
 
 from foon2asp.asp import dominance, substitutes
 from foon2asp.asp.facts import SCALE, neglog_weight, success_permille
+from foon2asp.errors import InputError
+from foon2asp.foon.motioncost import DEFAULT_COST, motion_key, scaled
 from foon2asp.foon.problem import Problem
 
 #: the tie-breaker appended to every objective list that lacks it
@@ -72,6 +76,26 @@ def input_node_facts(problem: Problem, units: Iterable[int] | None = None) -> st
     return "".join(f"input_nodes({u},{len(problem.inputs[u])}).\n" for u in ids)
 
 
+def motion_cost_weights(problem: Problem, costs: dict[str, int], units: Iterable[int] | None = None) -> dict[int, int]:
+    """Unit -> the integer weight of its motion (``costs``: motion -> cost in hundredths; a
+    motion not listed weighs the default cost, 1)."""
+    ids = range(len(problem.units)) if units is None else sorted(set(units))
+    default = scaled(DEFAULT_COST)
+    keyed = {motion_key(m): w for m, w in costs.items()}
+    return {u: keyed.get(problem.units[u].motion, default) for u in ids}
+
+
+def motion_cost_facts(problem: Problem, options, units: Iterable[int] | None = None) -> str:
+    """``motion_cost(U,C).``: C is the cost of U's motion in hundredths (read by cost.lp)."""
+    if options.motion_costs is None:
+        raise InputError("the objective 'cost' needs a motion-cost table (--motion-cost FILE)")
+    weights = motion_cost_weights(problem, options.motion_costs, units)
+    bad = [w for w in weights.values() if not isinstance(w, int) or w < 0]
+    if bad:
+        raise ValueError(f"motion-cost weights must be integers >= 0, not {bad[0]!r}")
+    return "".join(f"motion_cost({u},{w}).\n" for u, w in weights.items())
+
+
 def greedy_key(problem: Problem, heuristic: str, unit: int) -> tuple[int, int]:
     """The order of producers for greedy retrieval (smaller first): h1 the highest
     success rate (in thousandths, as ``success/2``), h2 the fewest input nodes (as
@@ -110,6 +134,8 @@ def human_order_facts(problem: Problem, units: Iterable[int] | None = None) -> s
 def extra_parts(problem: Problem, options, units: Iterable[int] | None = None) -> list[tuple[str, str]]:
     """Facts and directives the encodings of ``options`` read, as (name, text) programs."""
     parts = [("input nodes", input_node_facts(problem, units))]
+    if "cost" in ranked(options):
+        parts.append(("motion costs", motion_cost_facts(problem, options, units)))
     if options.heuristic:
         parts.append(("producer ranks", rank_facts(problem, options.heuristic, units)))
     if options.human_steps is not None:

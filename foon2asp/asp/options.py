@@ -9,6 +9,8 @@ from foon2asp.foon.substitutes import Substitute
 
 #: objective name -> encoding that defines it (all use objective(Name,Priority))
 OBJECTIVES: dict[str, str] = {"units": "units", "success": "success", "inputs": "inputs", "depth": "depth"}
+#: the summed motion cost of a motion-cost table (AspOptions.motion_costs, foon2asp.foon.motioncost)
+OBJECTIVES["cost"] = "cost"
 
 #: greedy retrieval inside the solver (AspOptions.heuristic -> encodings/greedy_NAME.lp)
 HEURISTICS = ("h1", "h2")
@@ -32,7 +34,7 @@ class AspOptions:
     clingo_args: list[str] = field(default_factory=list)
     #: ground only these units (e.g. the goals' relevant units); None: all units
     units: tuple[int, ...] | None = None
-    #: only trees of at most this many sequential rounds (see foon2asp.depth)
+    #: only trees of at most this many sequential rounds (see foon2asp.asp.multishot.depth)
     max_depth: int | None = None
     #: at most this many units may be done by a person (success 1.0 for those)
     human_steps: int | None = None
@@ -45,6 +47,9 @@ class AspOptions:
     heuristic: str | None = None
     #: among several optimal trees, return the lexicographically smallest (foon2asp.asp.canonical)
     canonical: bool = True
+    #: the objective "cost": motion -> integer weight, the cost in hundredths (foon2asp.foon.motioncost);
+    #: a motion not listed weighs 100 (cost 1); None: no table (the objective "cost" is refused)
+    motion_costs: dict[str, int] | None = None
     #: labels that may stand in for others (foon2asp.foon.substitutes): the fewest (cheapest)
     #: substitutions rank above the objectives (foon2asp.asp.substitutes)
     substitutes: tuple[Substitute, ...] = ()
@@ -59,7 +64,7 @@ class AspOptions:
 
     @property
     def driven(self) -> bool:
-        """Does solving need foon2asp.driver (more than one plain optimisation)?"""
+        """Does solving need foon2asp.asp.multishot.driver (more than one plain optimisation)?"""
         return bool(
             self.heuristic
             or self.max_depth is not None

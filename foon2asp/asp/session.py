@@ -1,23 +1,29 @@
-"""Ground and solve with the clingo Python API; decode models into task trees.
+"""Ground and solve with the clingo Python API, one grounding for many goals.
 
 A :class:`Session` grounds the facts of a whole problem together with the
 encodings once; each :meth:`Session.solve` then switches the external atom
 ``goal(G)`` on for one goal, so many goals reuse one grounding.  A *meal* (a
 tuple of goal ids) switches ``goal(G)`` on for each of its goals: the tree
 must make all of them, and a unit two dishes share is counted once.
+
+A solve is one plain optimisation here, or, when the options ask for more
+(depth bounds, human steps, alternatives, greedy retrieval), the session's
+:class:`~foon2asp.asp.multishot.driver.Driver`; both read models into task
+trees through :mod:`foon2asp.asp.answers`.
 """
 
 from __future__ import annotations
 
 import re
 import time
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import replace
-from typing import Any
 
 import clingo
 
 from foon2asp.asp import encodings, objectives, substitutes
+from foon2asp.asp.answers import Shot, solve_shot, status, task_tree
 from foon2asp.asp.canonical import canonical_problem, canonicalise, chain_facts
 from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import OPTIONAL, fact_objects, facts
@@ -25,7 +31,7 @@ from foon2asp.asp.multishot.driver import Driver
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
-from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, goal_fields, meal_of, measures
+from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
 from foon2asp.tree.upper import cheapest_tree
 
 
@@ -45,6 +51,10 @@ def _read_predicates(parts: list[tuple[str, str]]) -> set[str]:
     """The optional fact predicates (facts.OPTIONAL, input_nodes) some program mentions
     outside the part that defines them (a mention in a comment counts too: harmless)."""
     return {m.group(1) for name, text in parts if name != "input nodes" for m in _OPTIONAL_FACTS.finditer(text)}
+
+
+#: the statistics of a goal decided without a solve call
+NO_SOLVE = {"choices": 0, "conflicts": 0, "models": 0, "solve_s": 0.0}
 
 
 class Session:
@@ -70,59 +80,67 @@ class Session:
         problem = self.problem = substitutes.prepare(problem, self.options)
         self.control = Control(self.options.args())
         self.ctl = self.control.ctl
-        names = ["tree"] + objectives.encoding_names(self.options, OBJECTIVES) + self.options.encodings
         if units is None:
             units = self.options.units
         if units is None:
             # a unit that never fires in the kitchen's fixpoint is never a candidate
             units = sorted(problem.viable_units)
-        units = list(units)
         self.units = tuple(units)
+        self.required = tuple(sorted(set(require)))
+        #: no solve has run yet: the solver state is the same as in any fresh session of the same grounding
+        self._fresh = True
+        #: the multi-shot driver (depth bounds, alternatives, ...), made at the first driven solve
+        self._driver: Driver | None = None
+        t0 = time.perf_counter()
+        self.control.add_all(self._parts(), user=[name for name, _ in self.options.programs])
+        self.control.ground()
+        self.ground_s = time.perf_counter() - t0
+        self.goal_atoms = self._goal_atoms()
+
+    def _parts(self) -> list[tuple[str, str]]:
+        """The named programs of the grounding: facts, encodings, objective, goal, extras."""
+        options, units = self.options, list(self.units)
+        names = ["tree"] + objectives.encoding_names(options, OBJECTIVES) + options.encodings
         rules = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(names)]
-        rules.append(("objective", _objective_facts(objectives.ranked(self.options))))
-        rules += objectives.extra_parts(problem, self.options, units)
+        rules.append(("objective", _objective_facts(objectives.ranked(options))))
+        rules += objectives.extra_parts(self.problem, options, units)
         if self.goal is None:
             rules.append(("goal", "#external goal(O) : object(O).\n"))
         else:
             rules.append(("goal", "".join(f"goal({g}).\n" for g in self.goal)))
-        if self.options.canonical and not self.options.heuristic:
+        if options.canonical and not options.heuristic:
             rules.append(("encodings/canonical.lp", encodings.encoding("canonical")))
             rules.append(("unit order", chain_facts(units)))
-        required = sorted(set(require))
-        self.required = tuple(required)
-        #: no solve has run yet: the solver state is the same as in any fresh session of the same grounding
-        self._fresh = True
-        if required:
-            rules.append(("required units", "".join(f":- not use({u}).\n" for u in required)))
-        rules += list(self.options.programs)
+        if self.required:
+            rules.append(("required units", "".join(f":- not use({u}).\n" for u in self.required)))
+        rules += list(options.programs)
         # facts nobody reads are left out (the strings, input/2, ...: user constraints read them)
         read = _read_predicates(rules)
         rules = [(name, text) for name, text in rules if name != "input nodes" or "input_nodes" in read]
         leave_out = [p for p in OPTIONAL if p not in read]
-        parts = [("facts", facts(problem, units=units, leave_out=leave_out))] + rules
-        t0 = time.perf_counter()
-        self.control.add_all(parts, user=[name for name, _ in self.options.programs])
-        self.control.ground()
-        self.ground_s = time.perf_counter() - t0
-        self._driver: Driver | None = None
-        conf: Any = self.ctl.configuration.solve
-        self._plain_conf = (conf.opt_mode, conf.models, conf.project)
-        if self.options.canonical:
-            # up to two distinct optimal trees in one solve: a second one calls for canonicalise()
-            conf.opt_mode, conf.models, conf.project = "optN", "2", "project"
+        return [("facts", facts(self.problem, units=units, leave_out=leave_out))] + rules
+
+    def _goal_atoms(self) -> set[int]:
+        """The objects a solve may switch on as goals."""
         if self.goal is not None:
-            self.goal_atoms = set(self.goal)  # the goal is a fact: the solver decides
-        elif self.options.programs:
+            return set(self.goal)  # the goal is a fact: the solver decides
+        if self.options.programs:
             # a user program may add objects: ask the grounder
-            self.goal_atoms = {
+            return {
                 a.symbol.arguments[0].number for a in self.ctl.symbolic_atoms.by_signature("goal", 1) if a.is_external
             }
-        else:
-            # the goal externals: one per object of the facts (no scan of the grounded atoms)
-            self.goal_atoms = fact_objects(problem, units)
+        # the goal externals: one per object of the facts (no scan of the grounded atoms)
+        return fact_objects(self.problem, list(self.units))
 
-    def _set_goal(self, goal: int, value: bool) -> None:
-        self.control.assign({clingo.Function("goal", [clingo.Number(goal)]): value})
+    @contextmanager
+    def _goals_on(self, meal: tuple[int, ...]) -> Iterator[None]:
+        """The body runs with ``goal(G)`` on for each goal of ``meal`` (off again afterwards)."""
+        atoms = [clingo.Function("goal", [clingo.Number(g)]) for g in meal]
+        self.control.assign(dict.fromkeys(atoms, True))
+        try:
+            yield
+        finally:
+            self.control.assign(dict.fromkeys(atoms, False))
 
     def solve(
         self,
@@ -193,25 +211,43 @@ class Session:
         time_limit: float | None,
         known: tuple[Sequence[int], Sequence[int]] | None = None,
     ) -> TaskTree:
-        goal = meal if len(meal) > 1 else meal[0]
+        """One plain optimisation for ``meal`` (the driver when the options need more), then
+        the canonical tree: here, or in the meal's canonical session."""
         if self.options.driven:
-            # depth bounds, human steps, alternatives, greedy: see foon2asp.driver
+            # depth bounds, human steps, alternatives, greedy: see foon2asp.asp.multishot.driver
             if self._driver is None:
                 self._driver = Driver(self)
-            return self._driver.solve(goal, on_model, time_limit)
+            return self._driver.solve(meal if len(meal) > 1 else meal[0], on_model, time_limit)
         time_limit = self.options.time_limit if time_limit is None else time_limit
         t0 = time.perf_counter()
         if any(g not in self.goal_atoms for g in meal):
             # a goal is not an object of the grounded facts: nothing makes it (no solve call)
-            stats: dict[str, Any] = {"choices": 0, "conflicts": 0, "models": 0, "solve_s": 0.0}
-            return TaskTree(
-                method=self.options.method,
-                status="unreachable",
-                time_s=time.perf_counter() - t0,
-                stats=stats,
-                **goal_fields(meal),
-            )
-        # a fresh session on the goal's own part is its canonical session (foon2asp.asp.canonical)
+            return self._tree(meal, None, "unreachable", t0, dict(NO_SOLVE))
+        here = self._canonical_here(meal)
+        # with a known tree one plain optimisation decides whether it is optimal; the canonical
+        # session always looks for a second optimal tree, so its answer does not depend on `known`
+        plain = known is not None and self.options.canonical and not here
+        mode, count = ("optN", 2) if self.options.canonical and not plain else ("opt", 1)
+        with self._goals_on(meal):
+            shot = solve_shot(self.control, mode, count, on_model, time_limit or None)
+            stats = self.stats()
+            answer, start = self._choose(shot, known, plain)
+            if start is not None and here:
+                answer = self._canonicalise(start, t0, time_limit, stats)
+        if start is not None and not here:
+            # the canonical tree comes from the goal's canonical session, whatever this session's history
+            left = None if not time_limit else max(0.0, time_limit - (time.perf_counter() - t0))
+            if left is None or left > 0:
+                return self._canonical_session(meal, known, left, t0)
+            answer, stats["canonical_search"] = start, "time"
+        return self._tree(meal, answer, status(answer, shot), t0, stats)
+
+    def _tree(self, meal: tuple[int, ...], answer: Answer | None, status: str, t0: float, stats: dict) -> TaskTree:
+        return task_tree(self.problem, self.options.method, meal, status, answer, time.perf_counter() - t0, stats)
+
+    def _canonical_here(self, meal: tuple[int, ...]) -> bool:
+        """Is this session ``meal``'s canonical session (foon2asp.asp.canonical): fresh, grounded
+        for the meal's own part and nothing required?  The session is no longer fresh afterwards."""
         if self.goal is not None and meal != self.goal:
             raise ValueError(f"a session grounded for {self.goal} cannot solve {meal}")
         here = False
@@ -219,82 +255,35 @@ class Session:
             view, part = canonical_problem(self.problem, meal)
             here = self.units == part and self.problem.kitchen == view.kitchen
         self._fresh = False
-        best: dict = {}
-        optimal: dict[tuple[int, ...], list[int]] = {}
-        start: Answer | None = None  # an optimal tree to start the search for the canonical one from
+        return here
 
-        def record(model: clingo.Model) -> None:
-            best["units"] = [s.arguments[0].number for s in model.symbols(shown=True) if s.name == "use"]
-            best["cost"] = list(model.cost)
-            best["proven"] = model.optimality_proven
-            if model.optimality_proven:
-                optimal.setdefault(tuple(sorted(best["units"])), best["cost"])
-            if on_model is not None:
-                on_model(model)
-
-        conf: Any = self.ctl.configuration.solve
-        saved = (conf.opt_mode, conf.models, conf.project)
-        # with a known tree one plain optimisation decides whether it is optimal; the canonical
-        # session always looks for a second optimal tree, so its answer does not depend on `known`
-        plain = known is not None and self.options.canonical and not here
+    def _choose(
+        self, shot: Shot, known: tuple[Sequence[int], Sequence[int]] | None, plain: bool
+    ) -> tuple[Answer | None, Answer | None]:
+        """The answer of ``shot``, and an optimal tree to start the search for the canonical
+        tree from (None: none is needed)."""
+        answer = shot.last
+        if answer is None or not shot.finished:
+            return answer, None
+        if known is not None and self.options.canonical and answer.cost == tuple(known[1]):
+            # the known tree is optimal: it is the answer
+            return Answer(tuple(sorted(known[0])), answer.cost, answer.proven, answer.human), None
         if plain:
-            conf.opt_mode, conf.models, conf.project = self._plain_conf
-        for g in meal:
-            self._set_goal(g, True)
-        try:
-            result = self.control.solve(record, time_limit or None)
-            stats = self.stats()
-            conf.opt_mode, conf.models, conf.project = saved
-            if (
-                known is not None
-                and self.options.canonical
-                and "units" in best
-                and result.finished
-                and best["cost"] == list(known[1])
-            ):
-                best["units"] = list(known[0])  # the known tree is optimal: it is the answer
-            elif plain and result.finished and "units" in best:
-                start = Answer(tuple(sorted(best["units"])), tuple(best["cost"]), True)
-            elif len(optimal) > 1 and result.finished:
-                # several optimal trees: return the smallest one, which depends only on the input
-                smallest = min(optimal)
-                start = Answer(smallest, tuple(optimal[smallest]), True)
-            if start is not None and here:
-                deadline = None if not time_limit else t0 + time_limit
-                answer, complete = canonicalise(self.control, start, deadline)
-                best["units"], best["cost"], best["proven"] = list(answer.units), list(answer.cost), True
-                if not complete:
-                    stats["canonical_search"] = "budget" if not deadline or time.perf_counter() < deadline else "time"
-        finally:
-            conf.opt_mode, conf.models, conf.project = saved
-            for g in meal:
-                self._set_goal(g, False)
-        elapsed = time.perf_counter() - t0
-        if start is not None and not here:
-            # the canonical tree comes from the goal's canonical session, whatever this session's history
-            left = None if not time_limit else max(0.0, time_limit - elapsed)
-            if left is None or left > 0:
-                return self._canonical_session(meal, known, left, t0)
-            best["units"], best["cost"], best["proven"] = list(start.units), list(start.cost), True
-            stats["canonical_search"] = "time"
-        if "units" in best:
-            # no cost terms at all (e.g. the goal is in the kitchen): any model is optimal
-            proven = best["proven"] or not any(best["cost"])
-            status = "optimal" if result.finished or proven else "feasible"
-        else:
-            status = "unreachable" if result.unsatisfiable else "unknown"
-        units = executable_order(self.problem, best.get("units", []))
-        cost = measures(self.problem, meal, units) if status in ("optimal", "feasible") else {}
-        return TaskTree(
-            method=self.options.method,
-            status=status,
-            units=units,
-            cost=cost,
-            time_s=round(elapsed, 6),
-            stats=stats,
-            extra={"asp_cost": best.get("cost", [])} if best else {},
-            **goal_fields(meal),
-        )
+            return answer, Answer(answer.units, answer.cost, True)
+        if len(shot.answers) > 1:
+            # several optimal trees: return the smallest one, which depends only on the input
+            smallest = shot.answers[0]
+            return answer, Answer(smallest.units, smallest.cost, True)
+        return answer, None
+
+    def _canonicalise(self, start: Answer, t0: float, time_limit: float | None, stats: dict) -> Answer:
+        """The smallest optimal tree, searched from ``start`` on this session (its canonical
+        session); a search its budget or the time limit ended is noted in ``stats``."""
+        deadline = None if not time_limit else t0 + time_limit
+        answer, complete = canonicalise(self.control, start, deadline)
+        if not complete:
+            stats["canonical_search"] = "budget" if not deadline or time.perf_counter() < deadline else "time"
+        return Answer(answer.units, answer.cost, True, answer.human)
 
     def _canonical_session(
         self,

@@ -1,9 +1,25 @@
-"""The ``foon2asp`` command line: a thin layer over :mod:`foon2asp.api`."""
+"""The ``foon2asp`` command line: a thin layer over :mod:`foon2asp.api`.
 
-from foon2asp.cli import (
-    draw,  # noqa: F401  (registers the command)
-    export,  # noqa: F401  (registers 'export')
-    objects,  # noqa: F401  (registers the command on main)
+:mod:`~foon2asp.cli.main` holds the command group and the error handling; each command is a
+module here (importing it registers the command); :mod:`~foon2asp.cli.options` declares the
+shared options once, :mod:`~foon2asp.cli.params` the checked option types and
+:mod:`~foon2asp.cli.output` the exit codes, warnings and progress bars.
+"""
+
+from foon2asp.cli import (  # noqa: F401  (each module registers its command on main)
+    batch,
+    check,
+    compare,
+    draw,
+    export,
+    facts,
+    merge,
+    methods,
+    missing,
+    objects,
+    query,
+    reachable,
+    solve,
 )
 from foon2asp.cli.main import main
 

@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import click
 
-from foon2asp.analysis.check import read_and_check
-from foon2asp.cli.main import guarded, load, main
+from foon2asp import api
+from foon2asp.cli.main import guarded, main
+from foon2asp.cli.options import DataArgs
 from foon2asp.report import draw as draw_mod
 
 
@@ -31,10 +30,8 @@ def draw(tree, data_dir, goal, output, fmt):
     fmt = fmt or draw_mod.format_of(output)
     if fmt != "dot":
         draw_mod.require_dot()
-    problem = data = None
+    kb = None
     if data_dir is not None:
-        kb = load(data_dir, (), None, None, None, "starter", False)
-        data, problem = kb.data, kb.problem
-    trees, reports = read_and_check(tree, data, problem, goal)
-    Path(output).write_bytes(draw_mod.render(draw_mod.file_graph(trees, reports, problem), fmt))
-    click.echo(f"drew {len(trees)} tree(s) from {tree} -> {output}", err=True)
+        kb = DataArgs(data_dir, (), None, None, None, "starter", False).load()
+    count = api.draw_file(tree, output, fmt=fmt, kb=kb, goal=goal)
+    click.echo(f"drew {count} tree(s) from {tree} -> {output}", err=True)

@@ -6,9 +6,9 @@ from pathlib import Path
 
 import click
 
-from foon2asp.cli.main import constraint_options, data_options, guarded, main
+from foon2asp.cli.main import guarded, main
+from foon2asp.cli.options import constraint_options, data_options
 from foon2asp.errors import InputError
-from foon2asp.foon import goals as goals_mod
 from foon2asp.report import pddl
 
 
@@ -38,7 +38,7 @@ def export():
 @click.option("--name", default="foon", show_default=True, help="Domain name (problem: NAME-task).")
 @constraint_options
 @guarded
-def export_pddl(data, goal, goals, objective, output, name, constraints):
+def export_pddl(data, goal, goals, objective, output, name, options):
     """The goal's relevant part as a delete-free STRIPS domain and problem (DIR/domain.pddl, DIR/problem.pddl).
 
     One action per functional unit, named u<id>-<motion> (a plan maps back to the units:
@@ -50,11 +50,10 @@ def export_pddl(data, goal, goals, objective, output, name, constraints):
     if goals == "all-objects":
         raise InputError("--goals all-objects cannot be one PDDL goal; name goals with --goal or a goals FILE")
     kb = data.load(goals)
-    data, problem = kb.data, kb.problem
-    goal_ids = goals_mod.resolve(data, problem, goal, goals)
+    goal_ids = kb.select_goals(goal, goals)
     if not all(c.isalnum() or c in "-_" for c in name) or not name[:1].isalpha():
         raise InputError(f"--name must be a PDDL name (a letter, then letters, digits, - or _), not {name!r}")
-    task = pddl.export(problem, goal_ids, objective, constraints, name)
+    task = pddl.export(kb.problem, goal_ids, objective, options.constraints, name)
     out = Path(output)
     out.mkdir(parents=True, exist_ok=True)
     (out / "domain.pddl").write_text(task.domain, encoding="utf-8")

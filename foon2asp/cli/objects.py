@@ -6,7 +6,8 @@ import json
 
 import click
 
-from foon2asp.cli.main import data_options, guarded, main
+from foon2asp.cli.main import guarded, main
+from foon2asp.cli.options import data_options
 
 
 def _data_options_but_kitchen(func):
@@ -22,6 +23,7 @@ def _data_options_but_kitchen(func):
 @click.option("--kitchen", "only", flag_value="kitchen", help="Only kitchen items.")
 @click.option("--derivable", "only", flag_value="derivable", help="Only objects that can be made from the kitchen.")
 @click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+@guarded
 def objects(query, data, only, fmt):
     """List the objects LABEL names (all objects without it), each with its #ID and text.
 
@@ -29,11 +31,6 @@ def objects(query, data, only, fmt):
     Any #ID or text listed can be given as --goal; the JSON list is a goals file
     (--goals FILE).
     """
-    _objects(query, data, only, fmt)
-
-
-@guarded
-def _objects(query, data, only, fmt):
     kb = data.load()
     ids = kb.find_objects(query, only)
     infos = [kb.object_info(i) for i in ids]

@@ -1,71 +1,293 @@
-"""What every command shares: the error style, exit codes, progress bars and streamed output."""
+"""The options the commands share, each declared once.
+
+The data options become one :class:`DataArgs` value (``data``); the request's objective,
+time limit, constraints and solver settings become one :class:`foon2asp.api.Options` value
+(``options``), filled by every decorator that declares some of them (:func:`request_options`).
+"""
 
 from __future__ import annotations
 
-import sys
-from collections.abc import Iterable
-from typing import Any
+import functools
+from collections.abc import Callable
+from dataclasses import dataclass
 
 import click
-from tqdm import tqdm
 
-#: exit codes, the same for every command (README "Exit codes")
-EXIT_CODES = """\b
-Exit codes: 0 every goal answered as asked (a tree, or proven unreachable);
-1 some answer is not proven (time limit) or a tree is invalid;
-2 bad input or usage; 130 interrupted."""
-
-#: statuses that answer a goal: a proven tree, a proven k-th best tree, a proof that there is none,
-#: or a search method's tree (judged separately by "valid")
-ANSWERED = frozenset({"optimal", "ranked", "unreachable", "found", "satisfiable", "unsatisfiable"})
+from foon2asp import api, report
+from foon2asp.cli.output import warn_kb
+from foon2asp.cli.params import SECONDS, int32
+from foon2asp.errors import InputError
 
 
-#: statuses that come with a tree (whose "valid" counts)
-WITH_TREE = frozenset({"optimal", "ranked", "feasible", "found"})
+def request_options(keys: dict[str, str], *opts: Callable, check: Callable[[dict], None] | None = None):
+    """A decorator adding the click options ``opts``; the values of their parameters (``keys``:
+    parameter name -> keyword of :class:`foon2asp.api.options.Settings`) go into ``options``."""
+
+    def decorate(func):
+        @functools.wraps(func)
+        def wrapper(*args, **kwargs):
+            values = {key: kwargs.pop(param) for param, key in keys.items()}
+            if check is not None:
+                check(values)
+            kwargs["options"] = api.Options.of(kwargs.pop("options", None), **values)
+            return func(*args, **kwargs)
+
+        for opt in reversed(opts):
+            wrapper = opt(wrapper)
+        return wrapper
+
+    return decorate
 
 
-def exit_code(answers: Iterable[tuple[str, Any]]) -> int:
-    """0 when every (status, valid) pair answers its goal, else 1 (``valid`` None: not judged)."""
-    ok = all(status in ANSWERED and not (valid is False and status in WITH_TREE) for status, valid in answers)
-    return 0 if ok else 1
+# ---------------------------------------------------------------- the data
 
 
-def error(message: str) -> str:
-    return f"foon2asp: error: {message}"
+@dataclass(frozen=True)
+class DataArgs:
+    """The data options of a command (--data, --foon, --kitchen, --motion, --utensils, --utensil-rule, --strict)."""
+
+    data_dir: str | None
+    foon: tuple[str, ...]
+    kitchen: str | None
+    motion: str | None
+    utensils: str | None
+    utensil_rule: str
+    strict: bool
+
+    def load(self, goals_file: str | None = None) -> api.KnowledgeBase:
+        """The knowledge base these options name (``goals_file``: a ``--goals FILE`` to read); its
+        warnings go to stderr.  Never the demo data unless asked."""
+        if self.data_dir is None and not self.foon:
+            raise InputError(
+                "no data given: use --data DIR, --foon FILE (with kitchen.json ... beside it) or --data demo"
+            )
+        kb = api.load(
+            self.data_dir,
+            foon=list(self.foon) if self.foon else None,
+            kitchen=self.kitchen,
+            goals=goals_file if goals_file not in (None, "all", "all-objects") else None,
+            motion=self.motion,
+            utensils=self.utensils,
+            utensil_rule=self.utensil_rule,
+            strict=self.strict,
+        )
+        warn_kb(kb)
+        return kb
 
 
-class Group(click.Group):
-    """click's group with foon2asp's error style: usage errors are one line
-    ``foon2asp: error: ...`` on stderr with exit code 2, like bad input."""
+def data_options(func, with_kitchen: bool = True):
+    """--data DIR and the per-file overrides, plus --utensil-rule and --strict, passed on as one
+    ``data`` value (:class:`DataArgs`); ``with_kitchen=False`` leaves out ``--kitchen FILE``."""
+    opts = [
+        click.option(
+            "--data",
+            "data_dir",
+            type=click.Path(),
+            help="Directory with FOON.txt, kitchen.json, goal_nodes.json, motion.txt, utensils.txt;"
+            " 'demo' for the demo data set shipped with foon2asp.",
+        ),
+        click.option(
+            "--foon",
+            "foon",
+            type=click.Path(),
+            multiple=True,
+            help="FOON file(s), several are merged; without --data the other files are read from beside the first.",
+        ),
+        click.option("--motion", type=click.Path(), help="motion.txt (motion TAB success rate)"),
+        click.option("--utensils", type=click.Path(), help="utensils.txt"),
+        click.option(
+            "--utensil-rule",
+            type=click.Choice(api.UTENSIL_RULES),
+            default="starter",
+            show_default=True,
+            help="When a utensil holding one ingredient is not a required input.",
+        ),
+        click.option("--strict", is_flag=True, help="Treat skipped FOON units (warnings) as errors."),
+    ]
+    if with_kitchen:
+        opts.insert(2, click.option("--kitchen", type=click.Path(), help="kitchen.json"))
 
-    def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
-        try:
-            rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
-        except click.exceptions.NoArgsIsHelpError as exc:  # pragma: no cover - click >= 8.2
-            click.echo(exc.ctx.get_help() if exc.ctx else str(exc))
-            rv = 0
-        except click.UsageError as exc:
-            where = f"{exc.ctx.info_name}: " if exc.ctx is not None and exc.ctx.parent is not None else ""
-            hint = f" (see '{exc.ctx.command_path} --help')" if exc.ctx is not None else ""
-            click.echo(error(f"{where}{_one_line(exc.format_message())}{hint}"), err=True)
-            rv = 2
-        except click.ClickException as exc:
-            click.echo(error(_one_line(exc.format_message())), err=True)
-            rv = exc.exit_code
-        except click.Abort:
-            click.echo(error("interrupted"), err=True)
-            rv = 130
-        if not standalone_mode:
-            return rv
-        sys.exit(rv if isinstance(rv, int) else 0)
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        values = {k: kwargs.pop(k) for k in DataArgs.__dataclass_fields__ if with_kitchen or k != "kitchen"}
+        values.setdefault("kitchen", None)
+        return func(*args, data=DataArgs(**values), **kwargs)
+
+    for opt in reversed(opts):
+        wrapper = opt(wrapper)
+    return wrapper
 
 
-def _one_line(text: str) -> str:
-    return " ".join(text.split())
+# ---------------------------------------------------------------- goals and methods
+
+GOAL_HELP = (
+    "Goal: a label, an object's text as foon2asp prints it ('tomato, diced, in [plate]') or #ID"
+    " from 'foon2asp objects'; repeatable."
+)
+GOALS_HELP = (
+    "FILE of goal objects (e.g. 'foon2asp objects --format json' output), 'all' (the goals file) or"
+    " 'all-objects' (every made object). Default without --goal: the goals file."
+)
 
 
-def progress_bar(items: Iterable, total: int, enabled: bool | None, what: str) -> Any:
-    """``items`` (``total`` goals) behind a progress bar on stderr: when it is a terminal
-    and there is more than one goal (``enabled`` None), or as ``enabled`` says."""
-    show = (sys.stderr.isatty() and total > 1) if enabled is None else enabled
-    return tqdm(items, total=total, desc=what, unit="goal", file=sys.stderr, disable=not show, leave=False)
+def goal_options(func):
+    func = click.option("--goals", "goals", metavar="FILE|all|all-objects", help=GOALS_HELP)(func)
+    func = click.option("--goal", "goal", multiple=True, metavar="TEXT", help=GOAL_HELP)(func)
+    return func
+
+
+def method_option(default: str):
+    """``--method``/``--methods`` (the same option): registered names, comma-separated or repeated."""
+    return click.option(
+        "--methods",
+        "--method",
+        "method_list",
+        multiple=True,
+        metavar="NAME[,NAME]",
+        help=f"Registered method(s) (see 'foon2asp methods'), comma-separated or repeated (default: {default}).",
+    )
+
+
+def methods_of(values: tuple[str, ...], default: list[str] | tuple[str, ...] | None = None) -> list[str]:
+    """The names of ``--method`` (each checked), else ``default`` (``asp``)."""
+    names = [n.strip() for v in values for n in v.split(",") if n.strip()]
+    for name in names:
+        api.method(name)
+    return list(dict.fromkeys(names)) or list(default or ["asp"])
+
+
+def is_search(name: str) -> bool:
+    """Is ``name`` a search baseline (no solver, no constraints)?"""
+    return api.method(name).kind != "asp"
+
+
+# ---------------------------------------------------------------- formats and progress
+
+
+def format_option(kind: str):
+    """``--format`` with the formats of the answers of ``kind`` (:func:`foon2asp.report.names`)."""
+    return click.option("--format", "fmt", type=click.Choice(report.names(kind)), default="text", show_default=True)
+
+
+def progress_option(func):
+    return click.option(
+        "--progress/--no-progress", default=None, help="Progress bar on stderr (default: when it is a terminal)."
+    )(func)
+
+
+# ---------------------------------------------------------------- the request
+
+
+def objective_option(
+    help: str = "ASP objective(s), comma-separated, most important first.",
+):
+    """``--objective`` into ``options``."""
+    return request_options(
+        {"objective": "objective"}, click.option("--objective", default="units", show_default=True, help=help)
+    )
+
+
+def time_limit_option(help: str):
+    """``--time-limit SECONDS`` into ``options``."""
+    return request_options({"time_limit": "time_limit"}, click.option("--time-limit", type=SECONDS, help=help))
+
+
+def constraint_options(func):
+    """--constraint FILE.lp, --rule TEXT and the convenience flags, into ``options.constraints``."""
+    return request_options(
+        {
+            "constraint": "constraint_files",
+            "rule": "rules",
+            "forbid_motion": "forbid_motions",
+            "forbid_object": "forbid_objects",
+            "require_motion": "require_motions",
+            "require_object": "require_objects",
+            "max_units": "max_units",
+        },
+        click.option(
+            "--constraint",
+            type=click.Path(),
+            multiple=True,
+            help="ASP file with extra rules over the vocabulary (use/1, motion/2, label/2, ...); repeatable.",
+        ),
+        click.option(
+            "--rule", multiple=True, help="An extra ASP rule, e.g. ':- use(U), motion(U,\"fry\").'; repeatable."
+        ),
+        click.option(
+            "--forbid-motion", multiple=True, metavar="M", help="No unit of the tree has motion M; repeatable."
+        ),
+        click.option(
+            "--forbid-object",
+            multiple=True,
+            metavar="LABEL",
+            help="No unit of the tree has an input or output labelled LABEL; repeatable.",
+        ),
+        click.option(
+            "--require-motion", multiple=True, metavar="M", help="Some unit of the tree has motion M; repeatable."
+        ),
+        click.option(
+            "--require-object",
+            multiple=True,
+            metavar="LABEL",
+            help="Some unit of the tree has an input or output labelled LABEL; repeatable.",
+        ),
+        click.option("--max-units", type=int32(min=0), help="The tree has at most N units."),
+    )(func)
+
+
+def _opt_strategy(ctx, param, value):
+    if value is not None and value.split(",")[0] not in ("bb", "usc"):
+        raise click.BadParameter("expected bb or usc, optionally with clingo's refinements (e.g. usc,oll or bb,hier)")
+    return value
+
+
+def strategy_options(func):
+    """--opt-strategy and --threads into ``options`` (None and 1: the defaults of foon2asp.asp.settings)."""
+    return request_options(
+        {"opt_strategy": "opt_strategy", "threads": "threads"},
+        click.option(
+            "--opt-strategy",
+            callback=_opt_strategy,
+            help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll;"
+            " default usc,oll,succinct, or with --threads 2+ a portfolio of one bb and one usc solver.",
+        ),
+        click.option(
+            "--threads",
+            type=int32(min=1, max=64),
+            default=1,
+            show_default=True,
+            help="clingo solver threads (parallel mode; in a batch, per worker).",
+        ),
+    )(func)
+
+
+def _exclusive(values: dict) -> None:
+    if values["models"] > 1 and values["all_optimal"]:
+        raise click.UsageError("--models and --all-optimal exclude each other")
+
+
+def solver_options(func):
+    """--max-depth, --human-steps, --models, --all-optimal, then :func:`strategy_options`, into ``options``."""
+    func = strategy_options(func)
+    return request_options(
+        {"max_depth": "max_depth", "human_steps": "human_steps", "models": "models", "all_optimal": "all_optimal"},
+        click.option(
+            "--max-depth",
+            type=int32(min=1),
+            help="Only trees of at most N sequential rounds (the goal's level); with --objective depth, the search stops there.",
+        ),
+        click.option(
+            "--human-steps",
+            type=int32(min=0),
+            help="At most M units may be done by a person (success 1.0); the solver picks them, the output marks them.",
+        ),
+        click.option(
+            "--models",
+            type=int32(min=1),
+            default=1,
+            show_default=True,
+            help="The K best distinct trees per goal, best first.",
+        ),
+        click.option("--all-optimal", is_flag=True, help="Every optimal tree per goal (at most 100)."),
+        check=_exclusive,
+    )(func)

@@ -128,7 +128,9 @@ def resolve(data: Dataset, problem: Problem, goal: tuple[str, ...] | None, goals
     if goals == "all":
         path = data.paths.get("goals")
         if path is None:
-            raise InputError("--goals all needs a goals file (goal_nodes.json in --data DIR, or --goals FILE)")
+            raise InputError(
+                "'all' needs a goals file (goal_nodes.json in the data folder, or one given)", hint="goals-all"
+            )
         out += [goal_id(problem, obj, path, line) for obj, line in data.goals]
     elif goals == "all-objects":
         out += all_objects(problem)
@@ -143,7 +145,7 @@ def resolve(data: Dataset, problem: Problem, goal: tuple[str, ...] | None, goals
             raise InputError("no unit makes an object that is not in the kitchen: no goal")
         if goals:
             raise InputError("the goals file lists no goal", goals)
-        raise InputError("no goal given: use --goal TEXT or --goals FILE|all|all-objects")
+        raise InputError("no goal given", hint="no-goal")
     return out
 
 
@@ -152,8 +154,7 @@ def default_goals(data: Dataset, problem: Problem) -> list[int]:
     path = data.paths.get("goals")
     if path is None:
         raise InputError(
-            "no goal given and no goals file: use --goal TEXT, --goals FILE or --goals all-objects"
-            " (goal_nodes.json beside the FOON is read when present)"
+            "no goal given and no goals file (name goals, a goals file or 'all-objects')", hint="no-goals-file"
         )
     return [goal_id(problem, obj, path, line) for obj, line in data.goals]
 

@@ -19,7 +19,9 @@ class TaskTree:
     ``status``: ``optimal`` | ``feasible`` | ``unreachable`` | ``unknown`` for
     ASP methods, ``found`` | ``not-found`` for the search baselines.
     For a meal ``goals`` holds every goal (``goal`` is the first); for a
-    single goal ``goals`` is empty.
+    single goal ``goals`` is empty.  ``alternatives``: the further trees found
+    with this one (the K best trees, all optimal trees), best first; they are
+    not part of the tree's JSON (each is written as a tree of its own).
     """
 
     goal: int
@@ -31,6 +33,7 @@ class TaskTree:
     stats: dict = field(default_factory=dict)
     extra: dict = field(default_factory=dict)
     goals: tuple[int, ...] = ()
+    alternatives: list[TaskTree] = field(default_factory=list)
 
     @property
     def has_tree(self) -> bool:

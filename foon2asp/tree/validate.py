@@ -3,13 +3,20 @@
 It does not use the encodings nor :meth:`Problem.derivation_levels`: it
 replays the units on plain objects, straight from the FOON, the kitchen and
 the utensil rule, so it can be trusted to judge every answer.
+
+:func:`judge_alone` judges a tree file on its own (a list of units, no FOON):
+the kitchen is its leaves (:mod:`foon2asp.foon.leaves`), the goal the products
+of its last unit; it says whether the units fire in the order given and as a
+set, and explains the first unit that cannot (the object it waits for and the
+later unit that makes it) and any cycle.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from foon2asp.foon.model import FoonObject
+from foon2asp.foon.leaves import leaves
+from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem, product_outputs, required_flags
 
 
@@ -81,3 +88,165 @@ def check_order(problem: Problem, goal: FoonObject | int, units: list[int]) -> s
                 return f"step {step} (unit {u}) needs {o}, which is not had yet"
         have.update(_products(problem, u))
     return None if goal_obj in have else f"goal {goal_obj} is not made"
+
+
+# ---------------------------------------------------------------- a tree on its own
+
+
+@dataclass
+class Blocked:
+    """The first unit that cannot fire when its turn comes (units in the order given)."""
+
+    step: int  # its position in the list, from 1
+    unit: Unit
+    #: the first required input not had at that point
+    waits_for: FoonObject
+    #: the position of the first later unit that makes it (None: no unit of the list does)
+    made_by: int | None
+
+
+@dataclass
+class AloneVerdict:
+    """What :func:`judge_alone` says about a list of units (positions count from 1)."""
+
+    #: the units, as a set, make every goal from the kitchen (as :func:`validate` judges)
+    valid: bool
+    #: the units fire in the order given and the goals are had at the end (as :func:`check_order` judges)
+    in_order: bool
+    goals: tuple[FoonObject, ...]
+    kitchen: list[FoonObject]
+    blocked: Blocked | None = None
+    #: positions of the units that can never fire with these units
+    stuck: list[int] = field(default_factory=list)
+    #: circular support: (object, position of the unit that makes it and needs the next pair's
+    #: object); the last unit needs the first object
+    cycle: list[tuple[FoonObject, int]] = field(default_factory=list)
+    #: an object a stuck unit needs that is neither in the kitchen nor made by any unit, and that unit
+    missing: FoonObject | None = None
+    needed_by: int | None = None
+    #: goals not made by the units as a set
+    unmade: list[FoonObject] = field(default_factory=list)
+    #: the first problem in words (None when valid and executable in order)
+    problem: str | None = None
+
+
+def _name(step: int, unit: Unit) -> str:
+    return f"step {step} ({unit.motion})"
+
+
+def _made_objects(unit: Unit) -> list[FoonObject]:
+    return product_outputs(unit)
+
+
+def _default_goals(units: list[Unit]) -> tuple[FoonObject, ...]:
+    """The products of the last unit that makes any (generated trees list their units in order)."""
+    for unit in reversed(units):
+        if _made_objects(unit):
+            return tuple(dict.fromkeys(_made_objects(unit)))
+    return ()
+
+
+def judge_alone(
+    units: list[Unit],
+    goal: FoonObject | tuple[FoonObject, ...] | None = None,
+    kitchen: list[FoonObject] | None = None,
+    utensils: frozenset[str] = frozenset(),
+    utensil_rule: str = "starter",
+) -> AloneVerdict:
+    """Judge a tree file on its own: ``units`` in file order, no FOON.
+
+    The kitchen is the units' leaves (:func:`foon2asp.foon.leaves.leaves`) unless
+    given; the goal is the products of the last unit unless given (one object or
+    several; a list of units that makes nothing is not valid).  The units are replayed
+    on plain objects: in the given order (the first unit that cannot fire, the object
+    it waits for and the later unit that makes it), then as a set (a fixpoint, as
+    :func:`validate` does: a unit that never fires is explained by an object no unit
+    makes or by the cycle it rests on).
+    """
+    start = list(kitchen) if kitchen is not None else leaves(units)
+    goals = _default_goals(units) if goal is None else (goal if isinstance(goal, tuple) else (goal,))
+    need = [[o for o, f in zip(u.inputs, required_flags(u, utensils, utensil_rule)) if f] for u in units]
+    makers: dict[FoonObject, list[int]] = {}
+    for k, u in enumerate(units):
+        for o in _made_objects(u):
+            makers.setdefault(o, []).append(k)
+    verdict = AloneVerdict(False, False, goals, start)
+
+    # in the order given
+    have = set(start)
+    for k, u in enumerate(units):
+        lacking = [o for o in need[k] if o not in have]
+        if lacking:
+            later = next((m for m in makers.get(lacking[0], []) if m > k), None)
+            verdict.blocked = Blocked(k + 1, u, lacking[0], None if later is None else later + 1)
+            break
+        have.update(_made_objects(u))
+    verdict.in_order = bool(goals) and verdict.blocked is None and all(g in have for g in goals)
+
+    # as a set
+    have = set(start)
+    pending = list(range(len(units)))
+    progress = True
+    while progress:
+        progress = False
+        for k in list(pending):
+            if all(o in have for o in need[k]):
+                pending.remove(k)
+                have.update(_made_objects(units[k]))
+                progress = True
+    verdict.stuck = [k + 1 for k in pending]
+    verdict.unmade = [g for g in goals if g not in have]
+    verdict.valid = bool(goals) and not pending and not verdict.unmade
+    if pending:
+        _explain_stuck(need, have, makers, pending[0], verdict)
+    verdict.problem = _alone_problem(units, verdict)
+    return verdict
+
+
+def _explain_stuck(
+    need: list[list[FoonObject]],
+    have: set[FoonObject],
+    makers: dict[FoonObject, list[int]],
+    k: int,
+    verdict: AloneVerdict,
+) -> None:
+    """Walk back from stuck unit ``k``: a stuck unit waits for an object whose makers are
+    all stuck (else it would be had); the walk ends at an object no unit makes or closes
+    a cycle."""
+    path: list[tuple[FoonObject, int]] = []
+    seen: dict[FoonObject, int] = {}
+    while True:
+        obj = next(o for o in need[k] if o not in have)
+        if obj in seen:
+            verdict.cycle = [(o, m + 1) for o, m in path[seen[obj] :]]
+            return
+        if not makers.get(obj):
+            verdict.missing, verdict.needed_by = obj, k + 1
+            return
+        seen[obj] = len(path)
+        k = makers[obj][0]
+        path.append((obj, k))
+
+
+def _alone_problem(units: list[Unit], v: AloneVerdict) -> str | None:
+    """The verdict's first problem in words."""
+    if not v.goals:
+        return "no goal: no unit makes an object"
+    if v.cycle:
+        steps = []
+        for i, (o, step) in enumerate(v.cycle):
+            nxt = v.cycle[(i + 1) % len(v.cycle)][0]
+            steps.append(f"[{o}] is made by {_name(step, units[step - 1])}, which needs [{nxt}]")
+        return "circular support: " + "; ".join(steps)
+    if v.missing is not None and v.needed_by is not None:
+        return (
+            f"missing input: {v.missing} is needed by {_name(v.needed_by, units[v.needed_by - 1])} "
+            "but is not in the kitchen and no unit makes it"
+        )
+    if v.blocked is not None:
+        b = v.blocked
+        later = f"which only {_name(b.made_by, units[b.made_by - 1])} makes" if b.made_by else "which no unit makes"
+        return f"{_name(b.step, b.unit)} cannot fire in the order given: it waits for {b.waits_for}, {later}"
+    if v.unmade:
+        return f"goal {v.unmade[0]} is not made by these units"
+    return None

@@ -28,6 +28,7 @@ DEPENDS: dict[str, tuple[str, ...]] = {
     "units": ("tree",),
     "success": ("tree",),
     "inputs": ("tree",),
+    "cost": ("tree",),
     "human": ("tree",),
     "greedy": ("tree",),
     "greedy_h1": ("greedy",),

@@ -41,19 +41,19 @@ fixpoint's lower bound for a meal is the greatest level of its goals.
 
 The depth of a tree is the level of the goal in
 :meth:`Problem.derivation_levels` over the tree's units, which is what
-:func:`foon2asp.tree.measures` reports; ``had_at(k,O,t)`` is "level of O <= t".
+:func:`foon2asp.tree.tasktree.measures` reports; ``had_at(k,O,t)`` is "level of O <= t".
 """
 
 from __future__ import annotations
 
 from collections import deque
 from collections.abc import Callable
+from dataclasses import dataclass, field
 from typing import Any
 
 import clingo
 
-from foon2asp.asp.control import deferred_signals
-from foon2asp.errors import InputError
+from foon2asp.asp.control import Control, deferred_signals
 
 
 class Levels:
@@ -185,84 +185,83 @@ class Levels:
         return sorted(out)
 
 
-def levels(session) -> Levels:
-    """The session's :class:`Levels` (computed once)."""
-    index = getattr(session, "depth_levels", None)
-    if index is None:
+@dataclass
+class DepthSearch:
+    """What the depth loop knows of the current goal (kept across its cost levels)."""
+
+    #: the least bound not yet refuted (None: the loop has not started)
+    bound: int | None = None
+    #: ``(bound, how)``: how = "grounder" (the least fixpoint puts the goal higher: refuted
+    #: without solving) or "solver" (unsatisfiable)
+    refuted: list[tuple[int, str]] = field(default_factory=list)
+    #: the last result came from the solve without the depth cost (its depth was already least)
+    shortcut: bool = False
+
+
+class Rounds:
+    """The depth blocks grounded on one session's Control, each once, and the session's
+    :class:`Levels` (owned by the session's :class:`~foon2asp.asp.multishot.driver.Driver`)."""
+
+    def __init__(self, control: Control, levels: Levels) -> None:
+        self.control = control
+        self.levels = levels
+        #: ``(goal, bound)`` -> the id ``k`` of its block
+        self.blocks: dict[tuple[int, int], int] = {}
+        #: ``(meal, bound)`` -> the id ``m`` of its meal block
+        self.meal_blocks: dict[tuple[tuple[int, ...], int], int] = {}
+
+    @classmethod
+    def of(cls, session) -> Rounds:
+        """For ``session`` (a :class:`~foon2asp.asp.session.Session`): its levels read from the
+        Problem, or from the grounded atoms when user programs may add facts."""
+        control = session.control
         options = session.options
         if options.programs or options.encodings:
-            # user programs may add facts: read what was grounded
-            index = Levels.from_control(session.ctl)
-        else:
-            units = [a.symbol.arguments[0].number for a in session.ctl.symbolic_atoms.by_signature("unit", 1)]
-            index = Levels.from_problem(session.problem, units)
-        session.depth_levels = index
-    return index
+            return cls(control, Levels.from_control(control.ctl))
+        units = [a.symbol.arguments[0].number for a in control.ctl.symbolic_atoms.by_signature("unit", 1)]
+        return cls(control, Levels.from_problem(session.problem, units))
 
+    def block(self, goal: int, bound: int) -> int:
+        """Ground the block for ``goal`` and ``bound`` (once) and return its id ``k``."""
+        if (goal, bound) in self.blocks:
+            return self.blocks[(goal, bound)]
+        k = len(self.blocks) + 1
+        text = "".join(f"window({k},{u},{lo},{hi}).\n" for u, lo, hi in self.levels.windows(goal, bound))
+        with deferred_signals():  # a signal waits until the block is grounded and known
+            self.control.extend(f"depth_windows_{k}", text, [("bound", (k, goal, bound))], "grounding the depth rounds")
+            self.blocks[(goal, bound)] = k
+        return k
 
-def _message(session) -> str:
-    """clingo's first message of the last failed call, or a generic one."""
-    messages = session.control.messages
-    return messages[0] if messages else "clingo failed"
+    def meal_block(self, meal: tuple[int, ...], bound: int) -> int:
+        """Ground the blocks of ``meal``'s goals and the meal block for ``bound`` (once); its id ``m``."""
+        if (meal, bound) in self.meal_blocks:
+            return self.meal_blocks[(meal, bound)]
+        members = [self.block(g, bound) for g in meal]
+        m = len(self.meal_blocks) + 1
+        text = "".join(f"member({m},{k}).\n" for k in members)
+        with deferred_signals():
+            self.control.extend(f"depth_meal_{m}", text, [("meal", (m, bound))], "grounding the depth rounds of a meal")
+            self.meal_blocks[(meal, bound)] = m
+        return m
 
-
-def block(session, goal: int, bound: int) -> int:
-    """Ground the block for ``goal`` and ``bound`` (once) and return its id ``k``."""
-    blocks = session.__dict__.setdefault("depth_blocks", {})
-    if (goal, bound) in blocks:
-        return blocks[(goal, bound)]
-    k = len(blocks) + 1
-    windows = levels(session).windows(goal, bound)
-    name = f"depth_windows_{k}"
-    text = "".join(f"window({k},{u},{lo},{hi}).\n" for u, lo, hi in windows)
-    num = clingo.Number
-    try:
-        with deferred_signals():  # grounding cannot be interrupted: a signal waits for its end
-            session.ctl.add(name, [], text)
-            session.ctl.ground([(name, []), ("bound", [num(k), num(goal), num(bound)])])
-    except RuntimeError:
-        raise InputError(_message(session), "grounding the depth rounds") from None
-    blocks[(goal, bound)] = k
-    return k
-
-
-def meal_block(session, meal: tuple[int, ...], bound: int) -> int:
-    """Ground the blocks of ``meal``'s goals and the meal block for ``bound`` (once); its id ``m``."""
-    blocks = session.__dict__.setdefault("depth_meal_blocks", {})
-    if (meal, bound) in blocks:
-        return blocks[(meal, bound)]
-    members = [block(session, g, bound) for g in meal]
-    m = len(blocks) + 1
-    name = f"depth_meal_{m}"
-    text = "".join(f"member({m},{k}).\n" for k in members)
-    num = clingo.Number
-    try:
-        session.ctl.add(name, [], text)
-        session.ctl.ground([(name, []), ("meal", [num(m), num(bound)])])
-    except RuntimeError:
-        raise InputError(_message(session), "grounding the depth rounds of a meal") from None
-    blocks[(meal, bound)] = m
-    return m
-
-
-def bound_externals(session, goal: int | tuple[int, ...], bound: int, count_depth: bool) -> dict[clingo.Symbol, bool]:
-    """The externals for depth bound ``bound`` of ``goal``: query(k), and within(k) when
-    the depth cost is counted (the block is grounded if need be); for a meal
-    meal_query(m) and meal_within(m)."""
-    if not isinstance(goal, int):
-        if len(goal) == 1:
-            goal = goal[0]
-        else:
-            m = clingo.Number(meal_block(session, tuple(goal), bound))
-            out_meal = {clingo.Function("meal_query", [m]): True}
-            if count_depth:
-                out_meal[clingo.Function("meal_within", [m])] = True
-            return out_meal
-    k = clingo.Number(block(session, goal, bound))
-    out = {clingo.Function("query", [k]): True}
-    if count_depth:
-        out[clingo.Function("within", [k])] = True
-    return out
+    def externals(self, goal: int | tuple[int, ...], bound: int, count_depth: bool) -> dict[clingo.Symbol, bool]:
+        """The externals for depth bound ``bound`` of ``goal``: query(k), and within(k) when
+        the depth cost is counted (the block is grounded if need be); for a meal
+        meal_query(m) and meal_within(m)."""
+        if not isinstance(goal, int):
+            if len(goal) == 1:
+                goal = goal[0]
+            else:
+                m = clingo.Number(self.meal_block(tuple(goal), bound))
+                out_meal = {clingo.Function("meal_query", [m]): True}
+                if count_depth:
+                    out_meal[clingo.Function("meal_within", [m])] = True
+                return out_meal
+        k = clingo.Number(self.block(goal, bound))
+        out = {clingo.Function("query", [k]): True}
+        if count_depth:
+            out[clingo.Function("within", [k])] = True
+        return out
 
 
 def depth_mode(options, ranked: tuple[str, ...]) -> str:
@@ -273,12 +272,13 @@ def depth_mode(options, ranked: tuple[str, ...]) -> str:
 
 
 def solve_depth(
-    session,
+    rounds: Rounds,
     goal: int | tuple[int, ...],
     shot: Callable[[dict, str | None], Any],
     tree_depth: Callable[[Any], int],
     mode: str,
-    state: dict,
+    state: DepthSearch,
+    max_depth: int | None,
     single: bool = True,
 ):
     """Run the depth strategy ``mode`` for ``goal`` with ``shot(externals, solve_mode)``.
@@ -287,20 +287,18 @@ def solve_depth(
     None: as configured; "opt": one optimum; "first": the first model) and
     returns a result with ``answers``, ``unsat`` and ``finished``;
     ``tree_depth(answer)`` is the depth of an answer's tree.  ``state``
-    persists across calls for the same goal: ``bound`` is the least bound not
-    yet refuted, ``refuted`` lists ``(bound, how)`` with how = "grounder" (the
-    least fixpoint, which the grounder computes too, puts the goal higher:
-    refuted without solving) or "solver" (unsatisfiable).
+    persists across calls for the same goal (:class:`DepthSearch`);
+    ``max_depth``: the --max-depth bound (None: none).
     ``single``: one optimum is wanted (not all trees of the optimal cost).
     Returns ``(result, bound)``.
     """
-    max_depth = session.options.max_depth
-    least = levels(session).level(goal)
+    least = rounds.levels.level(goal)
     if mode == "bound":
-        return shot(bound_externals(session, goal, max_depth, False), None), max_depth
+        assert max_depth is not None
+        return shot(rounds.externals(goal, max_depth, False), None), max_depth
     limit = {}
     if max_depth is not None:
-        limit = bound_externals(session, goal, max_depth, False)
+        limit = rounds.externals(goal, max_depth, False)
     if mode == "later":
         # the tree optimal without the depth cost bounds the optimum's depth
         first = shot(limit, "opt")
@@ -310,25 +308,24 @@ def solve_depth(
         if single and (bound <= 1 or (least is not None and bound <= least)):
             # no tree is shallower than the goal's level: a tree already that shallow is
             # optimal for depth too (and for what follows)
-            state["shortcut"] = True
+            state.shortcut = True
             return first, bound
-        return shot(bound_externals(session, goal, bound, True), None), bound
+        return shot(rounds.externals(goal, bound, True), None), bound
     # depth first: raise the bound from the goal's level until the goal is derivable within it
-    refuted = state.setdefault("refuted", [])
-    if "bound" not in state:
+    if state.bound is None:
         start = max(1, least or 1)
-        refuted.extend((t, "grounder") for t in range(1, start))
-        state["bound"] = start
-    bound = state["bound"]
+        state.refuted.extend((t, "grounder") for t in range(1, start))
+        state.bound = start
+    bound = state.bound
     ceiling = None  # the depth of some remaining tree, once a bound fails
     while True:
         if max_depth is not None and bound > max_depth:
             return shot(limit, "first"), max_depth  # unsatisfiable: nothing within --max-depth
-        result = shot(bound_externals(session, goal, bound, True), None)
+        result = shot(rounds.externals(goal, bound, True), None)
         if result.answers or not result.finished:
-            state["bound"] = bound
+            state.bound = bound
             return result, bound
-        refuted.append((bound, "solver"))
+        state.refuted.append((bound, "solver"))
         if ceiling is None or bound >= ceiling:
             # constraints or excluded trees removed the shallow trees: any remaining
             # tree bounds the search (none left: done)
@@ -337,4 +334,4 @@ def solve_depth(
                 return feasible, max_depth
             ceiling = tree_depth(feasible.answers[0])
         bound += 1
-        state["bound"] = bound
+        state.bound = bound

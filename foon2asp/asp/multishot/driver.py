@@ -1,5 +1,5 @@
-"""Solving one goal on a grounded :class:`~foon2asp.solver.Session` with the
-features beyond a single optimisation: depth bounds (:mod:`foon2asp.depth`),
+"""Solving one goal on a grounded :class:`~foon2asp.asp.session.Session` with the
+features beyond a single optimisation: depth bounds (:mod:`foon2asp.asp.multishot.depth`),
 human steps, the K best trees, all optimal trees and greedy retrieval.
 
 A goal may be a meal (a tuple of goal ids): ``goal(G)`` is then switched on
@@ -10,38 +10,32 @@ Every solve sets the externals it needs (``goal(G)``, ``query(k)``,
 ``within(k)``, exclusion guards) and switches them off again afterwards, so
 the next goal of the session starts clean; clingo proves each optimum anew
 for the current externals (tests compare with a fresh Control per goal).
+The driver owns what it keeps between goals: the depth blocks grounded on the
+session's Control (:class:`~foon2asp.asp.multishot.depth.Rounds`) and the
+depth search of the current goal.
 
 Alternatives: the optimal trees of one cost level are enumerated with
 ``opt-mode=optN`` and projection on ``use/1`` (``#project use/1``), so two
 answers are always distinct sets of units; for ``--models K`` each tree found
 is then excluded together with its supersets by a nogood (guarded by an
 external switched on only for this goal) and the next level is solved, so
-trees come best first and no tree merely adds units to an earlier one.
+trees come best first and no tree merely adds units to an earlier one.  The
+further trees are the best tree's :attr:`~foon2asp.tree.tasktree.TaskTree.alternatives`.
 """
 
 from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
 
 import clingo
 
 from foon2asp.asp import objectives
+from foon2asp.asp.answers import Shot, solve_shot, status, task_tree
 from foon2asp.asp.canonical import canonicalise
-from foon2asp.asp.control import Answer, deferred_signals, read_model
+from foon2asp.asp.control import Answer
 from foon2asp.asp.multishot import depth as depth_mod
-from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, goal_fields, meal_of, measures
-
-
-@dataclass
-class Shot:
-    """The outcome of one solve call."""
-
-    answers: list[Answer] = field(default_factory=list)
-    unsat: bool = False
-    #: the search ran to its end (not stopped by the time limit)
-    finished: bool = True
+from foon2asp.tree.tasktree import Goals, TaskTree, meal_of, measures
 
 
 class Driver:
@@ -49,6 +43,7 @@ class Driver:
 
     def __init__(self, session):
         self.session = session
+        self.control = session.control
         self.options = session.options
         self.problem = session.problem
         self.ranked = objectives.ranked(self.options)
@@ -57,7 +52,10 @@ class Driver:
         self.last_stats: dict = {}
         #: "budget" when a search for the smallest optimal tree of the current goal did not end
         self.canonical_search: str | None = None
-        self._state: dict = {}
+        #: the depth blocks grounded so far (made when a goal first needs one)
+        self.rounds: depth_mod.Rounds | None = None
+        #: the depth search of the current goal
+        self.depth = depth_mod.DepthSearch()
 
     # -- one solve ---------------------------------------------------------
 
@@ -72,52 +70,29 @@ class Driver:
     ) -> Shot:
         """Solve once with ``externals`` on.  ``mode``: None/"opt" (best model),
         "optN" (up to ``count`` distinct optimal trees) or "first" (first model)."""
-        ctl = self.session.ctl
-        conf = ctl.configuration.solve
         mode = mode or "opt"
-        conf.opt_mode = {"opt": "opt", "optN": "optN", "first": "ignore"}[mode]
-        conf.models = "1" if mode == "first" else str(count) if mode == "optN" else "0"
-        conf.project = "project" if mode == "optN" else "no"
-        answers: dict[tuple[int, ...], Answer] = {}
-        last: list[Answer] = []
-
-        def record(model: clingo.Model) -> None:
-            answer = read_model(model)
-            last[:] = [answer]
-            if mode == "optN" and answer.proven:
-                answers.setdefault(answer.units, answer)
-            if on_model is not None:
-                on_model(model)
-
         switched = {clingo.Function("goal", [clingo.Number(g)]): True for g in meal_of(goal)}
         switched.update(externals)
-        control = self.session.control
+        control = self.control
         control.assign(switched)
         self.solves += 1
         try:
             remaining = None if deadline is None else max(0.0, deadline - time.perf_counter())
-            result = control.solve(record, remaining)
-            self.last_stats = self.session.stats()  # before the externals change: that resets them
-            finished = result.finished
-            if mode == "optN":
-                # distinct optimal trees in an input-only order (smallest unit ids first)
-                found = sorted(answers.values(), key=lambda a: a.units) or ([] if finished else last)
-            else:
-                found = last
-            if found and mode == "opt" and finished and result.exhausted:
-                found = [Answer(a.units, a.cost, True, a.human) for a in found]
-                if self.options.canonical:
-                    # several optimal trees: the one that depends only on the input
-                    found[0], complete = canonicalise(control, found[0], deadline)
-                    self._searched(complete)
-            elif found and mode == "optN" and finished and found[0].proven and self.options.canonical:
+            shot = solve_shot(control, mode, count, on_model, remaining)
+            self.last_stats = control.stats()  # before the externals change: that resets them
+            found = shot.answers
+            if found and mode == "opt" and shot.finished and shot.exhausted and self.options.canonical:
+                # several optimal trees: the one that depends only on the input
+                found[0], complete = canonicalise(control, found[0], deadline)
+                self._searched(complete)
+            elif found and mode == "optN" and shot.finished and found[0].proven and self.options.canonical:
                 # the first tree is the canonical one; the others follow in id order
                 first, complete = canonicalise(control, found[0], deadline)
                 self._searched(complete)
-                found = [first] + [a for a in found if a.units != first.units][: max(0, count - 1)]
+                shot.answers = [first] + [a for a in found if a.units != first.units][: max(0, count - 1)]
         finally:
             control.assign(dict.fromkeys(switched, False))
-        return Shot(found, result.unsatisfiable is True, finished)
+        return shot
 
     def _searched(self, complete: bool) -> None:
         """Note a search for the smallest optimal tree that its budget (or time) ended."""
@@ -126,7 +101,7 @@ class Driver:
 
     # -- one cost level ----------------------------------------------------
 
-    def level(self, goal: Goals, guards: dict, count: int, deadline, state: dict, on_model) -> tuple[Shot, int | None]:
+    def level(self, goal: Goals, guards: dict, count: int, deadline, on_model) -> tuple[Shot, int | None]:
         """The best trees (up to ``count``, distinct) not yet excluded, with the depth bound used."""
         mode = "optN" if count > 1 else "opt"
 
@@ -139,8 +114,15 @@ class Driver:
         def tree_depth(answer: Answer) -> int:
             return measures(self.problem, goal, list(answer.units))["depth"] or 0
 
-        result, bound = depth_mod.solve_depth(self.session, goal, shot, tree_depth, self.depth_mode, state, count == 1)
-        if state.pop("shortcut", False):
+        if self.rounds is None:
+            self.rounds = depth_mod.Rounds.of(self.session)
+        state = self.depth
+        max_depth = self.options.max_depth
+        result, bound = depth_mod.solve_depth(
+            self.rounds, goal, shot, tree_depth, self.depth_mode, state, max_depth, count == 1
+        )
+        if state.shortcut:
+            state.shortcut = False
             # the depth cost was off in that solve: fill in the depth the tree has
             at = self.ranked.index("depth")
             levels = len(self.ranked) + (self.options.human_steps is not None)
@@ -158,18 +140,12 @@ class Driver:
         tie-breaker), so the further trees are the next best ones that do not
         merely add units to a tree already given.
         """
-        ctl = self.session.ctl
-        atoms = ctl.symbolic_atoms
-        body = [atoms[clingo.Function("use", [clingo.Number(u)])].literal for u in answer.units]
-        with deferred_signals(), ctl.backend() as backend:
-            guard = backend.add_atom()
-            backend.add_external(guard, clingo.TruthValue.False_)
-            backend.add_rule([], [guard] + body)
-        return guard
+        return self.control.guard(clingo.Function("use", [clingo.Number(u)]) for u in answer.units)
 
     # -- a goal ------------------------------------------------------------
 
     def solve(self, goal: Goals, on_model=None, time_limit: float | None = None) -> TaskTree:
+        """The best tree for ``goal`` (the further ones as its alternatives), by the session's options."""
         options = self.options
         time_limit = options.time_limit if time_limit is None else time_limit
         t0 = time.perf_counter()
@@ -183,23 +159,47 @@ class Driver:
             return self._tree(goal, None, "unreachable", t0)
         if all(g in self.problem.kitchen for g in meal):
             return self._tree(goal, Answer((), (), True), "optimal", t0)
-        atoms = self.session.ctl.symbolic_atoms
-        if any(atoms[clingo.Function("reach", [clingo.Number(g)])] is None for g in meal):
+        if not all(self.control.has_atom(clingo.Function("reach", [clingo.Number(g)])) for g in meal):
             # the grounder's fixpoint (tree.lp) never derives a goal: no tree at all
             return self._tree(goal, None, "unreachable", t0)
         if options.heuristic:
             return self._greedy(goal, deadline, t0, on_model)
+        self.depth = depth_mod.DepthSearch()
+        found, first, capped = self._levels(goal, deadline, on_model)
+        if not found:
+            tree = self._tree(goal, None, status(None, first), t0)
+            if tree.status == "unreachable" and options.max_depth is not None:
+                tree.extra["reason"] = f"no tree of depth <= {options.max_depth}"
+            return tree
+        best_cost = found[0][0].cost
+        trees = []
+        for rank, (answer, bound) in enumerate(found, 1):
+            # "ranked": proven best once the better trees (and their supersets) are excluded;
+            # "feasible" only when the time limit stopped that search
+            tree = self._tree(goal, answer, status(answer, first, best_cost), t0, bound)
+            if options.models > 1 or options.all_optimal:
+                tree.extra["rank"] = rank
+            trees.append(tree)
+        best, best.alternatives = trees[0], trees[1:]
+        if capped:
+            cap = options.all_optimal_cap
+            best.extra["note"] = f"more than {cap} optimal trees: only the first {cap} are given"
+        return best
+
+    def _levels(self, goal: Goals, deadline, on_model) -> tuple[list[tuple[Answer, int | None]], Shot, bool]:
+        """The trees (with their depth bounds) level by level, each level's trees excluded from
+        the next, until enough are found; the first level's shot; whether --all-optimal's cap cut."""
+        options = self.options
         want = max(1, int(options.models))
         cap = int(options.all_optimal_cap)
         guards: dict = {}
-        state = self._state = {}
         found: list[tuple[Answer, int | None]] = []
         first: Shot | None = None
         capped = False
         try:
             while True:
                 count = cap + 1 if options.all_optimal else want - len(found)
-                shot, bound = self.level(goal, guards, count, deadline, state, on_model)
+                shot, bound = self.level(goal, guards, count, deadline, on_model)
                 first = first or shot
                 found += [(a, bound) for a in shot.answers[:count]]
                 if options.all_optimal:
@@ -211,69 +211,30 @@ class Driver:
                 for answer in shot.answers:
                     guards[self.exclude(answer)] = True
         finally:
-            with deferred_signals():
-                for guard in guards:
-                    self.session.ctl.release_external(guard)
-        if not found:
-            status = "unreachable" if first.unsat and first.finished else "unknown"
-            tree = self._tree(goal, None, status, t0)
-            if status == "unreachable" and options.max_depth is not None:
-                tree.extra["reason"] = f"no tree of depth <= {options.max_depth}"
-            return tree
-        best_cost = found[0][0].cost
-        trees = []
-        for rank, (answer, bound) in enumerate(found, 1):
-            # "ranked": proven best once the better trees (and their supersets) are excluded;
-            # "feasible" only when the time limit stopped that search
-            status = ("optimal" if answer.cost == best_cost else "ranked") if answer.proven else "feasible"
-            tree = self._tree(goal, answer, status, t0, bound)
-            if want > 1 or options.all_optimal:
-                tree.extra["rank"] = rank
-            trees.append(tree)
-        best = trees[0]
-        if capped:
-            best.extra["note"] = f"more than {cap} optimal trees: only the first {cap} are given"
-        if len(trees) > 1:
-            best.extra["_alternatives"] = trees[1:]
-        return best
+            self.control.release(guards)
+        assert first is not None  # the loop solves at least once
+        return found, first, capped
 
     def _greedy(self, goal: Goals, deadline, t0: float, on_model) -> TaskTree:
         shot = self.shot(goal, {}, "first", deadline, 1, on_model)
         if shot.answers:
             return self._tree(goal, shot.answers[0], "found", t0)
-        return self._tree(goal, None, "unreachable" if shot.unsat and shot.finished else "unknown", t0)
+        return self._tree(goal, None, status(None, shot), t0)
 
     def _tree(self, goal: Goals, answer: Answer | None, status: str, t0: float, bound: int | None = None) -> TaskTree:
-        elapsed = round(time.perf_counter() - t0, 6)
-        method = self.options.method
-        if answer is None:
-            stats = dict(self.last_stats, solves=self.solves)
-            return TaskTree(method=method, status=status, time_s=elapsed, stats=stats, **goal_fields(goal))
-        units = executable_order(self.problem, list(answer.units))
-        cost = measures(self.problem, goal, units)
-        extra: dict = {"asp_cost": list(answer.cost)}
-        if self.options.human_steps is not None:
-            cost["success"] = objectives.success_product(self.problem, units, answer.human)
-            human = [u for u in units if u in set(answer.human)]
-            extra["human_steps"] = human
-            extra["human_step_numbers"] = [i for i, u in enumerate(units, 1) if u in set(answer.human)]
-        if bound is not None and self.depth_mode == "first":
-            extra["depth_bound"] = bound
-            refuted = self._state.get("refuted", [])
-            extra["depth_refuted"] = {how: sum(1 for _, h in refuted if h == how) for how in ("grounder", "solver")}
         stats = dict(self.last_stats, solves=self.solves)
-        if self.canonical_search:
+        if answer is not None and self.canonical_search:
             stats["canonical_search"] = self.canonical_search
-        return TaskTree(
-            method=method,
-            status=status,
-            units=units,
-            cost=cost,
-            time_s=elapsed,
-            stats=stats,
-            extra=extra,
-            **goal_fields(goal),
-        )
+        human = self.options.human_steps is not None
+        elapsed = time.perf_counter() - t0
+        tree = task_tree(self.problem, self.options.method, goal, status, answer, elapsed, stats, human)
+        if answer is not None and bound is not None and self.depth_mode == "first":
+            refuted = self.depth.refuted
+            tree.extra["depth_bound"] = bound
+            tree.extra["depth_refuted"] = {
+                how: sum(1 for _, h in refuted if h == how) for how in ("grounder", "solver")
+            }
+        return tree
 
 
 def _with_depth(cost: tuple[int, ...], at: int, depth: int, levels: int) -> tuple[int, ...]:
@@ -285,5 +246,6 @@ def _with_depth(cost: tuple[int, ...], at: int, depth: int, levels: int) -> tupl
 
 
 def alternatives(tree: TaskTree) -> list[TaskTree]:
-    """``tree`` and the further trees found with it (--models / --all-optimal), best first."""
-    return [tree] + list(tree.extra.get("_alternatives", []))
+    """``tree`` and the further trees found with it (--models / --all-optimal), best first
+    (``[tree, *tree.alternatives]``)."""
+    return [tree, *tree.alternatives]

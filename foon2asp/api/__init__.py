@@ -1,0 +1,75 @@
+"""The Python API: load a FOON with its kitchen, then ask it for task trees.
+
+>>> import foon2asp
+>>> kb = foon2asp.load("demo")
+>>> t = kb.solve("tomato salad")
+>>> t.status, t.cost["units"]
+('optimal', 1)
+
+Every command of the ``foon2asp`` command line is a thin layer over these
+calls: :func:`load` reads the data, :class:`KnowledgeBase` answers
+(:meth:`~KnowledgeBase.solve`, :meth:`~KnowledgeBase.check`,
+:meth:`~KnowledgeBase.compare`, :meth:`~KnowledgeBase.reachable`,
+:meth:`~KnowledgeBase.missing`, :meth:`~KnowledgeBase.query`,
+:meth:`~KnowledgeBase.batch`, :meth:`~KnowledgeBase.facts`) with the settings of
+one request (:class:`Options`), and the answers render themselves in every
+format of :mod:`foon2asp.report`.
+
+The modules: :mod:`~foon2asp.api.options` (the request), :mod:`~foon2asp.api.kb`
+(the knowledge base), :mod:`~foon2asp.api.results` (the answers),
+:mod:`~foon2asp.api.load` (reading data), :mod:`~foon2asp.api.files` (FOON files,
+programs, drawings of tree files, output files), :mod:`~foon2asp.api.catalog`
+(methods, objectives and the other names a front end offers).
+"""
+
+from foon2asp.api.catalog import (
+    COMPARE_METHODS,
+    GROUNDINGS,
+    OBJECT_FILTERS,
+    OBJECTIVES,
+    UTENSIL_RULES,
+    method,
+    methods,
+)
+from foon2asp.api.files import (
+    FOON_FORMATS,
+    draw_file,
+    read_foons,
+    read_program,
+    writable_dir,
+    write_file,
+    write_foon,
+)
+from foon2asp.api.kb import GoalLike, KnowledgeBase
+from foon2asp.api.load import load
+from foon2asp.api.options import Constraints, Options, Settings
+from foon2asp.api.results import BatchRun, CheckReport, Comparison, Missing, Reachability, Tree
+
+__all__ = [
+    "load",
+    "KnowledgeBase",
+    "GoalLike",
+    "Options",
+    "Settings",
+    "Constraints",
+    "Tree",
+    "CheckReport",
+    "Comparison",
+    "Missing",
+    "Reachability",
+    "BatchRun",
+    "read_foons",
+    "write_foon",
+    "FOON_FORMATS",
+    "read_program",
+    "draw_file",
+    "writable_dir",
+    "write_file",
+    "methods",
+    "method",
+    "OBJECTIVES",
+    "UTENSIL_RULES",
+    "GROUNDINGS",
+    "COMPARE_METHODS",
+    "OBJECT_FILTERS",
+]

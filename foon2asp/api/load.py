@@ -1,0 +1,82 @@
+"""Reading a data folder, or FOON files with the files beside them, into a :class:`KnowledgeBase`."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+
+from foon2asp.api.kb import KnowledgeBase
+from foon2asp.errors import InputError
+from foon2asp.foon.demo import demo_dir
+from foon2asp.foon.loaders import FILE_NAMES, Dataset
+from foon2asp.foon.problem import Problem
+
+#: what is lost when a file is not beside the FOON
+_WITHOUT = {
+    "goals": "no goals file: name goals with --goal or --goals FILE",
+    "motion": "every motion gets success rate 0.5",
+    "utensils": "no object is treated as a utensil",
+}
+
+
+def _beside(foon: Path, given: dict, warnings: list[str]) -> dict:
+    """``given`` with the files not given taken from beside ``foon``; warnings for absent optional ones."""
+    out = dict(given)
+    for key, value in given.items():
+        if value is not None:
+            continue
+        candidate = foon.parent / FILE_NAMES[key]
+        if candidate.is_file():
+            out[key] = str(candidate)
+        elif key == "kitchen":
+            raise InputError(
+                f"no {FILE_NAMES[key]} beside the FOON file (looked for {candidate});"
+                " give a kitchen file or a data folder ('demo' for the demo data)",
+                hint=f"kitchen={candidate}",
+            )
+        else:
+            warnings.append(f"no {FILE_NAMES[key]} beside {foon}: {_WITHOUT[key]}")
+    return out
+
+
+def load(
+    path: str | Path | None = None,
+    *,
+    foon: str | Path | Sequence[str | Path] | None = None,
+    kitchen: str | Path | None = None,
+    goals: str | Path | None = None,
+    motion: str | Path | None = None,
+    utensils: str | Path | None = None,
+    utensil_rule: str = "starter",
+    strict: bool = False,
+) -> KnowledgeBase:
+    """Read a data folder (``FOON.txt``, ``kitchen.json``, ``goal_nodes.json``,
+    ``motion.txt``, ``utensils.txt``) or ``"demo"``; keyword files override its files.
+
+    With ``foon`` and no folder, the other files are read from beside the
+    (first) FOON file when there; a missing ``kitchen.json`` is an error, a
+    missing goals, motion or utensils file a warning saying what that means.
+    """
+    if path == "demo":
+        path = demo_dir()
+    if path is None and foon is None:
+        raise InputError("no data given: load(DIR), load('demo') or load(foon=FILE, kitchen=FILE, ...)")
+    foon_paths: str | list | None = (
+        [str(f) for f in foon] if isinstance(foon, list | tuple) else (None if foon is None else str(foon))
+    )
+    beside: list[str] = []
+    if path is None and foon_paths:
+        first = Path(foon_paths[0] if isinstance(foon_paths, list) else foon_paths)
+        found = _beside(first, {"kitchen": kitchen, "goals": goals, "motion": motion, "utensils": utensils}, beside)
+        kitchen, goals, motion, utensils = found["kitchen"], found["goals"], found["motion"], found["utensils"]
+    data = Dataset.load(
+        path, foon=foon_paths, kitchen=kitchen, goals=goals, motion=motion, utensils=utensils, strict=strict
+    )
+    problem = Problem.from_dataset(data, utensil_rule)
+    warnings = list(data.foon.warnings) + list(data.warnings) + beside
+    unknown = problem.unknown_motions()
+    if data.motion and unknown:
+        warnings.append(
+            f"{len(unknown)} motion(s) not in {data.paths.get('motion')} get success rate 0.5: {', '.join(unknown[:5])}"
+        )
+    return KnowledgeBase(data, problem, warnings)

@@ -1,0 +1,159 @@
+"""One request's settings: what to optimise, the constraints, how to solve and for how long.
+
+:class:`Options` is the value every answer of :class:`foon2asp.api.KnowledgeBase` takes as
+``options=``; the keyword arguments of those calls (``objective=``, ``forbid_motions=``,
+``time_limit=``, ...; :class:`Settings`) are mapped onto it by :meth:`Options.of`, the one
+place that knows them.  The command line builds one per command from its flags.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field, fields, replace
+from typing import TypedDict, Unpack, cast
+
+from foon2asp.asp.constraints import ConstraintSpec
+from foon2asp.asp.options import OBJECTIVES, AspOptions
+from foon2asp.errors import InputError
+
+#: user constraints (an ASP file, rule texts, the forbid/require/max-units conveniences):
+#: the one value the command line fills from ``--constraint`` ... ``--max-units`` and the solver reads
+Constraints = ConstraintSpec
+
+
+class Settings(TypedDict, total=False):
+    """The keyword arguments every answer takes besides ``options=`` (see :class:`Options`)."""
+
+    objective: str | Sequence[str]
+    time_limit: float | None
+    models: int
+    all_optimal: bool
+    max_depth: int | None
+    human_steps: int | None
+    opt_strategy: str | None
+    threads: int | None
+    grounding: str
+    shortcuts: bool
+    constraints: Constraints | None
+    #: the constraint conveniences, one by one (they change ``constraints``)
+    forbid_motions: Sequence[str]
+    forbid_objects: Sequence[str]
+    require_motions: Sequence[str]
+    require_objects: Sequence[str]
+    max_units: int | None
+    rules: Sequence[str]
+    constraint_files: Sequence[str]
+
+
+#: keyword -> field of :data:`Constraints`
+_CONSTRAINT_KEYWORDS = {
+    "constraint_files": "files",
+    "rules": "rules",
+    "forbid_motions": "forbid_motion",
+    "forbid_objects": "forbid_object",
+    "require_motions": "require_motion",
+    "require_objects": "require_object",
+    "max_units": "max_units",
+}
+
+
+def split_objective(value: str | Sequence[str]) -> tuple[str, ...]:
+    """``"success,units"`` or ``["success", "units"]`` as a tuple of names (``("units",)`` when empty)."""
+    parts = [p.strip() for p in value.split(",")] if isinstance(value, str) else [str(p).strip() for p in value]
+    return tuple(p for p in parts if p) or ("units",)
+
+
+@dataclass(frozen=True)
+class Options:
+    """The settings of one request; every field has the default of a call without it.
+
+    Names (objectives, constraint programs) are checked when an answer uses the options,
+    so a value can be built before the data is read.
+    """
+
+    #: lexicographic, most important first: ``units``, ``success``, ``inputs``, ``depth``
+    objective: tuple[str, ...] = ("units",)
+    constraints: Constraints = field(default_factory=Constraints)
+    #: seconds per goal; the best tree so far is then ``feasible``
+    time_limit: float | None = None
+    #: the K best distinct trees per goal
+    models: int = 1
+    #: every optimal tree per goal
+    all_optimal: bool = False
+    #: only trees of at most this many sequential rounds
+    max_depth: int | None = None
+    #: at most this many units done by a person (success 1.0)
+    human_steps: int | None = None
+    #: clingo's optimisation strategy (``bb``, ``usc``, with refinements); None: foon2asp.asp.settings'
+    opt_strategy: str | None = None
+    #: clingo solver threads; None: one
+    threads: int | None = None
+    #: batch: ``whole``, ``per-goal`` or ``auto`` (foon2asp.batch.run.choose_grounding)
+    grounding: str = "auto"
+    #: batch: answer without the solver when the answer is forced
+    shortcuts: bool = True
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "objective", split_objective(self.objective))
+        if self.constraints is None:
+            object.__setattr__(self, "constraints", Constraints())
+
+    @classmethod
+    def of(cls, options: Options | None = None, /, **settings: Unpack[Settings]) -> Options:
+        """``options`` (default: all defaults) with the keyword ``settings`` of :class:`Settings` applied."""
+        base = options if options is not None else cls()
+        unknown = sorted(set(settings) - set(Settings.__annotations__))
+        if unknown:
+            raise TypeError(f"unexpected keyword argument(s): {', '.join(unknown)}")
+        own = {f.name for f in fields(cls)}
+        changes: dict = {k: v for k, v in settings.items() if k in own}
+        spec = {
+            _CONSTRAINT_KEYWORDS[k]: v if k == "max_units" else tuple(str(x) for x in cast(Iterable[object], v))
+            for k, v in settings.items()
+            if k in _CONSTRAINT_KEYWORDS
+        }
+        if spec:
+            changes["constraints"] = replace(changes.get("constraints") or base.constraints, **spec)
+        return replace(base, **changes) if changes else base
+
+    def ranked(self) -> tuple[str, ...]:
+        """The objective names, checked."""
+        for name in self.objective:
+            if name not in OBJECTIVES:
+                raise InputError(f"unknown objective {name!r} (have {', '.join(OBJECTIVES)})")
+        return self.objective
+
+    @property
+    def solver_settings(self) -> dict[str, object]:
+        """The settings only the ASP methods use that differ from their defaults."""
+        defaults = {"max_depth": None, "human_steps": None, "models": 1, "all_optimal": False, "opt_strategy": None}
+        given = {k: getattr(self, k) for k, v in defaults.items() if getattr(self, k) != v}
+        if self.threads not in (None, 1):
+            given["threads"] = self.threads
+        return given
+
+    def solver(self) -> AspOptions:
+        """The solver's options: objective names, the human-steps rule and the constraint programs checked."""
+        ranked = self.ranked()
+        if self.human_steps is not None and "success" not in ranked:
+            suggestion = f"{','.join(ranked)},success"
+            raise InputError(
+                "human steps only change the tree when 'success' is an objective (a person's step succeeds"
+                f" for sure); rank it among the objectives, e.g. {suggestion}",
+                hint=f"human-steps={suggestion}",
+            )
+        settings: dict = {}
+        if self.threads is not None:
+            settings["threads"] = self.threads
+        if self.opt_strategy is not None:
+            settings["opt_strategy"] = self.opt_strategy
+        return AspOptions(
+            objective=ranked,
+            time_limit=self.time_limit,
+            programs=self.constraints.programs(),
+            max_depth=self.max_depth,
+            human_steps=self.human_steps,
+            models=self.models,
+            all_optimal=self.all_optimal,
+            **settings,
+        )

@@ -1,0 +1,296 @@
+"""The answers of :class:`foon2asp.api.KnowledgeBase`: trees, check reports, comparisons, missing items,
+reachability and batch runs; each renders itself in the formats of :mod:`foon2asp.report`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from foon2asp import report
+from foon2asp.analysis import compare as compare_mod
+from foon2asp.asp.multishot.driver import alternatives
+from foon2asp.batch.results import summarize
+from foon2asp.foon.model import FoonObject, Unit
+from foon2asp.report import draw
+from foon2asp.tree.results import BatchReport, MissingResult, Report, Row
+from foon2asp.tree.serialize import tree_foon, tree_json, tree_text
+from foon2asp.tree.tasktree import TaskTree
+
+if TYPE_CHECKING:
+    from foon2asp.api.kb import KnowledgeBase
+
+
+class Tree:
+    """A task tree for one goal by one method, with its status and measures.
+
+    ``units`` are the tree's functional units in executable order (each
+    required input is a kitchen item or made by an earlier unit).
+    """
+
+    def __init__(self, kb: KnowledgeBase, raw: TaskTree) -> None:
+        self.kb = kb
+        #: the internal record (object and unit ids)
+        self.raw = raw
+
+    @property
+    def goal(self) -> FoonObject:
+        return self.kb.problem.objects[self.raw.goal]
+
+    @property
+    def goal_id(self) -> int:
+        return self.raw.goal
+
+    @property
+    def goals(self) -> list[FoonObject]:
+        """Every goal of the tree: one, or the dishes of a meal (``together=True``)."""
+        return [self.kb.problem.objects[g] for g in self.raw.meal]
+
+    @property
+    def method(self) -> str:
+        return self.raw.method
+
+    @property
+    def status(self) -> str:
+        """``optimal`` | ``feasible`` | ``unreachable`` | ``unknown`` (ASP), ``found`` | ``not-found`` (search)."""
+        return self.raw.status
+
+    @property
+    def cost(self) -> dict:
+        """``units``, ``success``, ``inputs``, ``depth`` (empty when there is no tree)."""
+        return self.raw.cost
+
+    @property
+    def units(self) -> list[Unit]:
+        return [self.kb.problem.units[u] for u in self.raw.units]
+
+    @property
+    def unit_ids(self) -> list[int]:
+        return list(self.raw.units)
+
+    @property
+    def time_s(self) -> float:
+        return self.raw.time_s
+
+    @property
+    def has_tree(self) -> bool:
+        return self.raw.has_tree
+
+    @property
+    def valid(self) -> bool | None:
+        """Validity by the independent validator, where it was judged (compare, batch, :meth:`judge`); else None."""
+        value = self.raw.extra.get("valid")
+        return None if value is None else bool(value)
+
+    @property
+    def note(self) -> str | None:
+        """What the solver says about the answer (e.g. a budget that ended a search), if anything."""
+        return self.raw.extra.get("note")
+
+    @property
+    def alternatives(self) -> list[Tree]:
+        """The further trees found with this one (``models`` / ``all_optimal``), best first."""
+        return self.with_alternatives[1:]
+
+    @property
+    def with_alternatives(self) -> list[Tree]:
+        """This tree, then :attr:`alternatives`."""
+        return [self if t is self.raw else Tree(self.kb, t) for t in alternatives(self.raw)]
+
+    def judge(self) -> Tree:
+        """Judge the tree with the independent validator (sets :attr:`valid`); returns the tree."""
+        compare_mod.judge(self.kb.problem, self.raw)
+        return self
+
+    def to_dict(self) -> dict:
+        """Exactly one element of ``solve --format json``."""
+        return tree_json(self.kb.problem, self.raw)
+
+    def to_text(self) -> str:
+        return tree_text(self.kb.problem, self.raw)
+
+    def to_foon(self) -> str:
+        """The tree as FOON text (``solve --format foon``)."""
+        return tree_foon(self.kb.problem, self.raw)
+
+    def render(self, fmt: str) -> str:
+        """The tree in any text format of ``solve --format`` (:mod:`foon2asp.report`)."""
+        return report.render("trees", fmt, self.kb.problem, [self.raw])
+
+    def draw(self, path: str | Path) -> Path:
+        """Draw the tree into ``path``; the format follows the extension (.svg, .png, .pdf, .dot)."""
+        return draw.draw_tree(self.kb.problem, self.raw, path)
+
+    def _repr_svg_(self) -> str:
+        """The drawing, for Jupyter."""
+        return draw.tree_svg(self.kb.problem, self.raw)
+
+    def __repr__(self) -> str:
+        return f"<Tree {self.goal} {self.method} {self.status} {self.cost}>"
+
+
+@dataclass
+class CheckReport:
+    """What ``check`` says about one tree: valid or not, the first problem, the optimum."""
+
+    kb: KnowledgeBase
+    raw: Report
+
+    @property
+    def valid(self) -> bool:
+        return self.raw.valid
+
+    @property
+    def goal(self) -> FoonObject:
+        return self.kb.problem.objects[self.raw.goal]
+
+    @property
+    def problem(self) -> str | None:
+        """The first problem in words (None for a valid tree)."""
+        return self.raw.finding.message if self.raw.finding else None
+
+    @property
+    def cycle(self) -> list[tuple[FoonObject, Unit]]:
+        """For circular support: (object, unit making it) pairs; each unit needs the next object."""
+        if not self.raw.finding:
+            return []
+        p = self.kb.problem
+        return [(p.objects[o], p.units[u]) for o, u in self.raw.finding.cycle]
+
+    @property
+    def order(self) -> list[Unit]:
+        """The units that can fire, in an executable order."""
+        v = self.raw.validation
+        return [self.kb.problem.units[u] for u in v.order] if v is not None else []
+
+    @property
+    def cost(self) -> dict:
+        return self.raw.cost
+
+    @property
+    def optimum(self) -> Tree | None:
+        return Tree(self.kb, self.raw.optimum) if self.raw.optimum is not None else None
+
+    def to_dict(self) -> dict:
+        return report.check.report_json(self.kb.problem, self.raw)
+
+    def to_text(self) -> str:
+        return report.check.report_text(self.kb.problem, self.raw)
+
+
+@dataclass
+class Comparison:
+    """One row per goal: the tree of every method, each judged by the validator."""
+
+    kb: KnowledgeBase
+    raw: list[Row]
+
+    @property
+    def rows(self) -> list[tuple[FoonObject, dict[str, Tree]]]:
+        return [(self.kb.problem.objects[r.goal], {m: Tree(self.kb, t) for m, t in r.trees.items()}) for r in self.raw]
+
+    @property
+    def trees(self) -> list[Tree]:
+        return [Tree(self.kb, t) for r in self.raw for t in r.trees.values()]
+
+    def render(self, fmt: str = "text") -> str:
+        return report.render("compare", fmt, self.kb.problem, self.raw)
+
+
+@dataclass
+class Missing:
+    """The fewest objects to add to the kitchen so a goal can be made, and the tree then."""
+
+    kb: KnowledgeBase
+    raw: MissingResult
+
+    @property
+    def status(self) -> str:
+        return self.raw.status
+
+    @property
+    def missing(self) -> list[FoonObject]:
+        return [self.kb.problem.objects[o] for o in self.raw.missing]
+
+    @property
+    def tree(self) -> Tree | None:
+        r = self.raw
+        if not r.has_tree:
+            return None
+        return Tree(self.kb, TaskTree(r.goal, "missing", r.status, list(r.units), dict(r.cost), r.time_s))
+
+    def to_dict(self) -> dict:
+        return report.queries.missing_json(self.kb.problem, self.raw)
+
+    def to_text(self) -> str:
+        return report.queries.missing_text(self.kb.problem, self.raw)
+
+
+@dataclass
+class Reachability:
+    """For each goal: can it be made from the kitchen at all."""
+
+    kb: KnowledgeBase
+    #: object id -> reachable, in the order asked
+    raw: dict[int, bool]
+
+    @property
+    def answers(self) -> dict[FoonObject, bool]:
+        return {self.kb.problem.objects[o]: ok for o, ok in self.raw.items()}
+
+    def render(self, fmt: str = "text") -> str:
+        """The answers in a format of ``reachable --format``."""
+        return report.render("reachable", fmt, self.kb.problem, self.raw)
+
+
+@dataclass
+class BatchRun:
+    """What a batch did: counts, times, the grounding and every record of the requested pairs."""
+
+    kb: KnowledgeBase
+    raw: BatchReport
+
+    @property
+    def done(self) -> int:
+        """Results computed now."""
+        return self.raw.done
+
+    @property
+    def skipped(self) -> int:
+        """Results already in the file (``resume``)."""
+        return self.raw.skipped
+
+    @property
+    def elapsed_s(self) -> float:
+        return self.raw.elapsed_s
+
+    @property
+    def records(self) -> list[dict]:
+        """The JSON lines of the requested (goal, method) pairs, old and new."""
+        return self.raw.records
+
+    @property
+    def workers(self) -> int:
+        return self.raw.workers
+
+    @property
+    def output(self) -> str | None:
+        return self.raw.output
+
+    @property
+    def grounding(self) -> str:
+        """``whole`` or ``per-goal``: the grounding used."""
+        return self.raw.grounding
+
+    @property
+    def grounding_reason(self) -> str:
+        """Why ``grounding="auto"`` chose it (empty otherwise)."""
+        return self.raw.grounding_reason
+
+    def summary(self) -> list[dict]:
+        """One row per method: results per status, trees, valid trees, tree sizes and times."""
+        return summarize(self.raw.records)
+
+    def render(self, fmt: str = "text") -> str:
+        """The summary ``batch`` prints, in a format of ``batch --summary``."""
+        return report.render("summary", fmt, self.summary(), self.raw)

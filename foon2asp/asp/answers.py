@@ -1,0 +1,128 @@
+"""From models to task trees: one solve call's answers, their status and the tree they make.
+
+Both ways of solving a goal go through here: the one plain optimisation of
+:class:`foon2asp.asp.session.Session` and the multi-shot solves of
+:class:`foon2asp.asp.multishot.driver.Driver` (depth bounds, alternatives,
+greedy retrieval).  :func:`solve_shot` sets the solve mode, solves once and
+reads every model (:func:`foon2asp.asp.control.read_model`) into a
+:class:`Shot`; :func:`status` says what an answer is worth; :func:`task_tree`
+turns an answer into the :class:`~foon2asp.tree.tasktree.TaskTree` every
+caller returns.
+
+An answer is *proven* when clingo says so, when the search for it ran to its
+end (in the modes that optimise), or when it has no cost at all (e.g. the
+goal is in the kitchen: any model is optimal).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+
+import clingo
+
+from foon2asp.asp import objectives
+from foon2asp.asp.control import Answer, Control, read_model
+from foon2asp.foon.problem import Problem
+from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, goal_fields, measures
+
+
+@dataclass
+class Shot:
+    """The outcome of one solve call."""
+
+    #: "opt", "first": the last model; "optN": the distinct optimal trees in an input-only
+    #: order (smallest unit ids first), or the last model when the search was cut short before one
+    answers: list[Answer] = field(default_factory=list)
+    unsat: bool = False
+    #: the search ran to its end (not stopped by the time limit or an interrupt)
+    finished: bool = True
+    #: the search space was exhausted (no model left to find)
+    exhausted: bool = False
+    #: the last model the solver reported (None: none)
+    last: Answer | None = None
+
+
+def _settled(answer: Answer, mode: str, finished: bool) -> Answer:
+    """``answer`` marked proven when its search ended or it has no cost (optimising modes)."""
+    if answer.proven or mode == "first" or not (finished or not any(answer.cost)):
+        return answer
+    return replace(answer, proven=True)
+
+
+def solve_shot(
+    control: Control,
+    mode: str = "opt",
+    count: int = 1,
+    on_model: Callable[[clingo.Model], None] | None = None,
+    time_limit: float | None = None,
+) -> Shot:
+    """Solve once in ``mode`` (:meth:`Control.solving`: "opt", "optN" up to ``count`` trees,
+    "first") with the externals as they are, for at most ``time_limit`` seconds."""
+    optimal: dict[tuple[int, ...], Answer] = {}
+    last: list[Answer] = []
+
+    def record(model: clingo.Model) -> None:
+        answer = read_model(model)
+        last[:] = [answer]
+        if mode == "optN" and answer.proven:
+            optimal.setdefault(answer.units, answer)
+        if on_model is not None:
+            on_model(model)
+
+    with control.solving(mode, count):
+        result = control.solve(record, time_limit)
+    finished = result.finished
+    latest = _settled(last[0], mode, finished) if last else None
+    found = [latest] if latest is not None else []
+    if mode == "optN":
+        found = sorted(optimal.values(), key=lambda a: a.units) or ([] if finished else found)
+    return Shot(found, result.unsatisfiable is True, finished, result.exhausted, latest)
+
+
+def status(answer: Answer | None, shot: Shot, best: tuple[int, ...] | None = None) -> str:
+    """What ``answer`` of ``shot`` is: ``optimal`` (proven; of cost ``best`` when given),
+    ``ranked`` (proven best once the better trees are excluded, its cost above ``best``),
+    ``feasible`` (not proven), or without an answer ``unreachable`` (no tree at all) or
+    ``unknown`` (the search was cut short)."""
+    if answer is None:
+        return "unreachable" if shot.unsat else "unknown"
+    if not answer.proven:
+        return "feasible"
+    return "optimal" if best is None or answer.cost == best else "ranked"
+
+
+def task_tree(
+    problem: Problem,
+    method: str,
+    goal: Goals,
+    status: str,
+    answer: Answer | None,
+    time_s: float,
+    stats: dict,
+    human_steps: bool = False,
+) -> TaskTree:
+    """The tree of ``answer`` (None: no tree) for ``goal``: its units in executable order,
+    its measures and the solver's cost vector (``asp_cost``); ``human_steps``: also the
+    steps a person does and the success product with them."""
+    fields = goal_fields(goal)
+    if answer is None:
+        return TaskTree(method=method, status=status, time_s=round(time_s, 6), stats=stats, **fields)
+    units = executable_order(problem, list(answer.units))
+    cost = measures(problem, goal, units)
+    extra: dict = {"asp_cost": list(answer.cost)}
+    if human_steps:
+        human = set(answer.human)
+        cost["success"] = objectives.success_product(problem, units, answer.human)
+        extra["human_steps"] = [u for u in units if u in human]
+        extra["human_step_numbers"] = [i for i, u in enumerate(units, 1) if u in human]
+    return TaskTree(
+        method=method,
+        status=status,
+        units=units,
+        cost=cost,
+        time_s=round(time_s, 6),
+        stats=stats,
+        extra=extra,
+        **fields,
+    )

@@ -1,0 +1,109 @@
+"""``foon2asp batch``: many goals x methods into a resumable JSON-lines file, then a summary."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from foon2asp import api, report
+from foon2asp.cli.main import guarded, main
+from foon2asp.cli.options import (
+    constraint_options,
+    data_options,
+    goal_options,
+    method_option,
+    methods_of,
+    objective_option,
+    progress_option,
+    request_options,
+    strategy_options,
+    time_limit_option,
+)
+from foon2asp.cli.output import EXIT_CODES, exit_code
+from foon2asp.cli.params import SCHEDULER, int32
+
+#: --grounding and --shortcuts, into the request
+_batch_settings = request_options(
+    {"grounding": "grounding", "shortcuts": "shortcuts"},
+    click.option(
+        "--grounding",
+        type=click.Choice(api.GROUNDINGS),
+        default="auto",
+        show_default=True,
+        help="One grounding for all goals, or a small grounding of each goal's relevant part; auto: per-goal when"
+        " the goals' median relevant part is under 10 % of the viable units or there are over 50,000 of them"
+        " (the summary says which).",
+    ),
+    click.option(
+        "--shortcuts/--no-shortcuts",
+        default=True,
+        show_default=True,
+        help="Answer without the solver when the answer is forced (underivable goal; no choice in the goal's part).",
+    ),
+)
+
+
+@main.command(epilog=EXIT_CODES)
+@data_options
+@goal_options
+@method_option("asp")
+@objective_option()
+@click.option(
+    "-o",
+    "--output",
+    default="results.jsonl",
+    show_default=True,
+    type=click.Path(dir_okay=False),
+    help="A FILE of results, one JSON line per (goal, method).",
+)
+@click.option(
+    "--resume",
+    is_flag=True,
+    help="Continue OUTPUT: skip the (goal, method) pairs it already holds for the same configuration.",
+)
+@click.option("--workers", type=int32(min=1, max=1024), default=1, show_default=True, help="Worker processes.")
+@click.option(
+    "--scheduler", type=SCHEDULER, metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra)."
+)
+@time_limit_option("Seconds per goal; the best tree so far is reported as 'feasible'.")
+@strategy_options
+@_batch_settings
+@click.option(
+    "--summary",
+    "summary_fmt",
+    type=click.Choice(report.names("summary")),
+    default="text",
+    show_default=True,
+    help="Format of the summary printed at the end.",
+)
+@progress_option
+@click.option(
+    "--fsync/--no-fsync",
+    default=True,
+    show_default=True,
+    help="Sync result lines to disk (grouped: at most 0.25 s apart, and at the end).",
+)
+@constraint_options
+@guarded
+def batch(data, goal, goals, method_list, output, resume, workers, scheduler, summary_fmt, progress, fsync, options):
+    """Solve many goals with several methods; resumable JSON-lines output and a summary.
+
+    Every result line carries "valid" (the independent validator's verdict); the
+    summary counts the valid trees per method. Default goals: the goals file's.
+    """
+    kb = data.load(goals)
+    goal_ids = kb.select_goals(goal, goals)
+    run = kb.batch(
+        goal_ids,
+        output,
+        methods=methods_of(method_list),
+        workers=workers,
+        resume=resume,
+        progress=progress,
+        fsync=fsync,
+        scheduler=scheduler,
+        options=options,
+    )
+    click.echo(run.render(summary_fmt), nl=False)
+    sys.exit(exit_code((r.get("status", "?"), r.get("valid")) for r in run.records))

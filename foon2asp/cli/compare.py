@@ -1,0 +1,70 @@
+"""``foon2asp compare``: every method on every goal, each tree judged, beside the optimum."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from foon2asp import api, report
+from foon2asp.cli.main import guarded, main
+from foon2asp.cli.options import (
+    constraint_options,
+    data_options,
+    format_option,
+    goal_options,
+    is_search,
+    method_option,
+    methods_of,
+    objective_option,
+    progress_option,
+    strategy_options,
+    time_limit_option,
+)
+from foon2asp.cli.output import EXIT_CODES, exit_code, progress_bar, warn, warn_kb
+
+
+@main.command(epilog=EXIT_CODES)
+@data_options
+@goal_options
+@constraint_options
+@method_option(",".join(api.COMPARE_METHODS))
+@objective_option()
+@format_option("compare")
+@time_limit_option("Seconds per goal for ASP methods.")
+@click.option(
+    "--together", is_flag=True, help="A meal: the one tree for all goals beside the sum of the single optima (ASP)."
+)
+@strategy_options
+@progress_option
+@guarded
+def compare(data, goal, goals, method_list, fmt, together, options, progress):
+    """Compare methods goal by goal: units, validity, success product, depth (default: the goals file's goals).
+
+    --format jsonl prints each goal's results as soon as it is done.  With --together: the
+    meal's tree (one tree for every goal) beside the sum of the single optima.
+    """
+    names = methods_of(method_list, api.COMPARE_METHODS)
+    kb = data.load(goals)
+    goal_ids = kb.select_goals(goal, goals)
+    search = [n for n in names if is_search(n)]
+    if options.constraints and search:
+        warn(f"constraints apply to ASP methods only; {', '.join(search)} ignore them")
+    if together:
+        asp = [n for n in names if not is_search(n)]
+        meal = kb.compare_meal(goal_ids, (asp or ["asp"])[0], options=options)
+        warn_kb(kb)
+        click.echo(report.render("compare", fmt, kb.problem, meal), nl=False)
+        sys.exit(exit_code([(meal.meal.status, meal.meal.extra.get("valid"))]))
+    solver = kb.options(options)
+    warn_kb(kb)
+    rows = []
+    parts = kb.compare_iter(goal_ids, names, solver)
+    for part in progress_bar(parts, len(goal_ids), progress, "compare"):
+        rows.extend(part.raw)
+        if fmt == "jsonl":
+            click.echo(part.render(fmt), nl=False)
+            sys.stdout.flush()
+    if fmt != "jsonl":
+        click.echo(api.Comparison(kb, rows).render(fmt), nl=False)
+    sys.exit(exit_code((t.status, t.extra.get("valid")) for r in rows for t in r.trees.values()))

@@ -1,0 +1,54 @@
+"""``foon2asp missing``: the fewest objects to add to the kitchen so a goal can be made."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from foon2asp import report
+from foon2asp.cli.main import guarded, main
+from foon2asp.cli.options import (
+    constraint_options,
+    data_options,
+    format_option,
+    goal_options,
+    objective_option,
+    progress_option,
+    strategy_options,
+    time_limit_option,
+)
+from foon2asp.cli.output import EXIT_CODES, exit_code, progress_bar, warn_kb
+
+
+@main.command(epilog=EXIT_CODES)
+@data_options
+@goal_options
+@constraint_options
+@objective_option(
+    "After the fewest added objects, the best tree by these objectives (units, success, inputs), comma-separated."
+)
+@format_option("missing")
+@time_limit_option("Seconds per goal; the best answer so far is reported as 'feasible'.")
+@click.option("--together", is_flag=True, help="A meal: the fewest objects so that one tree makes every goal.")
+@strategy_options
+@progress_option
+@guarded
+def missing(data, goal, goals, fmt, together, options, progress):
+    """The fewest objects to add to the kitchen so a goal can be made (proven minimal), and the tree.
+
+    Default goals: the goals file's.  With --together: the fewest objects for the whole meal.
+    """
+    kb = data.load(goals)
+    goal_ids = kb.select_goals(goal, goals)
+    kb.options(options)  # checks the names, warns about unknown ones
+    warn_kb(kb)
+    results = []
+    jobs: list = [goal_ids] if together else goal_ids
+    for g in progress_bar(jobs, len(jobs), progress, "missing"):
+        results.append(kb.missing(g, options=options).raw)
+        if fmt == "jsonl":
+            click.echo(report.render("missing", fmt, kb.problem, results[-1:]), nl=False)
+    if fmt != "jsonl":
+        click.echo(report.render("missing", fmt, kb.problem, results), nl=False)
+    sys.exit(exit_code((r.status, None) for r in results))

@@ -1,0 +1,52 @@
+"""What every command shares when it reports: exit codes, warnings, progress bars."""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterable
+from typing import Any
+
+import click
+from tqdm import tqdm
+
+from foon2asp import api
+from foon2asp.errors import escape
+
+#: exit codes, the same for every command (README "Exit codes")
+EXIT_CODES = """\b
+Exit codes: 0 every goal answered as asked (a tree, or proven unreachable);
+1 some answer is not proven (time limit) or a tree is invalid;
+2 bad input or usage; 130 interrupted."""
+
+#: statuses that answer a goal: a proven tree, a proven k-th best tree, a proof that there is none,
+#: or a search method's tree (judged separately by "valid")
+ANSWERED = frozenset({"optimal", "ranked", "unreachable", "found", "satisfiable", "unsatisfiable"})
+
+
+#: statuses that come with a tree (whose "valid" counts)
+WITH_TREE = frozenset({"optimal", "ranked", "feasible", "found"})
+
+
+def exit_code(answers: Iterable[tuple[str, Any]]) -> int:
+    """0 when every (status, valid) pair answers its goal, else 1 (``valid`` None: not judged)."""
+    ok = all(status in ANSWERED and not (valid is False and status in WITH_TREE) for status, valid in answers)
+    return 0 if ok else 1
+
+
+def warn(message: str) -> None:
+    """One warning line on stderr."""
+    click.echo(f"foon2asp: warning: {message}", err=True)
+
+
+def warn_kb(kb: api.KnowledgeBase) -> None:
+    """The knowledge base's warnings so far (about the input and the request), then forgotten."""
+    for warning in kb.warnings:
+        warn(escape(warning))
+    kb.warnings.clear()
+
+
+def progress_bar(items: Iterable, total: int, enabled: bool | None, what: str) -> Any:
+    """``items`` (``total`` goals) behind a progress bar on stderr: when it is a terminal
+    and there is more than one goal (``enabled`` None), or as ``enabled`` says."""
+    show = (sys.stderr.isatty() and total > 1) if enabled is None else enabled
+    return tqdm(items, total=total, desc=what, unit="goal", file=sys.stderr, disable=not show, leave=False)

@@ -1,0 +1,115 @@
+"""``foon2asp solve``: the best task tree for each goal, or one tree for a meal."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from foon2asp import api, report
+from foon2asp.cli.main import guarded, main
+from foon2asp.cli.options import (
+    constraint_options,
+    data_options,
+    format_option,
+    goal_options,
+    is_search,
+    method_option,
+    methods_of,
+    objective_option,
+    progress_option,
+    solver_options,
+    time_limit_option,
+)
+from foon2asp.cli.output import EXIT_CODES, exit_code, progress_bar, warn, warn_kb
+from foon2asp.errors import InputError
+from foon2asp.report import draw
+from foon2asp.report.trees import render, render_bytes
+
+#: formats whose rendering of several trees is the renderings of each, joined by this: streamed
+STREAMED = {"text": "\n", "foon": "", "jsonl": ""}
+
+
+def safe_name(index: int, label: str) -> str:
+    keep = "".join(c if c.isalnum() else "_" for c in label).strip("_")[:60] or "goal"
+    return f"{index:03d}-{keep}"
+
+
+@main.command(epilog=EXIT_CODES)
+@data_options
+@goal_options
+@constraint_options
+@method_option("asp")
+@objective_option()
+@format_option("trees")
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(file_okay=False),
+    help="A FOLDER: also write one file per goal (and method) there.",
+)
+@time_limit_option("Seconds per goal; the best tree so far is reported as 'feasible'.")
+@click.option(
+    "--together",
+    is_flag=True,
+    help="A meal: one tree that makes every goal, units shared between dishes counted once (ASP methods).",
+)
+@solver_options
+@progress_option
+@guarded
+def solve(data, goal, goals, method_list, fmt, output, together, options, progress):
+    """Find the best task tree for each goal (default: the goals file's goals; with --together:
+    one tree for all goals).
+
+    Text, FOON and JSON-lines output is printed goal by goal as each is solved.
+    """
+    names = methods_of(method_list)
+    kb = data.load(goals)
+    goal_ids = kb.select_goals(goal, goals)
+    search = [m for m in names if is_search(m)]
+    if together and search:
+        raise InputError(f"--together needs an ASP method; {', '.join(search)} are search baselines")
+    if search and options.solver_settings:
+        raise InputError(f"solver settings apply to ASP methods only; {', '.join(search)} are search baselines")
+    solver = kb.options(options)
+    warn_kb(kb)
+    problem = kb.problem
+    binary = report.get("trees", fmt).binary
+    if fmt in draw.FORMATS and fmt != "dot":
+        draw.require_dot()  # before solving, not after
+    out_dir = api.writable_dir(output) if output else None
+    ext = report.get("trees", fmt).extension
+    sep = None if binary else STREAMED.get(fmt)
+    held: list = []
+    answers: list[tuple[str, object]] = []
+    printed = 0
+    jobs: list = [tuple(dict.fromkeys(goal_ids))] if together else goal_ids
+    for method in names:
+        trees = kb.solve_iter(jobs, method, solver)
+        for index, tree in enumerate(progress_bar(trees, len(jobs), progress, f"solve {method}"), 1):
+            if is_search(method):
+                tree.judge()  # "valid" for search baselines, as compare gives it
+            ranked = tree.with_alternatives  # --models / --all-optimal: the further trees, best first
+            found = [t.raw for t in ranked]
+            answers += [(t.status, t.extra.get("valid")) for t in found]
+            for t in ranked:
+                if t.note is not None:
+                    warn(f"{t.goal.label}: {t.note}")
+            if out_dir:
+                suffix = f"-{method}" if len(names) > 1 else ""
+                label = "+".join(g.label for g in tree.goals)
+                api.write_file(out_dir / f"{safe_name(index, label)}{suffix}.{ext}", render_bytes(problem, found, fmt))
+            if sep is None:
+                held.extend(found)
+                continue
+            text = render(problem, found, fmt)
+            click.echo((sep if printed else "") + text, nl=False)
+            sys.stdout.flush()
+            printed += 1
+    if binary and out_dir:
+        click.echo(f"wrote {len(jobs) * len(names)} {fmt} file(s) to {out_dir}", err=True)
+    elif binary:
+        sys.stdout.buffer.write(render_bytes(problem, held, fmt))
+    elif sep is None:
+        click.echo(render(problem, held, fmt), nl=False)
+    sys.exit(exit_code(answers))

@@ -1,0 +1,206 @@
+"""The clingo layer: named parts with parameters, deferred signals while the depth rounds are
+grounded, the one reader of models (plain optimisation and multi-shot driver agree, and agree
+with the fixpoint and the reference search), and alternatives as a field of the tree."""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+import signal
+
+import pytest
+
+from foon2asp.asp.control import Control, signal_pending
+from foon2asp.asp.multishot.depth import Rounds
+from foon2asp.asp.multishot.driver import Driver, alternatives
+from foon2asp.asp.options import AspOptions
+from foon2asp.asp.session import Session
+from foon2asp.errors import InputError
+from foon2asp.foon import goals as goals_mod
+from foon2asp.foon.synth import preset
+from foon2asp.tree.serialize import tree_json
+from foon2asp.tree.tasktree import TaskTree, measures
+from foon2asp.tree.validate import validate
+from test_hard import reference
+
+
+@pytest.fixture(scope="module")
+def small():
+    return preset("small").problem()
+
+
+def _demo_goals(demo_problem):
+    data, p = demo_problem
+    labels = ("tomato salad", "scrambled egg", "whipped cream")
+    return p, [goals_mod.resolve_label(data, p, label) for label in labels]
+
+
+# --------------------------------------------------------------------------- Control
+
+
+def test_control_grounds_named_parts_with_parameters():
+    control = Control()
+    control.add("rows", "#program row(k,n). cell(k,X) :- X = 1..n.", part="row", params=["k", "n"])
+    control.add("base facts", "seen.")
+    args = [(1, 3), (2, 2), (5, 1)]
+    control.ground([("base", ()), *(("row", a) for a in args)])
+    cells = {tuple(x.number for x in s.arguments) for s in control.facts_of("cell", 2)}
+    assert cells == {(k, x) for k, n in args for x in range(1, n + 1)}
+    assert {s.name for s in control.facts_of("seen", 0)} == {"seen"}
+    # a part added later is grounded on the same control, with its own arguments
+    control.extend("more rows", "#program late(k). late(k).", [("late", (7,))])
+    assert [s.arguments[0].number for s in control.facts_of("late", 1)] == [7]
+
+
+def test_control_grounding_error_is_one_line_about_what_was_grounded():
+    control = Control()
+    control.ground()
+    with pytest.raises(InputError) as err:
+        control.extend("broken part", "p(X) :- q.", what="grounding the test rounds")
+    text = str(err.value)
+    assert text.startswith("grounding the test rounds: ") and "unsafe" in text and "\n" not in text
+
+
+def test_control_solving_mode_is_restored():
+    control = Control(["--opt-mode=opt"])
+    conf = control.ctl.configuration.solve
+    before = (conf.opt_mode, conf.models, conf.project)
+    with control.solving("optN", 4):
+        assert (conf.opt_mode, conf.models) == ("optN", "4") and conf.project.startswith("project")
+    with control.solving("first"):
+        assert (conf.opt_mode, conf.models) == ("ignore", "1")
+    assert (conf.opt_mode, conf.models, conf.project) == before
+
+
+# --------------------------------------------------------------------------- depth rounds
+
+
+def _interrupt_during_ground(control, monkeypatch) -> list[str]:
+    """Make every ground call of ``control`` receive SIGINT first; returns the calls that ran to their end."""
+    real = control.ctl.ground
+    done: list[str] = []
+
+    def ground(parts, *args, **kwargs):
+        os.kill(os.getpid(), signal.SIGINT)
+        assert signal_pending(), "SIGINT must wait while the depth rounds are grounded"
+        real(parts, *args, **kwargs)
+        done.extend(name for name, _ in parts)
+
+    monkeypatch.setattr(control.ctl, "ground", ground)
+    return done
+
+
+@pytest.mark.parametrize("meal", [False, True])
+def test_depth_blocks_defer_signals_and_stay_registered(demo_problem, monkeypatch, meal):
+    p, goals = _demo_goals(demo_problem)
+    session = Session(p, AspOptions(objective=("depth",)))
+    rounds = Rounds.of(session)
+    if meal:
+        members = [rounds.block(g, 4) for g in goals[:2]]  # the goals' blocks first, uninterrupted
+    done = _interrupt_during_ground(session.control, monkeypatch)
+    with pytest.raises(KeyboardInterrupt):
+        if meal:
+            rounds.meal_block(tuple(goals[:2]), 4)
+        else:
+            rounds.block(goals[0], 4)
+    # the interrupt came after the grounding, and the block is known: it is never grounded twice
+    if meal:
+        assert "meal" in done and (tuple(goals[:2]), 4) in rounds.meal_blocks
+        assert [rounds.block(g, 4) for g in goals[:2]] == members
+    else:
+        assert "bound" in done and (goals[0], 4) in rounds.blocks
+    monkeypatch.undo()
+    tree = session.solve(tuple(goals[:2]) if meal else goals[0])
+    assert tree.status == "optimal"
+
+
+def test_the_driver_owns_its_depth_state(demo_problem):
+    p, goals = _demo_goals(demo_problem)
+    session = Session(p, AspOptions(objective=("depth",)))
+    names = set(vars(session))
+    trees = [session.solve(g) for g in goals[:2]] + [session.solve(tuple(goals[:2]))]
+    assert set(vars(session)) == names, "solving adds no attribute to the session"
+    driver = session._driver
+    assert isinstance(driver, Driver) and driver.rounds is not None
+    assert {g for g, _ in driver.rounds.blocks} >= set(goals[:2]) and driver.rounds.meal_blocks
+    levels = p.derivation_levels()[0]
+    assert [t.cost["depth"] for t in trees] == [levels[goals[0]], levels[goals[1]], max(levels[g] for g in goals[:2])]
+
+
+# --------------------------------------------------------------------------- one reader
+
+
+def _expected_status(problem, meal, max_depth=None) -> str:
+    """From the least fixpoint alone: is there a tree (within ``max_depth`` rounds)?"""
+    levels = problem.derivation_levels()[0]
+    if not all(g in problem.kitchen or g in levels for g in meal):
+        return "unreachable"
+    depth = max(0 if g in problem.kitchen else levels[g] for g in meal)
+    return "unreachable" if max_depth is not None and depth > max_depth else "optimal"
+
+
+@pytest.mark.parametrize("objective", ["units", "success", "inputs", "depth"])
+def test_plain_and_driven_solves_read_the_same_trees(demo_problem, small, objective):
+    """One plain optimisation (Session) and the multi-shot driver (all optimal trees, capped at
+    one) give the same status, cost and canonical tree; the status is the fixpoint's, the cost
+    the reference search's."""
+    p, demo = _demo_goals(demo_problem)
+    cases = [(p, [*demo, tuple(demo[:2])]), (small, sorted(small.derivable - small.kitchen)[::40][:5])]
+    for problem, goals in cases:
+        plain = Session(problem, AspOptions(objective=(objective,)))
+        driven = Session(problem, AspOptions(objective=(objective,), all_optimal=True, all_optimal_cap=1))
+        for goal in goals:
+            meal = goal if isinstance(goal, tuple) else (goal,)
+            one, two = plain.solve(goal), driven.solve(goal)
+            assert one.status == two.status == _expected_status(problem, meal)
+            assert one.extra.get("asp_cost") == two.extra.get("asp_cost")
+            if not one.has_tree:
+                continue
+            assert all(validate(problem, g, one.units).valid for g in meal)
+            assert one.cost == measures(problem, meal, one.units) and two.cost == measures(problem, meal, two.units)
+            if "canonical_search" not in one.stats and "canonical_search" not in two.stats:
+                assert sorted(one.units) == sorted(two.units)
+            if objective in ("units", "success") and len(meal) == 1 and problem is p:
+                assert one.extra["asp_cost"][0] == round(reference(problem, meal[0], objective))
+            if objective == "depth":
+                assert one.cost["depth"] == max(problem.derivation_levels()[0].get(g, 0) for g in meal)
+
+
+def test_depth_bounds_and_meals_read_the_fixpoints_status(demo_problem):
+    p, goals = _demo_goals(demo_problem)
+    for bound in (2, 3, 4, 5):
+        session = Session(p, AspOptions(max_depth=bound))
+        for goal in [*goals, tuple(goals[:2])]:
+            meal = goal if isinstance(goal, tuple) else (goal,)
+            tree = session.solve(goal)
+            assert tree.status == _expected_status(p, meal, bound)
+            if tree.has_tree:
+                assert tree.cost["depth"] <= bound and all(validate(p, g, tree.units).valid for g in meal)
+
+
+def test_alternatives_are_a_field_ranked_by_one_status(demo_problem):
+    p, goals = _demo_goals(demo_problem)
+    assert "alternatives" in {f.name for f in dataclasses.fields(TaskTree)}
+    assert TaskTree(0, "m", "optimal").alternatives == []
+    every = Session(p, AspOptions(all_optimal=True))
+    session = Session(p, AspOptions(models=3))
+    for goal in [*goals, tuple(goals[:2])]:
+        meal = goal if isinstance(goal, tuple) else (goal,)
+        tree = session.solve(goal)
+        if not tree.has_tree:
+            assert tree.alternatives == []
+            continue
+        found = alternatives(tree)
+        assert found == [tree, *tree.alternatives] and "_alternatives" not in tree.extra
+        assert all(t.alternatives == [] for t in found[1:])
+        assert [t.extra["rank"] for t in found] == list(range(1, len(found) + 1))
+        costs = [tuple(t.extra["asp_cost"]) for t in found]
+        assert costs == sorted(costs)
+        assert [t.status for t in found] == ["optimal" if c == costs[0] else "ranked" for c in costs]
+        assert len({frozenset(t.units) for t in found}) == len(found)
+        assert all(validate(p, g, t.units).valid for t in found for g in meal)
+        # as many optimal ones as the optimal trees there are (up to 3)
+        optimal = alternatives(every.solve(goal))
+        assert sum(t.status == "optimal" for t in found) == min(3, len(optimal))
+        # the JSON of a tree is the tree alone
+        assert "alternatives" not in tree_json(p, tree)
