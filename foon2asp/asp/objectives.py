@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 
-from foon2asp.asp import dominance
+from foon2asp.asp import dominance, substitutes
 from foon2asp.errors import InputError
 from foon2asp.foon.motioncost import DEFAULT_COST, motion_key, scaled
 from foon2asp.foon.problem import Problem
@@ -65,6 +65,8 @@ def encoding_names(options, registry: dict[str, str]) -> list[str]:
         names.append("human")
     if dominance.applies(options, ranked(options)):
         names.append("dominance")
+    if substitutes.applies(options):
+        names.append("substitutes")
     return names
 
 
@@ -144,6 +146,9 @@ def extra_parts(problem: Problem, options, units: Iterable[int] | None = None) -
     if dominance.applies(options, ranked(options)):
         ids = range(len(problem.units)) if units is None else units
         parts.append(("dominated units", dominance.dominance_facts(problem, ids, ranked(options))))
+    if substitutes.applies(options):
+        facts = substitutes.substitute_facts(problem, options.substitutes, units, options.max_substitutions)
+        parts.append(("substitutes", facts))
     # distinct answers are distinct sets of units (used when enumerating)
     parts.append(("projection", "#project use/1.\n"))
     return parts

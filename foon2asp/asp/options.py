@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from foon2asp.asp.settings import solver_args
+from foon2asp.foon.substitutes import Substitute
 
 #: objective name -> encoding that defines it (all use objective(Name,Priority))
 OBJECTIVES: dict[str, str] = {"units": "units", "success": "success", "inputs": "inputs", "depth": "depth"}
@@ -49,6 +50,11 @@ class AspOptions:
     #: the objective "cost": motion -> integer weight, the cost in hundredths (foon2asp.foon.motioncost);
     #: a motion not listed weighs 100 (cost 1); None: no table (the objective "cost" is refused)
     motion_costs: dict[str, int] | None = None
+    #: labels that may stand in for others (foon2asp.foon.substitutes): the fewest (cheapest)
+    #: substitutions rank above the objectives (foon2asp.asp.substitutes)
+    substitutes: tuple[Substitute, ...] = ()
+    #: at most this many substitutions per tree
+    max_substitutions: int | None = None
 
     @property
     def method(self) -> str:

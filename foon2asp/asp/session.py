@@ -22,7 +22,7 @@ from dataclasses import replace
 
 import clingo
 
-from foon2asp.asp import encodings, objectives
+from foon2asp.asp import encodings, objectives, substitutes
 from foon2asp.asp.answers import Shot, solve_shot, status, task_tree
 from foon2asp.asp.canonical import canonical_problem, canonicalise, chain_facts
 from foon2asp.asp.control import Answer, Control
@@ -73,10 +73,11 @@ class Session:
         ``goal``: a session for this goal (or meal) alone, grounded with the goal as a fact
         (the grounder then simplifies what follows from it: core-guided proofs on hard parts
         take about half the time of a goal switched on as an external)."""
-        self.problem = problem
         #: the goal (as a meal) this session was grounded for, None: any goal, switched per solve
         self.goal = None if goal is None else meal_of(goal)
         self.options = options or AspOptions()
+        # with substitutes, what they stand in for counts as available (foon2asp.asp.substitutes)
+        problem = self.problem = substitutes.prepare(problem, self.options)
         self.control = Control(self.options.args())
         self.ctl = self.control.ctl
         if units is None:
@@ -162,6 +163,8 @@ class Session:
             self._explain(meal, tree)
         if tree.status == "unknown" and self._plain():
             self._fallback(meal, tree)
+        if substitutes.applies(self.options) and tree.has_tree:
+            tree.extra["substitutions"] = substitutes.report(self.problem, meal, tree.units, self.options.substitutes)
         return tree
 
     def _plain(self) -> bool:
@@ -175,6 +178,7 @@ class Session:
             or o.models > 1
             or o.all_optimal
             or o.heuristic
+            or o.substitutes
         )
 
     def _fallback(self, meal: tuple[int, ...], tree: TaskTree) -> None:

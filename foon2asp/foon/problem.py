@@ -7,7 +7,8 @@ This is where the default semantics live (see README, "Semantics"):
 * utensil rule ``starter``: an input is not required when it is a utensil
   holding exactly one ingredient and another input of the same unit is that
   ingredient inside that utensil (``off`` makes every input required);
-* an output with no states, ingredients or container is not a product.
+* an output with no states, ingredients or container is not a product
+  (:func:`product_outputs`; at hierarchy levels 1 and 2 see foon2asp.foon.matching).
 
 Everything downstream (facts, search methods, validator) reads this class,
 so the semantics are stated exactly once.
@@ -52,6 +53,15 @@ def required_flags(unit: Unit, utensils: frozenset[str], rule: str = "starter") 
         )
         flags.append(not skip)
     return flags
+
+
+def product_outputs(unit: Unit) -> list[FoonObject]:
+    """The outputs of ``unit`` that count as made: the non-bare ones; a unit projected to
+    hierarchy level 1 or 2 (:class:`foon2asp.foon.matching.LevelUnit`) lists its own."""
+    made = getattr(unit, "made", None)
+    if made is None:
+        return [o for o in unit.outputs if not o.is_bare()]
+    return [o for o in unit.outputs if o in made]
 
 
 def walk_back(
@@ -100,6 +110,9 @@ class Problem:
     #: the motion-cost table of the request being answered (``--motion-cost``; set by
     #: :meth:`foon2asp.api.KnowledgeBase.options`): every tree's measures then include its cost
     motion_costs: MotionCosts | None = None
+    #: objects that count as available for viability though not kitchen items: what a
+    #: substitute stands in for (foon2asp.foon.substitutes.with_substitutes); a tree may make them too
+    substitutable: frozenset[int] = frozenset()
 
     def __post_init__(self) -> None:
         if self.utensil_rule not in UTENSIL_RULES:
@@ -115,7 +128,7 @@ class Problem:
             self.inputs.append(ins)
             self.required.append(tuple(dict.fromkeys(i for i, f in zip(ins, flags) if f)))
             self.outputs.append(tuple(oid[o] for o in unit.outputs))
-            self.products.append(tuple(dict.fromkeys(oid[o] for o in unit.outputs if not o.is_bare())))
+            self.products.append(tuple(dict.fromkeys(oid[o] for o in product_outputs(unit))))
         self.producers: dict[int, list[int]] = {}
         for u, prods in enumerate(self.products):
             for o in prods:
@@ -141,7 +154,7 @@ class Problem:
         view = Problem.__new__(Problem)
         view.foon, view.motion_rates = self.foon, self.motion_rates
         view.utensils, view.utensil_rule = self.utensils, self.utensil_rule
-        view.motion_costs = self.motion_costs
+        view.motion_costs, view.substitutable = self.motion_costs, self.substitutable
         view.inputs, view.required, view.outputs = self.inputs, self.required, self.outputs
         view.products, view.producers, view.rates = self.products, self.producers, self.rates
         view.kitchen = ids
@@ -175,8 +188,9 @@ class Problem:
         ``units`` are used when given.
         """
         pool = range(len(self.units)) if units is None else units
-        derived, unit_level = least_fixpoint(self.kitchen, self.required, self.products, pool)
-        obj_level = dict.fromkeys(self.kitchen, 0)
+        start = self.kitchen | self.substitutable  # what substitutes stand in for counts as had
+        derived, unit_level = least_fixpoint(start, self.required, self.products, pool)
+        obj_level = dict.fromkeys(start, 0)
         obj_level.update(derived)
         return obj_level, unit_level
 

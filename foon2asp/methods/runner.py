@@ -63,6 +63,7 @@ from functools import cached_property
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
+from foon2asp.asp.substitutes import prepare as with_substitutes
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem, walk_back
 from foon2asp.methods.bounds import Bounds
@@ -118,6 +119,7 @@ def plain(options: AspOptions) -> bool:
         and not options.programs
         and not options.encodings
         and not options.heuristic
+        and not options.substitutes
         and all(name in MONOTONE for name in ranked(options))
     )
 
@@ -150,6 +152,9 @@ class GoalRunner:
     ):
         if grounding not in GROUNDINGS:
             raise ValueError(f"unknown grounding {grounding!r}")
+        problem = with_substitutes(problem, options)
+        if options.substitutes:  # a goal's part would leave out the kitchen items that stand in
+            grounding = "whole"
         method = get(name)
         if goals is not None and method.kind == "asp" and options.units is None:
             # no tree for one of these goals can use another unit

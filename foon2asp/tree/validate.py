@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 from foon2asp.foon.leaves import leaves
 from foon2asp.foon.model import FoonObject, Unit
-from foon2asp.foon.problem import Problem, required_flags
+from foon2asp.foon.problem import Problem, product_outputs, required_flags
 
 
 @dataclass
@@ -38,7 +38,7 @@ def _required(problem: Problem, u: int) -> list[FoonObject]:
 
 
 def _products(problem: Problem, u: int) -> list[FoonObject]:
-    return [o for o in problem.units[u].outputs if not o.is_bare()]
+    return product_outputs(problem.units[u])
 
 
 def validate(problem: Problem, goal: FoonObject | int, units: list[int]) -> Validation:
@@ -143,7 +143,7 @@ def _name(step: int, unit: Unit, v: AloneVerdict | None = None) -> str:
 
 
 def _made_objects(unit: Unit) -> list[FoonObject]:
-    return [o for o in unit.outputs if not o.is_bare()]
+    return product_outputs(unit)
 
 
 def last_products(units: list[Unit]) -> tuple[FoonObject, ...]:

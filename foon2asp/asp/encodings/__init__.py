@@ -33,6 +33,7 @@ DEPENDS: dict[str, tuple[str, ...]] = {
     "greedy": ("tree",),
     "greedy_h1": ("greedy",),
     "greedy_h2": ("greedy",),
+    "substitutes": ("tree",),
 }
 
 

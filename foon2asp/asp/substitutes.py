@@ -1,0 +1,128 @@
+"""Substitutes in the solver: candidate facts, the problem a session solves, the report.
+
+Python only lists the candidates (:func:`foon2asp.foon.substitutes.candidates`); the
+tree chooses among them in ``encodings/substitutes.lp``:
+
+=========================  ==================================================
+``substitute(N,K,C)``      kitchen item number K (from 0, in the order of the
+                           candidates) may stand in for object N at cost C
+``max_substitutions(M)``   at most M substitutions (``AspOptions.max_substitutions``)
+``subst(N,K)``             the tree has N through K (shown)
+=========================  ==================================================
+
+The substitutions rank above every objective: the least summed cost (the fewest
+substitutions, with the default cost 1) first, then the objectives as usual.
+:func:`prepare` gives the problem whose viable units count the objects substitutes
+stand in for as available (so the session grounds the units that need them), and
+:func:`report` reads which substitutions a tree uses, as the encoding chooses them
+for exactly the tree's units.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+import clingo
+
+from foon2asp.asp import encodings
+from foon2asp.asp.control import Control
+from foon2asp.asp.facts import OPTIONAL, fact_objects, facts
+from foon2asp.errors import InputError
+from foon2asp.foon.model import FoonObject
+from foon2asp.foon.problem import Problem
+from foon2asp.foon.substitutes import Candidate, Substitute, candidates, substituted_kitchen, with_substitutes
+from foon2asp.tree.validate import Validation, validate
+
+
+def numbered(cands: list[Candidate]) -> dict[FoonObject, int]:
+    """The number ``K`` of each kitchen item that stands in for something, in candidate order."""
+    out: dict[FoonObject, int] = {}
+    for c in cands:
+        out.setdefault(c.used, len(out))
+    return out
+
+
+def substitute_facts(
+    problem: Problem,
+    substitutes: Iterable[Substitute],
+    units: Iterable[int] | None = None,
+    limit: int | None = None,
+    cands: list[Candidate] | None = None,
+) -> str:
+    """``substitute(N,K,C).`` for the objects of the facts of ``units`` (all units when None),
+    and ``max_substitutions(M).`` with a ``limit``; ``cands``: the candidates, when known."""
+    if cands is None:
+        cands = candidates(problem, substitutes)
+    ids = range(len(problem.units)) if units is None else units
+    objects = fact_objects(problem, ids)
+    number = numbered(cands)
+    lines = [f"substitute({c.needed},{number[c.used]},{c.cost}).\n" for c in cands if c.needed in objects]
+    if limit is not None:
+        lines.append(f"max_substitutions({int(limit)}).\n")
+    return "".join(lines)
+
+
+def applies(options) -> bool:
+    """Does a session with ``options`` solve with substitutes?"""
+    return bool(getattr(options, "substitutes", ()))
+
+
+def prepare(problem: Problem, options) -> Problem:
+    """The problem a session with ``options`` solves: with substitutes, the one whose
+    viability counts what they stand in for (:func:`with_substitutes`), else ``problem``.
+    Substitutes need an optimising session without depth rounds or greedy retrieval."""
+    if not applies(options):
+        return problem
+    if options.heuristic or options.max_depth is not None or "depth" in options.objective:
+        raise InputError("substitutes cannot be combined with depth bounds, the depth objective or greedy retrieval")
+    return with_substitutes(problem, options.substitutes)
+
+
+def report(
+    problem: Problem, goals: Iterable[int], units: Iterable[int], substitutes: Iterable[Substitute]
+) -> list[dict]:
+    """The substitutions the tree of ``units`` for ``goals`` uses, as ``{"needed", "used"}``
+    texts (in object id order): the cheapest ones that let exactly these units make the
+    goals, as substitutes.lp chooses them (empty when the tree needs none)."""
+    substitutes = tuple(substitutes)
+    units = sorted(set(units))
+    goals = list(dict.fromkeys(goals))
+    cands = candidates(problem, substitutes)
+    objects = fact_objects(problem, units)
+    if not any(c.needed in objects for c in cands):
+        return []
+    number = numbered(cands)
+    used_of = {k: obj for obj, k in number.items()}
+    program = [
+        facts(problem, units=units, leave_out=OPTIONAL),
+        "".join(f"goal({g}).\n" for g in goals),
+        substitute_facts(problem, substitutes, units, cands=cands),
+        encodings.encoding("tree"),
+        encodings.encoding("substitutes"),
+        ":- unit(U), not use(U).\n",  # exactly the tree's units
+    ]
+    control = Control(["--opt-mode=opt"])
+    control.add_all([("substitutions of a tree", "\n".join(program))])
+    control.ground()
+    chosen: list[tuple[int, int]] = []
+
+    def record(model: clingo.Model) -> None:
+        chosen[:] = [
+            (s.arguments[0].number, s.arguments[1].number) for s in model.symbols(shown=True) if s.name == "subst"
+        ]
+
+    control.solve(record, None)
+    return [{"needed": problem.objects[n].text, "used": used_of[k].text} for n, k in sorted(chosen)]
+
+
+def validate_with(
+    problem: Problem, goal: int, units: Iterable[int], substitutes: Iterable[Substitute]
+) -> tuple[Validation, list[dict]]:
+    """The independent validator's verdict on a tree that may rely on substitutes, and the
+    substitutions it uses (:func:`report`): valid when the tree makes ``goal`` with every
+    object a substitute can stand in for (but the goal) as a kitchen item."""
+    substitutes = tuple(substitutes)
+    units = list(units)
+    needed = [c.needed for c in candidates(problem, substitutes) if c.needed != goal]
+    verdict = validate(substituted_kitchen(problem, needed), goal, units)
+    return verdict, report(problem, [goal], units, substitutes) if verdict.valid else []

@@ -1,0 +1,325 @@
+"""Looser matching: FOON's hierarchy levels, label normalisation and synonyms, as a projection.
+
+FOON compares objects at three *hierarchy levels* (foon_api's ``equals_lvl1/2/3``):
+
+* level 1: the label only;
+* level 2: the label and the states, the container counting as the related object
+  of a state (``in [bowl]``, like ``on [plate]``);
+* level 3: label, states, container and ingredients -- foon2asp's identity.
+
+:class:`Projection` maps every object to the object the level sees (one object for
+all objects equal at the level) and a FOON to the FOON of the projected units:
+units equal at the level (motion, set of inputs, set of outputs) are one unit.  At
+levels 1 and 2 a unit's products are its outputs that were not bare in the FOON
+and are not equal at the level to one of the unit's own inputs (such an output
+passes through: chopping an onion makes no new object at level 1); the projected
+units are :class:`LevelUnit` and list their products (see
+:func:`foon2asp.foon.problem.product_outputs`).  Level 3 keeps today's semantics
+exactly: without normalisation or synonyms its projection is the identity.
+
+Texts (labels, states, ingredients, containers) are compared by a key
+(:class:`Texts`): foon2asp's own normalisation (case folding, runs of white space
+as one space), with ``normalize`` the singular of the last word (:func:`noun_key`, by the
+``inflect`` library), then the synonyms (``name = canonical name`` lines,
+:func:`read_synonyms`).  The key only compares: a projected object is spelled
+with the first spelling seen of each text, and :attr:`Projection.texts_joined` and
+:attr:`Projection.sources` say which spellings and objects were joined.
+
+Why inflect: of the 922 texts of ../shared/foon and foon-111 it keys 29 otherwise than
+they are spelled and joins 11 groups of labels and 3 of states, all spellings of one thing (``chive``/``chives``,
+``leaf``/``leaves``, and ``ramen`` with the FOON's misspelt ``raman``); of the 346 last
+words of labels it singularises 13, 4 wrongly (``glas``, ``gras``, ``pres``, ``ramen``).
+lemminflect, the alternative measured, singularises 15, 6 wrongly, and as nouns it
+lemmatises participles (``diced`` -> ``dice``), joining ``juiced`` with ``juice``.  A
+wrong singular only matters when it equals another text's key: keys are never shown.
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+from collections.abc import Iterable
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+from foon2asp.errors import InputError
+from foon2asp.foon.loaders import Dataset
+from foon2asp.foon.model import Foon, FoonObject, Unit, norm
+from foon2asp.foon.parser import state_parts
+from foon2asp.foon.safetext import read_text
+from foon2asp.foon.substitutes import Substitute, entries
+
+LEVELS = (1, 2, 3)
+
+#: a word the singular is looked up for (letters, inner hyphens or apostrophes)
+_WORD = re.compile(r"[^\W\d_]+(?:['-][^\W\d_]+)*")
+
+
+@lru_cache(maxsize=1)
+def _engine() -> Any:
+    """inflect's engine, imported on first use (only ``--normalize`` needs it).
+
+    inflect wraps its methods in typeguard's ``@typechecked``, which instruments each by
+    parsing the module's source again when inflect is imported: about 7 s.  The checks
+    only test that the arguments are non-empty strings, which :func:`noun_key` ensures,
+    so while inflect's module runs the decorator is the identity (0.2 s in all).
+    """
+    if "inflect" not in sys.modules:
+        try:
+            import typeguard
+        except ImportError:  # pragma: no cover - an inflect without typeguard
+            import inflect  # noqa: F401
+        else:
+            saved = typeguard.typechecked
+            setattr(typeguard, "typechecked", _no_check)  # noqa: B010
+            try:
+                import inflect  # noqa: F401
+            finally:
+                setattr(typeguard, "typechecked", saved)  # noqa: B010
+    return sys.modules["inflect"].engine()
+
+
+def _no_check(target: Any = None, **_: Any) -> Any:
+    """``typeguard.typechecked`` as the identity (see :func:`_engine`)."""
+    return target if target is not None else (lambda f: f)
+
+
+@lru_cache(maxsize=65536)
+def noun_key(word: str) -> str:
+    """The singular of an English noun as ``inflect`` makes it, the same for both forms:
+    a plural's ``singular_noun``, a singular's the ``singular_noun`` of its ``plural_noun``
+    (``blueberries``, ``blueberry`` -> ``blueberry``; inflect spells a few singulars
+    oddly, ``smoothies`` -> ``smoothy``, and this way ``smoothie`` gets the same key).
+    ``word`` itself for words inflect has no plural for, or that are not words."""
+    if not _WORD.fullmatch(word):
+        return word
+    engine = _engine()
+    one = engine.singular_noun(word)
+    if not one:
+        plural = engine.plural_noun(word)
+        one = engine.singular_noun(plural) if plural else False
+    return one if isinstance(one, str) and one else word
+
+
+def key_last(text: str) -> str:
+    """``text`` with :func:`noun_key` of its last word (``"fresh blueberries"`` -> ``"fresh blueberry"``)."""
+    head, _, last = text.rpartition(" ")
+    one = noun_key(last)
+    return text if one == last else (f"{head} {one}" if head else one)
+
+
+@dataclass(frozen=True)
+class LevelUnit(Unit):
+    """A unit projected to level 1 or 2: its products are listed (``made``), not read
+    off the outputs (a projected output may be bare though it was made)."""
+
+    made: frozenset[FoonObject] = frozenset()
+
+
+class Texts:
+    """The comparison key of a text: normalised, optionally in the singular, then synonyms."""
+
+    def __init__(self, normalize: bool = False, synonyms: dict[str, str] | None = None):
+        self.normalize = normalize
+        #: key -> canonical key (both sides normalised as keys are)
+        self.synonyms = dict(synonyms or {})
+        self._memo: dict[str, str] = {}
+
+    @property
+    def plain(self) -> bool:
+        """Are texts compared as foon2asp always compares them?"""
+        return not self.normalize and not self.synonyms
+
+    def base(self, text: str) -> str:
+        """The key before synonyms: normalised text, the last word singular with ``normalize``."""
+        text = norm(text)
+        return key_last(text) if self.normalize and text else text
+
+    def key(self, text: str) -> str:
+        """The key of a label, ingredient, container or plain state."""
+        got = self._memo.get(text)
+        if got is None:
+            base = self.base(text)
+            got = self._memo[text] = self.synonyms.get(base, base)
+        return got
+
+    def state_key(self, state: str) -> str:
+        """The key of a state; a relation state (``on [plates]``) keys its related objects as labels."""
+        name, arg = state_parts(state)
+        if arg is None:
+            return self.key(state)
+        inner = ",".join(self.key(part) for part in arg[1:-1].split(","))
+        return f"{self.key(name)} {arg[0]}{inner}{arg[-1]}"
+
+
+def parse_synonyms(text: str, path: str = "<synonyms>", normalize: bool = False) -> dict[str, str]:
+    """Synonyms from lines ``name = canonical name`` (``#`` starts a comment line, blank
+    lines are ignored) as key -> canonical key, chains resolved (``a = b``, ``b = c``: a -> c).
+
+    Both sides are keyed as :class:`Texts` keys them (``normalize``: the singular of
+    the last word).  A name given two canonical names, or a cycle, is an error naming
+    the file and line.
+    """
+    texts = Texts(normalize)
+    table: dict[str, str] = {}
+    lines: dict[str, int] = {}
+    for lineno, body in entries(text):
+        name, eq, canonical = body.partition("=")
+        if not eq:
+            raise InputError(f"expected 'name = canonical name', got {body[:60]!r}", path, lineno)
+        name, canonical = texts.base(name), texts.base(canonical)
+        if not name or not canonical:
+            raise InputError("a synonym needs a name on both sides of '='", path, lineno)
+        if name == canonical:
+            continue
+        if name in table and table[name] != canonical:
+            raise InputError(
+                f"{name!r} is already a synonym of {table[name]!r} (line {lines[name]}), not also of {canonical!r}",
+                path,
+                lineno,
+            )
+        table[name] = canonical
+        lines.setdefault(name, lineno)
+    resolved: dict[str, str] = {}
+    for name in table:
+        seen = [name]
+        target = table[name]
+        while target in table:
+            if target in seen:
+                cycle = " = ".join([*seen[seen.index(target) :], target])
+                raise InputError(f"synonyms form a cycle: {cycle}", path, lines[name])
+            seen.append(target)
+            target = table[target]
+        resolved[name] = target
+    return resolved
+
+
+def read_synonyms(path: str | Path, normalize: bool = False) -> dict[str, str]:
+    """The synonyms file ``path`` (see :func:`parse_synonyms`)."""
+    return parse_synonyms(read_text(path, "synonyms"), str(path), normalize)
+
+
+class Projection:
+    """Objects and units as a hierarchy level with a text key sees them (module docstring)."""
+
+    def __init__(self, level: int = 3, texts: Texts | None = None):
+        if level not in LEVELS:
+            raise InputError(f"--level must be 1, 2 or 3, not {level!r}")
+        self.level = level
+        self.texts = texts or Texts()
+        #: level 3 with plain texts: every object is itself
+        self.identity = level == 3 and self.texts.plain
+        self._labels: dict[str, str] = {}  # key -> first spelling (labels, ingredients, containers)
+        self._states: dict[str, str] = {}  # key -> first spelling (states)
+        self._memo: dict[FoonObject, FoonObject] = {}
+        #: first spelling -> every spelling joined into it, first first (only texts with others)
+        self.texts_joined: dict[str, list[str]] = {}
+        #: projected object -> the texts of the objects it stands for, in the order seen
+        self.sources: dict[FoonObject, list[str]] = {}
+
+    def _spell(self, table: dict[str, str], key: str, text: str) -> str:
+        first = table.setdefault(key, text)
+        if first != text:
+            joined = self.texts_joined.setdefault(first, [first])
+            if text not in joined:
+                joined.append(text)
+        return first
+
+    def label(self, text: str) -> str:
+        """The spelling of a label (ingredient, container) as the projection writes it."""
+        text = norm(text)
+        return text if self.texts.plain else self._spell(self._labels, self.texts.key(text), text)
+
+    def state(self, text: str) -> str:
+        """The spelling of a state as the projection writes it."""
+        text = norm(text)
+        return text if self.texts.plain else self._spell(self._states, self.texts.state_key(text), text)
+
+    def object(self, obj: FoonObject) -> FoonObject:
+        """The object ``obj`` is at this level (the same object for all objects equal at the level)."""
+        if self.identity:
+            return obj
+        got = self._memo.get(obj)
+        if got is None:
+            states: tuple[str, ...] = ()
+            ingredients: tuple[str, ...] = ()
+            container = None
+            if self.level >= 2:
+                states = tuple(sorted({self.state(s) for s in obj.states}))
+                container = self.label(obj.container) if obj.container else None
+            if self.level == 3:
+                ingredients = tuple(sorted({self.label(i) for i in obj.ingredients}))
+            got = self._memo[obj] = FoonObject(self.label(obj.label), states, ingredients, container)
+            self.sources.setdefault(got, []).append(obj.text)
+        return got
+
+    def objects(self, objs: Iterable[FoonObject]) -> list[FoonObject]:
+        """Each projected object once, in first-seen order."""
+        return list(dict.fromkeys(self.object(o) for o in objs))
+
+    def unit(self, unit: Unit) -> Unit:
+        """``unit`` at this level: inputs and outputs projected (each once); at levels 1 and 2
+        a :class:`LevelUnit` listing its products."""
+        ins = tuple(self.objects(unit.inputs))
+        outs = tuple(self.objects(unit.outputs))
+        if self.level == 3:
+            return Unit(unit.motion, ins, outs)
+        made = frozenset(self.object(o) for o in unit.outputs if not o.is_bare()).difference(ins)
+        return LevelUnit(unit.motion, ins, outs, made)
+
+    def foon(self, foon: Foon) -> Foon:
+        """The FOON of the projected units (units equal at the level are one unit; a unit
+        merged from several makes what any of them makes)."""
+        if self.identity:
+            return foon
+        out = Foon(warnings=list(foon.warnings), ids={kind: dict(t) for kind, t in foon.ids.items()})
+        for unit, origin in zip(foon.units, foon.origins):
+            projected = self.unit(unit)
+            before = len(out.units)
+            uid = out.add_unit(projected, origin)
+            kept = out.units[uid]
+            if uid < before and isinstance(projected, LevelUnit) and isinstance(kept, LevelUnit):
+                if not projected.made <= kept.made:
+                    out.units[uid] = replace(kept, made=kept.made | projected.made)
+        return out
+
+    def joined(self) -> dict[FoonObject, list[str]]:
+        """Projected objects that stand for more than one object text."""
+        return {o: texts for o, texts in self.sources.items() if len(texts) > 1}
+
+    def utensils(self, utensils: Iterable[str]) -> frozenset[str]:
+        """Utensil labels spelled as the projection spells labels."""
+        return frozenset(self.label(u) for u in utensils)
+
+    def substitutes(self, substitutes: Iterable[Substitute]) -> tuple[Substitute, ...]:
+        """Substitutes with their labels spelled as the projection spells labels (pairs that
+        become one keep the cheaper cost; a label that becomes its own substitute is dropped)."""
+        out: dict[tuple[str, str], Substitute] = {}
+        for s in substitutes:
+            needed, used = self.label(s.needed), self.label(s.used)
+            if needed != used and ((needed, used) not in out or s.cost < out[(needed, used)].cost):
+                out[(needed, used)] = Substitute(needed, used, s.cost)
+        return tuple(out.values())
+
+
+def project_dataset(
+    data: Dataset, level: int = 3, normalize: bool = False, synonyms: dict[str, str] | None = None
+) -> tuple[Dataset, Projection]:
+    """``data`` with its FOON, kitchen, goals and utensils projected (the FOON first, so
+    its spellings win), and the projection (to map further objects the same way)."""
+    projection = Projection(level, Texts(normalize, synonyms))
+    if projection.identity:
+        return data, projection
+    foon = projection.foon(data.foon)
+    return (
+        replace(
+            data,
+            foon=foon,
+            kitchen=projection.objects(data.kitchen),
+            goals=[(projection.object(o), line) for o, line in data.goals],
+            utensils=projection.utensils(data.utensils),
+        ),
+        projection,
+    )

@@ -1,0 +1,230 @@
+"""Ingredient substitutes: which kitchen items may stand in for a needed object.
+
+A substitutes file lists, for a label, the labels that may replace it, either as JSON::
+
+    {"onion": ["red onion", "shallot"], "butter": {"margarine": 2}}
+
+(a list: each substitute costs 1; an object: substitute -> cost) or as lines::
+
+    # needed: substitute, substitute=COST, ...
+    onion: red onion, shallot=2
+
+``#`` starts a comment line; a line is split at its first ``:``, substitutes at
+``,`` and a cost at the last ``=`` (a label holding ``:``, ``,``, ``=`` or
+starting with ``#`` needs the JSON form).  COST is a positive integer, 1 when
+left out (:data:`DEFAULT_COST`), so the summed cost of the substitutions used is
+their number unless costs are given.
+
+A required object that is not a kitchen item counts as available when the kitchen
+holds an object equal to it except that its label, or one of its ingredients, is
+one of the label's substitutes (:func:`candidates`).  The solver chooses which
+substitutions a tree uses (foon2asp/asp/encodings/substitutes.lp); here the
+candidates are only listed, and :func:`with_substitutes` gives the problem whose
+viability counts them as available.
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+from foon2asp.errors import InputError
+from foon2asp.foon.model import FoonObject, norm
+from foon2asp.foon.problem import Problem
+from foon2asp.foon.safejson import loads as safe_loads
+from foon2asp.foon.safetext import check_text, lines_of, read_text
+
+#: the cost of a substitute given without ``=COST``
+DEFAULT_COST = 1
+
+
+@dataclass(frozen=True, order=True)
+class Substitute:
+    """``used`` may stand in for ``needed`` (normalised labels) at ``cost``."""
+
+    needed: str
+    used: str
+    cost: int = DEFAULT_COST
+
+
+@dataclass(frozen=True, order=True)
+class Candidate:
+    """The object ``needed`` (an object id, not a kitchen item) is available as the kitchen item ``used``."""
+
+    needed: int
+    used: FoonObject
+    cost: int
+
+
+def _cost(text: str, path: str, line: int | None) -> int:
+    text = text.strip()
+    if not text.isdecimal() or int(text) < 1 or len(text) > 9:
+        raise InputError(f"a substitute's cost must be a positive integer, not {text!r}", path, line)
+    return int(text)
+
+
+def _add(
+    out: dict[tuple[str, str], Substitute], needed: str, used: str, cost: int, path: str, line: int | None
+) -> None:
+    needed, used = norm(needed), norm(used)
+    if not needed or not used:
+        raise InputError("a substitute needs a label on both sides", path, line)
+    if needed == used:
+        raise InputError(f"{needed!r} cannot be its own substitute", path, line)
+    if (needed, used) in out:
+        raise InputError(f"{used!r} is listed twice as a substitute for {needed!r}", path, line)
+    out[(needed, used)] = Substitute(needed, used, cost)
+
+
+def _from_json(value: object, path: str) -> dict[tuple[str, str], Substitute]:
+    if not isinstance(value, dict):
+        raise InputError('expected a JSON object {"label": ["substitute", ...], ...}', path)
+    out: dict[tuple[str, str], Substitute] = {}
+    for needed, subs in value.items():
+        if isinstance(subs, list) and all(isinstance(s, str) for s in subs):
+            pairs: list[tuple[str, object]] = [(s, DEFAULT_COST) for s in subs]
+        elif isinstance(subs, dict):
+            pairs = list(subs.items())
+        else:
+            raise InputError(f"the substitutes of {needed!r} must be a list of labels or an object label -> cost", path)
+        for used, cost in pairs:
+            if isinstance(cost, bool) or not isinstance(cost, int) or cost < 1:
+                raise InputError(f"the cost of {used!r} for {needed!r} must be a positive integer", path)
+            _add(out, needed, used, cost, path, None)
+    return out
+
+
+def entries(text: str) -> Iterator[tuple[int, str]]:
+    """``(line number, stripped line)`` of the lines that are neither blank nor ``#`` comments."""
+    for lineno, line in enumerate(lines_of(text), 1):
+        body = line.strip()
+        if body and not body.startswith("#"):
+            yield lineno, body
+
+
+def _from_lines(text: str, path: str) -> dict[tuple[str, str], Substitute]:
+    out: dict[tuple[str, str], Substitute] = {}
+    for lineno, body in entries(text):
+        needed, colon, rest = body.partition(":")
+        if not colon:
+            raise InputError(f"expected 'label: substitute, ...', got {body[:60]!r}", path, lineno)
+        if not rest.strip():
+            raise InputError(f"no substitutes listed for {needed.strip()!r}", path, lineno)
+        for item in rest.split(","):
+            used, eq, cost = item.rpartition("=")
+            if not eq:
+                used, cost = cost, ""
+            _add(out, needed, used, _cost(cost, path, lineno) if eq else DEFAULT_COST, path, lineno)
+    return out
+
+
+def parse_substitutes(text: str, path: str = "<substitutes>") -> tuple[Substitute, ...]:
+    """The substitutes of a file's text: JSON when it starts with ``{`` or ``[``, else lines."""
+    check_text(text, path)
+    if text.lstrip()[:1] in ("{", "["):
+        table = _from_json(safe_loads(text, path, checked=True), path)
+    else:
+        table = _from_lines(text, path)
+    return tuple(table.values())
+
+
+def read_substitutes(path: str | Path) -> tuple[Substitute, ...]:
+    """The substitutes file ``path`` (see the module docstring)."""
+    return parse_substitutes(read_text(path, "substitutes"), str(path))
+
+
+def _table(substitutes: Iterable[Substitute]) -> dict[str, list[Substitute]]:
+    table: dict[str, list[Substitute]] = {}
+    for s in substitutes:
+        table.setdefault(s.needed, []).append(s)
+    return table
+
+
+def stand_ins(obj: FoonObject, substitutes: Iterable[Substitute]) -> list[tuple[FoonObject, int]]:
+    """The objects that may stand in for ``obj`` with their costs: ``obj`` with its label,
+    or one of its ingredients, replaced by a substitute (in the order of the substitutes)."""
+    return _stand_ins(obj, _table(substitutes))
+
+
+def _stand_ins(obj: FoonObject, table: dict[str, list[Substitute]]) -> list[tuple[FoonObject, int]]:
+    out: list[tuple[FoonObject, int]] = []
+    for s in table.get(obj.label, ()):
+        out.append((FoonObject(s.used, obj.states, obj.ingredients, obj.container), s.cost))
+    for ingredient in obj.ingredients:
+        for s in table.get(ingredient, ()):
+            rest = {i for i in obj.ingredients if i != ingredient} | {s.used}
+            out.append((FoonObject(obj.label, obj.states, tuple(sorted(rest)), obj.container), s.cost))
+    return out
+
+
+def _stood_in_for(used: FoonObject, by_used: dict[str, list[Substitute]]) -> list[FoonObject]:
+    """The objects the kitchen item ``used`` may stand in for (the inverse of :func:`stand_ins`,
+    a superset: an object holding both the needed and the used label is among them)."""
+    out = [FoonObject(s.needed, used.states, used.ingredients, used.container) for s in by_used.get(used.label, ())]
+    for ingredient in used.ingredients:
+        for s in by_used.get(ingredient, ()):
+            rest = set(used.ingredients)
+            for ingredients in (rest - {ingredient} | {s.needed}, rest | {s.needed}):
+                out.append(FoonObject(used.label, used.states, tuple(sorted(ingredients)), used.container))
+    return out
+
+
+def candidates(problem: Problem, substitutes: Iterable[Substitute]) -> list[Candidate]:
+    """Every (needed object, kitchen item, cost) where the kitchen item may stand in for
+    an object of the FOON that is not a kitchen item; by object id, then substitute order.
+    A kitchen item reached by two substitutions of one object keeps the cheaper.
+    (Found from the kitchen side: the kitchen is small beside the FOON.)"""
+    table = _table(substitutes)
+    if not table:
+        return []
+    by_used: dict[str, list[Substitute]] = {}
+    for subs in table.values():
+        for sub in subs:
+            by_used.setdefault(sub.used, []).append(sub)
+    kitchen = set(problem.kitchen_items)
+    ids = problem.foon.object_ids
+    needed: set[int] = set()
+    for item in kitchen:
+        if item.label in by_used or any(i in by_used for i in item.ingredients):
+            needed.update(ids[o] for o in _stood_in_for(item, by_used) if o in ids and o not in kitchen)
+    out: list[Candidate] = []
+    for oid in sorted(needed):
+        best: dict[FoonObject, int] = {}
+        for used, cost in _stand_ins(problem.objects[oid], table):
+            if used in kitchen and cost < best.get(used, cost + 1):
+                best[used] = cost
+        out += [Candidate(oid, used, cost) for used, cost in best.items()]
+    return out
+
+
+def _view(problem: Problem) -> Problem:
+    view = copy.copy(problem)
+    for name in ("derivable", "viable_units", "viable_producers"):  # cached on the problem: recomputed
+        view.__dict__.pop(name, None)
+    return view
+
+
+def with_substitutes(problem: Problem, substitutes: Iterable[Substitute]) -> Problem:
+    """``problem`` whose viability (the least fixpoint, viable units, the units a tree may
+    use) counts every object a substitute can stand in for as available; ``problem``
+    itself when that is already so (or there are no substitutes)."""
+    needed = frozenset(c.needed for c in candidates(problem, substitutes))
+    if needed == problem.substitutable:
+        return problem
+    view = _view(problem)
+    view.substitutable = needed
+    return view
+
+
+def substituted_kitchen(problem: Problem, used: Iterable[int | FoonObject]) -> Problem:
+    """``problem`` with the objects ``used`` substitutions stand in for (ids or objects) as
+    kitchen items: the independent validator (foon2asp.tree.validate) accepts a tree that
+    relies on those substitutions on it."""
+    extra = [problem.objects[o] if isinstance(o, int) else o for o in used]
+    view = _view(problem)
+    view.kitchen_items = list(dict.fromkeys([*problem.kitchen_items, *extra]))
+    ids = problem.foon.object_ids
+    view.kitchen = problem.kitchen | frozenset(ids[o] for o in extra if o in ids)
+    return view
