@@ -214,9 +214,10 @@ def check_file(
     optimum: bool = True,
     among: list[int] | None = None,
     strict: bool = False,
+    options: AspOptions | None = None,
 ) -> list[Report]:
     """Check every tree (or plan) in ``path``; with ``optimum`` the ASP optimum is solved for
-    each goal (for several ``goal_label``: the meal's optimum).
+    each goal (for several ``goal_label``: the meal's optimum) with the caller's ``options``.
 
     ``among`` (``--goals``): each tree's goal is the one of these it makes.  ``strict``: a unit
     a unit list would skip with a warning (:attr:`TreeFile.warnings`) is an error.
@@ -224,7 +225,7 @@ def check_file(
     reports = check_trees(data, problem, read_trees(path, problem, strict), goal_label, among)
     if optimum and reports:
         meals = list(dict.fromkeys(r.meal for r in reports))
-        best = dict(zip(meals, solve_goals(problem, meals, "asp", AspOptions())))
+        best = dict(zip(meals, solve_goals(problem, meals, "asp", options or AspOptions())))
         for r in reports:
             r.optimum = best[r.meal]
     return reports
