@@ -148,7 +148,9 @@ def schedule_fixed(
     entries = base
     if sol.entries is not None and makespan(sol.entries) <= ub:
         entries = compact(inst, sol.entries)
-    status = "optimal" if sol.proven else "feasible"
+    # without tie-breakers a schedule at the lower bound is optimal, however the search ended
+    met = makespan(entries) <= b.lower and not spec.has_human()
+    status = "optimal" if sol.proven or met else "feasible"
     return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
 
 
