@@ -16,7 +16,7 @@ from foon2asp.schedule.check import check_schedule
 from foon2asp.schedule.spec import ScheduleSpec
 from helpers import build
 from test_cli import assert_one_line_error, run
-from test_schedule import AGENT_SETS, brute_schedule, longer_tree_shorter_chain, random_spec, random_tree
+from test_schedule import AGENT_SETS, ENCODINGS, brute_schedule, longer_tree_shorter_chain, random_spec, random_tree
 
 needs_dot = pytest.mark.skipif(shutil.which("neato") is None, reason="Graphviz is not installed")
 
@@ -104,13 +104,14 @@ def test_cli_makespan_equals_brute_force(seed, tmp_path):
     spec = random_spec(rng, kinds)
     want = brute_schedule(problem, units, spec)
     d = write_data(tmp_path, problem)
-    args = ["schedule", "--data", d, "--goal", problem.objects[goal].label, "--format", "json"]
+    encoding = ENCODINGS[seed % len(ENCODINGS)]
+    args = ["schedule", "--data", d, "--goal", problem.objects[goal].label, "--format", "json", "--encoding", encoding]
     res = run(*args, *spec_files(tmp_path, spec))
     (r,) = json.loads(res.stdout)
     if want is None:
         assert r["status"] == "unschedulable" and r["makespan"] is None and "no agent can do" in r["reason"]
         return
-    assert r["status"] == "optimal"
+    assert r["status"] == "optimal" and r["encoding"] == encoding
     assert round(r["makespan"] * 1000) == want[0] and r["human_units"] == want[1]
     kb = foon2asp.load(d)
     assert check_schedule(kb.problem, r, spec) is None
