@@ -20,18 +20,23 @@ from foon2asp.api.results import BatchRun, CheckReport, Comparison, Missing, Rea
 from foon2asp.asp.constraints import unknown_names
 from foon2asp.asp.facts import facts as facts_text
 from foon2asp.asp.options import AspOptions
+from foon2asp.asp.substitutes import report as report_substitutions
+from foon2asp.asp.substitutes import substitute_facts
 from foon2asp.batch import cluster
 from foon2asp.batch import run as batch_run
 from foon2asp.batch.pool import BatchSpec
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
-from foon2asp.foon.loaders import Dataset
+from foon2asp.foon.loaders import Dataset, read_goals
+from foon2asp.foon.matching import Projection
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.motioncost import unit_weights
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.treefiles import TreeFile, TreeUnit
+from foon2asp.foon.substitutes import Substitute, candidates, substituted_kitchen, with_substitutes
+from foon2asp.foon.treefiles import TreeFile, TreeUnit, read_trees
 from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.results import MealRow, QueryResult
+from foon2asp.tree.tasktree import meal_of
 
 #: a goal as the API takes it: a label, an object's text, ``"#ID"``, an object id or a FoonObject
 GoalLike = str | int | FoonObject
@@ -45,6 +50,16 @@ class KnowledgeBase:
     problem: Problem
     #: one-line warnings about the input (skipped units, motions without a rate, unknown names, ...)
     warnings: list[str] = field(default_factory=list)
+    #: how objects are compared (``load``'s ``level``, ``normalize``, ``synonyms``; foon2asp.foon.matching)
+    projection: Projection = field(default_factory=Projection)
+    #: substitutes -> (the objects they stand in for, the problems trees are judged on)
+    _views: dict = field(default_factory=dict, init=False, repr=False)
+
+    @property
+    def joined(self) -> dict[str, list[str]]:
+        """The spellings joined by ``normalize``/``synonyms``: first spelling -> every spelling
+        (first first); only texts spelled more than one way."""
+        return {first: list(all_) for first, all_ in self.projection.texts_joined.items()}
 
     # -- what is there ------------------------------------------------------
 
@@ -59,15 +74,28 @@ class KnowledgeBase:
             return list(self.problem.objects)
         return self.problem.foon.by_label(label)
 
-    def find_objects(self, query: str | None = None, only: str | None = None) -> list[int]:
+    def find_objects(
+        self, query: str | None = None, only: str | None = None, options: Options | None = None
+    ) -> list[int]:
         """Ids of the objects ``query`` names (``#ID``, an object's text, a label, else labels
-        containing it as words; all when None); ``only``: ``produced``, ``kitchen`` or ``derivable``."""
-        return goals_mod.find_objects(self.problem, query, only)
+        containing it as words; all when None); ``only``: ``produced``, ``kitchen`` or ``derivable``
+        (with ``options.substitutes``: derivable when substitutes may stand in for kitchen items)."""
+        problem = self.problem
+        if only == "derivable" and self.substitutes(options):
+            problem = with_substitutes(problem, self.substitutes(options))
+        return goals_mod.find_objects(problem, query, only)
 
     def object_info(self, goal: GoalLike) -> dict:
         """``{"id", "text", "label", "states", "ingredients", "container", "in_kitchen", "producers"}``
-        (``producers``: how many units make it); a list of these is a goals file."""
-        return goals_mod.object_info(self.problem, self.object_id(goal))
+        (``producers``: how many units make it); a list of these is a goals file.  With ``"joined"``
+        the texts of the objects it stands for when the comparison (level, normalize, synonyms)
+        joined several."""
+        oid = self.object_id(goal)
+        info = goals_mod.object_info(self.problem, oid)
+        texts = self.projection.sources.get(self.problem.objects[oid], [])
+        if len(texts) > 1:
+            info["joined"] = list(texts)
+        return info
 
     def object_id(self, goal: GoalLike) -> int:
         """The object id of a goal given as a label, an object's text, ``#ID``, an id or an object."""
@@ -77,6 +105,13 @@ class KnowledgeBase:
             if not 0 <= goal < len(self.problem.objects):
                 raise InputError(f"no object #{goal}")
             return goal
+        if not self.projection.identity:
+            parsed = goals_mod.parse_object_text(goal.strip())
+            if parsed is not None and not goal.strip().startswith("#"):
+                found = self.problem.foon.object_ids.get(self.projection.object(parsed))
+                if found is not None:
+                    return found
+                goal = self.projection.label(goal)
         return goals_mod.resolve_goal(self.data, self.problem, goal)
 
     def goal_ids(self, goals: GoalLike | Iterable[GoalLike] | None) -> list[int]:
@@ -95,18 +130,46 @@ class KnowledgeBase:
         """The goals a request names: each of ``goal`` (labels, texts or ``#ID``) in order, then
         ``goals``: a goals file, ``"all"`` (the goals file's entries) or ``"all-objects"``; neither:
         the goals file's entries.  Naming nothing at all is an error."""
-        return goals_mod.resolve(self.data, self.problem, tuple(goal), None if goals is None else str(goals))
+        if self.projection.identity:
+            return goals_mod.resolve(self.data, self.problem, tuple(goal), None if goals is None else str(goals))
+        named = [self.object_id(g) for g in goal]
+        if goals is None and named:
+            return named
+        if goals is None or str(goals) in ("all", "all-objects"):
+            return named + goals_mod.resolve(self.data, self.problem, (), None if goals is None else str(goals))
+        path = str(goals)
+        from_file = [goals_mod.goal_id(self.problem, self.projection.object(o), path, n) for o, n in read_goals(path)]
+        if not from_file:
+            raise InputError("the goals file lists no goal", path)
+        return named + from_file
 
     def file_goals(self) -> list[int]:
         """The ids of the goals file's entries (none without a goals file)."""
         path = self.data.paths.get("goals")
         return [goals_mod.goal_id(self.problem, obj, path, line) for obj, line in self.data.goals]
 
-    def facts(self, goal_nodes: Iterable[int] | None = None, goals: Iterable[int] = ()) -> str:
+    def facts(
+        self, goal_nodes: Iterable[int] | None = None, goals: Iterable[int] = (), options: Options | None = None
+    ) -> str:
         """The FOON, kitchen and goals as ASP facts: ``goal_node/2`` for ``goal_nodes`` (default:
-        the goals file's entries), ``goal/1`` for each of ``goals`` (docs/vocabulary.md)."""
+        the goals file's entries), ``goal/1`` for each of ``goals`` (docs/vocabulary.md); with
+        ``options.substitutes`` also ``substitute(N,K,C)`` (docs/vocabulary.md)."""
         nodes = self.file_goals() if goal_nodes is None else list(goal_nodes)
-        return facts_text(self.problem, goal_nodes=nodes) + "".join(f"goal({g}).\n" for g in goals)
+        text = facts_text(self.problem, goal_nodes=nodes) + "".join(f"goal({g}).\n" for g in goals)
+        return text + self._substitute_facts(options)
+
+    def substitutes(self, options: Options | None) -> tuple[Substitute, ...]:
+        """The substitutes of a request, spelled as this knowledge base spells labels."""
+        if options is None or options.substitutes is None:
+            return ()
+        return self.projection.substitutes(options.substitute_table())
+
+    def _substitute_facts(self, options: Options | None) -> str:
+        """``substitute/3`` (and ``max_substitutions/1``) facts of a request's substitutes (foon2asp.asp.substitutes)."""
+        table = self.substitutes(options)
+        if not table:
+            return ""
+        return substitute_facts(self.problem, table, limit=options.max_substitutions if options else None)
 
     # -- options ------------------------------------------------------------
 
@@ -120,6 +183,8 @@ class KnowledgeBase:
         request = Options.of(options, **settings)
         self.warnings.extend(unknown_names(self.problem, request.constraints))
         solver = request.solver()
+        if solver.substitutes:  # spelled as the FOON's labels are at this level
+            solver = replace(solver, substitutes=self.projection.substitutes(solver.substitutes))
         table = request.motion_table()
         self.problem.motion_costs = table
         if table is None:
@@ -206,23 +271,35 @@ class KnowledgeBase:
             units = [TreeUnit(self.problem.units[u], i, None) for i, u in enumerate(tree.unit_ids, 1)]
             tf = TreeFile("<tree>", units, tree.goal, tree.method)
             gid = tree.goal_id if goal is None else self.object_id(goal)
-            raw = check_mod.check_tree(self.problem, tf, gid)
+            raw = check_mod.check_tree(self.judging_problem(solver, (gid,)), tf, gid)
             raw.goal_source = "the tree's goal" if goal is None else "given"
             reports = [raw]
         else:
 
             def name(g: GoalLike) -> str:
-                return f"#{self.object_id(g)}" if isinstance(g, int | FoonObject) else g
+                plain = isinstance(g, str) and self.projection.identity
+                return g if plain else f"#{self.object_id(g)}"
 
             goal_list = [] if goal is None else [goal] if isinstance(goal, str | int | FoonObject) else list(goal)
             labels = tuple(name(g) for g in goal_list) or None
             among = None
             if isinstance(goals, str | Path):
-                among = goals_mod.goals_from_file(self.problem, str(goals))
+                among = self.select_goals((), goals)
             elif goals is not None:
                 among = [self.object_id(g) for g in goals]
-            reports = check_mod.check_file(self.data, self.problem, tree, labels, False, among, strict)
+            files = [self.project_tree(t) for t in read_trees(tree, self.problem, strict)]
+            reports = check_mod.check_trees(self.data, self.judging_problem(solver), files, labels, among)
+            if solver.substitutes:  # a goal a substitute stands in for is judged without it
+                for i, r in enumerate(reports):
+                    view = self.judging_problem(solver, r.meal)
+                    if view is not self.judging_problem(solver):
+                        reports[i] = check_mod.check_tree(view, r.tree, r.goals or r.goal)
+                        reports[i].goal_source = r.goal_source
             self.warnings.extend(dict.fromkeys(w for r in reports for w in r.tree.warnings))
+        if solver.substitutes:
+            for r in reports:
+                used = [u for u in dict.fromkeys(r.ids) if u is not None]
+                r.substitutions = report_substitutions(self.problem, r.meal, used, solver.substitutes) if r.valid else []
         if optimum and reports:
             # a Tree's own goal, a file's trees by meal (one goal: a meal of one)
             key = (lambda r: r.goal) if isinstance(tree, Tree) else (lambda r: r.meal)
@@ -232,6 +309,30 @@ class KnowledgeBase:
                 r.optimum = best[key(r)]
         found = [CheckReport(self, r) for r in reports]
         return found[0] if len(found) == 1 else found
+
+    def judging_problem(self, solver: AspOptions | Options | None, goals: Iterable[int] = ()) -> Problem:
+        """The problem a tree is judged on: with substitutes, every object one can stand in
+        for (but ``goals``) is a kitchen item (foon2asp.asp.substitutes.validate_with)."""
+        if isinstance(solver, Options | None):
+            solver = AspOptions(substitutes=self.substitutes(solver))
+        if not solver.substitutes:
+            return self.problem
+        if solver.substitutes not in self._views:
+            self._views[solver.substitutes] = ([c.needed for c in candidates(self.problem, solver.substitutes)], {})
+        needed, views = self._views[solver.substitutes]
+        skip = frozenset(goals).intersection(needed)
+        if skip not in views:
+            views[skip] = substituted_kitchen(self.problem, [n for n in needed if n not in skip])
+        return views[skip]
+
+    def project_tree(self, tree: TreeFile) -> TreeFile:
+        """A tree read from a file, its units and goal as this knowledge base's level sees them."""
+        if self.projection.identity:
+            return tree
+        p = self.projection
+        units = [TreeUnit(p.unit(tu.unit), tu.step, tu.line) for tu in tree.units]
+        goal = None if tree.goal is None else p.object(tree.goal)
+        return replace(tree, units=units, goal=goal)
 
     def check_all(
         self,
@@ -284,13 +385,25 @@ class KnowledgeBase:
         solver = self.options(options, **settings)
         return compare_mod.compare_meal(self.problem, self.goal_ids(goals), method, solver)
 
-    def reachability(self, goals: GoalLike | Sequence[GoalLike] | None = "all") -> Reachability:
-        """For each goal: can it be made from the kitchen at all (one solve for all)?"""
-        return Reachability(self, queries.reachable(self.problem, self.goal_ids(goals)))
+    def reachability(
+        self, goals: GoalLike | Sequence[GoalLike] | None = "all", *, options: Options | None = None
+    ) -> Reachability:
+        """For each goal: can it be made from the kitchen at all (one solve for all)?  With
+        ``options.substitutes``: when substitutes may stand in for missing kitchen items."""
+        ids = self.goal_ids(goals)
+        base = self.judging_problem(options)
+        answers = queries.reachable(base, ids)
+        for goal in ids:  # a goal a substitute stands in for is not had by substituting it
+            view = self.judging_problem(options, (goal,))
+            if view is not base:
+                answers[goal] = queries.reachable(view, [goal])[goal]
+        return Reachability(self, answers)
 
-    def reachable(self, goals: GoalLike | Sequence[GoalLike] | None = "all") -> dict[FoonObject, bool]:
+    def reachable(
+        self, goals: GoalLike | Sequence[GoalLike] | None = "all", *, options: Options | None = None
+    ) -> dict[FoonObject, bool]:
         """:meth:`reachability` as ``{object: reachable}``."""
-        return self.reachability(goals).answers
+        return self.reachability(goals, options=options).answers
 
     def missing(
         self,
@@ -310,8 +423,10 @@ class KnowledgeBase:
             target = self.object_id(goal)
         else:
             target = tuple(dict.fromkeys(self.object_id(g) for g in goal))
+        subs = self.substitutes(Options.of(options, **settings))
+        problem = self.judging_problem(solver, meal_of(target))
         answer = queries.missing(
-            self.problem,
+            problem,
             target,
             solver.programs,
             solver.time_limit,
@@ -319,6 +434,9 @@ class KnowledgeBase:
             solver.opt_strategy,
             solver.threads,
         )
+        if subs:
+            bought = substituted_kitchen(self.problem, answer.missing)  # the kitchen with what is added
+            answer.substitutions = report_substitutions(bought, meal_of(target), answer.units, subs)
         return Missing(self, answer)
 
     def query(
@@ -339,10 +457,12 @@ class KnowledgeBase:
         ``models`` (0: all) and ``time_limit`` come from ``options`` or the keywords.
         With a ``#show`` of its own in ``program`` only what it shows is returned;
         ``warnings`` names atoms the program uses that no rule or fact defines.
+        With ``substitutes`` the facts include ``substitute(N,K,C)`` (and ``max_substitutions(M)``).
         """
         request = Options.of(options, **settings)
         nodes = self.file_goals() if goal_nodes is None else self.goal_ids(goal_nodes)
         gid = None if goal is None else self.object_id(goal)
+        program += self._substitute_facts(request)  # substitute/3 with substitutes (encodings: "substitutes")
         return queries.query(self.problem, (name, program), nodes, gid, encodings, request.models, request.time_limit)
 
     def batch(

@@ -7,7 +7,7 @@ import json
 import click
 
 from foon2asp.cli.main import guarded, main
-from foon2asp.cli.options import data_options
+from foon2asp.cli.options import data_options, joined_lines
 
 
 def _data_options_but_kitchen(func):
@@ -32,7 +32,7 @@ def objects(query, data, only, fmt):
     (--goals FILE).
     """
     kb = data.load()
-    ids = kb.find_objects(query, only)
+    ids = kb.find_objects(query, only, options=data.request())
     infos = [kb.object_info(i) for i in ids]
     if fmt == "json":
         click.echo("[\n" + ",\n".join(json.dumps(i, ensure_ascii=False) for i in infos) + "\n]" if infos else "[]")
@@ -42,6 +42,10 @@ def objects(query, data, only, fmt):
         where = ["kitchen"] if info["in_kitchen"] else []
         if info["producers"]:
             where.append(f"made by {info['producers']} unit{'s' if info['producers'] != 1 else ''}")
+        if "joined" in info:
+            where.append("joins " + " | ".join(info["joined"]))
         click.echo(f"{'#' + str(info['id']):<{width}}  {info['text']}" + (f"   ({', '.join(where)})" if where else ""))
     what = {None: "", "produced": " made by some unit", "kitchen": " in the kitchen", "derivable": " derivable"}[only]
     click.echo(f"{len(infos)} object{'s' if len(infos) != 1 else ''}{what}", err=True)
+    for line in joined_lines(kb.joined):
+        click.echo(line, err=True)

@@ -218,6 +218,17 @@ def with_substitutes(problem: Problem, substitutes: Iterable[Substitute]) -> Pro
     return view
 
 
+def judged_on(problem: Problem, substitutes: Iterable[Substitute], goals: Iterable[int] = ()) -> Problem:
+    """The problem a tree that may rely on ``substitutes`` is judged on by the independent
+    validator: every object a substitute can stand in for, but ``goals``, is a kitchen item
+    (``problem`` itself without substitutes)."""
+    substitutes = tuple(substitutes)
+    if not substitutes:
+        return problem
+    skip = set(goals)
+    return substituted_kitchen(problem, [c.needed for c in candidates(problem, substitutes) if c.needed not in skip])
+
+
 def substituted_kitchen(problem: Problem, used: Iterable[int | FoonObject]) -> Problem:
     """``problem`` with the objects ``used`` substitutions stand in for (ids or objects) as
     kitchen items: the independent validator (foon2asp.tree.validate) accepts a tree that
