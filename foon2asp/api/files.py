@@ -9,10 +9,10 @@ from pathlib import Path
 from foon2asp.analysis.check import check_trees, read_and_check
 from foon2asp.api.kb import KnowledgeBase
 from foon2asp.api.load import projection
+from foon2asp.api.options import Options
 from foon2asp.asp.constraints import read_file
 from foon2asp.errors import InputError
 from foon2asp.foon import foonjson, parser, unitlist
-from foon2asp.api.options import Options
 from foon2asp.foon.model import Foon
 from foon2asp.foon.treefiles import read_trees
 from foon2asp.report import draw

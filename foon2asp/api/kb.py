@@ -15,24 +15,24 @@ from foon2asp import methods
 from foon2asp.analysis import check as check_mod
 from foon2asp.analysis import compare as compare_mod
 from foon2asp.analysis import queries
+from foon2asp.api.matching import Matching
 from foon2asp.api.options import Options, Settings
 from foon2asp.api.results import BatchRun, CheckReport, Comparison, Missing, Reachability, Tree
 from foon2asp.asp.constraints import unknown_names
 from foon2asp.asp.facts import facts as facts_text
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.substitutes import report as report_substitutions
-from foon2asp.asp.substitutes import substitute_facts
 from foon2asp.batch import cluster
 from foon2asp.batch import run as batch_run
 from foon2asp.batch.pool import BatchSpec
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
-from foon2asp.foon.loaders import Dataset, read_goals
+from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.matching import Projection
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.motioncost import unit_weights
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.substitutes import Substitute, candidates, substituted_kitchen, with_substitutes
+from foon2asp.foon.substitutes import substituted_kitchen, with_substitutes
 from foon2asp.foon.treefiles import TreeFile, TreeUnit, read_trees
 from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.results import MealRow, QueryResult
@@ -43,7 +43,7 @@ GoalLike = str | int | FoonObject
 
 
 @dataclass
-class KnowledgeBase:
+class KnowledgeBase(Matching):
     """A FOON with its kitchen, goals, motion success rates and utensils, ready to answer."""
 
     data: Dataset
@@ -54,12 +54,6 @@ class KnowledgeBase:
     projection: Projection = field(default_factory=Projection)
     #: substitutes -> (the objects they stand in for, the problems trees are judged on)
     _views: dict = field(default_factory=dict, init=False, repr=False)
-
-    @property
-    def joined(self) -> dict[str, list[str]]:
-        """The spellings joined by ``normalize``/``synonyms``: first spelling -> every spelling
-        (first first); only texts spelled more than one way."""
-        return {first: list(all_) for first, all_ in self.projection.texts_joined.items()}
 
     # -- what is there ------------------------------------------------------
 
@@ -100,18 +94,15 @@ class KnowledgeBase:
     def object_id(self, goal: GoalLike) -> int:
         """The object id of a goal given as a label, an object's text, ``#ID``, an id or an object."""
         if isinstance(goal, FoonObject):
-            return goals_mod.goal_id(self.problem, goal)
+            return goals_mod.goal_id(self.problem, self.projection.object(goal))
         if isinstance(goal, int):
             if not 0 <= goal < len(self.problem.objects):
                 raise InputError(f"no object #{goal}")
             return goal
         if not self.projection.identity:
-            parsed = goals_mod.parse_object_text(goal.strip())
-            if parsed is not None and not goal.strip().startswith("#"):
-                found = self.problem.foon.object_ids.get(self.projection.object(parsed))
-                if found is not None:
-                    return found
-                goal = self.projection.label(goal)
+            found, goal = self._projected_id(goal)
+            if found is not None:
+                return found
         return goals_mod.resolve_goal(self.data, self.problem, goal)
 
     def goal_ids(self, goals: GoalLike | Iterable[GoalLike] | None) -> list[int]:
@@ -132,16 +123,7 @@ class KnowledgeBase:
         the goals file's entries.  Naming nothing at all is an error."""
         if self.projection.identity:
             return goals_mod.resolve(self.data, self.problem, tuple(goal), None if goals is None else str(goals))
-        named = [self.object_id(g) for g in goal]
-        if goals is None and named:
-            return named
-        if goals is None or str(goals) in ("all", "all-objects"):
-            return named + goals_mod.resolve(self.data, self.problem, (), None if goals is None else str(goals))
-        path = str(goals)
-        from_file = [goals_mod.goal_id(self.problem, self.projection.object(o), path, n) for o, n in read_goals(path)]
-        if not from_file:
-            raise InputError("the goals file lists no goal", path)
-        return named + from_file
+        return self._projected_goals(goal, goals)
 
     def file_goals(self) -> list[int]:
         """The ids of the goals file's entries (none without a goals file)."""
@@ -157,19 +139,6 @@ class KnowledgeBase:
         nodes = self.file_goals() if goal_nodes is None else list(goal_nodes)
         text = facts_text(self.problem, goal_nodes=nodes) + "".join(f"goal({g}).\n" for g in goals)
         return text + self._substitute_facts(options)
-
-    def substitutes(self, options: Options | None) -> tuple[Substitute, ...]:
-        """The substitutes of a request, spelled as this knowledge base spells labels."""
-        if options is None or options.substitutes is None:
-            return ()
-        return self.projection.substitutes(options.substitute_table())
-
-    def _substitute_facts(self, options: Options | None) -> str:
-        """``substitute/3`` (and ``max_substitutions/1``) facts of a request's substitutes (foon2asp.asp.substitutes)."""
-        table = self.substitutes(options)
-        if not table:
-            return ""
-        return substitute_facts(self.problem, table, limit=options.max_substitutions if options else None)
 
     # -- options ------------------------------------------------------------
 
@@ -277,8 +246,9 @@ class KnowledgeBase:
         else:
 
             def name(g: GoalLike) -> str:
-                plain = isinstance(g, str) and self.projection.identity
-                return g if plain else f"#{self.object_id(g)}"
+                if isinstance(g, str) and self.projection.identity:
+                    return g
+                return f"#{self.object_id(g)}"
 
             goal_list = [] if goal is None else [goal] if isinstance(goal, str | int | FoonObject) else list(goal)
             labels = tuple(name(g) for g in goal_list) or None
@@ -299,7 +269,9 @@ class KnowledgeBase:
         if solver.substitutes:
             for r in reports:
                 used = [u for u in dict.fromkeys(r.ids) if u is not None]
-                r.substitutions = report_substitutions(self.problem, r.meal, used, solver.substitutes) if r.valid else []
+                r.substitutions = (
+                    report_substitutions(self.problem, r.meal, used, solver.substitutes) if r.valid else []
+                )
         if optimum and reports:
             # a Tree's own goal, a file's trees by meal (one goal: a meal of one)
             key = (lambda r: r.goal) if isinstance(tree, Tree) else (lambda r: r.meal)
@@ -309,30 +281,6 @@ class KnowledgeBase:
                 r.optimum = best[key(r)]
         found = [CheckReport(self, r) for r in reports]
         return found[0] if len(found) == 1 else found
-
-    def judging_problem(self, solver: AspOptions | Options | None, goals: Iterable[int] = ()) -> Problem:
-        """The problem a tree is judged on: with substitutes, every object one can stand in
-        for (but ``goals``) is a kitchen item (foon2asp.asp.substitutes.validate_with)."""
-        if isinstance(solver, Options | None):
-            solver = AspOptions(substitutes=self.substitutes(solver))
-        if not solver.substitutes:
-            return self.problem
-        if solver.substitutes not in self._views:
-            self._views[solver.substitutes] = ([c.needed for c in candidates(self.problem, solver.substitutes)], {})
-        needed, views = self._views[solver.substitutes]
-        skip = frozenset(goals).intersection(needed)
-        if skip not in views:
-            views[skip] = substituted_kitchen(self.problem, [n for n in needed if n not in skip])
-        return views[skip]
-
-    def project_tree(self, tree: TreeFile) -> TreeFile:
-        """A tree read from a file, its units and goal as this knowledge base's level sees them."""
-        if self.projection.identity:
-            return tree
-        p = self.projection
-        units = [TreeUnit(p.unit(tu.unit), tu.step, tu.line) for tu in tree.units]
-        goal = None if tree.goal is None else p.object(tree.goal)
-        return replace(tree, units=units, goal=goal)
 
     def check_all(
         self,

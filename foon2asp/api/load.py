@@ -11,6 +11,7 @@ from foon2asp.foon.demo import demo_dir
 from foon2asp.foon.loaders import FILE_NAMES, Dataset
 from foon2asp.foon.matching import Projection, Texts, parse_synonyms, project_dataset, read_synonyms
 from foon2asp.foon.problem import Problem
+from foon2asp.foon.substitutes import LINE_BREAKS
 
 #: what is lost when a file is not beside the FOON
 _WITHOUT = {
@@ -99,6 +100,9 @@ def projection(level: int, normalize: bool, synonyms: str | Path | Mapping[str, 
     if synonyms is None:
         table: dict[str, str] = {}
     elif isinstance(synonyms, Mapping):
+        for text in (t for pair in synonyms.items() for t in pair):
+            if not isinstance(text, str) or any(c in LINE_BREAKS for c in text):
+                raise InputError(f"synonyms: a name must be a string without line breaks, not {text!r}")
         text = "".join(f"{name} = {canonical}\n" for name, canonical in synonyms.items())
         table = parse_synonyms(text, "synonyms", normalize)
     else:

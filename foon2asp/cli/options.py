@@ -92,7 +92,7 @@ MATCH_OPTIONS = [
         "--substitutes",
         type=click.Path(),
         metavar="FILE",
-        help="What may stand in for a missing kitchen item: JSON {\"onion\": [\"red onion\"]} or lines"
+        help='What may stand in for a missing kitchen item: JSON {"onion": ["red onion"]} or lines'
         " 'onion: red onion, shallot =2'; trees use the fewest (cheapest) substitutions first.",
     ),
     click.option("--max-substitutions", type=int32(min=0), metavar="N", help="At most N substitutions per tree."),
@@ -101,9 +101,7 @@ MATCH_OPTIONS = [
 
 def joined_lines(joined: dict[str, list[str]]) -> list[str]:
     """``joined 'Blueberries', 'blueberries' as 'blueberry'``: one line per text spelled several ways."""
-    return [
-        f"joined {', '.join(repr(s) for s in spellings[1:])} as {first!r}" for first, spellings in joined.items()
-    ]
+    return [f"joined {', '.join(repr(s) for s in spellings[1:])} as {first!r}" for first, spellings in joined.items()]
 
 
 def _match_args(kwargs: dict) -> MatchArgs:
@@ -209,7 +207,9 @@ def data_options(func, with_kitchen: bool = True):
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         match = _match_args(kwargs)
-        values = {k: kwargs.pop(k) for k in DataArgs.__dataclass_fields__ if k != "match" and (with_kitchen or k != "kitchen")}
+        values = {
+            k: kwargs.pop(k) for k in DataArgs.__dataclass_fields__ if k != "match" and (with_kitchen or k != "kitchen")
+        }
         values.setdefault("kitchen", None)
         if takes_options:  # the substitutes go into the request (the request options inside add to it)
             kwargs["options"] = match.request(kwargs.get("options"))

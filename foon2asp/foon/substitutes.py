@@ -39,6 +39,9 @@ from foon2asp.foon.safetext import check_text, lines_of, read_text
 #: the cost of a substitute given without ``=COST``
 DEFAULT_COST = 1
 
+#: characters that end a line (a label holding one is refused)
+LINE_BREAKS = frozenset("\n\r\v\f\x1c\x1d\x1e\x85\u2028\u2029")
+
 
 @dataclass(frozen=True, order=True)
 class Substitute:
@@ -68,6 +71,9 @@ def _cost(text: str, path: str, line: int | None) -> int:
 def _add(
     out: dict[tuple[str, str], Substitute], needed: str, used: str, cost: int, path: str, line: int | None
 ) -> None:
+    for text in (needed, used):
+        if any(c in LINE_BREAKS for c in text):
+            raise InputError(f"a label cannot hold a line break: {text!r}", path, line)
     needed, used = norm(needed), norm(used)
     if not needed or not used:
         raise InputError("a substitute needs a label on both sides", path, line)

@@ -121,9 +121,10 @@ def report_json(problem: Problem, report: Report) -> dict:
     if report.substitutions is not None:
         out["substitutions"] = report.substitutions
     if report.optimum is not None:
-        out["optimum"] = {"status": report.optimum.status, "cost": report.optimum.cost}
+        optimum: dict = {"status": report.optimum.status, "cost": report.optimum.cost}
         if "substitutions" in report.optimum.extra:
-            out["optimum"]["substitutions"] = report.optimum.extra["substitutions"]
+            optimum["substitutions"] = report.optimum.extra["substitutions"]
+        out["optimum"] = optimum
     return out
 
 
