@@ -197,6 +197,9 @@ class Options:
                 f" for sure); rank it among the objectives, e.g. {suggestion}",
                 hint=f"human-steps={suggestion}",
             )
+        bound = self.max_substitutions
+        if bound is not None and (isinstance(bound, bool) or not isinstance(bound, int) or bound < 0):
+            raise InputError(f"max_substitutions must be an integer >= 0, not {bound!r}")
         settings: dict = {}
         if self.threads is not None:
             settings["threads"] = self.threads
