@@ -28,6 +28,7 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Iterable, Sequence
+from dataclasses import replace
 from pathlib import Path
 
 from foon2asp.analysis import queries
@@ -135,9 +136,7 @@ def consolidate(
         if tree.status == "unreachable":
             target: Goals = meal if len(meal) > 1 else meal[0]
             objective = tuple(o for o in options.objective if o in queries.MISSING_OBJECTIVES) or ("units",)
-            missing = queries.missing(
-                problem, target, options.programs, options.time_limit, objective, options.opt_strategy, options.threads
-            )
+            missing = queries.missing(problem, target, replace(options, objective=objective))
         verdicts = [judge(problem, meal, c, tree.units) for c in candidates]
         out.append(
             Consolidation(

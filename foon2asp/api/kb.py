@@ -310,15 +310,7 @@ class KnowledgeBase:
             target = self.object_id(goal)
         else:
             target = tuple(dict.fromkeys(self.object_id(g) for g in goal))
-        answer = queries.missing(
-            self.problem,
-            target,
-            solver.programs,
-            solver.time_limit,
-            solver.objective,
-            solver.opt_strategy,
-            solver.threads,
-        )
+        answer = queries.missing(self.problem, target, solver)
         return Missing(self, answer)
 
     def query(
