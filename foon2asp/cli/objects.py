@@ -44,7 +44,7 @@ def objects(query, data, only, kitchen_file, fmt):
     except InputError as exc:
         if (exc.hint or "").partition("=")[0] != "kitchen":
             raise
-        looked_for = exc.hint.partition("=")[2]
+        looked_for = (exc.hint or "").partition("=")[2]
         raise InputError(
             f"no kitchen.json beside the FOON file (looked for {looked_for}); give --kitchen-file FILE,"
             " --kitchen-file leaves (every object no unit makes) or --data DIR"
