@@ -28,6 +28,7 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Iterable, Sequence
+from dataclasses import replace
 from pathlib import Path
 
 from foon2asp.analysis import queries
@@ -136,9 +137,7 @@ def consolidate(
         if tree.status == "unreachable":
             target: Goals = meal if len(meal) > 1 else meal[0]
             objective = tuple(o for o in options.objective if o in queries.MISSING_OBJECTIVES) or ("units",)
-            missing = queries.missing(
-                problem, target, options.programs, options.time_limit, objective, options.opt_strategy, options.threads
-            )
+            missing = queries.missing(problem, target, replace(options, objective=objective))
         seen = judged_on(problem, options.substitutes, meal)  # with substitutes, what they stand in for is had
         verdicts = [judge(seen, meal, c, tree.units) for c in candidates]
         out.append(

@@ -371,20 +371,14 @@ class KnowledgeBase(Matching):
             target = self.object_id(goal)
         else:
             target = tuple(dict.fromkeys(self.object_id(g) for g in goal))
-        subs = self.substitutes(Options.of(options, **settings))
-        problem = self.judging_problem(solver, meal_of(target))
-        answer = queries.missing(
-            problem,
-            target,
-            solver.programs,
-            solver.time_limit,
-            solver.objective,
-            solver.opt_strategy,
-            solver.threads,
-        )
-        if subs:
+        meal, problem = meal_of(target), self.problem
+        if solver.substitutes:  # substitutes may stand in: the fewest of them when nothing need be added
+            lenient = with_substitutes(problem, solver.substitutes)
+            problem = lenient if all(g in lenient.derivable for g in meal) else self.judging_problem(solver, meal)
+        answer = queries.missing(problem, target, solver)
+        if solver.substitutes:
             bought = substituted_kitchen(self.problem, answer.missing)  # the kitchen with what is added
-            answer.substitutions = report_substitutions(bought, meal_of(target), answer.units, subs)
+            answer.substitutions = report_substitutions(bought, meal, answer.units, solver.substitutes)
         return Missing(self, answer)
 
     def query(

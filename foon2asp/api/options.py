@@ -9,7 +9,8 @@ place that knows them.  The command line builds one per command from its flags.
 from __future__ import annotations
 
 import json
-from collections.abc import Iterable, Mapping, Sequence
+import math
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import TypedDict, Unpack, cast
@@ -41,6 +42,8 @@ class Settings(TypedDict, total=False):
     objective: str | Sequence[str]
     motion_cost: MotionCostLike | None
     time_limit: float | None
+    gap: float | None
+    on_progress: Callable[[dict], None] | None
     models: int
     all_optimal: bool
     max_depth: int | None
@@ -93,6 +96,13 @@ class Options:
     constraints: Constraints = field(default_factory=Constraints)
     #: seconds per goal; the best tree so far is then ``feasible``
     time_limit: float | None = None
+    #: stop a goal once its relative gap (answer against the proven lower bound, first
+    #: objective; foon2asp.tree.gap) is at most this, e.g. 0.05; the answer is then
+    #: ``feasible`` with its bound.  None (and 0): prove every answer
+    gap: float | None = None
+    #: called while a goal is solved, at each better tree and each better lower bound, with
+    #: ``{"cost": [...], "lower": [...], "gap": g}`` (the solver's weights per objective level)
+    on_progress: Callable[[dict], None] | None = field(default=None, compare=False, repr=False)
     #: the K best distinct trees per goal
     models: int = 1
     #: every optimal tree per goal
@@ -205,9 +215,13 @@ class Options:
             settings["threads"] = self.threads
         if self.opt_strategy is not None:
             settings["opt_strategy"] = self.opt_strategy
+        if self.gap is not None and not (isinstance(self.gap, int | float) and 0 <= self.gap < math.inf):
+            raise InputError(f"the gap must be a number >= 0 (0.05 stops at 5 %), not {self.gap!r}", hint="gap")
         return AspOptions(
             objective=ranked,
             time_limit=self.time_limit,
+            gap=self.gap or None,
+            progress=self.on_progress,
             programs=self.constraints.programs(),
             max_depth=self.max_depth,
             human_steps=self.human_steps,

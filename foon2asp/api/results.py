@@ -61,6 +61,18 @@ class Tree:
         return self.raw.cost
 
     @property
+    def bound(self) -> dict | None:
+        """The best proven lower bound per objective level, in the units of :attr:`cost` (for
+        ``success`` the greatest possible product); a proven tree's is its cost; None for
+        the search baselines (foon2asp.tree.gap)."""
+        return self.raw.bound
+
+    @property
+    def gap(self) -> float | None:
+        """The relative gap to :attr:`bound` on the first objective: 0 when proven."""
+        return self.raw.gap
+
+    @property
     def units(self) -> list[Unit]:
         return [self.kb.problem.units[u] for u in self.raw.units]
 

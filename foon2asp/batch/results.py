@@ -121,6 +121,7 @@ def configuration(spec: BatchSpec) -> dict:
         "all_optimal": o.all_optimal,
         "heuristic": o.heuristic,
         "canonical": o.canonical,
+        **({"gap": o.gap} if o.gap else {}),
         "input_sha256": hashlib.sha256(facts(spec.problem).encode("utf-8")).hexdigest(),
         **(
             {"motion_costs": hashlib.sha256(json.dumps(o.motion_costs, sort_keys=True).encode()).hexdigest()[:16]}

@@ -14,6 +14,7 @@ from foon2asp.cli.options import (
     STRICT_HELP,
     constraint_options,
     format_option,
+    gap_option,
     match_options,
     objective_option,
     strategy_options,
@@ -50,6 +51,7 @@ from foon2asp.cli.output import EXIT_CODES, exit_code, warn
     "-o", "--output", type=click.Path(dir_okay=False), help="A FILE to write the report to (default: stdout)."
 )
 @time_limit_option("Seconds per goal; the best tree so far is reported as 'feasible'.")
+@gap_option
 @click.option("--together", is_flag=True, help="A meal: one tree that makes every goal.")
 @strategy_options
 @match_options

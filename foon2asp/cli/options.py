@@ -308,6 +308,38 @@ def time_limit_option(help: str):
     return request_options({"time_limit": "time_limit"}, click.option("--time-limit", type=SECONDS, help=help))
 
 
+class Gap(click.ParamType):
+    """A relative gap: a number >= 0 (0.05) or a percentage (5%)."""
+
+    name = "G"
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, float):
+            return value
+        text = str(value).strip()
+        try:
+            number = float(text[:-1]) / 100 if text.endswith("%") else float(text)
+        except ValueError:
+            self.fail(f"expected a number >= 0 (0.05) or a percentage (5%), not {value!r}", param, ctx)
+        if not 0 <= number < float("inf"):
+            self.fail(f"expected a number >= 0 (0.05) or a percentage (5%), not {value!r}", param, ctx)
+        return number
+
+
+def gap_option(func):
+    """``--gap G`` into ``options``: stop a goal once its gap is at most G."""
+    return request_options(
+        {"gap": "gap"},
+        click.option(
+            "--gap",
+            type=Gap(),
+            metavar="G",
+            help="Stop a goal once its gap (the tree against the proven lower bound, first objective) is at"
+            " most G, e.g. 0.05 or 5%; the answer is then 'feasible' with its bound. Default: prove.",
+        ),
+    )(func)
+
+
 def constraint_options(func):
     """--constraint FILE.lp, --rule TEXT and the convenience flags, into ``options.constraints``."""
     return request_options(

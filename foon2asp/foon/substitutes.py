@@ -25,7 +25,6 @@ viability counts them as available.
 
 from __future__ import annotations
 
-import copy
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -205,13 +204,6 @@ def candidates(problem: Problem, substitutes: Iterable[Substitute]) -> list[Cand
     return out
 
 
-def _view(problem: Problem) -> Problem:
-    view = copy.copy(problem)
-    for name in ("derivable", "viable_units", "viable_producers"):  # cached on the problem: recomputed
-        view.__dict__.pop(name, None)
-    return view
-
-
 def with_substitutes(problem: Problem, substitutes: Iterable[Substitute]) -> Problem:
     """``problem`` whose viability (the least fixpoint, viable units, the units a tree may
     use) counts every object a substitute can stand in for as available; ``problem``
@@ -219,9 +211,7 @@ def with_substitutes(problem: Problem, substitutes: Iterable[Substitute]) -> Pro
     needed = frozenset(c.needed for c in candidates(problem, substitutes))
     if needed == problem.substitutable:
         return problem
-    view = _view(problem)
-    view.substitutable = needed
-    return view
+    return problem.with_substitutable(needed)
 
 
 def judged_on(problem: Problem, substitutes: Iterable[Substitute], goals: Iterable[int] = ()) -> Problem:
@@ -240,8 +230,7 @@ def substituted_kitchen(problem: Problem, used: Iterable[int | FoonObject]) -> P
     kitchen items: the independent validator (foon2asp.tree.validate) accepts a tree that
     relies on those substitutions on it."""
     extra = [problem.objects[o] if isinstance(o, int) else o for o in used]
-    view = _view(problem)
-    view.kitchen_items = list(dict.fromkeys([*problem.kitchen_items, *extra]))
     ids = problem.foon.object_ids
-    view.kitchen = problem.kitchen | frozenset(ids[o] for o in extra if o in ids)
+    view = problem.with_kitchen(problem.kitchen | frozenset(ids[o] for o in extra if o in ids))
+    view.kitchen_items = list(dict.fromkeys([*problem.kitchen_items, *extra]))
     return view

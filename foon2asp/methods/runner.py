@@ -70,6 +70,7 @@ from foon2asp.methods.bounds import Bounds
 from foon2asp.methods.bounds import supports as bounds_supports
 from foon2asp.methods.exact import NODE_LIMIT, canonical_tree
 from foon2asp.methods.registry import Runner, check_substitutes, effective_options, get
+from foon2asp.tree.gap import settle
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
 from foon2asp.tree.weights import UNIT_WEIGHTS, total
 
@@ -189,9 +190,9 @@ class GoalRunner:
             assert method.factory is not None, f"search method {name!r} has no factory"
             self._whole = method.factory(problem, self.options)
 
-    def _session(self, problem: Problem, units: tuple[int, ...]) -> Runner:
+    def _session(self, problem: Problem, units: tuple[int, ...]) -> Session:
         """A session of the method grounding ``units`` of ``problem`` (a view, or the whole problem)."""
-        return Session(problem, replace(self._effective, units=units)).solve
+        return Session(problem, replace(self._effective, units=units))
 
     def _whole_runner(self) -> Runner:
         """The one grounding of all viable (or allowed) units, built on first use."""
@@ -199,18 +200,21 @@ class GoalRunner:
             units = self.options.units
             if units is None:
                 units = tuple(sorted(self.parts.viable))
-            self._whole = self._session(self.problem, tuple(units))
+            self._whole = self._session(self.problem, tuple(units)).solve
         return self._whole
 
-    def _solve(self, goal: Goals) -> TaskTree:
+    def _solve(self, goal: Goals, floor: int | None = None) -> TaskTree:
+        """The solver's tree (a search baseline's answer); ``floor``: a lower bound on the first
+        objective's weight from the landmarks (an unproven answer reports the better bound)."""
         self.counts["solver"] += 1
         if self.kind != "asp" or self.grounding == "whole":
-            tree = self._whole_runner()(goal)
+            run = self._whole_runner()
+            tree = run(goal) if floor is None else run(goal, floor=floor)  # type: ignore[call-arg]
         else:
             units, objects, _ = self.parts.relevant(goal)
             if self._allowed is not None:
                 units = [u for u in units if u in self._allowed]
-            tree = self._session(_view(self.problem, objects), tuple(units))(goal)
+            tree = self._session(_view(self.problem, objects), tuple(units)).solve(goal, floor=floor)
         self._label = tree.method
         return tree
 
@@ -225,7 +229,7 @@ class GoalRunner:
         view = _view(self.problem, objects)
         session = Session(view, replace(self._effective, units=tuple(keep)), require=landmarks, goal=goal)
         best = bounds.tree(goal) or ()
-        tree = session.solve(goal, known=(best, bounds.cost(best)))
+        tree = session.solve(goal, known=(best, bounds.cost(best)), floor=bounds.first_lower(goal))
         tree.stats["pruned_units"] = len(units) - len(keep)
         return tree
 
@@ -283,7 +287,7 @@ class GoalRunner:
             return self._solve(goal)
         bounds = self.parts.bounds(self._ranked)
         if not self.shortcuts:
-            return self._canonical(self._solve(goal), bounds, t0)
+            return self._canonical(self._solve(goal, bounds.first_lower(goal)), bounds, t0)
         if bounds.proven(goal):
             self.counts["bounds"] += 1
             tree = bounds.tree(goal) or ()
@@ -298,7 +302,7 @@ class GoalRunner:
     def _answer(self, goal: int, label: str, order: list[int], shortcut: str, t0: float) -> TaskTree:
         """An optimal tree found without the solver."""
         asp_cost = [total(self.problem, name, order) for name in self._ranked]
-        return TaskTree(
+        tree = TaskTree(
             goal,
             label,
             "optimal",
@@ -308,6 +312,7 @@ class GoalRunner:
             {"shortcut": shortcut},
             {"asp_cost": asp_cost},
         )
+        return settle(self.problem, tree, self._ranked)
 
 
 def solve_goals(
