@@ -100,6 +100,11 @@ class Tree:
         return self.raw.extra.get("note")
 
     @property
+    def substitutions(self) -> list[dict] | None:
+        """With substitutes: the ones the tree uses, ``[{"needed", "used"}]`` (None without substitutes)."""
+        return self.raw.extra.get("substitutions")
+
+    @property
     def alternatives(self) -> list[Tree]:
         """The further trees found with this one (``models`` / ``all_optimal``), best first."""
         return self.with_alternatives[1:]
@@ -155,6 +160,11 @@ class CheckReport:
     @property
     def goal(self) -> FoonObject:
         return self.kb.problem.objects[self.raw.goal]
+
+    @property
+    def substitutions(self) -> list[dict] | None:
+        """With substitutes: the ones a valid tree uses (None without substitutes)."""
+        return self.raw.substitutions
 
     @property
     def problem(self) -> str | None:

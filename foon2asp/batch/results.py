@@ -128,7 +128,17 @@ def configuration(spec: BatchSpec) -> dict:
             if o.motion_costs is not None
             else {}
         ),
+        **(_substitutes_config(spec) if o.substitutes else {}),
     }
+
+
+def _substitutes_config(spec: BatchSpec) -> dict:
+    """The substitutes and the kitchen items they may use (not all are in the facts), hashed."""
+    o = spec.options
+    table = sorted([s.needed, s.used, s.cost] for s in o.substitutes)
+    kitchen = sorted(obj.text for obj in spec.problem.kitchen_items)
+    digest = hashlib.sha256(json.dumps([table, kitchen]).encode("utf-8")).hexdigest()[:16]
+    return {"substitutes": digest, "max_substitutions": o.max_substitutions}
 
 
 def header_line(config: dict) -> str:

@@ -8,7 +8,7 @@ from dataclasses import replace
 import click
 
 from foon2asp.cli.main import guarded, main
-from foon2asp.cli.options import KITCHEN_HELP, data_options
+from foon2asp.cli.options import KITCHEN_HELP, data_options, joined_lines
 from foon2asp.errors import InputError
 
 
@@ -49,7 +49,7 @@ def objects(query, data, only, kitchen_file, fmt):
             f"no kitchen.json beside the FOON file (looked for {looked_for}); give --kitchen-file FILE,"
             " --kitchen-file leaves (every object no unit makes) or --data DIR"
         ) from None
-    ids = kb.find_objects(query, only)
+    ids = kb.find_objects(query, only, options=data.request())
     infos = [kb.object_info(i) for i in ids]
     if fmt == "json":
         click.echo("[\n" + ",\n".join(json.dumps(i, ensure_ascii=False) for i in infos) + "\n]" if infos else "[]")
@@ -59,6 +59,10 @@ def objects(query, data, only, kitchen_file, fmt):
         where = ["kitchen"] if info["in_kitchen"] else []
         if info["producers"]:
             where.append(f"made by {info['producers']} unit{'s' if info['producers'] != 1 else ''}")
+        if "joined" in info:
+            where.append("joins " + " | ".join(info["joined"]))
         click.echo(f"{'#' + str(info['id']):<{width}}  {info['text']}" + (f"   ({', '.join(where)})" if where else ""))
     what = {None: "", "produced": " made by some unit", "kitchen": " in the kitchen", "derivable": " derivable"}[only]
     click.echo(f"{len(infos)} object{'s' if len(infos) != 1 else ''}{what}", err=True)
+    for line in joined_lines(kb.joined):
+        click.echo(line, err=True)

@@ -38,6 +38,9 @@ from foon2asp.foon.safetext import check_text, lines_of, read_text
 #: the cost of a substitute given without ``=COST``
 DEFAULT_COST = 1
 
+#: characters that end a line (a label holding one is refused)
+LINE_BREAKS = frozenset("\n\r\v\f\x1c\x1d\x1e\x85\u2028\u2029")
+
 
 @dataclass(frozen=True, order=True)
 class Substitute:
@@ -67,6 +70,9 @@ def _cost(text: str, path: str, line: int | None) -> int:
 def _add(
     out: dict[tuple[str, str], Substitute], needed: str, used: str, cost: int, path: str, line: int | None
 ) -> None:
+    for text in (needed, used):
+        if any(c in LINE_BREAKS for c in text):
+            raise InputError(f"a label cannot hold a line break: {text!r}", path, line)
     needed, used = norm(needed), norm(used)
     if not needed or not used:
         raise InputError("a substitute needs a label on both sides", path, line)
@@ -206,6 +212,17 @@ def with_substitutes(problem: Problem, substitutes: Iterable[Substitute]) -> Pro
     if needed == problem.substitutable:
         return problem
     return problem.with_substitutable(needed)
+
+
+def judged_on(problem: Problem, substitutes: Iterable[Substitute], goals: Iterable[int] = ()) -> Problem:
+    """The problem a tree that may rely on ``substitutes`` is judged on by the independent
+    validator: every object a substitute can stand in for, but ``goals``, is a kitchen item
+    (``problem`` itself without substitutes)."""
+    substitutes = tuple(substitutes)
+    if not substitutes:
+        return problem
+    skip = set(goals)
+    return substituted_kitchen(problem, [c.needed for c in candidates(problem, substitutes) if c.needed not in skip])
 
 
 def substituted_kitchen(problem: Problem, used: Iterable[int | FoonObject]) -> Problem:

@@ -69,7 +69,7 @@ from foon2asp.foon.problem import Problem, walk_back
 from foon2asp.methods.bounds import Bounds
 from foon2asp.methods.bounds import supports as bounds_supports
 from foon2asp.methods.exact import NODE_LIMIT, canonical_tree
-from foon2asp.methods.registry import Runner, effective_options, get
+from foon2asp.methods.registry import Runner, check_substitutes, effective_options, get
 from foon2asp.tree.gap import settle
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
 from foon2asp.tree.weights import UNIT_WEIGHTS, total
@@ -153,6 +153,7 @@ class GoalRunner:
     ):
         if grounding not in GROUNDINGS:
             raise ValueError(f"unknown grounding {grounding!r}")
+        check_substitutes(name, options)  # before anything is solved: a method that cannot honour them refuses
         problem = with_substitutes(problem, options)
         if options.substitutes:  # a goal's part would leave out the kitchen items that stand in
             grounding = "whole"
@@ -165,7 +166,7 @@ class GoalRunner:
         self.options = options
         self.grounding = grounding
         self.kind = method.kind
-        self.parts = parts if parts is not None else Parts(problem)
+        self.parts = parts if parts is not None and parts.problem is problem else Parts(problem)
         self.shortcuts = shortcuts and self.kind == "asp" and plain(self.options)
         #: how each goal was answered: "solver" | "unreachable" | "no-choice" | "bounds" | "branch-and-bound"
         self.counts = {"solver": 0, "unreachable": 0, "no-choice": 0, "bounds": 0, "branch-and-bound": 0}

@@ -87,7 +87,7 @@ def tree_text(problem: Problem, tree: TaskTree) -> str:
         head += f"  Human steps: {len(tree.extra['human_steps'])}"
     if tree.extra.get("reason"):
         head += f"  ({tree.extra['reason']})"
-    lines = [head]
+    lines = [head] + [f"uses {s['used']} for {s['needed']}" for s in tree.extra.get("substitutions", ())]
     human = set(tree.extra.get("human_steps", []))
     for step, u in enumerate(tree.units, 1):
         unit = problem.units[u]
