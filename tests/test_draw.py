@@ -259,3 +259,27 @@ def test_batch_summary_html(tmp_path):
     assert text.count("<svg") == len(with_tree) == 5
     units = sorted(int(u) for u in re.findall(r'data-units="(\d+)"', text))
     assert units == sorted(len(r["units"]) for r in with_tree)
+
+
+@needs_dot
+def test_huge_labels_are_clipped_and_drawn(tmp_path):
+    # a generated tree whose texts exceed Graphviz's 16,384-character strings is still drawn
+    import json
+
+    long = "x" * 990
+    unit = {
+        "input_nodes": [{"label": f"{long}{i}", "states": [f"s{j}" for j in range(200)]} for i in range(20)],
+        "motion_node": "peel",
+        "output_nodes": [{"label": "banana", "states": ["peeled"]}],
+    }
+    src = tmp_path / "long.json"
+    src.write_text(json.dumps([unit]))
+    out = tmp_path / "long.svg"
+    res = subprocess.run(
+        [sys.executable, "-m", "foon2asp", "draw", str(src), "-o", str(out)], capture_output=True, text=True
+    )
+    assert res.returncode == 0, res.stderr
+    assert "Error" not in res.stderr
+    counts = svg_nodes(out.read_text())
+    assert counts["unit"] == 1 and counts["object"] == 21
+    assert "188 more states" in out.read_text()

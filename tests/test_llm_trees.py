@@ -199,6 +199,20 @@ def test_without_a_kitchen_the_error_proposes_leaves(tmp_path):
     assert foon2asp.load(foon=foon, kitchen="leaves").solve(GLASS).status == "optimal"
 
 
+def test_objects_takes_a_kitchen_file_or_leaves(tmp_path):
+    foon = tmp_path / "mini.json"
+    foon.write_text((LLM / "smoothie-1.json").read_text())
+    one_line_error(run("objects", "--foon", foon, "--derivable"), "--kitchen-file leaves", "kitchen.json")
+    res = run("objects", "--foon", foon, "--derivable", "--kitchen-file", "leaves", "--format", "json")
+    assert res.exit_code == 0, res.stderr
+    kb = foon2asp.load(foon=foon, kitchen="leaves")
+    assert {o["id"] for o in json.loads(res.stdout)} == set(kb.problem.derivable)
+    kitchen = json.loads(
+        run("objects", "--foon", foon, "--kitchen", "--kitchen-file", "leaves", "--format", "json").stdout
+    )
+    assert len(kitchen) == len(kb.problem.kitchen_items) > 0
+
+
 # ------------------------------------------------------------ check on its own
 
 

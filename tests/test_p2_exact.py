@@ -8,6 +8,7 @@ shortcuts on a synthetic FOON, and the fallback to the solver when the search ru
 from __future__ import annotations
 
 import functools
+import importlib
 import itertools
 import random
 
@@ -184,3 +185,31 @@ def test_large_parts_get_fewer_nodes(monkeypatch):
                 assert exact.canonical_tree(bounds, goal, units) is None
             checked += 1
     assert checked
+
+
+@pytest.mark.parametrize("ranked", [("units",), ("success", "units"), ("inputs", "units")])
+def test_bounds_on_a_goals_part_equal_the_whole_foons(ranked, monkeypatch):
+    """A goal's bounds depend on its relevant part only: built on the part (as the runner
+    does on large FOONs, Parts.bounds_for) they equal the whole FOON's, and so do the trees."""
+    problem = preset("small").problem()
+    parts = Parts(problem)
+    whole = parts.bounds(ranked)
+    goals = sorted(problem.derivable - problem.kitchen)[::5]
+    for goal in goals:
+        units, _, _ = parts.relevant(goal)
+        part = Bounds(problem, ranked, units)
+        assert part.lower(goal) == whole.lower(goal), goal
+        assert part.first_lower(goal) == whole.first_lower(goal), goal
+        assert part.tree(goal) == whole.tree(goal), goal
+        assert part.proven(goal) == whole.proven(goal), goal
+        assert part.landmarks(goal) == whole.landmarks(goal), goal
+        assert part.keep(goal, units) == whole.keep(goal, units), goal
+    runner_module = importlib.import_module("foon2asp.methods.runner")  # the package re-exports a function of that name
+    options = AspOptions(objective=ranked)
+    plain = GoalRunner("asp", problem, options, "per-goal")
+    expected = [(t.status, t.units, t.bound) for t in map(plain, goals[:40])]
+    monkeypatch.setattr(runner_module, "PART_BOUNDS_MIN", 0)
+    monkeypatch.setattr(runner_module, "PART_BOUNDS_SHARE", 0)
+    by_part = GoalRunner("asp", problem, options, "per-goal")
+    assert [(t.status, t.units, t.bound) for t in map(by_part, goals[:40])] == expected
+    assert by_part.parts._part_bounds_spent.get(ranked, 0) > 0

@@ -5,6 +5,7 @@ from __future__ import annotations
 import subprocess
 import sys
 import zipfile
+from pathlib import Path
 
 from conftest import REPO
 
@@ -32,3 +33,16 @@ def test_installed_package_finds_its_resources():
     assert "tree" in encodings.names() and "units" in encodings.names()
     assert "use(U)" in encodings.encoding("tree")
     assert (demo_dir() / "FOON.txt").is_file()
+
+
+def test_readme_layout_lists_every_module_and_none_is_too_long():
+    root = Path(__file__).resolve().parent.parent
+    package = root / "foon2asp"
+    readme = (root / "README.md").read_text(encoding="utf-8")
+    layout = readme[readme.index("## Layout") :]
+    listed = {line.split()[0] for line in layout.splitlines() if line.startswith("  ") and line.split()}
+    modules = {p.relative_to(package).as_posix() for p in package.rglob("*.py")}
+    assert modules - listed == set(), "modules missing from the README's Layout"
+    assert {m for m in listed if m.endswith(".py")} - modules == set(), "the Layout lists modules that do not exist"
+    long = {m: n for m in modules if (n := len((package / m).read_text(encoding="utf-8").splitlines())) > 450}
+    assert long == {}

@@ -230,10 +230,10 @@ def test_missing_respects_constraints():
     base = queries.missing(p, g)
     assert sorted(p.objects[o].label for o in base.missing) == ["w", "x"]
     forbid = [("f", constraints.forbid_object("x"))]
-    r = queries.missing(p, g, forbid)
+    r = queries.missing(p, g, AspOptions(programs=forbid))
     assert sorted(p.objects[o].label for o in r.missing) == ["w", "y", "z"]
     assert validate(extended(p, r.missing), g, r.units).valid
-    r = queries.missing(p, g, [("f", constraints.forbid_motion("m"))])
+    r = queries.missing(p, g, AspOptions(programs=[("f", constraints.forbid_motion("m"))]))
     assert r.status == "unreachable" and r.reason == "the constraints rule out every tree"
 
 
@@ -279,6 +279,22 @@ def test_missing_reachable_goals_on_shared_equal_solve(shared_problem):
         assert r.status == "optimal" and r.missing == []
         assert validate(problem, g, r.units).valid
         assert len(r.units) == len(session.solve(g).units)
+
+
+def test_missing_goes_through_the_goal_runner(shared_problem):
+    # a goal the kitchen can make: the same tree as solve's runner, for every tree objective
+    from foon2asp.methods.runner import solve_goals
+
+    data, problem = shared_problem
+    reachable = [g for g in goals.resolve(data, problem, (), "all") if derivable(problem, g)][:6]
+    for objective in (("units",), ("success", "units"), ("inputs",)):
+        options = AspOptions(objective=objective)
+        trees = list(solve_goals(problem, reachable, "asp", options))
+        for g, tree in zip(reachable, trees):
+            r = queries.missing(problem, g, options)
+            assert r.status == tree.status == "optimal" and r.missing == []
+            assert r.units == tree.units
+            assert r.cost == dict(tree.cost, added=0)
 
 
 def test_cli_missing_json_shape(shared_foon_dir):

@@ -1,0 +1,1 @@
+"""Questions over trees and FOONs: checking tree files, comparing methods, consolidating candidates, queries."""

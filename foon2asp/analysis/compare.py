@@ -10,10 +10,11 @@ list of ``solve``-shaped JSON results, each with ``"valid"``.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from foon2asp.asp.options import AspOptions
 from foon2asp.foon.problem import Problem
+from foon2asp.foon.substitutes import Substitute, judged_on
 from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.diagnose import check_units
 from foon2asp.tree.results import MealRow, Row
@@ -22,11 +23,13 @@ from foon2asp.tree.tasktree import TaskTree
 DEFAULT_METHODS = ("ids", "gbfs-h1", "gbfs-h2", "asp")
 
 
-def judge(problem: Problem, tree: TaskTree) -> TaskTree:
-    """Mark ``tree`` valid or invalid (``extra["valid"]``, ``extra["problem"]``)."""
+def judge(problem: Problem, tree: TaskTree, substitutes: Iterable[Substitute] = ()) -> TaskTree:
+    """Mark ``tree`` valid or invalid (``extra["valid"]``, ``extra["problem"]``); with
+    ``substitutes``, what they may stand in for counts as had (:func:`judged_on`)."""
     if not tree.has_tree:
         tree.extra["valid"] = False
         return tree
+    problem = judged_on(problem, substitutes, tree.meal)
     validation, finding = check_units(problem, tree.goal, tree.units)
     tree.extra["valid"] = validation.valid
     if finding is not None:
@@ -59,7 +62,7 @@ def compare_iter(
     # each method's trees, one goal after another: a row as soon as every method has its goal's
     answers = {name: solve_goals(problem, goals, name, options) for name in dict.fromkeys(method_names)}
     for g in goals:
-        trees = {name: judge(problem, next(trees_of)) for name, trees_of in answers.items()}
+        trees = {name: judge(problem, next(trees_of), options.substitutes) for name, trees_of in answers.items()}
         for name, tree in trees.items():
             tree.method = name
         yield Row(g, trees)
@@ -68,13 +71,15 @@ def compare_iter(
 def compare_meal(problem: Problem, goals: list[int], method: str = "asp", options: AspOptions | None = None) -> MealRow:
     """The meal's optimum (one tree for all ``goals``) and each goal's own optimum, all judged."""
     meal = tuple(dict.fromkeys(goals))
+    options = options or AspOptions()
     # the meal's tree, then each goal's on the same runner
-    trees = solve_goals(problem, [meal, *meal], method, options or AspOptions())
+    trees = solve_goals(problem, [meal, *meal], method, options)
     tree = next(trees)
     if tree.has_tree:
-        validations = [check_units(problem, g, tree.units)[0] for g in meal]
+        seen = judged_on(problem, options.substitutes, meal)
+        validations = [check_units(seen, g, tree.units)[0] for g in meal]
         tree.extra["valid"] = all(v.valid for v in validations)
     else:
         tree.extra["valid"] = False
-    singles = [judge(problem, single) for single in trees]
+    singles = [judge(problem, single, options.substitutes) for single in trees]
     return MealRow(meal, tree, singles)

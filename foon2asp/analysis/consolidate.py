@@ -28,6 +28,7 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Iterable, Sequence
+from dataclasses import replace
 from pathlib import Path
 
 from foon2asp.analysis import queries
@@ -35,6 +36,7 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject
 from foon2asp.foon.problem import Problem
+from foon2asp.foon.substitutes import judged_on
 from foon2asp.foon.treefiles import TreeUnit, read_trees
 from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.results import Candidate, CandidateVerdict, Consolidation
@@ -135,10 +137,9 @@ def consolidate(
         if tree.status == "unreachable":
             target: Goals = meal if len(meal) > 1 else meal[0]
             objective = tuple(o for o in options.objective if o in queries.MISSING_OBJECTIVES) or ("units",)
-            missing = queries.missing(
-                problem, target, options.programs, options.time_limit, objective, options.opt_strategy, options.threads
-            )
-        verdicts = [judge(problem, meal, c, tree.units) for c in candidates]
+            missing = queries.missing(problem, target, replace(options, objective=objective))
+        seen = judged_on(problem, options.substitutes, meal)  # with substitutes, what they stand in for is had
+        verdicts = [judge(seen, meal, c, tree.units) for c in candidates]
         out.append(
             Consolidation(
                 meal, tree, sources, verdicts, missing, goal_source, kitchen_source, list(problem.kitchen_items)

@@ -24,12 +24,14 @@ from foon2asp.asp.constraints import check_syntax
 from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import facts
 from foon2asp.asp.objectives import input_node_facts
-from foon2asp.asp.options import OBJECTIVES
+from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.asp.settings import solver_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
+from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.results import MissingResult, QueryResult
 from foon2asp.tree.tasktree import Goals, executable_order, meal_of, measures
+from foon2asp.tree.weights import unit_weight
 
 # --------------------------------------------------------------------------- running
 
@@ -137,36 +139,30 @@ def objective_parts(
     if "inputs" in objective:
         parts.append(("input_nodes", input_node_facts(problem, units)))
     if "cost" in objective:
-        table = problem.motion_costs
-        if table is None:
-            raise InputError("the objective 'cost' needs a motion-cost table (--motion-cost FILE)")
-        parts.append(
-            ("motion costs", "".join(f"motion_cost({u},{table.weight(problem.units[u].motion)}).\n" for u in units))
-        )
+        weight = unit_weight(problem, "cost")
+        parts.append(("motion costs", "".join(f"motion_cost({u},{weight(u)}).\n" for u in units)))
     parts.append(("add_priority", f"add_priority({first}).\n"))
     return parts
 
 
-def missing(
-    problem: Problem,
-    goal: Goals,
-    user_programs: Iterable[tuple[str, str]] = (),
-    time_limit: float | None = None,
-    objective: tuple[str, ...] = ("units",),
-    opt_strategy: str | None = None,
-    threads: int = 1,
-) -> MissingResult:
+def missing(problem: Problem, goal: Goals, options: AspOptions | None = None) -> MissingResult:
     """The fewest objects to add to the kitchen so ``goal`` can be made, then the best tree
-    by ``objective`` (``units``, ``success``, ``inputs``, ``cost`` with the problem's
-    motion-cost table; lexicographic; default fewest units).
+    by ``options.objective`` (``units``, ``success``, ``inputs``, ``cost`` with the problem's
+    motion-cost table; lexicographic; default fewest units), under the options' constraints,
+    time limit and solver settings.
+
+    A goal that can be made as the kitchen is needs nothing added: its tree is the goal
+    runner's (:func:`foon2asp.methods.runner.solve_goals`), the same tree ``solve`` gives.
+    Otherwise ``encodings/missing.lp`` chooses the objects and the tree together.
 
     ``goal`` may be a meal (a tuple of goals): the fewest objects so that one tree makes them all.
     """
+    options = options or AspOptions()
+    objective = tuple(dict.fromkeys(options.objective))
     for name in objective:
         if name not in MISSING_OBJECTIVES:
             raise InputError(f"missing takes the objectives {', '.join(MISSING_OBJECTIVES)}, not {name!r}")
     meal = meal_of(goal)
-    user_programs = list(user_programs)
     t0 = time.perf_counter()
     units = sorted({u for g in meal if g not in problem.kitchen for u in problem.relevant_units(g)})
     text = facts(problem, goal=meal[0], units=units) + "".join(f"goal({g}).\n" for g in meal[1:])
@@ -174,15 +170,26 @@ def missing(
         [
             ("facts", text),
             ("encodings/missing.lp", encodings.encoding("missing")),
-            *objective_parts(problem, tuple(dict.fromkeys(objective)), units, len(objective) + 1),
-            *user_programs,
+            *objective_parts(problem, objective, units, len(objective) + 1),
+            *options.programs,
         ],
-        ["--opt-mode=opt", "--models=0", *solver_args(opt_strategy, threads)],
+        ["--opt-mode=opt", "--models=0", *solver_args(options.opt_strategy, options.threads)],
     )
     buyable = sorted(s.arguments[0].number for s in prog.facts_of("buyable", 1))
-    outcome = prog.solve(time_limit)
-    elapsed = round(time.perf_counter() - t0, 6)
     goals = meal if len(meal) > 1 else ()
+    if all(g in problem.derivable for g in meal):
+        (tree,) = solve_goals(problem, [goal], "asp", options)
+        if tree.status in ("optimal", "feasible"):
+            cost = dict(tree.cost, added=0)
+            elapsed = round(time.perf_counter() - t0, 6)
+            return MissingResult(
+                meal[0], tree.status, [], list(tree.units), cost, elapsed, buyable=buyable, goals=goals
+            )
+    left = None
+    if options.time_limit:
+        left = max(options.time_limit - (time.perf_counter() - t0), 0.001)
+    outcome = prog.solve(left)
+    elapsed = round(time.perf_counter() - t0, 6)
     if outcome.answers:
         shown = outcome.answers[-1].symbols
         added = sorted(s.arguments[0].number for s in shown if s.name == "add")
@@ -199,7 +206,7 @@ def missing(
     result = MissingResult(meal[0], "unreachable", time_s=elapsed, buyable=buyable, goals=goals)
     if goals:
         # which goals are blocked on their own
-        blocked = [g for g in meal if not missing(problem, g, user_programs, time_limit).has_tree]
+        blocked = [g for g in meal if not missing(problem, g, options).has_tree]
         names = "; ".join(str(problem.objects[g]) for g in blocked)
         result.reason = (
             f"no set of objects helps these goal(s): {names}" if blocked else "the constraints rule out every tree"

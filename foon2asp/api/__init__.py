@@ -39,6 +39,7 @@ from foon2asp.api.catalog import (
 from foon2asp.api.files import (
     FOON_FORMATS,
     draw_file,
+    match_foon,
     read_foons,
     read_program,
     writable_dir,
@@ -102,6 +103,7 @@ __all__ = [
     "ConsolidatedGoal",
     "CandidateReport",
     "read_foons",
+    "match_foon",
     "write_foon",
     "FOON_FORMATS",
     "read_program",

@@ -3,15 +3,18 @@ in a FOON dialect or FOON JSON), ASP programs, drawings of tree files, and outpu
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from pathlib import Path
 
-from foon2asp.analysis.check import read_and_check
+from foon2asp.analysis.check import check_trees, read_and_check
 from foon2asp.api.kb import KnowledgeBase
+from foon2asp.api.load import projection
+from foon2asp.api.options import Options
 from foon2asp.asp.constraints import read_file
 from foon2asp.errors import InputError
 from foon2asp.foon import foonjson, parser, unitlist
 from foon2asp.foon.model import Foon
+from foon2asp.foon.treefiles import read_trees
 from foon2asp.report import draw
 
 #: the formats :func:`write_foon` writes: the official dialect with ids, the dialect without ids, FOON JSON,
@@ -56,6 +59,21 @@ def read_foons(paths: Iterable[str | Path], strict: bool = False) -> Foon:
     return parser.read_foons(names, strict)
 
 
+def match_foon(
+    foon: Foon,
+    level: int = 3,
+    normalize: bool = False,
+    synonyms: str | Path | Mapping[str, str] | None = None,
+) -> tuple[Foon, dict[str, list[str]]]:
+    """``foon`` as hierarchy ``level`` with ``normalize``/``synonyms`` sees it (see :func:`load`):
+    units equal there are one unit; and the spellings joined (first spelling -> every spelling)."""
+    found = projection(level, normalize, synonyms)
+    if found.identity:
+        return foon, {}
+    out = found.foon(foon)
+    return out, {first: list(all_) for first, all_ in found.texts_joined.items()}
+
+
 def write_foon(foon: Foon, path: str | Path, fmt: str = "foon", header: str | None = None) -> None:
     """Write ``foon`` to ``path`` (its directory created) in a format of :data:`FOON_FORMATS`."""
     if fmt not in FOON_FORMATS:
@@ -88,17 +106,24 @@ def draw_file(
     goal: str | None = None,
     strict: bool = False,
     warnings: list[str] | None = None,
+    options: Options | None = None,
 ) -> int:
     """Draw every tree of a tree file (any format :meth:`KnowledgeBase.check` reads) into ``output``;
     the format follows the extension unless ``fmt`` names one.  With ``kb`` the trees are checked:
     the goal (``goal``, else as :meth:`KnowledgeBase.check` finds it) is gold, kitchen items green,
-    a blocking cycle red.  Units of a unit list that are skipped or merged are added to
+    a blocking cycle red (``options.substitutes``: objects a substitute stands in for count as
+    kitchen items).  Units of a unit list that are skipped or merged are added to
     ``warnings`` (an error with ``strict``).  Returns how many trees were drawn."""
     fmt = fmt or draw.format_of(output)
     if fmt != "dot":
         draw.require_dot()
-    data, problem = (kb.data, kb.problem) if kb is not None else (None, None)
-    trees, reports = read_and_check(tree, data, problem, goal, strict)
+    if kb is None:
+        trees, reports = read_and_check(tree, None, None, goal, strict)
+        problem = None
+    else:  # the trees as the knowledge base sees them; with substitutes, what they stand in for is had
+        trees = [kb.project_tree(t) for t in read_trees(tree, kb.problem, strict)]
+        problem = kb.judging_problem(options)
+        reports = check_trees(kb.data, problem, trees, goal)
     if warnings is not None:
         warnings.extend(dict.fromkeys(w for t in trees for w in t.warnings))
     Path(output).write_bytes(draw.render(draw.file_graph(trees, reports, problem), fmt))

@@ -15,38 +15,47 @@ from foon2asp import methods
 from foon2asp.analysis import check as check_mod
 from foon2asp.analysis import compare as compare_mod
 from foon2asp.analysis import queries
+from foon2asp.api.matching import Matching
 from foon2asp.api.options import Options, Settings
 from foon2asp.api.results import BatchRun, CheckReport, Comparison, Missing, Reachability, Tree
 from foon2asp.api.schedules import Schedule, ScheduleSpec, ScheduleVerdict, check_schedule_file, make_spec
 from foon2asp.asp.constraints import unknown_names
 from foon2asp.asp.facts import facts as facts_text
 from foon2asp.asp.options import AspOptions
+from foon2asp.asp.substitutes import report as report_substitutions
 from foon2asp.batch import cluster
 from foon2asp.batch import run as batch_run
 from foon2asp.batch.pool import BatchSpec
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.loaders import Dataset
+from foon2asp.foon.matching import Projection
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.motioncost import unit_weights
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.treefiles import TreeFile, TreeUnit
+from foon2asp.foon.substitutes import substituted_kitchen, with_substitutes
+from foon2asp.foon.treefiles import TreeFile, TreeUnit, read_trees
 from foon2asp.methods.runner import solve_goals
 from foon2asp.schedule import DEFAULT_ENCODING
 from foon2asp.tree.results import MealRow, QueryResult
+from foon2asp.tree.tasktree import meal_of
 
 #: a goal as the API takes it: a label, an object's text, ``"#ID"``, an object id or a FoonObject
 GoalLike = str | int | FoonObject
 
 
 @dataclass
-class KnowledgeBase:
+class KnowledgeBase(Matching):
     """A FOON with its kitchen, goals, motion success rates and utensils, ready to answer."""
 
     data: Dataset
     problem: Problem
     #: one-line warnings about the input (skipped units, motions without a rate, unknown names, ...)
     warnings: list[str] = field(default_factory=list)
+    #: how objects are compared (``load``'s ``level``, ``normalize``, ``synonyms``; foon2asp.foon.matching)
+    projection: Projection = field(default_factory=Projection)
+    #: substitutes -> (the objects they stand in for, the problems trees are judged on)
+    _views: dict = field(default_factory=dict, init=False, repr=False)
 
     # -- what is there ------------------------------------------------------
 
@@ -61,24 +70,41 @@ class KnowledgeBase:
             return list(self.problem.objects)
         return self.problem.foon.by_label(label)
 
-    def find_objects(self, query: str | None = None, only: str | None = None) -> list[int]:
+    def find_objects(
+        self, query: str | None = None, only: str | None = None, options: Options | None = None
+    ) -> list[int]:
         """Ids of the objects ``query`` names (``#ID``, an object's text, a label, else labels
-        containing it as words; all when None); ``only``: ``produced``, ``kitchen`` or ``derivable``."""
-        return goals_mod.find_objects(self.problem, query, only)
+        containing it as words; all when None); ``only``: ``produced``, ``kitchen`` or ``derivable``
+        (with ``options.substitutes``: derivable when substitutes may stand in for kitchen items)."""
+        problem = self.problem
+        if only == "derivable" and self.substitutes(options):
+            problem = with_substitutes(problem, self.substitutes(options))
+        return goals_mod.find_objects(problem, query, only)
 
     def object_info(self, goal: GoalLike) -> dict:
         """``{"id", "text", "label", "states", "ingredients", "container", "in_kitchen", "producers"}``
-        (``producers``: how many units make it); a list of these is a goals file."""
-        return goals_mod.object_info(self.problem, self.object_id(goal))
+        (``producers``: how many units make it); a list of these is a goals file.  With ``"joined"``
+        the texts of the objects it stands for when the comparison (level, normalize, synonyms)
+        joined several."""
+        oid = self.object_id(goal)
+        info = goals_mod.object_info(self.problem, oid)
+        texts = self.projection.sources.get(self.problem.objects[oid], [])
+        if len(texts) > 1:
+            info["joined"] = list(texts)
+        return info
 
     def object_id(self, goal: GoalLike) -> int:
         """The object id of a goal given as a label, an object's text, ``#ID``, an id or an object."""
         if isinstance(goal, FoonObject):
-            return goals_mod.goal_id(self.problem, goal)
+            return goals_mod.goal_id(self.problem, self.projection.object(goal))
         if isinstance(goal, int):
             if not 0 <= goal < len(self.problem.objects):
                 raise InputError(f"no object #{goal}")
             return goal
+        if not self.projection.identity:
+            found, goal = self._projected_id(goal)
+            if found is not None:
+                return found
         return goals_mod.resolve_goal(self.data, self.problem, goal)
 
     def goal_ids(self, goals: GoalLike | Iterable[GoalLike] | None) -> list[int]:
@@ -97,18 +123,24 @@ class KnowledgeBase:
         """The goals a request names: each of ``goal`` (labels, texts or ``#ID``) in order, then
         ``goals``: a goals file, ``"all"`` (the goals file's entries) or ``"all-objects"``; neither:
         the goals file's entries.  Naming nothing at all is an error."""
-        return goals_mod.resolve(self.data, self.problem, tuple(goal), None if goals is None else str(goals))
+        if self.projection.identity:
+            return goals_mod.resolve(self.data, self.problem, tuple(goal), None if goals is None else str(goals))
+        return self._projected_goals(goal, goals)
 
     def file_goals(self) -> list[int]:
         """The ids of the goals file's entries (none without a goals file)."""
         path = self.data.paths.get("goals")
         return [goals_mod.goal_id(self.problem, obj, path, line) for obj, line in self.data.goals]
 
-    def facts(self, goal_nodes: Iterable[int] | None = None, goals: Iterable[int] = ()) -> str:
+    def facts(
+        self, goal_nodes: Iterable[int] | None = None, goals: Iterable[int] = (), options: Options | None = None
+    ) -> str:
         """The FOON, kitchen and goals as ASP facts: ``goal_node/2`` for ``goal_nodes`` (default:
-        the goals file's entries), ``goal/1`` for each of ``goals`` (docs/vocabulary.md)."""
+        the goals file's entries), ``goal/1`` for each of ``goals`` (docs/vocabulary.md); with
+        ``options.substitutes`` also ``substitute(N,K,C)`` (docs/vocabulary.md)."""
         nodes = self.file_goals() if goal_nodes is None else list(goal_nodes)
-        return facts_text(self.problem, goal_nodes=nodes) + "".join(f"goal({g}).\n" for g in goals)
+        text = facts_text(self.problem, goal_nodes=nodes) + "".join(f"goal({g}).\n" for g in goals)
+        return text + self._substitute_facts(options)
 
     # -- options ------------------------------------------------------------
 
@@ -122,6 +154,8 @@ class KnowledgeBase:
         request = Options.of(options, **settings)
         self.warnings.extend(unknown_names(self.problem, request.constraints))
         solver = request.solver()
+        if solver.substitutes:  # spelled as the FOON's labels are at this level
+            solver = replace(solver, substitutes=self.projection.substitutes(solver.substitutes))
         table = request.motion_table()
         self.problem.motion_costs = table
         if table is None:
@@ -252,23 +286,38 @@ class KnowledgeBase:
             units = [TreeUnit(self.problem.units[u], i, None) for i, u in enumerate(tree.unit_ids, 1)]
             tf = TreeFile("<tree>", units, tree.goal, tree.method)
             gid = tree.goal_id if goal is None else self.object_id(goal)
-            raw = check_mod.check_tree(self.problem, tf, gid)
+            raw = check_mod.check_tree(self.judging_problem(solver, (gid,)), tf, gid)
             raw.goal_source = "the tree's goal" if goal is None else "given"
             reports = [raw]
         else:
 
             def name(g: GoalLike) -> str:
-                return f"#{self.object_id(g)}" if isinstance(g, int | FoonObject) else g
+                if isinstance(g, str) and self.projection.identity:
+                    return g
+                return f"#{self.object_id(g)}"
 
             goal_list = [] if goal is None else [goal] if isinstance(goal, str | int | FoonObject) else list(goal)
             labels = tuple(name(g) for g in goal_list) or None
             among = None
             if isinstance(goals, str | Path):
-                among = goals_mod.goals_from_file(self.problem, str(goals))
+                among = self.select_goals((), goals)
             elif goals is not None:
                 among = [self.object_id(g) for g in goals]
-            reports = check_mod.check_file(self.data, self.problem, tree, labels, False, among, strict)
+            files = [self.project_tree(t) for t in read_trees(tree, self.problem, strict)]
+            reports = check_mod.check_trees(self.data, self.judging_problem(solver), files, labels, among)
+            if solver.substitutes:  # a goal a substitute stands in for is judged without it
+                for i, r in enumerate(reports):
+                    view = self.judging_problem(solver, r.meal)
+                    if view is not self.judging_problem(solver):
+                        reports[i] = check_mod.check_tree(view, r.tree, r.goals or r.goal)
+                        reports[i].goal_source = r.goal_source
             self.warnings.extend(dict.fromkeys(w for r in reports for w in r.tree.warnings))
+        if solver.substitutes:
+            for r in reports:
+                used = [u for u in dict.fromkeys(r.ids) if u is not None]
+                r.substitutions = (
+                    report_substitutions(self.problem, r.meal, used, solver.substitutes) if r.valid else []
+                )
         if optimum and reports:
             # a Tree's own goal, a file's trees by meal (one goal: a meal of one)
             key = (lambda r: r.goal) if isinstance(tree, Tree) else (lambda r: r.meal)
@@ -330,13 +379,25 @@ class KnowledgeBase:
         solver = self.options(options, **settings)
         return compare_mod.compare_meal(self.problem, self.goal_ids(goals), method, solver)
 
-    def reachability(self, goals: GoalLike | Sequence[GoalLike] | None = "all") -> Reachability:
-        """For each goal: can it be made from the kitchen at all (one solve for all)?"""
-        return Reachability(self, queries.reachable(self.problem, self.goal_ids(goals)))
+    def reachability(
+        self, goals: GoalLike | Sequence[GoalLike] | None = "all", *, options: Options | None = None
+    ) -> Reachability:
+        """For each goal: can it be made from the kitchen at all (one solve for all)?  With
+        ``options.substitutes``: when substitutes may stand in for missing kitchen items."""
+        ids = self.goal_ids(goals)
+        base = self.judging_problem(options)
+        answers = queries.reachable(base, ids)
+        for goal in ids:  # a goal a substitute stands in for is not had by substituting it
+            view = self.judging_problem(options, (goal,))
+            if view is not base:
+                answers[goal] = queries.reachable(view, [goal])[goal]
+        return Reachability(self, answers)
 
-    def reachable(self, goals: GoalLike | Sequence[GoalLike] | None = "all") -> dict[FoonObject, bool]:
+    def reachable(
+        self, goals: GoalLike | Sequence[GoalLike] | None = "all", *, options: Options | None = None
+    ) -> dict[FoonObject, bool]:
         """:meth:`reachability` as ``{object: reachable}``."""
-        return self.reachability(goals).answers
+        return self.reachability(goals, options=options).answers
 
     def missing(
         self,
@@ -356,15 +417,14 @@ class KnowledgeBase:
             target = self.object_id(goal)
         else:
             target = tuple(dict.fromkeys(self.object_id(g) for g in goal))
-        answer = queries.missing(
-            self.problem,
-            target,
-            solver.programs,
-            solver.time_limit,
-            solver.objective,
-            solver.opt_strategy,
-            solver.threads,
-        )
+        meal, problem = meal_of(target), self.problem
+        if solver.substitutes:  # substitutes may stand in: the fewest of them when nothing need be added
+            lenient = with_substitutes(problem, solver.substitutes)
+            problem = lenient if all(g in lenient.derivable for g in meal) else self.judging_problem(solver, meal)
+        answer = queries.missing(problem, target, solver)
+        if solver.substitutes:
+            bought = substituted_kitchen(self.problem, answer.missing)  # the kitchen with what is added
+            answer.substitutions = report_substitutions(bought, meal, answer.units, solver.substitutes)
         return Missing(self, answer)
 
     def query(
@@ -385,10 +445,12 @@ class KnowledgeBase:
         ``models`` (0: all) and ``time_limit`` come from ``options`` or the keywords.
         With a ``#show`` of its own in ``program`` only what it shows is returned;
         ``warnings`` names atoms the program uses that no rule or fact defines.
+        With ``substitutes`` the facts include ``substitute(N,K,C)`` (and ``max_substitutions(M)``).
         """
         request = Options.of(options, **settings)
         nodes = self.file_goals() if goal_nodes is None else self.goal_ids(goal_nodes)
         gid = None if goal is None else self.object_id(goal)
+        program += self._substitute_facts(request)  # substitute/3 with substitutes (encodings: "substitutes")
         return queries.query(self.problem, (name, program), nodes, gid, encodings, request.models, request.time_limit)
 
     def batch(

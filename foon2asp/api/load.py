@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from foon2asp.api.kb import KnowledgeBase
 from foon2asp.errors import InputError
 from foon2asp.foon.demo import demo_dir
 from foon2asp.foon.loaders import FILE_NAMES, Dataset
+from foon2asp.foon.matching import Projection, Texts, parse_synonyms, project_dataset, read_synonyms
 from foon2asp.foon.problem import Problem
+from foon2asp.foon.substitutes import LINE_BREAKS
 
 #: what is lost when a file is not beside the FOON
 _WITHOUT = {
@@ -50,6 +52,9 @@ def load(
     utensils: str | Path | None = None,
     utensil_rule: str = "starter",
     strict: bool = False,
+    level: int = 3,
+    normalize: bool = False,
+    synonyms: str | Path | Mapping[str, str] | None = None,
 ) -> KnowledgeBase:
     """Read a data folder (``FOON.txt``, ``kitchen.json``, ``goal_nodes.json``,
     ``motion.txt``, ``utensils.txt``) or ``"demo"``; keyword files override its files.
@@ -60,7 +65,15 @@ def load(
     A FOON file may be FOON text, FOON JSON or the unit-list JSON of generated
     trees (:mod:`foon2asp.foon.unitlist`).  ``kitchen="leaves"``: the kitchen is
     every object no unit of the FOON makes (:mod:`foon2asp.foon.leaves`).
+
+    Looser matching (:mod:`foon2asp.foon.matching`): ``level`` 1 compares objects by label,
+    2 by label, states and container, 3 (default) also by ingredients; ``normalize`` compares
+    texts case-folded with the last word in the singular; ``synonyms`` (a file of
+    ``name = canonical name`` lines, or a mapping) joins further names.  The knowledge base
+    then holds the FOON, kitchen and goals as the level sees them (first spellings kept;
+    :attr:`KnowledgeBase.joined` says which spellings were joined).
     """
+    seen_as = projection(level, normalize, synonyms)
     if path == "demo":
         path = demo_dir()
     if path is None and foon is None:
@@ -76,11 +89,38 @@ def load(
     data = Dataset.load(
         path, foon=foon_paths, kitchen=kitchen, goals=goals, motion=motion, utensils=utensils, strict=strict
     )
-    return knowledge_base(data, utensil_rule, beside)
+    return knowledge_base(data, utensil_rule, beside, seen_as)
 
 
-def knowledge_base(data: Dataset, utensil_rule: str = "starter", warnings: Sequence[str] = ()) -> KnowledgeBase:
-    """The knowledge base of data read already, with the warnings about it (and ``warnings``)."""
+def projection(level: int, normalize: bool, synonyms: str | Path | Mapping[str, str] | None) -> Projection:
+    """How objects are compared for ``load``'s ``level``, ``normalize`` and ``synonyms`` (checked
+    before any FOON is read; :class:`foon2asp.foon.matching.Projection`)."""
+    if isinstance(level, bool) or level not in (1, 2, 3):
+        raise InputError(f"--level must be 1, 2 or 3, not {level!r}")
+    if synonyms is None:
+        table: dict[str, str] = {}
+    elif isinstance(synonyms, Mapping):
+        for text in (t for pair in synonyms.items() for t in pair):
+            if not isinstance(text, str) or any(c in LINE_BREAKS for c in text):
+                raise InputError(f"synonyms: a name must be a string without line breaks, not {text!r}")
+        text = "".join(f"{name} = {canonical}\n" for name, canonical in synonyms.items())
+        table = parse_synonyms(text, "synonyms", normalize)
+    else:
+        table = read_synonyms(synonyms, normalize)
+    return Projection(level, Texts(normalize, table))
+
+
+def knowledge_base(
+    data: Dataset,
+    utensil_rule: str = "starter",
+    warnings: Sequence[str] = (),
+    seen_as: Projection | None = None,
+) -> KnowledgeBase:
+    """The knowledge base of data read already, with the warnings about it (and ``warnings``),
+    as ``seen_as`` sees it (default: level 3, texts as spelled)."""
+    seen_as = seen_as or Projection()
+    if not seen_as.identity:
+        data, seen_as = project_dataset(data, seen_as.level, seen_as.texts.normalize, seen_as.texts.synonyms)
     problem = Problem.from_dataset(data, utensil_rule)
     found = list(data.foon.warnings) + list(data.warnings) + list(warnings)
     unknown = problem.unknown_motions()
@@ -88,4 +128,4 @@ def knowledge_base(data: Dataset, utensil_rule: str = "starter", warnings: Seque
         found.append(
             f"{len(unknown)} motion(s) not in {data.paths.get('motion')} get success rate 0.5: {', '.join(unknown[:5])}"
         )
-    return KnowledgeBase(data, problem, found)
+    return KnowledgeBase(data, problem, found, seen_as)

@@ -8,7 +8,9 @@ place that knows them.  The command line builds one per command from its flags.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+import json
+import math
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import TypedDict, Unpack, cast
@@ -17,6 +19,7 @@ from foon2asp.asp.constraints import ConstraintSpec
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.motioncost import MotionCosts, parse_motion_costs, read_motion_costs
+from foon2asp.foon.substitutes import Substitute, parse_substitutes, read_substitutes
 
 #: user constraints (an ASP file, rule texts, the forbid/require/max-units conveniences):
 #: the one value the command line fills from ``--constraint`` ... ``--max-units`` and the solver reads
@@ -27,6 +30,11 @@ Constraints = ConstraintSpec
 #: a table read already, or a mapping motion -> cost
 MotionCostLike = str | Path | MotionCosts | Mapping[str, object]
 
+#: substitutes as a request takes them: a file (JSON ``{"onion": ["red onion", ...]}`` or
+#: ``onion: red onion, shallot =2`` lines), a mapping needed -> list of labels (or label -> cost),
+#: or :class:`~foon2asp.foon.substitutes.Substitute` values
+SubstitutesLike = str | Path | Mapping[str, object] | Sequence[Substitute]
+
 
 class Settings(TypedDict, total=False):
     """The keyword arguments every answer takes besides ``options=`` (see :class:`Options`)."""
@@ -34,6 +42,8 @@ class Settings(TypedDict, total=False):
     objective: str | Sequence[str]
     motion_cost: MotionCostLike | None
     time_limit: float | None
+    gap: float | None
+    on_progress: Callable[[dict], None] | None
     models: int
     all_optimal: bool
     max_depth: int | None
@@ -51,6 +61,8 @@ class Settings(TypedDict, total=False):
     max_units: int | None
     rules: Sequence[str]
     constraint_files: Sequence[str]
+    substitutes: SubstitutesLike | None
+    max_substitutions: int | None
 
 
 #: keyword -> field of :data:`Constraints`
@@ -84,6 +96,13 @@ class Options:
     constraints: Constraints = field(default_factory=Constraints)
     #: seconds per goal; the best tree so far is then ``feasible``
     time_limit: float | None = None
+    #: stop a goal once its relative gap (answer against the proven lower bound, first
+    #: objective; foon2asp.tree.gap) is at most this, e.g. 0.05; the answer is then
+    #: ``feasible`` with its bound.  None (and 0): prove every answer
+    gap: float | None = None
+    #: called while a goal is solved, at each better tree and each better lower bound, with
+    #: ``{"cost": [...], "lower": [...], "gap": g}`` (the solver's weights per objective level)
+    on_progress: Callable[[dict], None] | None = field(default=None, compare=False, repr=False)
     #: the K best distinct trees per goal
     models: int = 1
     #: every optimal tree per goal
@@ -103,6 +122,11 @@ class Options:
     #: the motion-cost table (``--motion-cost FILE``; :data:`MotionCostLike`): the objective
     #: ``cost`` needs it, and with it every tree's measures include its ``cost``
     motion_cost: MotionCostLike | None = None
+    #: labels that may stand in for others (:data:`SubstitutesLike`): a tree uses the fewest
+    #: (cheapest) substitutions first, then the objective; each result names the ones it uses
+    substitutes: SubstitutesLike | None = None
+    #: at most this many substitutions per tree
+    max_substitutions: int | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "objective", split_objective(self.objective))
@@ -150,6 +174,20 @@ class Options:
             return parse_motion_costs(lines, "motion_cost")
         return read_motion_costs(table)
 
+    def substitute_table(self) -> tuple[Substitute, ...]:
+        """The request's substitutes, read and checked (empty without any)."""
+        given = self.substitutes
+        if given is None:
+            return ()
+        if isinstance(given, str | Path):
+            return read_substitutes(given)
+        if isinstance(given, Mapping):
+            return parse_substitutes(json.dumps(dict(given)), "substitutes")
+        found = tuple(given)
+        if not all(isinstance(s, Substitute) for s in found):
+            raise InputError("substitutes: give a file, a mapping label -> [labels] or Substitute values")
+        return found
+
     @property
     def solver_settings(self) -> dict[str, object]:
         """The settings only the ASP methods use that differ from their defaults."""
@@ -169,18 +207,27 @@ class Options:
                 f" for sure); rank it among the objectives, e.g. {suggestion}",
                 hint=f"human-steps={suggestion}",
             )
+        bound = self.max_substitutions
+        if bound is not None and (isinstance(bound, bool) or not isinstance(bound, int) or bound < 0):
+            raise InputError(f"max_substitutions must be an integer >= 0, not {bound!r}")
         settings: dict = {}
         if self.threads is not None:
             settings["threads"] = self.threads
         if self.opt_strategy is not None:
             settings["opt_strategy"] = self.opt_strategy
+        if self.gap is not None and not (isinstance(self.gap, int | float) and 0 <= self.gap < math.inf):
+            raise InputError(f"the gap must be a number >= 0 (0.05 stops at 5 %), not {self.gap!r}", hint="gap")
         return AspOptions(
             objective=ranked,
             time_limit=self.time_limit,
+            gap=self.gap or None,
+            progress=self.on_progress,
             programs=self.constraints.programs(),
             max_depth=self.max_depth,
             human_steps=self.human_steps,
             models=self.models,
             all_optimal=self.all_optimal,
+            substitutes=self.substitute_table(),
+            max_substitutions=self.max_substitutions,
             **settings,
         )

@@ -66,6 +66,18 @@ class Tree:
         return self.raw.cost
 
     @property
+    def bound(self) -> dict | None:
+        """The best proven lower bound per objective level, in the units of :attr:`cost` (for
+        ``success`` the greatest possible product); a proven tree's is its cost; None for
+        the search baselines (foon2asp.tree.gap)."""
+        return self.raw.bound
+
+    @property
+    def gap(self) -> float | None:
+        """The relative gap to :attr:`bound` on the first objective: 0 when proven."""
+        return self.raw.gap
+
+    @property
     def units(self) -> list[Unit]:
         return [self.kb.problem.units[u] for u in self.raw.units]
 
@@ -91,6 +103,11 @@ class Tree:
     def note(self) -> str | None:
         """What the solver says about the answer (e.g. a budget that ended a search), if anything."""
         return self.raw.extra.get("note")
+
+    @property
+    def substitutions(self) -> list[dict] | None:
+        """With substitutes: the ones the tree uses, ``[{"needed", "used"}]`` (None without substitutes)."""
+        return self.raw.extra.get("substitutions")
 
     @property
     def alternatives(self) -> list[Tree]:
@@ -169,6 +186,11 @@ class CheckReport:
     @property
     def goal(self) -> FoonObject:
         return self.kb.problem.objects[self.raw.goal]
+
+    @property
+    def substitutions(self) -> list[dict] | None:
+        """With substitutes: the ones a valid tree uses (None without substitutes)."""
+        return self.raw.substitutions
 
     @property
     def problem(self) -> str | None:

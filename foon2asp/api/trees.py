@@ -8,8 +8,8 @@ recipe consolidated into one proven-best tree (:func:`consolidate`).
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Unpack
 
@@ -17,13 +17,14 @@ from foon2asp import report
 from foon2asp.analysis import check as check_mod
 from foon2asp.analysis import consolidate as consolidate_mod
 from foon2asp.api.kb import GoalLike, KnowledgeBase
-from foon2asp.api.load import knowledge_base
+from foon2asp.api.load import knowledge_base, projection
 from foon2asp.api.options import Options, Settings
 from foon2asp.api.results import Tree
 from foon2asp.errors import InputError
 from foon2asp.foon.leaves import LEAVES, leaves
 from foon2asp.foon.loaders import Dataset, read_goals, read_kitchen, read_motion, read_utensils
 from foon2asp.foon.model import FoonObject, Unit
+from foon2asp.foon.treefiles import TreeUnit
 from foon2asp.tree.results import AloneReport, CandidateVerdict
 from foon2asp.tree.results import Consolidation as RawConsolidation
 
@@ -221,6 +222,9 @@ def consolidate(
     utensil_rule: str = "starter",
     together: bool = False,
     strict: bool = False,
+    level: int = 3,
+    normalize: bool = False,
+    synonyms: str | Path | Mapping[str, str] | None = None,
     options: Options | None = None,
     **settings: Unpack[Settings],
 ) -> Consolidation:
@@ -232,7 +236,9 @@ def consolidate(
     text or ``#ID`` of the merged FOON (several: one result each, or one meal with
     ``together``); ``goals``: a goals file, or ``"all"`` (every product of a candidate's last
     unit); neither: the product of the candidates' last units that most of them share.
-    ``options``/keywords: the request (objective, motion costs, constraints, time limit, ...).
+    ``options``/keywords: the request (objective, motion costs, constraints, time limit,
+    substitutes, ...); ``level``, ``normalize``, ``synonyms``: how objects are compared (as
+    :func:`foon2asp.api.load`; the candidates' units are judged as that comparison sees them).
     """
     if not paths:
         raise InputError("no candidate tree given")
@@ -250,13 +256,39 @@ def consolidate(
         paths={"foon": ",".join(names), "kitchen": given or LEAVES},
         warnings=warnings,
     )
-    kb = knowledge_base(data, utensil_rule, [w for c in candidates for w in c.warnings])
+    seen_as = projection(level, normalize, synonyms)
+    kb = knowledge_base(data, utensil_rule, [w for c in candidates for w in c.warnings], seen_as)
+    if not kb.projection.identity:
+        candidates, sources = _projected(kb, candidates)
     solver = kb.options(options, **settings)
     ids, source = _goals(kb, candidates, goal, goals)
     jobs: list = [tuple(dict.fromkeys(ids))] if together else ids
     kitchen_source = "leaves" if given is None else given
     raw = consolidate_mod.consolidate(kb.problem, candidates, sources, jobs, solver, source, kitchen_source)
     return Consolidation(kb, [ConsolidatedGoal(kb, r) for r in raw])
+
+
+def _projected(kb: KnowledgeBase, candidates: list) -> tuple[list, list[list[str]]]:
+    """The candidates with their units as the knowledge base's comparison sees them, and the
+    files of each unit of its (projected) FOON."""
+    index = {unit.key(): uid for uid, unit in enumerate(kb.problem.units)}
+    files: list[list[str]] = [[] for _ in kb.problem.units]
+    out = []
+    for cand in candidates:
+        units, seen = [], set()
+        for tu in cand.units:
+            unit = kb.projection.unit(tu.unit)
+            if unit.key() not in seen:
+                seen.add(unit.key())
+                units.append(TreeUnit(unit, tu.step, tu.line))
+        out.append(replace(cand, units=units))
+    for cand in out:
+        for tu in cand.units:
+            uid = index[tu.unit.key()]
+            if cand.path not in files[uid]:
+                files[uid].append(cand.path)
+    order = [str(c.path) for c in candidates]
+    return out, [sorted(f, key=order.index) for f in files]
 
 
 def _goals(

@@ -24,6 +24,7 @@ import clingo
 from foon2asp.asp import objectives
 from foon2asp.asp.control import Answer, Control, read_model
 from foon2asp.foon.problem import Problem
+from foon2asp.tree.gap import gap_of
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, goal_fields, measures
 
 
@@ -41,6 +42,8 @@ class Shot:
     exhausted: bool = False
     #: the last model the solver reported (None: none)
     last: Answer | None = None
+    #: the best lower bound the solver proved, per priority level from the highest (None: none)
+    lower: tuple[int, ...] | None = None
 
 
 def _settled(answer: Answer, mode: str, finished: bool) -> Answer:
@@ -56,9 +59,12 @@ def solve_shot(
     count: int = 1,
     on_model: Callable[[clingo.Model], None] | None = None,
     time_limit: float | None = None,
+    on_lower: Callable[[tuple[int, ...]], None] | None = None,
+    stop: Callable[[], bool] | None = None,
 ) -> Shot:
     """Solve once in ``mode`` (:meth:`Control.solving`: "opt", "optN" up to ``count`` trees,
-    "first") with the externals as they are, for at most ``time_limit`` seconds."""
+    "first") with the externals as they are, for at most ``time_limit`` seconds or until
+    ``stop()`` (:meth:`Control.solve`); ``on_lower`` sees each proven lower bound."""
     optimal: dict[tuple[int, ...], Answer] = {}
     last: list[Answer] = []
 
@@ -71,13 +77,59 @@ def solve_shot(
             on_model(model)
 
     with control.solving(mode, count):
-        result = control.solve(record, time_limit)
+        result = control.solve(record, time_limit, on_lower=on_lower, stop=stop)
     finished = result.finished
     latest = _settled(last[0], mode, finished) if last else None
     found = [latest] if latest is not None else []
     if mode == "optN":
         found = sorted(optimal.values(), key=lambda a: a.units) or ([] if finished else found)
-    return Shot(found, result.unsatisfiable is True, finished, result.exhausted, latest)
+    return Shot(found, result.unsatisfiable is True, finished, result.exhausted, latest, result.lower)
+
+
+class Watch:
+    """The best model's cost and the proven lower bound while one goal is solved: reported to
+    ``progress`` and, with a ``target`` gap, the signal to stop (:func:`foon2asp.tree.gap.gap_of`
+    on level ``first``, the lower bound raised to ``floor``).  A target of 0 never stops early:
+    the solver's own proof ends the search, as without a target."""
+
+    def __init__(
+        self,
+        first: int = 0,
+        target: float | None = None,
+        floor: int | None = None,
+        progress: Callable[[dict], None] | None = None,
+    ) -> None:
+        self.first, self.target, self.floor, self.progress = first, target, floor, progress
+        self.cost: tuple[int, ...] | None = None
+        self.lower: tuple[int, ...] | None = None
+
+    def on_model(self, model: clingo.Model) -> None:
+        cost = tuple(model.cost)
+        if self.cost is None or cost < self.cost:
+            self.cost = cost
+        self._report()
+
+    def on_lower(self, lower: tuple[int, ...]) -> None:
+        self.lower = lower
+        self._report()
+
+    def gap(self) -> float | None:
+        if not self.cost:
+            return None
+        return gap_of(self.cost, self.lower, self.first, self.floor)
+
+    def stop(self) -> bool:
+        if not self.target or self.target <= 0:
+            return False
+        found = self.gap()
+        return found is not None and 0 < found <= self.target
+
+    def _report(self) -> None:
+        if self.progress is not None:
+            lower = list(self.lower or ())
+            if self.floor is not None and self.first == 0:
+                lower = [max(lower[0] if lower else 0, self.floor), *lower[1:]]
+            self.progress({"cost": list(self.cost or ()), "lower": lower, "gap": self.gap()})
 
 
 def status(answer: Answer | None, shot: Shot, best: tuple[int, ...] | None = None) -> str:

@@ -148,6 +148,11 @@ class SolveResult:
     exhausted: bool
     interrupted: bool
     time_s: float
+    #: the best lower bound the solver proved (core-guided optimisation), one value per
+    #: priority level from the highest, possibly fewer than there are levels; None: none
+    lower: tuple[int, ...] | None = None
+    #: the search was stopped because ``stop`` said so (e.g. the gap was small enough)
+    stopped: bool = False
 
 
 def _theory_first(theory, on_model: Callable[[clingo.Model], bool | None] | None):
@@ -256,29 +261,49 @@ class Control:
         on_model: Callable[[clingo.Model], bool | None] | None = None,
         time_limit: float | None = None,
         assumptions: Sequence[tuple[clingo.Symbol, bool]] = (),
+        on_lower: Callable[[tuple[int, ...]], None] | None = None,
+        stop: Callable[[], bool] | None = None,
     ) -> SolveResult:
-        """Solve, stopping after ``time_limit`` seconds (None: no limit) through the solve handle.
+        """Solve, stopping after ``time_limit`` seconds (None: no limit) through the solve handle,
+        or as soon as ``stop()`` is true (asked between slices of :data:`POLL_S` seconds).
 
-        SIGINT/SIGTERM while solving cancel the search through the handle; the
-        interrupt is raised once the handle is closed (see :func:`deferred_signals`).
+        Every lower bound the solver proves (core-guided optimisation) is kept for the
+        result and passed to ``on_lower``.  SIGINT/SIGTERM while solving cancel the search
+        through the handle; the interrupt is raised once the handle is closed (see
+        :func:`deferred_signals`).
         """
         t0 = time.perf_counter()
         deadline = None if time_limit is None else t0 + max(0.0, time_limit)
         if self.theory is not None:
             on_model = _theory_first(self.theory, on_model)
+        lower: list[tuple[int, ...]] = []
+
+        def on_unsat(bound: Sequence[int]) -> None:
+            lower[:] = [tuple(bound)]
+            if on_lower is not None:
+                on_lower(lower[0])
+
+        stopped = False
         with deferred_signals():
             self._last_stats: dict = {}
             with self.ctl.solve(
-                on_model=on_model, on_statistics=self._record_stats, async_=True, assumptions=list(assumptions)
+                on_model=on_model,
+                on_unsat=on_unsat,
+                on_statistics=self._record_stats,
+                async_=True,
+                assumptions=list(assumptions),
             ) as handle:
                 finished = False
-                # wait in slices so that a deferred signal or the deadline is seen between them
+                # wait in slices so that a deferred signal, the deadline or a stop is seen between them
                 while not signal_pending():
                     step = POLL_S if deadline is None else min(POLL_S, max(0.0, deadline - time.perf_counter()))
                     if handle.wait(step):
                         finished = True
                         break
                     if deadline is not None and time.perf_counter() >= deadline:
+                        break
+                    if stop is not None and stop():
+                        stopped = True
                         break
                 if not finished:
                     handle.cancel()
@@ -290,6 +315,8 @@ class Control:
             bool(result.exhausted),
             bool(result.interrupted),
             time.perf_counter() - t0,
+            lower[0] if lower else None,
+            stopped,
         )
 
     def backend(self):

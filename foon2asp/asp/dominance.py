@@ -30,8 +30,8 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from foon2asp.asp.facts import neglog_weight
 from foon2asp.foon.problem import Problem
+from foon2asp.tree.weights import UNIT_WEIGHTS
 
 #: objectives under which dominance is known to keep the optimum (the cost tests of :func:`dominance_facts`)
 SUPPORTED = frozenset({"units", "success", "inputs", "depth"})
@@ -64,11 +64,8 @@ def dominance_pairs(
     for u in pool:
         for o in products[u]:
             producers.setdefault(o, []).append(u)  # in id order
-    weight = {}
-    if "success" in ranked:
-        weight["success"] = {u: neglog_weight(problem.rates[u]) for u in pool}
-    if "inputs" in ranked:
-        weight["inputs"] = {u: len(problem.inputs[u]) for u in pool}
+    # the ranked objectives that weigh units differently (units weighs them all 1; depth is not a sum)
+    weight = {n: {u: UNIT_WEIGHTS[n](problem, u) for u in pool} for n in ranked if n in UNIT_WEIGHTS}
     pairs = []
     for u in pool:
         seen: set[int] = set()

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from foon2asp.asp.settings import solver_args
@@ -55,6 +56,11 @@ class AspOptions:
     substitutes: tuple[Substitute, ...] = ()
     #: at most this many substitutions per tree
     max_substitutions: int | None = None
+    #: stop a goal once its gap (foon2asp.tree.gap) is at most this (0.05: 5 %); None: prove
+    gap: float | None = None
+    #: called while a goal is solved with ``{"cost": [...], "lower": [...], "gap": g}`` (solver
+    #: weights per level; gap None while unknown) at each model and each proven lower bound
+    progress: Callable[[dict], None] | None = field(default=None, compare=False, repr=False)
 
     @property
     def method(self) -> str:

@@ -23,7 +23,7 @@ from dataclasses import replace
 import clingo
 
 from foon2asp.asp import encodings, objectives, substitutes
-from foon2asp.asp.answers import Shot, solve_shot, status, task_tree
+from foon2asp.asp.answers import Shot, Watch, solve_shot, status, task_tree
 from foon2asp.asp.canonical import canonical_problem, canonicalise, chain_facts
 from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import OPTIONAL, fact_objects, facts
@@ -31,6 +31,7 @@ from foon2asp.asp.multishot.driver import Driver
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
+from foon2asp.tree.gap import first_level, levels, settle
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
 from foon2asp.tree.upper import cheapest_tree
 
@@ -91,6 +92,8 @@ class Session:
         self._fresh = True
         #: the multi-shot driver (depth bounds, alternatives, ...), made at the first driven solve
         self._driver: Driver | None = None
+        #: the lower bound the last solve proved (solver weights per level), None: none
+        self._lower: tuple[int, ...] | None = None
         t0 = time.perf_counter()
         self.control.add_all(self._parts(), user=[name for name, _ in self.options.programs])
         self.control.ground()
@@ -148,24 +151,37 @@ class Session:
         on_model: Callable[[clingo.Model], None] | None = None,
         time_limit: float | None = None,
         known: tuple[Sequence[int], Sequence[int]] | None = None,
+        floor: int | None = None,
     ) -> TaskTree:
         """The best tree for ``goal`` (an object id, or a tuple of them: a meal, one tree
-        that makes every goal), proven optimal unless time runs out.
+        that makes every goal), proven optimal unless time runs out (or the gap of
+        ``options.gap`` is reached); an unproven answer carries the best lower bound
+        proven and its gap (:mod:`foon2asp.tree.gap`).
 
         ``known`` is a valid tree the caller has, with its cost vector (as the solver
         reports it): when its cost is the proven optimum it is the answer, otherwise
         the canonical (smallest) optimal tree is; either way no second optimal model
-        is searched for first.
+        is searched for first.  ``floor``: a lower bound on the first objective's weight
+        the caller knows (the landmarks).
         """
         meal = meal_of(goal)
-        tree = self._solve(meal, on_model, time_limit, known)
+        self._lower = None
+        tree = self._solve(meal, on_model, time_limit, known, floor)
         if len(meal) > 1 and tree.status == "unreachable":
             self._explain(meal, tree)
         if tree.status == "unknown" and self._plain():
             self._fallback(meal, tree)
         if substitutes.applies(self.options) and tree.has_tree:
             tree.extra["substitutions"] = substitutes.report(self.problem, meal, tree.units, self.options.substitutes)
-        return tree
+        if self._lower:
+            tree.stats["lower"] = list(self._lower)
+        return settle(self.problem, tree, self.levels, self._lower, floor)
+
+    @property
+    def levels(self) -> tuple[str, ...]:
+        """The names of the solver's priority levels, highest first (foon2asp.tree.gap)."""
+        o = self.options
+        return levels(objectives.ranked(o), substitutes.applies(o), o.human_steps is not None)
 
     def _plain(self) -> bool:
         """Is every tree of the grounded units an answer (no constraints, bounds or alternatives)?"""
@@ -210,9 +226,11 @@ class Session:
         on_model: Callable[[clingo.Model], None] | None,
         time_limit: float | None,
         known: tuple[Sequence[int], Sequence[int]] | None = None,
+        floor: int | None = None,
     ) -> TaskTree:
         """One plain optimisation for ``meal`` (the driver when the options need more), then
-        the canonical tree: here, or in the meal's canonical session."""
+        the canonical tree: here, or in the meal's canonical session.  The shot's lower bound
+        is kept (``_lower``): the optimum's cost once the search has proven it."""
         if self.options.driven:
             # depth bounds, human steps, alternatives, greedy: see foon2asp.asp.multishot.driver
             if self._driver is None:
@@ -228,10 +246,30 @@ class Session:
         # session always looks for a second optimal tree, so its answer does not depend on `known`
         plain = known is not None and self.options.canonical and not here
         mode, count = ("optN", 2) if self.options.canonical and not plain else ("opt", 1)
+        watch = Watch(first_level(self.levels), self.options.gap, floor, self.options.progress)
+        if known is not None:
+            watch.cost = tuple(known[1])
+        watching = self.options.gap or self.options.progress is not None
+
+        def seen(model: clingo.Model) -> None:
+            watch.on_model(model)
+            if on_model is not None:
+                on_model(model)
+
         with self._goals_on(meal):
-            shot = solve_shot(self.control, mode, count, on_model, time_limit or None)
+            if watching:
+                shot = solve_shot(self.control, mode, count, seen, time_limit or None, watch.on_lower, watch.stop)
+            else:
+                shot = solve_shot(self.control, mode, count, on_model, time_limit or None)
+            self._lower = shot.lower
+            if shot.last is not None and shot.finished and shot.last.proven:
+                self._lower = shot.last.cost
             stats = self.stats()
             answer, start = self._choose(shot, known, plain)
+            if not shot.finished and known is not None and (answer is None or tuple(known[1]) < answer.cost):
+                # cut short (time, gap) before a tree better than the caller's: the caller's tree
+                answer = Answer(tuple(sorted(known[0])), tuple(known[1]), False)
+                stats["answer"] = "known"
             if start is not None and here:
                 answer = self._canonicalise(start, t0, time_limit, stats)
         if start is not None and not here:

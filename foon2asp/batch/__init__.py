@@ -1,0 +1,1 @@
+"""Batches of goals: the grounding policy, the worker pool and the results file."""

@@ -57,7 +57,7 @@ class Worker:
 
     def run(self, goal: int, method: str) -> str:
         """The result of ``method`` for ``goal`` as one JSON line (with newline)."""
-        tree = judge(self.spec.problem, self.runners[method](goal))  # "valid", as compare gives it
+        tree = judge(self.spec.problem, self.runners[method](goal), self.spec.options.substitutes)  # as compare
         record = tree_json(self.spec.problem, tree)
         record["requested_method"] = method
         return json.dumps(record, ensure_ascii=False) + "\n"

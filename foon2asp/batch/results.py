@@ -121,13 +121,24 @@ def configuration(spec: BatchSpec) -> dict:
         "all_optimal": o.all_optimal,
         "heuristic": o.heuristic,
         "canonical": o.canonical,
+        **({"gap": o.gap} if o.gap else {}),
         "input_sha256": hashlib.sha256(facts(spec.problem).encode("utf-8")).hexdigest(),
         **(
             {"motion_costs": hashlib.sha256(json.dumps(o.motion_costs, sort_keys=True).encode()).hexdigest()[:16]}
             if o.motion_costs is not None
             else {}
         ),
+        **(_substitutes_config(spec) if o.substitutes else {}),
     }
+
+
+def _substitutes_config(spec: BatchSpec) -> dict:
+    """The substitutes and the kitchen items they may use (not all are in the facts), hashed."""
+    o = spec.options
+    table = sorted([s.needed, s.used, s.cost] for s in o.substitutes)
+    kitchen = sorted(obj.text for obj in spec.problem.kitchen_items)
+    digest = hashlib.sha256(json.dumps([table, kitchen]).encode("utf-8")).hexdigest()[:16]
+    return {"substitutes": digest, "max_substitutions": o.max_substitutions}
 
 
 def header_line(config: dict) -> str:

@@ -62,7 +62,10 @@ def run_batch(
     for name in spec.methods:
         methods_mod.get(name)  # unknown names fail before any work
     reason = ""
-    if spec.grounding == "auto":
+    if spec.options.substitutes:  # the goal runner grounds the whole FOON with substitutes
+        spec = replace(spec, grounding="whole")
+        reason = "with substitutes, a goal's part would leave out the kitchen items that stand in"
+    elif spec.grounding == "auto":
         grounding, reason = choose_grounding(spec.problem, goals)
         spec = replace(spec, grounding=grounding)
     elif spec.grounding not in GROUNDINGS:

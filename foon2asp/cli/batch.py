@@ -11,6 +11,7 @@ from foon2asp.cli.main import guarded, main
 from foon2asp.cli.options import (
     constraint_options,
     data_options,
+    gap_option,
     goal_options,
     method_option,
     methods_of,
@@ -71,6 +72,7 @@ _batch_settings = request_options(
     "--scheduler", type=SCHEDULER, metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra)."
 )
 @time_limit_option("Seconds per goal; the best tree so far is reported as 'feasible'.")
+@gap_option
 @strategy_options
 @_batch_settings
 @click.option(

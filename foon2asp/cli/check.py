@@ -8,7 +8,7 @@ import click
 
 from foon2asp import api, report
 from foon2asp.cli.main import guarded, main
-from foon2asp.cli.options import data_options, format_option, schedule_options
+from foon2asp.cli.options import MatchArgs, data_options, format_option, schedule_options
 from foon2asp.cli.output import warn, warn_kb
 from foon2asp.errors import InputError
 
@@ -69,6 +69,10 @@ def check(trees, data, goal, goals, fmt, optimum, spec):
         trees = [p for p in trees if p not in schedules]
     reports: list = []
     if data.data_dir is None and not data.foon:
+        if data.match != MatchArgs():
+            raise InputError(
+                "--level, --normalize, --synonyms and --substitutes need a FOON (--data or --foon) to compare with"
+            )
         if goals:
             raise InputError("--goals needs a FOON (--data or --foon); to judge a tree on its own, use --goal")
         for path in trees:
@@ -89,7 +93,8 @@ def check(trees, data, goal, goals, fmt, optimum, spec):
         kb = data.load(goals)
         among = kb.select_goals((), goals) if goals else None
         for path in trees:
-            reports += [r.raw for r in kb.check_all(path, list(goal) or None, optimum, among, strict=data.strict)]
+            found = kb.check_all(path, list(goal) or None, optimum, among, strict=data.strict, options=data.request())
+            reports += [r.raw for r in found]
             warn_kb(kb)
         click.echo(report.render("check", fmt, kb.problem, reports), nl=False)
     sys.exit(0 if all(r.valid for r in reports) and all(v.valid for v in verdicts) else 1)

@@ -12,6 +12,7 @@ from foon2asp.cli.options import (
     constraint_options,
     data_options,
     format_option,
+    gap_option,
     goal_options,
     is_search,
     method_option,
@@ -32,6 +33,7 @@ from foon2asp.cli.output import EXIT_CODES, exit_code, progress_bar, warn, warn_
 @objective_option()
 @format_option("compare")
 @time_limit_option("Seconds per goal for ASP methods.")
+@gap_option
 @click.option(
     "--together", is_flag=True, help="A meal: the one tree for all goals beside the sum of the single optima (ASP)."
 )

@@ -14,6 +14,8 @@ from foon2asp.cli.options import (
     STRICT_HELP,
     constraint_options,
     format_option,
+    gap_option,
+    match_options,
     objective_option,
     strategy_options,
     time_limit_option,
@@ -49,10 +51,14 @@ from foon2asp.cli.output import EXIT_CODES, exit_code, warn
     "-o", "--output", type=click.Path(dir_okay=False), help="A FILE to write the report to (default: stdout)."
 )
 @time_limit_option("Seconds per goal; the best tree so far is reported as 'feasible'.")
+@gap_option
 @click.option("--together", is_flag=True, help="A meal: one tree that makes every goal.")
 @strategy_options
+@match_options
 @guarded
-def consolidate(trees, goal, goals, kitchen, motion, utensils, utensil_rule, strict, fmt, output, together, options):
+def consolidate(
+    trees, goal, goals, kitchen, motion, utensils, utensil_rule, strict, fmt, output, together, options, match
+):
     """Merge candidate task trees of one recipe (TREES: files in any form 'check' reads, e.g. the
     unit-list JSON of generated trees) into one FOON and find, for each goal, its proven-best tree.
 
@@ -72,7 +78,8 @@ def consolidate(trees, goal, goals, kitchen, motion, utensils, utensil_rule, str
         utensil_rule=utensil_rule,
         together=together,
         strict=strict,
-        options=options,
+        options=match.request(options),
+        **match.load_args,
     )
     for warning in found.warnings:
         warn(warning)

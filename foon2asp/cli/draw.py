@@ -6,8 +6,9 @@ import click
 
 from foon2asp import api
 from foon2asp.cli.main import guarded, main
-from foon2asp.cli.options import STRICT_HELP, DataArgs
+from foon2asp.cli.options import STRICT_HELP, DataArgs, MatchArgs, match_options
 from foon2asp.cli.output import warn
+from foon2asp.errors import InputError
 from foon2asp.report import draw as draw_mod
 
 
@@ -22,8 +23,9 @@ from foon2asp.report import draw as draw_mod
     "--format", "fmt", type=click.Choice(draw_mod.FORMATS), help="Drawing format (default: from the extension)."
 )
 @click.option("--strict", is_flag=True, help=STRICT_HELP)
+@match_options
 @guarded
-def draw(tree, data_dir, goal, output, fmt, strict):
+def draw(tree, data_dir, goal, output, fmt, strict, match):
     """Draw a task tree file: FOON text (either dialect), FOON JSON, foon2asp JSON or the unit-list
     JSON of generated trees.
 
@@ -35,9 +37,13 @@ def draw(tree, data_dir, goal, output, fmt, strict):
         draw_mod.require_dot()
     kb = None
     if data_dir is not None:
-        kb = DataArgs(data_dir, (), None, None, None, "starter", False).load()
+        kb = DataArgs(data_dir, (), None, None, None, "starter", False, match).load()
+    elif match != MatchArgs():
+        raise InputError("--level, --normalize, --synonyms and --substitutes need --data DIR to compare with")
     warnings: list[str] = []
-    count = api.draw_file(tree, output, fmt=fmt, kb=kb, goal=goal, strict=strict, warnings=warnings)
+    count = api.draw_file(
+        tree, output, fmt=fmt, kb=kb, goal=goal, strict=strict, warnings=warnings, options=match.request()
+    )
     for warning in warnings:
         warn(warning)
     click.echo(f"drew {count} tree(s) from {tree} -> {output}", err=True)

@@ -51,6 +51,8 @@ def export_pddl(data, goal, goals, objective, output, name, options):
     """
     if goals == "all-objects":
         raise InputError("--goals all-objects cannot be one PDDL goal; name goals with --goal or a goals FILE")
+    if options.substitutes is not None:
+        raise InputError("export pddl cannot express --substitutes (a plan cannot count its substitutions)")
     kb = data.load(goals)
     goal_ids = kb.select_goals(goal, goals)
     kb.options(options)  # the motion-cost table, for --objective cost

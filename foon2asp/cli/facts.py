@@ -21,7 +21,7 @@ def facts(data, goals, goal, output):
     """Write the FOON, kitchen and goals as ASP facts."""
     kb = data.load(goals)
     nodes = kb.select_goals((), goals) if goals else None
-    text = kb.facts(nodes, kb.select_goals(goal, None) if goal else [])
+    text = kb.facts(nodes, kb.select_goals(goal, None) if goal else [], options=data.request())
     if output:
         api.write_file(output, text)
         click.echo(f"wrote {len(text.splitlines())} lines to {output}", err=True)

@@ -6,7 +6,9 @@ import click
 
 from foon2asp import api
 from foon2asp.cli.main import guarded, main
+from foon2asp.cli.options import joined_lines, match_options
 from foon2asp.cli.output import warn
+from foon2asp.errors import InputError
 
 
 @main.command()
@@ -22,16 +24,24 @@ from foon2asp.cli.output import warn
     help="foon: official dialect with ids; foon-plain: without ids; foon-json: foon_api's JSON;"
     " units-json: the unit-list JSON of generated trees.",
 )
+@match_options
 @guarded
-def merge(files, output, strict, fmt):
+def merge(files, output, strict, fmt, match):
     """Merge FOON subgraphs into one universal FOON (duplicate units merged).
 
     FILES may be FOON text, FOON JSON or the unit-list JSON of generated trees
-    ({input_nodes, motion_node, output_nodes} per unit).
+    ({input_nodes, motion_node, output_nodes} per unit).  With --level 1 or 2, --normalize or
+    --synonyms the units are written as that comparison sees them (units equal there merged,
+    the first spelling of each text kept); the spellings joined are listed on stderr.
     """
+    if match.substitutes is not None:
+        raise InputError("merge writes a FOON: --substitutes applies where trees are found (solve, check, ...)")
     foon = api.read_foons(files, strict)
     for warning in foon.warnings:
         warn(warning)
+    foon, joined = api.match_foon(foon, **match.load_args)
+    for line in joined_lines(joined):
+        click.echo(line, err=True)
     api.write_foon(foon, output, fmt, header=f"merged by foon2asp from {len(files)} file(s)")
     click.echo(
         f"merged {len(files)} file(s): {len(foon.units)} units, {len(foon.objects)} objects -> {output}", err=True

@@ -3,16 +3,18 @@
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import click
 
 from foon2asp.cli.main import guarded, main
-from foon2asp.cli.options import data_options
+from foon2asp.cli.options import KITCHEN_HELP, data_options, joined_lines
+from foon2asp.errors import InputError
 
 
 def _data_options_but_kitchen(func):
     """The data options without ``--kitchen FILE`` (here ``--kitchen`` keeps kitchen items):
-    the kitchen is kitchen.json of --data or beside --foon."""
+    the kitchen is kitchen.json of --data or beside --foon, or ``--kitchen-file FILE|leaves``."""
     return data_options(func, with_kitchen=False)
 
 
@@ -22,17 +24,32 @@ def _data_options_but_kitchen(func):
 @click.option("--produced", "only", flag_value="produced", help="Only objects some unit makes.")
 @click.option("--kitchen", "only", flag_value="kitchen", help="Only kitchen items.")
 @click.option("--derivable", "only", flag_value="derivable", help="Only objects that can be made from the kitchen.")
+@click.option(
+    "--kitchen-file",
+    "kitchen_file",
+    metavar="FILE|leaves",
+    help=KITCHEN_HELP.replace("kitchen.json", "A kitchen.json", 1),
+)
 @click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
 @guarded
-def objects(query, data, only, fmt):
+def objects(query, data, only, kitchen_file, fmt):
     """List the objects LABEL names (all objects without it), each with its #ID and text.
 
     LABEL is a label ('scrambled egg'), an object's text, #ID, or words of labels ('egg').
     Any #ID or text listed can be given as --goal; the JSON list is a goals file
     (--goals FILE).
     """
-    kb = data.load()
-    ids = kb.find_objects(query, only)
+    try:
+        kb = replace(data, kitchen=kitchen_file).load()
+    except InputError as exc:
+        if (exc.hint or "").partition("=")[0] != "kitchen":
+            raise
+        looked_for = (exc.hint or "").partition("=")[2]
+        raise InputError(
+            f"no kitchen.json beside the FOON file (looked for {looked_for}); give --kitchen-file FILE,"
+            " --kitchen-file leaves (every object no unit makes) or --data DIR"
+        ) from None
+    ids = kb.find_objects(query, only, options=data.request())
     infos = [kb.object_info(i) for i in ids]
     if fmt == "json":
         click.echo("[\n" + ",\n".join(json.dumps(i, ensure_ascii=False) for i in infos) + "\n]" if infos else "[]")
@@ -42,6 +59,10 @@ def objects(query, data, only, fmt):
         where = ["kitchen"] if info["in_kitchen"] else []
         if info["producers"]:
             where.append(f"made by {info['producers']} unit{'s' if info['producers'] != 1 else ''}")
+        if "joined" in info:
+            where.append("joins " + " | ".join(info["joined"]))
         click.echo(f"{'#' + str(info['id']):<{width}}  {info['text']}" + (f"   ({', '.join(where)})" if where else ""))
     what = {None: "", "produced": " made by some unit", "kitchen": " in the kitchen", "derivable": " derivable"}[only]
     click.echo(f"{len(infos)} object{'s' if len(infos) != 1 else ''}{what}", err=True)
+    for line in joined_lines(kb.joined):
+        click.echo(line, err=True)

@@ -8,6 +8,7 @@ time limit, constraints and solver settings become one :class:`foon2asp.api.Opti
 from __future__ import annotations
 
 import functools
+import inspect
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -39,6 +40,86 @@ def request_options(keys: dict[str, str], *opts: Callable, check: Callable[[dict
     return decorate
 
 
+# ---------------------------------------------------------------- looser matching
+
+
+@dataclass(frozen=True)
+class MatchArgs:
+    """--level, --normalize, --synonyms FILE (how objects are compared), --substitutes FILE and
+    --max-substitutions N (what may stand in for what)."""
+
+    level: int = 3
+    normalize: bool = False
+    synonyms: str | None = None
+    substitutes: str | None = None
+    max_substitutions: int | None = None
+
+    def __post_init__(self) -> None:
+        if self.max_substitutions is not None and self.substitutes is None:
+            raise InputError("--max-substitutions needs --substitutes FILE")
+
+    @property
+    def load_args(self) -> dict:
+        """The keywords of :func:`foon2asp.api.load` these options give."""
+        return {"level": self.level, "normalize": self.normalize, "synonyms": self.synonyms}
+
+    def request(self, options: api.Options | None = None) -> api.Options:
+        """``options`` with the substitutes of these options."""
+        if self.substitutes is None:
+            return options or api.Options()
+        return api.Options.of(options, substitutes=self.substitutes, max_substitutions=self.max_substitutions)
+
+
+MATCH_OPTIONS = [
+    click.option(
+        "--level",
+        type=click.IntRange(1, 3),
+        default=3,
+        show_default=True,
+        metavar="1|2|3",
+        help="FOON's hierarchy level objects are compared at: 1 labels, 2 labels and states (with the container),"
+        " 3 also ingredients.",
+    ),
+    click.option(
+        "--normalize",
+        is_flag=True,
+        help="Compare labels, states and ingredients case-folded, white space collapsed, the last word singular.",
+    ),
+    click.option(
+        "--synonyms", type=click.Path(), metavar="FILE", help="Lines 'name = canonical name': names compared as one."
+    ),
+    click.option(
+        "--substitutes",
+        type=click.Path(),
+        metavar="FILE",
+        help='What may stand in for a missing kitchen item: JSON {"onion": ["red onion"]} or lines'
+        " 'onion: red onion, shallot =2'; trees use the fewest (cheapest) substitutions first.",
+    ),
+    click.option("--max-substitutions", type=int32(min=0), metavar="N", help="At most N substitutions per tree."),
+]
+
+
+def joined_lines(joined: dict[str, list[str]]) -> list[str]:
+    """``joined 'Blueberries', 'blueberries' as 'blueberry'``: one line per text spelled several ways."""
+    return [f"joined {', '.join(repr(s) for s in spellings[1:])} as {first!r}" for first, spellings in joined.items()]
+
+
+def _match_args(kwargs: dict) -> MatchArgs:
+    return MatchArgs(**{k: kwargs.pop(k) for k in MatchArgs.__dataclass_fields__})
+
+
+def match_options(func):
+    """The looser-matching options (:data:`MATCH_OPTIONS`) as one ``match`` value (:class:`MatchArgs`)."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        return func(*args, match=_match_args(kwargs), **kwargs)
+
+    for opt in reversed(MATCH_OPTIONS):
+        wrapper = opt(wrapper)
+    return wrapper
+
+
 # ---------------------------------------------------------------- the data
 
 
@@ -53,6 +134,11 @@ class DataArgs:
     utensils: str | None
     utensil_rule: str
     strict: bool
+    match: MatchArgs = MatchArgs()
+
+    def request(self, options: api.Options | None = None) -> api.Options:
+        """``options`` with the substitutes of the data options (--substitutes, --max-substitutions)."""
+        return self.match.request(options)
 
     def load(self, goals_file: str | None = None) -> api.KnowledgeBase:
         """The knowledge base these options name (``goals_file``: a ``--goals FILE`` to read); its
@@ -70,6 +156,7 @@ class DataArgs:
             utensils=self.utensils,
             utensil_rule=self.utensil_rule,
             strict=self.strict,
+            **self.match.load_args,
         )
         warn_kb(kb)
         return kb
@@ -82,8 +169,10 @@ KITCHEN_HELP = (
 
 
 def data_options(func, with_kitchen: bool = True):
-    """--data DIR and the per-file overrides, plus --utensil-rule and --strict, passed on as one
-    ``data`` value (:class:`DataArgs`); ``with_kitchen=False`` leaves out ``--kitchen FILE``."""
+    """--data DIR and the per-file overrides, plus --utensil-rule, --strict and the looser-matching
+    options (:data:`MATCH_OPTIONS`), passed on as one ``data`` value (:class:`DataArgs`); a command
+    that takes ``options`` gets the substitutes there too.  ``with_kitchen=False`` leaves out
+    ``--kitchen FILE``."""
     opts = [
         click.option(
             "--data",
@@ -113,13 +202,20 @@ def data_options(func, with_kitchen: bool = True):
     if with_kitchen:
         opts.insert(2, click.option("--kitchen", type=click.Path(), help=KITCHEN_HELP))
 
+    takes_options = "options" in inspect.signature(func).parameters
+
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
-        values = {k: kwargs.pop(k) for k in DataArgs.__dataclass_fields__ if with_kitchen or k != "kitchen"}
+        match = _match_args(kwargs)
+        values = {
+            k: kwargs.pop(k) for k in DataArgs.__dataclass_fields__ if k != "match" and (with_kitchen or k != "kitchen")
+        }
         values.setdefault("kitchen", None)
-        return func(*args, data=DataArgs(**values), **kwargs)
+        if takes_options:  # the substitutes go into the request (the request options inside add to it)
+            kwargs["options"] = match.request(kwargs.get("options"))
+        return func(*args, data=DataArgs(**values, match=match), **kwargs)
 
-    for opt in reversed(opts):
+    for opt in reversed(opts + MATCH_OPTIONS):
         wrapper = opt(wrapper)
     return wrapper
 
@@ -262,6 +358,38 @@ def schedule_options(func):
     for opt in reversed(opts):
         wrapper = opt(wrapper)
     return wrapper
+
+
+class Gap(click.ParamType):
+    """A relative gap: a number >= 0 (0.05) or a percentage (5%)."""
+
+    name = "G"
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, float):
+            return value
+        text = str(value).strip()
+        try:
+            number = float(text[:-1]) / 100 if text.endswith("%") else float(text)
+        except ValueError:
+            self.fail(f"expected a number >= 0 (0.05) or a percentage (5%), not {value!r}", param, ctx)
+        if not 0 <= number < float("inf"):
+            self.fail(f"expected a number >= 0 (0.05) or a percentage (5%), not {value!r}", param, ctx)
+        return number
+
+
+def gap_option(func):
+    """``--gap G`` into ``options``: stop a goal once its gap is at most G."""
+    return request_options(
+        {"gap": "gap"},
+        click.option(
+            "--gap",
+            type=Gap(),
+            metavar="G",
+            help="Stop a goal once its gap (the tree against the proven lower bound, first objective) is at"
+            " most G, e.g. 0.05 or 5%; the answer is then 'feasible' with its bound. Default: prove.",
+        ),
+    )(func)
 
 
 def constraint_options(func):

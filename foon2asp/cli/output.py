@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import sys
+import threading
+import time
 from collections.abc import Iterable
 from typing import Any
 
@@ -50,3 +52,41 @@ def progress_bar(items: Iterable, total: int, enabled: bool | None, what: str) -
     and there is more than one goal (``enabled`` None), or as ``enabled`` says."""
     show = (sys.stderr.isatty() and total > 1) if enabled is None else enabled
     return tqdm(items, total=total, desc=what, unit="goal", file=sys.stderr, disable=not show, leave=False)
+
+
+class GoalProgress:
+    """A status line on stderr while one goal is solved: the best tree's cost, the proven lower
+    bound and the gap (the solver's weights per objective level), at most five times a second.
+    Given to the library as ``progress=`` (:attr:`foon2asp.api.Options.progress`)."""
+
+    def __init__(self) -> None:
+        self._bar: Any = None
+        self._last = 0.0
+        self._lock = threading.Lock()
+
+    def __call__(self, info: dict) -> None:
+        now = time.monotonic()
+        with self._lock:
+            if now - self._last < 0.2:
+                return
+            self._last = now
+            if self._bar is None:
+                self._bar = tqdm(total=0, bar_format="{desc}", file=sys.stderr, leave=False)
+            best = "/".join(map(str, info.get("cost") or ())) or "-"
+            lower = "/".join(map(str, info.get("lower") or ())) or "-"
+            gap = info.get("gap")
+            self._bar.set_description_str(
+                f"solving: best {best}, lower bound {lower}" + (f", gap {100 * gap:.1f}%" if gap is not None else "")
+            )
+
+    def close(self) -> None:
+        with self._lock:
+            if self._bar is not None:
+                self._bar.close()
+                self._bar = None
+
+
+def goal_progress(enabled: bool | None) -> GoalProgress | None:
+    """A :class:`GoalProgress` when stderr is a terminal (``enabled`` None) or as ``enabled`` says."""
+    show = sys.stderr.isatty() if enabled is None else enabled
+    return GoalProgress() if show else None

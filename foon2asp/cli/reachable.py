@@ -16,4 +16,4 @@ from foon2asp.cli.options import data_options, format_option, goal_options
 def reachable(data, goal, goals, fmt):
     """Which goals (or objects) can be made from the kitchen at all, in one solve (default: the goals file's goals)."""
     kb = data.load(goals)
-    click.echo(kb.reachability(kb.select_goals(goal, goals)).render(fmt), nl=False)
+    click.echo(kb.reachability(kb.select_goals(goal, goals), options=data.request()).render(fmt), nl=False)

@@ -12,6 +12,7 @@ from foon2asp.cli.options import (
     constraint_options,
     data_options,
     format_option,
+    gap_option,
     goal_options,
     is_search,
     method_option,
@@ -21,7 +22,7 @@ from foon2asp.cli.options import (
     solver_options,
     time_limit_option,
 )
-from foon2asp.cli.output import EXIT_CODES, exit_code, progress_bar, warn, warn_kb
+from foon2asp.cli.output import EXIT_CODES, exit_code, goal_progress, progress_bar, warn, warn_kb
 from foon2asp.errors import InputError
 from foon2asp.report import draw
 from foon2asp.report.trees import render, render_bytes
@@ -49,6 +50,7 @@ def safe_name(index: int, label: str) -> str:
     help="A FOLDER: also write one file per goal (and method) there.",
 )
 @time_limit_option("Seconds per goal; the best tree so far is reported as 'feasible'.")
+@gap_option
 @click.option(
     "--together",
     is_flag=True,
@@ -71,6 +73,9 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
         raise InputError(f"--together needs an ASP method; {', '.join(search)} are search baselines")
     if search and options.solver_settings:
         raise InputError(f"solver settings apply to ASP methods only; {', '.join(search)} are search baselines")
+    status_line = goal_progress(progress)
+    if status_line is not None:
+        options = api.Options.of(options, on_progress=status_line)
     solver = kb.options(options)
     warn_kb(kb)
     problem = kb.problem
@@ -102,10 +107,14 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
             if sep is None:
                 held.extend(found)
                 continue
+            if status_line is not None:
+                status_line.close()
             text = render(problem, found, fmt)
             click.echo((sep if printed else "") + text, nl=False)
             sys.stdout.flush()
             printed += 1
+    if status_line is not None:
+        status_line.close()
     if binary and out_dir:
         click.echo(f"wrote {len(jobs) * len(names)} {fmt} file(s) to {out_dir}", err=True)
     elif binary:

@@ -151,16 +151,29 @@ class Problem:
         added objects in id order.
         """
         ids = frozenset(kitchen)
+        view = self._view()
+        view.kitchen = ids
+        oid = self.foon.object_ids
+        items = [o for o in self.kitchen_items if oid.get(o) in ids]
+        view.kitchen_items = items + [self.objects[o] for o in sorted(ids - self.kitchen)]
+        return view
+
+    def with_substitutable(self, objects: Iterable[int]) -> Problem:
+        """The same problem whose viability counts the objects ``objects`` (ids) as available
+        by substitution (:attr:`substitutable`); nothing cached here is carried over."""
+        view = self._view()
+        view.substitutable = frozenset(objects)
+        return view
+
+    def _view(self) -> Problem:
+        """A problem sharing this one's tables and kitchen, with no cached value."""
         view = Problem.__new__(Problem)
         view.foon, view.motion_rates = self.foon, self.motion_rates
         view.utensils, view.utensil_rule = self.utensils, self.utensil_rule
         view.motion_costs, view.substitutable = self.motion_costs, self.substitutable
         view.inputs, view.required, view.outputs = self.inputs, self.required, self.outputs
         view.products, view.producers, view.rates = self.products, self.producers, self.rates
-        view.kitchen = ids
-        oid = self.foon.object_ids
-        items = [o for o in self.kitchen_items if oid.get(o) in ids]
-        view.kitchen_items = items + [self.objects[o] for o in sorted(ids - self.kitchen)]
+        view.kitchen, view.kitchen_items = self.kitchen, list(self.kitchen_items)
         return view
 
     @property

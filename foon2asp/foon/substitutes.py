@@ -25,7 +25,6 @@ viability counts them as available.
 
 from __future__ import annotations
 
-import copy
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -38,6 +37,9 @@ from foon2asp.foon.safetext import check_text, lines_of, read_text
 
 #: the cost of a substitute given without ``=COST``
 DEFAULT_COST = 1
+
+#: characters that end a line (a label holding one is refused)
+LINE_BREAKS = frozenset("\n\r\v\f\x1c\x1d\x1e\x85\u2028\u2029")
 
 
 @dataclass(frozen=True, order=True)
@@ -68,6 +70,9 @@ def _cost(text: str, path: str, line: int | None) -> int:
 def _add(
     out: dict[tuple[str, str], Substitute], needed: str, used: str, cost: int, path: str, line: int | None
 ) -> None:
+    for text in (needed, used):
+        if any(c in LINE_BREAKS for c in text):
+            raise InputError(f"a label cannot hold a line break: {text!r}", path, line)
     needed, used = norm(needed), norm(used)
     if not needed or not used:
         raise InputError("a substitute needs a label on both sides", path, line)
@@ -199,13 +204,6 @@ def candidates(problem: Problem, substitutes: Iterable[Substitute]) -> list[Cand
     return out
 
 
-def _view(problem: Problem) -> Problem:
-    view = copy.copy(problem)
-    for name in ("derivable", "viable_units", "viable_producers"):  # cached on the problem: recomputed
-        view.__dict__.pop(name, None)
-    return view
-
-
 def with_substitutes(problem: Problem, substitutes: Iterable[Substitute]) -> Problem:
     """``problem`` whose viability (the least fixpoint, viable units, the units a tree may
     use) counts every object a substitute can stand in for as available; ``problem``
@@ -213,9 +211,18 @@ def with_substitutes(problem: Problem, substitutes: Iterable[Substitute]) -> Pro
     needed = frozenset(c.needed for c in candidates(problem, substitutes))
     if needed == problem.substitutable:
         return problem
-    view = _view(problem)
-    view.substitutable = needed
-    return view
+    return problem.with_substitutable(needed)
+
+
+def judged_on(problem: Problem, substitutes: Iterable[Substitute], goals: Iterable[int] = ()) -> Problem:
+    """The problem a tree that may rely on ``substitutes`` is judged on by the independent
+    validator: every object a substitute can stand in for, but ``goals``, is a kitchen item
+    (``problem`` itself without substitutes)."""
+    substitutes = tuple(substitutes)
+    if not substitutes:
+        return problem
+    skip = set(goals)
+    return substituted_kitchen(problem, [c.needed for c in candidates(problem, substitutes) if c.needed not in skip])
 
 
 def substituted_kitchen(problem: Problem, used: Iterable[int | FoonObject]) -> Problem:
@@ -223,8 +230,7 @@ def substituted_kitchen(problem: Problem, used: Iterable[int | FoonObject]) -> P
     kitchen items: the independent validator (foon2asp.tree.validate) accepts a tree that
     relies on those substitutions on it."""
     extra = [problem.objects[o] if isinstance(o, int) else o for o in used]
-    view = _view(problem)
-    view.kitchen_items = list(dict.fromkeys([*problem.kitchen_items, *extra]))
     ids = problem.foon.object_ids
-    view.kitchen = problem.kitchen | frozenset(ids[o] for o in extra if o in ids)
+    view = problem.with_kitchen(problem.kitchen | frozenset(ids[o] for o in extra if o in ids))
+    view.kitchen_items = list(dict.fromkeys([*problem.kitchen_items, *extra]))
     return view

@@ -232,6 +232,15 @@ class Bounds:
         self._lower[goal] = lb
         return lb
 
+    def first_lower(self, goal: int) -> int:
+        """A lower bound on the first objective's weight (as the solver weighs it) of every
+        tree for ``goal``: :meth:`lower` with the tie-break on units taken out (the weights
+        are ``w(u) * M + 1`` with ``M`` above the number of units, foon2asp.tree.weights)."""
+        lower = self.lower(goal)
+        if self.ranked[0] == "units":
+            return lower
+        return lower // (len(self.problem.units) + 1)
+
     def proven(self, goal: int) -> bool:
         """Is the bounds tree of ``goal`` optimal (lower bound == upper bound)?"""
         start = self._sets.get(goal)

@@ -69,11 +69,17 @@ from foon2asp.foon.problem import Problem, walk_back
 from foon2asp.methods.bounds import Bounds
 from foon2asp.methods.bounds import supports as bounds_supports
 from foon2asp.methods.exact import NODE_LIMIT, canonical_tree
-from foon2asp.methods.registry import Runner, effective_options, get
+from foon2asp.methods.registry import Runner, check_substitutes, effective_options, get
+from foon2asp.tree.gap import settle
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
 from foon2asp.tree.weights import UNIT_WEIGHTS, total
 
 GROUNDINGS = ("whole", "per-goal")
+
+#: FOONs with more viable units than this build a goal's bounds on its part first (Parts.bounds_for)
+PART_BOUNDS_MIN = 20_000
+#: ... when the part is less than 1/PART_BOUNDS_SHARE of them
+PART_BOUNDS_SHARE = 4
 
 #: objectives whose cost is a sum of non-negative weights of the used units (the cost
 #: term the solver reports for a tree, ``asp_cost``, is :func:`foon2asp.tree.weights.total`)
@@ -90,12 +96,32 @@ class Parts:
         #: object -> its viable producers
         self.producers: dict[int, list[int]] = problem.viable_producers
         self._bounds: dict[tuple[str, ...], Bounds] = {}
+        #: units covered so far by bounds built on goals' parts (Parts.bounds_for)
+        self._part_bounds_spent: dict[tuple[str, ...], int] = {}
 
     def bounds(self, ranked_objectives: tuple[str, ...]) -> Bounds:
         """The bounds (foon2asp.methods.bounds) for these ranked objectives, built once."""
         if ranked_objectives not in self._bounds:
             self._bounds[ranked_objectives] = Bounds(self.problem, ranked_objectives)
         return self._bounds[ranked_objectives]
+
+    def bounds_for(self, ranked_objectives: tuple[str, ...], units: list[int]) -> Bounds:
+        """The bounds for a goal whose relevant part is ``units``: built on the part alone while
+        that is cheaper than the whole FOON's, then the whole FOON's, built once.
+
+        A goal's bounds depend on its part only (foon2asp.methods.bounds), so both give the
+        same answers.  On a large FOON the whole build takes seconds (18 s on 242,241 units)
+        and one goal would wait for it; parts are built instead while the units they cover
+        add up to less than the FOON's viable units (then the whole build has paid for itself:
+        the total work stays within twice the better of the two)."""
+        whole = self._bounds.get(ranked_objectives)
+        size = len(self.viable)
+        if whole is None and size > PART_BOUNDS_MIN and PART_BOUNDS_SHARE * len(units) < size:
+            spent = self._part_bounds_spent.get(ranked_objectives, 0) + len(units)
+            if spent <= size:
+                self._part_bounds_spent[ranked_objectives] = spent
+                return Bounds(self.problem, ranked_objectives, units)
+        return self.bounds(ranked_objectives)
 
     @cached_property
     def derivable(self) -> frozenset[int]:
@@ -152,6 +178,7 @@ class GoalRunner:
     ):
         if grounding not in GROUNDINGS:
             raise ValueError(f"unknown grounding {grounding!r}")
+        check_substitutes(name, options)  # before anything is solved: a method that cannot honour them refuses
         problem = with_substitutes(problem, options)
         if options.substitutes:  # a goal's part would leave out the kitchen items that stand in
             grounding = "whole"
@@ -164,7 +191,7 @@ class GoalRunner:
         self.options = options
         self.grounding = grounding
         self.kind = method.kind
-        self.parts = parts if parts is not None else Parts(problem)
+        self.parts = parts if parts is not None and parts.problem is problem else Parts(problem)
         self.shortcuts = shortcuts and self.kind == "asp" and plain(self.options)
         #: how each goal was answered: "solver" | "unreachable" | "no-choice" | "bounds" | "branch-and-bound"
         self.counts = {"solver": 0, "unreachable": 0, "no-choice": 0, "bounds": 0, "branch-and-bound": 0}
@@ -188,9 +215,9 @@ class GoalRunner:
             assert method.factory is not None, f"search method {name!r} has no factory"
             self._whole = method.factory(problem, self.options)
 
-    def _session(self, problem: Problem, units: tuple[int, ...]) -> Runner:
+    def _session(self, problem: Problem, units: tuple[int, ...]) -> Session:
         """A session of the method grounding ``units`` of ``problem`` (a view, or the whole problem)."""
-        return Session(problem, replace(self._effective, units=units)).solve
+        return Session(problem, replace(self._effective, units=units))
 
     def _whole_runner(self) -> Runner:
         """The one grounding of all viable (or allowed) units, built on first use."""
@@ -198,18 +225,21 @@ class GoalRunner:
             units = self.options.units
             if units is None:
                 units = tuple(sorted(self.parts.viable))
-            self._whole = self._session(self.problem, tuple(units))
+            self._whole = self._session(self.problem, tuple(units)).solve
         return self._whole
 
-    def _solve(self, goal: Goals) -> TaskTree:
+    def _solve(self, goal: Goals, floor: int | None = None) -> TaskTree:
+        """The solver's tree (a search baseline's answer); ``floor``: a lower bound on the first
+        objective's weight from the landmarks (an unproven answer reports the better bound)."""
         self.counts["solver"] += 1
         if self.kind != "asp" or self.grounding == "whole":
-            tree = self._whole_runner()(goal)
+            run = self._whole_runner()
+            tree = run(goal) if floor is None else run(goal, floor=floor)  # type: ignore[call-arg]
         else:
             units, objects, _ = self.parts.relevant(goal)
             if self._allowed is not None:
                 units = [u for u in units if u in self._allowed]
-            tree = self._session(_view(self.problem, objects), tuple(units))(goal)
+            tree = self._session(_view(self.problem, objects), tuple(units)).solve(goal, floor=floor)
         self._label = tree.method
         return tree
 
@@ -224,7 +254,7 @@ class GoalRunner:
         view = _view(self.problem, objects)
         session = Session(view, replace(self._effective, units=tuple(keep)), require=landmarks, goal=goal)
         best = bounds.tree(goal) or ()
-        tree = session.solve(goal, known=(best, bounds.cost(best)))
+        tree = session.solve(goal, known=(best, bounds.cost(best)), floor=bounds.first_lower(goal))
         tree.stats["pruned_units"] = len(units) - len(keep)
         return tree
 
@@ -280,9 +310,9 @@ class GoalRunner:
             return self._answer(goal, label, executable_order(self.problem, units), "no-choice", t0)
         if not self._bounded:
             return self._solve(goal)
-        bounds = self.parts.bounds(self._ranked)
+        bounds = self.parts.bounds_for(self._ranked, units)
         if not self.shortcuts:
-            return self._canonical(self._solve(goal), bounds, t0)
+            return self._canonical(self._solve(goal, bounds.first_lower(goal)), bounds, t0)
         if bounds.proven(goal):
             self.counts["bounds"] += 1
             tree = bounds.tree(goal) or ()
@@ -297,7 +327,7 @@ class GoalRunner:
     def _answer(self, goal: int, label: str, order: list[int], shortcut: str, t0: float) -> TaskTree:
         """An optimal tree found without the solver."""
         asp_cost = [total(self.problem, name, order) for name in self._ranked]
-        return TaskTree(
+        tree = TaskTree(
             goal,
             label,
             "optimal",
@@ -307,6 +337,7 @@ class GoalRunner:
             {"shortcut": shortcut},
             {"asp_cost": asp_cost},
         )
+        return settle(self.problem, tree, self._ranked)
 
 
 def solve_goals(

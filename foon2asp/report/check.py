@@ -50,6 +50,7 @@ def report_text(problem: Problem, report: Report) -> str:
     n_known = sum(u is not None for u in ids)
     lines.append(f"Units: {len(ids)} read, {n_known} found in the FOON, {len(ids) - n_known} unknown")
     lines.append(f"Verdict: {'VALID' if report.valid else 'INVALID'}")
+    lines += substitution_lines(report.substitutions or [])
     if report.finding:
         f = report.finding
         if f.kind == "cycle":
@@ -84,6 +85,11 @@ def report_text(problem: Problem, report: Report) -> str:
     return "\n".join(lines) + "\n"
 
 
+def substitution_lines(substitutions: list[dict]) -> list[str]:
+    """``uses USED for NEEDED``, one line per substitution."""
+    return [f"uses {s['used']} for {s['needed']}" for s in substitutions]
+
+
 def _steps(units: list[int], ids: list[int | None]) -> list[str]:
     return [str(ids.index(u) + 1) for u in units]
 
@@ -112,8 +118,13 @@ def report_json(problem: Problem, report: Report) -> dict:
         "executable_order_steps": [int(s) for s in _steps(v.order, report.ids)] if v is not None else [],
         "cost": report.cost,
     }
+    if report.substitutions is not None:
+        out["substitutions"] = report.substitutions
     if report.optimum is not None:
-        out["optimum"] = {"status": report.optimum.status, "cost": report.optimum.cost}
+        optimum: dict = {"status": report.optimum.status, "cost": report.optimum.cost}
+        if "substitutions" in report.optimum.extra:
+            optimum["substitutions"] = report.optimum.extra["substitutions"]
+        out["optimum"] = optimum
     return out
 
 

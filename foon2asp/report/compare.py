@@ -19,7 +19,8 @@ def _label(problem: Problem, goal: int) -> str:
 
 
 def units_cell(tree: TaskTree) -> str:
-    """``25``, ``10 invalid``, ``12 feasible``, or the status when there is no tree."""
+    """``25``, ``10 invalid``, ``12 feasible``, ``65 feasible (>= 54)`` (the lower bound on
+    units, when known), or the status when there is no tree."""
     if not tree.has_tree:
         return tree.status
     cell = str(len(tree.units))
@@ -27,6 +28,8 @@ def units_cell(tree: TaskTree) -> str:
         cell += " invalid"
     if tree.status == "feasible":
         cell += " feasible"
+        if tree.bound is not None and "units" in tree.bound and tree.bound["units"] < len(tree.units):
+            cell += f" (>= {tree.bound['units']})"
     return cell
 
 

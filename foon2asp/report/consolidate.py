@@ -7,7 +7,8 @@ The JSON is a list with one object per goal (one for a meal):
 ``cost`` are the tree's as ``solve`` reports them, ``goal`` is an object (a list of objects
 for a meal), ``problem`` the first problem of a candidate in words (null when it is
 executable on its own), ``used_units`` the numbers (in its file, from 1) of its units the
-tree uses, ``missing`` the fewest objects to add to the kitchen when the goal is unreachable.
+tree uses, ``missing`` the fewest objects to add to the kitchen when the goal is unreachable;
+with substitutes also ``"substitutions": [{"needed", "used"}]``, the ones the tree uses.
 """
 
 from __future__ import annotations
@@ -45,7 +46,7 @@ def candidate_json(v: CandidateVerdict) -> dict:
 def consolidation_json(problem: Problem, c: Consolidation) -> dict:
     """One goal's object of ``consolidate --format json``."""
     missing = c.missing.missing if c.missing is not None else []
-    return {
+    out = {
         "goal": goal_json(problem, c),
         "status": c.tree.status,
         "cost": c.tree.cost,
@@ -53,6 +54,9 @@ def consolidation_json(problem: Problem, c: Consolidation) -> dict:
         "candidates": [candidate_json(v) for v in c.candidates],
         "missing": [problem.objects[o].to_json() for o in missing],
     }
+    if "substitutions" in c.tree.extra:
+        out["substitutions"] = c.tree.extra["substitutions"]
+    return out
 
 
 def _versus(v: CandidateVerdict, best: dict) -> str:

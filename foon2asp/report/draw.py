@@ -75,14 +75,30 @@ def _esc(text: str) -> str:
     return html.escape(text, quote=True)
 
 
+#: Graphviz refuses quoted strings longer than 16,384 characters: texts in a drawing are
+#: clipped to these lengths (the full text stays in the tree's other formats)
+MAX_TEXT = 200
+MAX_ROWS = 12
+MAX_TOOLTIP = 2000
+
+
+def _clip(text: str, limit: int = MAX_TEXT) -> str:
+    """``text``, cut to ``limit`` characters with an ellipsis when longer."""
+    return text if len(text) <= limit else text[: limit - 1] + "\u2026"
+
+
 def object_label(obj: FoonObject) -> str:
-    """An HTML-like Graphviz label: the label in bold, then states, ingredients, container."""
-    rows = [f"<B>{_esc(obj.label)}</B>"]
-    rows += [_esc(s) for s in obj.states]
+    """An HTML-like Graphviz label: the label in bold, then states, ingredients, container
+    (long texts clipped, at most :data:`MAX_ROWS` states)."""
+    rows = [f"<B>{_esc(_clip(obj.label))}</B>"]
+    states = list(obj.states)
+    rows += [_esc(_clip(s)) for s in states[:MAX_ROWS]]
+    if len(states) > MAX_ROWS:
+        rows.append(_esc(f"\u2026 {len(states) - MAX_ROWS} more states"))
     if obj.ingredients:
-        rows.append(_esc("{" + ", ".join(obj.ingredients) + "}"))
+        rows.append(_esc(_clip("{" + ", ".join(obj.ingredients) + "}", 4 * MAX_TEXT)))
     if obj.container:
-        rows.append(_esc(f"[{obj.container}]"))
+        rows.append(_esc(f"[{_clip(obj.container)}]"))
     return "<" + "<BR/>".join(rows) + ">"
 
 
@@ -104,8 +120,9 @@ def build_graph(
     marks = marks or Marks()
     g = graphviz.Digraph(name)
     g.attr(rankdir="TB", fontname="Helvetica", fontsize="12", labelloc="t", nodesep="0.25", ranksep="0.35")
-    title = [_esc(marks.title)] if marks.title else []
-    title += [f'<FONT COLOR="{CYCLE}">{_esc(line)}</FONT>' for line in _wrap(marks.note)] if marks.note else []
+    title = [_esc(_clip(marks.title, MAX_TOOLTIP))] if marks.title else []
+    note = _wrap(_clip(marks.note, MAX_TOOLTIP)) if marks.note else []
+    title += [f'<FONT COLOR="{CYCLE}">{_esc(line)}</FONT>' for line in note]
     title.append(f'<FONT POINT-SIZE="9">{_esc(LEGEND if marks.legend is None else marks.legend)}</FONT>')
     g.attr(label="<" + "<BR/>".join(title) + ">")
     g.attr("node", fontname="Helvetica", fontsize="10")
@@ -127,10 +144,10 @@ def build_graph(
         if obj in marks.cycle_objects:
             attrs.update(color=CYCLE, penwidth="2.5", fontcolor=CYCLE)
             classes.append("cycle")
-        g.node(node, object_label(obj), tooltip=str(obj), **{"class": " ".join(classes)}, **attrs)
+        g.node(node, object_label(obj), tooltip=_clip(str(obj), MAX_TOOLTIP), **{"class": " ".join(classes)}, **attrs)
     for k, unit in enumerate(units):
         node = f"{prefix}u{k + 1}"
-        text = f"{k + 1}. {unit.motion}"
+        text = f"{k + 1}. {_clip(unit.motion)}"
         attrs = {"shape": "box", "style": "filled", "fillcolor": UNIT_FILL}
         classes = ["unit"]
         colors = marks.unit_colors.get(k)
@@ -146,7 +163,7 @@ def build_graph(
             attrs.update(color=CYCLE, penwidth="2.5", fontcolor=CYCLE)
             classes.append("cycle")
         tip = str(unit) + (f" -- {marks.unit_notes[k]}" if k in marks.unit_notes else "")
-        g.node(node, text, tooltip=tip, **{"class": " ".join(classes)}, **attrs)
+        g.node(node, text, tooltip=_clip(tip, MAX_TOOLTIP), **{"class": " ".join(classes)}, **attrs)
         for obj in dict.fromkeys(unit.inputs):
             red = (obj, k) in marks.cycle_needed
             g.edge(ids[obj], node, **({"color": CYCLE, "penwidth": "2.5"} if red else {}))
@@ -286,7 +303,7 @@ def render(graph: graphviz.Digraph, fmt: str) -> bytes:
         raise InputError(f"unknown drawing format {fmt!r} (have {', '.join(FORMATS)})")
     require_dot()
     try:
-        return graph.pipe(format=fmt)
+        return graph.pipe(format=fmt, quiet=True)
     except graphviz.ExecutableNotFound:
         raise InputError("Graphviz 'dot' is not installed: install it (Debian: apt-get install graphviz)") from None
     except graphviz.CalledProcessError as exc:

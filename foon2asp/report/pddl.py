@@ -31,10 +31,10 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 from foon2asp.asp.constraints import ConstraintSpec, motion_name, normalise
-from foon2asp.asp.facts import neglog_weight
 from foon2asp.errors import InputError
 from foon2asp.foon.plans import action_name
 from foon2asp.foon.problem import Problem, walk_back
+from foon2asp.tree.weights import unit_weight
 
 #: objectives that PDDL can state (action costs per unit; "units" is plan length)
 PDDL_OBJECTIVES = ("units", "success", "inputs", "cost")
@@ -130,16 +130,7 @@ def export(
     const = {o: f"o{o}" for o in objs}
     actions = {action_name(problem, u): u for u in units}
 
-    if objective == "cost" and problem.motion_costs is None:
-        raise InputError("the objective 'cost' needs a motion-cost table", hint="motion-cost")
-    motion_table = problem.motion_costs
-
-    def cost_of(u: int) -> int:
-        if objective == "success":
-            return neglog_weight(problem.rates[u])
-        if motion_table is not None and objective == "cost":
-            return motion_table.weight(problem.units[u].motion)
-        return len(problem.inputs[u])
+    cost_of = unit_weight(problem, objective)
 
     goal_lines = [f"; goal {const[g]}: {_comment(problem.objects[g])}" for g in goals]
     table = [f";   {const[o]:<8} {_comment(problem.objects[o])}" for o in objs]

@@ -127,6 +127,8 @@ def missing_json(problem: Problem, result: MissingResult) -> dict:
         "cost": result.cost,
         "time_s": result.time_s,
     }
+    if result.substitutions is not None:
+        out["substitutions"] = result.substitutions
     if result.reason:
         out["reason"] = result.reason
     if result.cycle:
@@ -170,7 +172,8 @@ def missing_text(problem: Problem, result: MissingResult) -> str:
         add = ["  Nothing is missing: the goal is in the kitchen."]
     else:
         add = ["  Nothing is missing: the goal can be made from the kitchen."]
-    return "\n".join(body[:top] + add + body[top:]) + "\n"
+    uses = [f"uses {s['used']} for {s['needed']}" for s in result.substitutions or ()]
+    return "\n".join(body[:top] + uses + add + body[top:]) + "\n"
 
 
 def _ordered(symbols: list[clingo.Symbol]) -> list[clingo.Symbol]:

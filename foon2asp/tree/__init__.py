@@ -1,0 +1,1 @@
+"""Task trees: the result value, measures, weights, the independent validator and diagnosis."""

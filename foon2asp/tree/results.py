@@ -42,6 +42,8 @@ class Report:
     goal_source: str = ""
     #: every goal when the tree is checked for a meal (else empty)
     goals: tuple[int, ...] = ()
+    #: with substitutes: the ones a valid tree uses, ``{"needed", "used"}`` texts (None: no substitutes)
+    substitutions: list[dict] | None = None
 
     @property
     def meal(self) -> tuple[int, ...]:
@@ -200,6 +202,8 @@ class MissingResult:
     path: list[tuple[int, int]] = field(default_factory=list)
     #: every object that may be added (relevant to the goal)
     buyable: list[int] = field(default_factory=list)
+    #: with substitutes: the ones the tree uses, ``{"needed", "used"}`` texts (None: no substitutes)
+    substitutions: list[dict] | None = None
     #: every goal of a meal (``missing --together``; empty for one goal)
     goals: tuple[int, ...] = ()
 

@@ -7,6 +7,7 @@ import json
 from foon2asp.foon import foonjson
 from foon2asp.foon.parser import format_units, id_map
 from foon2asp.foon.problem import Problem
+from foon2asp.tree.gap import gap_text
 from foon2asp.tree.tasktree import TaskTree
 
 
@@ -27,6 +28,9 @@ def tree_json(problem: Problem, tree: TaskTree) -> dict:
         "units": [problem.units[u].to_json() for u in tree.units],
         "time_s": round(tree.time_s, 6),
     }
+    if tree.bound is not None:
+        out["bound"] = tree.bound
+        out["gap"] = tree.gap
     if tree.stats:
         out["stats"] = tree.stats
     for key, value in tree.extra.items():
@@ -73,7 +77,8 @@ def goal_heading(problem: Problem, tree: TaskTree) -> str:
 
 
 def tree_text(problem: Problem, tree: TaskTree) -> str:
-    head = f"{goal_heading(problem, tree)}\nMethod: {tree.method}  Status: {tree.status}"
+    status = tree.status + (f" ({gap})" if (gap := gap_text(tree)) else "")
+    head = f"{goal_heading(problem, tree)}\nMethod: {tree.method}  Status: {status}"
     if tree.cost:
         head += f"  ({_cost_text(tree.cost)})"
     if "rank" in tree.extra:
@@ -82,7 +87,7 @@ def tree_text(problem: Problem, tree: TaskTree) -> str:
         head += f"  Human steps: {len(tree.extra['human_steps'])}"
     if tree.extra.get("reason"):
         head += f"  ({tree.extra['reason']})"
-    lines = [head]
+    lines = [head] + [f"uses {s['used']} for {s['needed']}" for s in tree.extra.get("substitutions", ())]
     human = set(tree.extra.get("human_steps", []))
     for step, u in enumerate(tree.units, 1):
         unit = problem.units[u]

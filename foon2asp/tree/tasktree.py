@@ -24,6 +24,7 @@ class TaskTree:
     single goal ``goals`` is empty.  ``alternatives``: the further trees found
     with this one (the K best trees, all optimal trees), best first; they are
     not part of the tree's JSON (each is written as a tree of its own).
+    ``bound`` and ``gap`` say how far an unproven answer may be from the optimum.
     """
 
     goal: int
@@ -36,6 +37,11 @@ class TaskTree:
     extra: dict = field(default_factory=dict)
     goals: tuple[int, ...] = ()
     alternatives: list[TaskTree] = field(default_factory=list)
+    #: the best proven lower bound per objective level, in the units of ``cost``
+    #: (foon2asp.tree.gap); for a proven answer its cost; None: not known (search baselines)
+    bound: dict | None = None
+    #: the relative gap between the answer and ``bound`` on the first objective (0: proven)
+    gap: float | None = None
 
     @property
     def has_tree(self) -> bool:

@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable
 
+from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 
 #: fixed-point scale of success weights: rates are exact to 1/SCALE, logs to 1/SCALE
@@ -37,6 +38,19 @@ UNIT_WEIGHTS: dict[str, Callable[[Problem, int], int]] = {
     "success": lambda problem, u: neglog_weight(problem.rates[u]),
     "inputs": lambda problem, u: len(problem.inputs[u]),
 }
+
+
+def unit_weight(problem: Problem, objective: str) -> Callable[[int], int]:
+    """Unit id -> its weight under ``objective``: :data:`UNIT_WEIGHTS`, and ``cost`` the
+    unit's motion cost in hundredths from the problem's motion-cost table
+    (:attr:`Problem.motion_costs`, :mod:`foon2asp.foon.motioncost`)."""
+    if objective == "cost":
+        table = problem.motion_costs
+        if table is None:
+            raise InputError("the objective 'cost' needs a motion-cost table", hint="motion-cost")
+        return lambda u: table.weight(problem.units[u].motion)
+    weight = UNIT_WEIGHTS[objective]
+    return lambda u: weight(problem, u)
 
 
 def total(problem: Problem, objective: str, units: Iterable[int]) -> int:
