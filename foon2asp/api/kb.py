@@ -18,7 +18,7 @@ from foon2asp.analysis import queries
 from foon2asp.api.matching import Matching
 from foon2asp.api.options import Options, Settings
 from foon2asp.api.results import BatchRun, CheckReport, Comparison, Missing, Reachability, Tree
-from foon2asp.api.schedules import Schedule, ScheduleSpec, ScheduleVerdict, check_schedule_file, make_spec
+from foon2asp.api.schedules import Scheduling
 from foon2asp.asp.constraints import unknown_names
 from foon2asp.asp.facts import facts as facts_text
 from foon2asp.asp.options import AspOptions
@@ -36,7 +36,6 @@ from foon2asp.foon.problem import Problem
 from foon2asp.foon.substitutes import substituted_kitchen, with_substitutes
 from foon2asp.foon.treefiles import TreeFile, TreeUnit, read_trees
 from foon2asp.methods.runner import solve_goals
-from foon2asp.schedule import DEFAULT_ENCODING
 from foon2asp.tree.results import MealRow, QueryResult
 from foon2asp.tree.tasktree import meal_of
 
@@ -45,7 +44,7 @@ GoalLike = str | int | FoonObject
 
 
 @dataclass
-class KnowledgeBase(Matching):
+class KnowledgeBase(Matching, Scheduling):
     """A FOON with its kitchen, goals, motion success rates and utensils, ready to answer."""
 
     data: Dataset
@@ -209,50 +208,6 @@ class KnowledgeBase(Matching):
         trees = list(self.solve_iter(ids, method, solver))
         single = isinstance(goals, str | int | FoonObject) and goals not in ("all", "all-objects")
         return trees[0] if single else trees
-
-    def schedule(
-        self,
-        goals: GoalLike | Sequence[GoalLike] | None = None,
-        spec: ScheduleSpec | None = None,
-        *,
-        agents: str | dict[str, int] | None = None,
-        durations: str | Path | None = None,
-        capabilities: str | Path | None = None,
-        resources: str | Path | None = None,
-        joint: bool = False,
-        encoding: str = DEFAULT_ENCODING,
-        options: Options | None = None,
-        **settings: Unpack[Settings],
-    ) -> Schedule | list[Schedule]:
-        """The schedule with the proven-minimal makespan of each goal's best tree (by ``objective``;
-        ``joint``: tree and schedule chosen together) on ``spec``'s agents, or on ``agents``
-        (``"arm=2,human=1"``, default one robot) with the ``durations``, ``capabilities`` and
-        ``resources`` files.  One goal gives a :class:`Schedule`, several a list (as :meth:`solve`)."""
-        solver = self.options(options, **settings)
-        chosen = make_spec(spec, agents, durations, capabilities, resources)
-        found = list(self.schedule_iter(self.goal_ids(goals), chosen, solver, joint=joint, encoding=encoding))
-        single = isinstance(goals, str | int | FoonObject) and goals not in ("all", "all-objects")
-        return found[0] if single else found
-
-    def schedule_iter(
-        self,
-        goal_ids: Sequence[int],
-        spec: ScheduleSpec | None = None,
-        options: Options | AspOptions | None = None,
-        *,
-        joint: bool = False,
-        encoding: str = DEFAULT_ENCODING,
-    ) -> Iterator[Schedule]:
-        """:meth:`schedule` goal after goal (the path ``foon2asp schedule`` takes)."""
-        solver = options if isinstance(options, AspOptions) else self.options(options)
-        for tree in self.solve_iter(goal_ids, "asp", solver):
-            yield tree.schedule(spec, joint=joint, encoding=encoding, options=solver)
-
-    def check_schedules(self, path: str | Path, spec: ScheduleSpec | None = None) -> list[ScheduleVerdict]:
-        """Judge each schedule of a ``schedule --format json`` file on ``spec``'s agents (default one
-        robot, every unit 1 s): the first violation of precedence, one unit per agent at a time,
-        capabilities, durations, resources or the tree's validity, per schedule."""
-        return check_schedule_file(self, path, spec or ScheduleSpec())
 
     def check(
         self,

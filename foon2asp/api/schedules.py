@@ -10,16 +10,18 @@ agents, durations, capabilities and resources are one :class:`~foon2asp.schedule
 from __future__ import annotations
 
 import json
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, Unpack
 
 from foon2asp import report
+from foon2asp.api.options import Options, Settings
 from foon2asp.asp.options import AspOptions
 from foon2asp.batch.schedules import schedules_path
 from foon2asp.errors import InputError
 from foon2asp.foon import safejson
+from foon2asp.foon.model import FoonObject
 from foon2asp.report import gantt
 from foon2asp.schedule import DEFAULT_ENCODING, ScheduleResult, ScheduleSpec, parse_agents
 from foon2asp.schedule import check as check_mod
@@ -29,7 +31,7 @@ from foon2asp.schedule.result import seconds_text
 from foon2asp.tree.tasktree import TaskTree
 
 if TYPE_CHECKING:
-    from foon2asp.api.kb import KnowledgeBase
+    from foon2asp.api.kb import GoalLike, KnowledgeBase
     from foon2asp.api.results import Tree
 
 #: the statuses of a schedule (``optimal``: makespan proven minimal; ``feasible``: a time limit ended the search)
@@ -158,6 +160,62 @@ def schedule_raw(
     return Schedule(kb, schedule_tree(kb.problem, tree, spec, solver, joint, time_limit, encoding), spec)
 
 
+class Scheduling:
+    """The part of :class:`foon2asp.api.KnowledgeBase` that schedules trees and checks schedule files."""
+
+    if TYPE_CHECKING:  # what the knowledge base gives its parts
+
+        def options(self, options: Options | None = None, **settings: Unpack[Settings]) -> AspOptions: ...
+
+        def goal_ids(self, goals: Any) -> list[int]: ...
+
+        def solve_iter(self, goal_ids: Any, method: str = "asp", options: Any = None) -> Iterator[Tree]: ...
+
+    def schedule(
+        self,
+        goals: GoalLike | Sequence[GoalLike] | None = None,
+        spec: ScheduleSpec | None = None,
+        *,
+        agents: str | dict[str, int] | None = None,
+        durations: str | Path | None = None,
+        capabilities: str | Path | None = None,
+        resources: str | Path | None = None,
+        joint: bool = False,
+        encoding: str = DEFAULT_ENCODING,
+        options: Options | None = None,
+        **settings: Unpack[Settings],
+    ) -> Schedule | list[Schedule]:
+        """The schedule with the proven-minimal makespan of each goal's best tree (by ``objective``;
+        ``joint``: tree and schedule chosen together) on ``spec``'s agents, or on ``agents``
+        (``"arm=2,human=1"``, default one robot) with the ``durations``, ``capabilities`` and
+        ``resources`` files.  One goal gives a :class:`Schedule`, several a list (as :meth:`solve`)."""
+        solver = self.options(options, **settings)
+        chosen = make_spec(spec, agents, durations, capabilities, resources)
+        found = list(self.schedule_iter(self.goal_ids(goals), chosen, solver, joint=joint, encoding=encoding))
+        single = isinstance(goals, str | int | FoonObject) and goals not in ("all", "all-objects")
+        return found[0] if single else found
+
+    def schedule_iter(
+        self,
+        goal_ids: Sequence[int],
+        spec: ScheduleSpec | None = None,
+        options: Options | AspOptions | None = None,
+        *,
+        joint: bool = False,
+        encoding: str = DEFAULT_ENCODING,
+    ) -> Iterator[Schedule]:
+        """:meth:`schedule` goal after goal (the path ``foon2asp schedule`` takes)."""
+        solver = options if isinstance(options, AspOptions) else self.options(options)
+        for tree in self.solve_iter(goal_ids, "asp", solver):
+            yield tree.schedule(spec, joint=joint, encoding=encoding, options=solver)
+
+    def check_schedules(self, path: str | Path, spec: ScheduleSpec | None = None) -> list[ScheduleVerdict]:
+        """Judge each schedule of a ``schedule --format json`` file on ``spec``'s agents (default one
+        robot, every unit 1 s): the first violation of precedence, one unit per agent at a time,
+        capabilities, durations, resources or the tree's validity, per schedule."""
+        return check_schedule_file(self, path, spec or ScheduleSpec())
+
+
 # ---------------------------------------------------------------- schedule files
 
 
@@ -220,7 +278,7 @@ def _goal_label(record: dict) -> str:
     return " + ".join(str(g.get("label", "?")) if isinstance(g, dict) else "?" for g in goals or [])
 
 
-def check_schedule_file(kb: KnowledgeBase, path: str | Path, spec: ScheduleSpec) -> list[ScheduleVerdict]:
+def check_schedule_file(kb: Any, path: str | Path, spec: ScheduleSpec) -> list[ScheduleVerdict]:
     """Judge every schedule of a ``schedule --format json`` file against ``spec`` and the FOON of ``kb``."""
     records = _records(path)
     if records is None:

@@ -18,12 +18,12 @@ from foon2asp.cli.options import (
     objective_option,
     progress_option,
     request_options,
-    schedule_options,
     strategy_options,
     time_limit_option,
 )
 from foon2asp.cli.output import EXIT_CODES, exit_code
 from foon2asp.cli.params import SCHEDULER, int32
+from foon2asp.cli.schedule_options import schedule_options
 
 #: schedule statuses that answer their goal
 SCHEDULED = ("optimal", "unschedulable")

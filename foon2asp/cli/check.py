@@ -8,8 +8,9 @@ import click
 
 from foon2asp import api, report
 from foon2asp.cli.main import guarded, main
-from foon2asp.cli.options import MatchArgs, data_options, format_option, schedule_options
+from foon2asp.cli.options import MatchArgs, data_options, format_option
 from foon2asp.cli.output import warn, warn_kb
+from foon2asp.cli.schedule_options import schedule_options
 from foon2asp.errors import InputError
 
 

@@ -14,11 +14,11 @@ from foon2asp.cli.options import (
     goal_options,
     objective_option,
     progress_option,
-    schedule_options,
     strategy_options,
     time_limit_option,
 )
 from foon2asp.cli.output import progress_bar, warn_kb
+from foon2asp.cli.schedule_options import schedule_options
 from foon2asp.report import draw
 
 #: formats of the schedules themselves; the others are pictures of them (report kind ``schedule``)
