@@ -14,6 +14,7 @@ import foon2asp
 from foon2asp import api
 from foon2asp.schedule.check import check_schedule
 from foon2asp.schedule.spec import ScheduleSpec
+from conftest import REPO
 from helpers import build
 from test_cli import assert_one_line_error, run
 from test_schedule import AGENT_SETS, ENCODINGS, brute_schedule, longer_tree_shorter_chain, random_spec, random_tree
@@ -328,3 +329,19 @@ def test_kb_schedule_takes_a_spec_or_the_files(shared_foon_dir, tmp_path):
     assert verdict.valid and verdict.makespan == one.makespan
     (wrong,) = kb.check_schedules(path)
     assert not wrong.valid and "arm-1" in (wrong.problem or "")
+
+
+def test_substitutes_stand_in_for_kitchen_items_when_scheduling_and_checking(tmp_path):
+    data = REPO / "data" / "matching" / "onion"
+    subs = ["--substitutes", data / "substitutes.json"]
+    path = tmp_path / "s.json"
+    res = run("schedule", "--data", data, "--goals", "all", "--format", "json", "-o", path, *subs)
+    (record,) = json.loads(path.read_text())
+    assert res.exit_code == 0 and record["status"] == "optimal" and record["tree"]["substitutions"]
+    assert "valid schedule (optimal)" in run("check", path, "--data", data, *subs).stdout
+    res = run("check", path, "--data", data, ok=False)  # without the substitutes the tree is not valid
+    assert res.exit_code == 1 and "the tree is not valid" in res.stdout
+    out = tmp_path / "r.jsonl"
+    run("batch", "--data", data, "--goals", "all", "--output", out, "--schedule", *subs)
+    (batched,) = json.loads((tmp_path / "r.schedules.json").read_text())
+    assert batched["status"] == "optimal" and batched["makespan"] == record["makespan"]

@@ -321,8 +321,9 @@ class BatchRun:
         :func:`foon2asp.batch.schedules.schedules_path` of the results file)."""
         solver = self.kb.options(options, **settings)
         chosen = make_spec(spec, agents, durations, capabilities, resources)
+        view = lambda goals: self.kb.judging_problem(solver, goals)  # noqa: E731  (with substitutes)
         found = batch_schedules.schedule_records(
-            self.kb.problem, self.raw.records, chosen, solver, method, joint, encoding
+            self.kb.problem, self.raw.records, chosen, solver, method, joint, encoding, view
         )
         self.schedules = [Schedule(self.kb, r, chosen) for r in found]
         if output is not None:

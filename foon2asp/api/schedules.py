@@ -22,6 +22,7 @@ from foon2asp.batch.schedules import schedules_path
 from foon2asp.errors import InputError
 from foon2asp.foon import safejson
 from foon2asp.foon.model import FoonObject
+from foon2asp.foon.problem import Problem
 from foon2asp.report import gantt
 from foon2asp.schedule import DEFAULT_ENCODING, ScheduleResult, ScheduleSpec, parse_agents
 from foon2asp.schedule import check as check_mod
@@ -112,7 +113,7 @@ class Schedule:
 
     def check(self) -> str | None:
         """The first violation the independent checker finds (None: a valid schedule)."""
-        return check_mod.check_schedule(self.kb.problem, self.to_dict(), self.spec)
+        return check_mod.check_schedule(self.raw.problem, self.to_dict(), self.spec)
 
     def to_dict(self) -> dict:
         """Exactly one element of ``schedule --format json``."""
@@ -156,8 +157,10 @@ def schedule_raw(
     encoding: str = DEFAULT_ENCODING,
     time_limit: float | None = None,
 ) -> Schedule:
-    """:func:`foon2asp.schedule.schedule` of one tree, as a :class:`Schedule`."""
-    return Schedule(kb, schedule_tree(kb.problem, tree, spec, solver, joint, time_limit, encoding), spec)
+    """:func:`foon2asp.schedule.schedule` of one tree, as a :class:`Schedule`; with substitutes,
+    on the problem the tree is judged on (what a substitute stands in for is in the kitchen)."""
+    problem = kb.judging_problem(solver, tree.meal)
+    return Schedule(kb, schedule_tree(problem, tree, spec, solver, joint, time_limit, encoding), spec)
 
 
 class Scheduling:
@@ -170,6 +173,8 @@ class Scheduling:
         def goal_ids(self, goals: Any) -> list[int]: ...
 
         def solve_iter(self, goal_ids: Any, method: str = "asp", options: Any = None) -> Iterator[Tree]: ...
+
+        def judging_problem(self, solver: Any, goals: Any = ()) -> Problem: ...
 
     def schedule(
         self,
@@ -209,11 +214,14 @@ class Scheduling:
         for tree in self.solve_iter(goal_ids, "asp", solver):
             yield tree.schedule(spec, joint=joint, encoding=encoding, options=solver)
 
-    def check_schedules(self, path: str | Path, spec: ScheduleSpec | None = None) -> list[ScheduleVerdict]:
+    def check_schedules(
+        self, path: str | Path, spec: ScheduleSpec | None = None, options: Options | None = None
+    ) -> list[ScheduleVerdict]:
         """Judge each schedule of a ``schedule --format json`` file on ``spec``'s agents (default one
         robot, every unit 1 s): the first violation of precedence, one unit per agent at a time,
-        capabilities, durations, resources or the tree's validity, per schedule."""
-        return check_schedule_file(self, path, spec or ScheduleSpec())
+        capabilities, durations, resources or the tree's validity, per schedule; with the
+        substitutes of ``options`` what they stand in for is in the kitchen."""
+        return check_schedule_file(self, path, spec or ScheduleSpec(), options)
 
 
 # ---------------------------------------------------------------- schedule files
@@ -278,8 +286,24 @@ def _goal_label(record: dict) -> str:
     return " + ".join(str(g.get("label", "?")) if isinstance(g, dict) else "?" for g in goals or [])
 
 
-def check_schedule_file(kb: Any, path: str | Path, spec: ScheduleSpec) -> list[ScheduleVerdict]:
-    """Judge every schedule of a ``schedule --format json`` file against ``spec`` and the FOON of ``kb``."""
+def _goal_ids(kb: Any, record: dict) -> list[int]:
+    """The object ids of the goals a record names (those of the FOON)."""
+    goals = record.get("goals") if "goals" in record else [record.get("goal")]
+    ids = kb.problem.foon.object_ids
+    out = []
+    for g in goals if isinstance(goals, list) else []:
+        if isinstance(g, dict) and isinstance(g.get("label"), str):
+            obj = FoonObject.make(g["label"], g.get("states") or (), g.get("ingredients") or (), g.get("container"))
+            if obj in ids:
+                out.append(ids[obj])
+    return out
+
+
+def check_schedule_file(
+    kb: Any, path: str | Path, spec: ScheduleSpec, options: Options | None = None
+) -> list[ScheduleVerdict]:
+    """Judge every schedule of a ``schedule --format json`` file against ``spec`` and the FOON of
+    ``kb`` (with the substitutes of ``options``, as :meth:`KnowledgeBase.check` judges trees)."""
     records = _records(path)
     if records is None:
         raise InputError("not a schedule file (the JSON of 'schedule --format json')", str(path))
@@ -289,7 +313,7 @@ def check_schedule_file(kb: Any, path: str | Path, spec: ScheduleSpec) -> list[S
         if status in ("unschedulable", "unreachable", "unknown"):
             out.append(ScheduleVerdict(_goal_label(r), None, None, str(path), status))
             continue
-        found = check_mod.check_schedule(kb.problem, r, spec)
+        found = check_mod.check_schedule(kb.judging_problem(options, _goal_ids(kb, r)), r, spec)
         made = r.get("makespan")
         number = made if isinstance(made, int | float) and not isinstance(made, bool) else None
         out.append(ScheduleVerdict(_goal_label(r), found, number, str(path), status))

@@ -12,6 +12,7 @@ shape of ``schedule --format json``, so ``check`` judges it as it is.
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from pathlib import Path
 
 from foon2asp.asp.options import AspOptions
@@ -64,8 +65,10 @@ def schedule_records(
     method: str | None = None,
     joint: bool = False,
     encoding: str = DEFAULT_ENCODING,
+    view: Callable[[tuple[int, ...]], Problem] | None = None,
 ) -> list[ScheduleResult]:
-    """One schedule per goal of ``records`` (those of ``method``; default: the first method in them)."""
+    """One schedule per goal of ``records`` (those of ``method``; default: the first method in
+    them); ``view``: the problem a tree of these goals is scheduled on (with substitutes)."""
     if method is None:
         method = next((str(r.get("requested_method", r.get("method"))) for r in records), None)
     out: dict[int, ScheduleResult] = {}
@@ -75,5 +78,6 @@ def schedule_records(
         tree = record_tree(problem, r)
         if tree is None or tree.goal in out:
             continue
-        out[tree.goal] = schedule(problem, tree, spec, options, joint, options.time_limit, encoding)
+        on = problem if view is None else view(tree.meal)
+        out[tree.goal] = schedule(on, tree, spec, options, joint, options.time_limit, encoding)
     return list(out.values())

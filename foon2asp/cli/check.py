@@ -62,7 +62,8 @@ def check(trees, data, goal, goals, fmt, optimum, spec):
     if schedules:
         if fmt not in ("text", "json"):
             raise InputError(f"schedules are checked in --format text or json, not {fmt}")
-        verdicts = [v for p in schedules for v in data.load().check_schedules(p, spec)]
+        kb = data.load()
+        verdicts = [v for p in schedules for v in kb.check_schedules(p, spec, data.request())]
         out = api.verdicts_json(verdicts) if fmt == "json" else "".join(v.to_text() for v in verdicts)
         click.echo(out, nl=False)
         if len(schedules) == len(trees):
