@@ -11,10 +11,10 @@ from decimal import Decimal
 import pytest
 
 import foon2asp
+from conftest import REPO
 from foon2asp import api
 from foon2asp.schedule.check import check_schedule
 from foon2asp.schedule.spec import ScheduleSpec
-from conftest import REPO
 from helpers import build
 from test_cli import assert_one_line_error, run
 from test_schedule import AGENT_SETS, ENCODINGS, brute_schedule, longer_tree_shorter_chain, random_spec, random_tree
