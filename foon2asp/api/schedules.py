@@ -28,7 +28,7 @@ from foon2asp.schedule import DEFAULT_ENCODING, ScheduleResult, ScheduleSpec, pa
 from foon2asp.schedule import check as check_mod
 from foon2asp.schedule import schedule as schedule_tree
 from foon2asp.schedule.encode import ENCODINGS
-from foon2asp.schedule.result import seconds_text
+from foon2asp.schedule.result import seconds, seconds_text
 from foon2asp.tree.tasktree import TaskTree
 
 if TYPE_CHECKING:
@@ -88,7 +88,7 @@ class Schedule:
     @property
     def makespan(self) -> float | None:
         """Seconds (None without a schedule)."""
-        return self.to_dict()["makespan"]
+        return seconds(self.raw.makespan)
 
     @property
     def agents(self) -> list[str]:
