@@ -212,3 +212,13 @@ def test_batch_rows_and_compare_carry_the_bound(tmp_path, hard):
     short.extra["valid"] = True
     if short.status == "feasible":
         assert units_cell(short) == f"{len(short.units)} feasible (>= {short.bound['units']})"
+
+
+def test_depth_first_answers_cut_short_are_bounded_by_the_refuted_depths(hard):
+    problem, goals = hard
+    goal = goals[8]
+    (short,) = solve_goals(problem, [goal], "asp", AspOptions(objective=("depth", "success"), time_limit=0.5))
+    (full,) = solve_goals(problem, [goal], "asp", AspOptions(objective=("depth",)))
+    assert full.status == "optimal" and full.bound["depth"] == full.cost["depth"]
+    assert short.status in ("feasible", "optimal") and validate(problem, goal, short.units).valid
+    assert 1 <= short.bound["depth"] <= full.cost["depth"] <= short.cost["depth"]
