@@ -194,3 +194,31 @@ def test_a_bound_that_meets_the_answer_proves_it(hard):
     lex = TaskTree(goal, tree.method, "feasible", list(tree.units), measures(problem, goal, list(tree.units)))
     settle(problem, lex, ("success", "units"), [0, 5])
     assert lex.bound == {"success": 1.0, "units": 0} and lex.status == "feasible"
+
+
+def test_batch_rows_and_compare_carry_the_bound(tmp_path, hard):
+    out = tmp_path / "r.jsonl"
+    res = CliRunner().invoke(main, ["batch", "--data", "demo", "--goals", "all", "-o", str(out), "--no-progress"])
+    assert res.exit_code in (0, 1), res.output
+    rows = [json.loads(line) for line in out.read_text().splitlines() if line.startswith("{") and '"method"' in line]
+    assert rows and all(
+        r["bound"]["units"] == r["cost"]["units"] and r["gap"] == 0.0 for r in rows if r["status"] == "optimal"
+    )
+    # compare's table shows the lower bound of a tree cut short
+    from foon2asp.report.compare import units_cell
+
+    problem, goals = hard
+    (short,) = solve_goals(problem, [goals[16]], "asp", AspOptions(time_limit=0.05))
+    short.extra["valid"] = True
+    if short.status == "feasible":
+        assert units_cell(short) == f"{len(short.units)} feasible (>= {short.bound['units']})"
+
+
+def test_depth_first_answers_cut_short_are_bounded_by_the_refuted_depths(hard):
+    problem, goals = hard
+    goal = goals[8]
+    (short,) = solve_goals(problem, [goal], "asp", AspOptions(objective=("depth", "success"), time_limit=0.5))
+    (full,) = solve_goals(problem, [goal], "asp", AspOptions(objective=("depth",)))
+    assert full.status == "optimal" and full.bound["depth"] == full.cost["depth"]
+    assert short.status in ("feasible", "optimal") and validate(problem, goal, short.units).valid
+    assert 1 <= short.bound["depth"] <= full.cost["depth"] <= short.cost["depth"]

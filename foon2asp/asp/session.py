@@ -167,6 +167,13 @@ class Session:
         meal = meal_of(goal)
         self._lower = None
         tree = self._solve(meal, on_model, time_limit, known, floor)
+        if self.options.driven and self._driver is not None:
+            # the depth bound when depth ranks first (the driver's solves weigh other levels
+            # than the session's: their cores are not bounds of these levels)
+            self._lower = None
+            depth = self._driver.depth_floor()
+            if depth is not None:
+                floor = max(floor or 0, depth)
         if len(meal) > 1 and tree.status == "unreachable":
             self._explain(meal, tree)
         if tree.status == "unknown" and self._plain():

@@ -10,6 +10,7 @@ One function, :func:`least_fixpoint`, over integer ids: the derivation levels of
 from __future__ import annotations
 
 from collections.abc import Collection, Iterable, Mapping, Sequence
+from typing import Any
 
 #: unit id -> object ids (a list indexed by unit, or a mapping)
 Table = Sequence[Sequence[int]] | Mapping[int, Sequence[int]]
@@ -60,3 +61,30 @@ def least_fixpoint(
                         unit_level[v] = level + 1
                         queue.append(v)
     return obj_level, unit_level
+
+
+class Implied(dict):
+    """A dict of the derived objects that also answers for every object of ``start`` (the
+    kitchen) with ``value``, without storing them: ``in``, ``get`` and ``[]`` see them;
+    iteration and ``len`` give the stored entries only.  A large FOON's kitchen has hundreds
+    of thousands of items; a derivation over a goal's few units should not copy them."""
+
+    def __init__(self, stored: Mapping, start: Collection[int], value: Any) -> None:
+        super().__init__(stored)
+        self.start = start
+        self.value = value
+
+    def __contains__(self, obj: object) -> bool:
+        return dict.__contains__(self, obj) or obj in self.start
+
+    def __getitem__(self, obj: int) -> Any:
+        if dict.__contains__(self, obj):
+            return dict.__getitem__(self, obj)
+        if obj in self.start:
+            return self.value
+        raise KeyError(obj)
+
+    def get(self, obj, default=None):
+        if dict.__contains__(self, obj):
+            return dict.__getitem__(self, obj)
+        return self.value if obj in self.start else default

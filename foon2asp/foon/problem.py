@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Protocol
 
-from foon2asp.foon.derive import least_fixpoint
+from foon2asp.foon.derive import Implied, least_fixpoint
 from foon2asp.foon.model import Foon, FoonObject, Unit
 from foon2asp.foon.motioncost import MotionCosts
 
@@ -201,8 +201,13 @@ class Problem:
         ``units`` are used when given.
         """
         pool = range(len(self.units)) if units is None else units
-        start = self.kitchen | self.substitutable  # what substitutes stand in for counts as had
+        # what substitutes stand in for counts as had
+        start = self.kitchen | self.substitutable if self.substitutable else self.kitchen
         derived, unit_level = least_fixpoint(start, self.required, self.products, pool)
+        if units is not None:
+            # a few units: the kitchen's level-0 entries are implied, not copied (a large FOON's
+            # kitchen has hundreds of thousands of items)
+            return Implied(derived, start, 0), unit_level
         obj_level = dict.fromkeys(start, 0)
         obj_level.update(derived)
         return obj_level, unit_level

@@ -94,7 +94,8 @@ def landmarks(
     tree using it uses (the greatest fixpoint of the module docstring)."""
     pool = list(range(len(problem.units))) if units is None else list(units)
     kitchen = problem.kitchen
-    lm: dict[int, frozenset[int]] = dict.fromkeys(kitchen, frozenset())
+    # the kitchen items the units need (not the whole kitchen: a large FOON's is large)
+    lm: dict[int, frozenset[int]] = {i: frozenset() for u in pool for i in problem.required[u] if i in kitchen}
     producers: dict[int, list[int]] = {}
     users: dict[int, list[int]] = {}
     for u in pool:
@@ -133,13 +134,21 @@ class Bounds:
     Built once per problem (about 0.1 s for ../shared/foon); the per-goal parts are cached.
     """
 
-    def __init__(self, problem: Problem, ranked: tuple[str, ...] = ("units",), units: Iterable[int] | None = None):
+    def __init__(
+        self,
+        problem: Problem,
+        ranked: tuple[str, ...] = ("units",),
+        units: Iterable[int] | None = None,
+        w: list[int] | None = None,
+    ):
+        """``units``: the units to consider (a goal's relevant part; None: all); ``w``: the
+        unit weights of :func:`weights` when the caller has them (one list per problem)."""
         if not supports(ranked):
             raise ValueError(f"no bounds for the objectives {ranked!r}")
         pool = None if units is None else sorted(set(units))
         self.problem = problem
         self.ranked = tuple(ranked)
-        self.w = weights(problem, self.ranked)
+        self.w = weights(problem, self.ranked) if w is None else w
         self._sets = cheapest_sets(problem, self.w, pool)
         self.lm, self.ulm = landmarks(problem, pool)
         self._producers: dict[int, list[int]] = {}

@@ -66,7 +66,7 @@ from foon2asp.asp.session import Session
 from foon2asp.asp.substitutes import prepare as with_substitutes
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem, walk_back
-from foon2asp.methods.bounds import Bounds
+from foon2asp.methods.bounds import Bounds, weights
 from foon2asp.methods.bounds import supports as bounds_supports
 from foon2asp.methods.exact import NODE_LIMIT, canonical_tree
 from foon2asp.methods.registry import Runner, check_substitutes, effective_options, get
@@ -98,6 +98,7 @@ class Parts:
         self._bounds: dict[tuple[str, ...], Bounds] = {}
         #: units covered so far by bounds built on goals' parts (Parts.bounds_for)
         self._part_bounds_spent: dict[tuple[str, ...], int] = {}
+        self._weights: dict[tuple[str, ...], list[int]] = {}
 
     def bounds(self, ranked_objectives: tuple[str, ...]) -> Bounds:
         """The bounds (foon2asp.methods.bounds) for these ranked objectives, built once."""
@@ -120,7 +121,9 @@ class Parts:
             spent = self._part_bounds_spent.get(ranked_objectives, 0) + len(units)
             if spent <= size:
                 self._part_bounds_spent[ranked_objectives] = spent
-                return Bounds(self.problem, ranked_objectives, units)
+                if ranked_objectives not in self._weights:
+                    self._weights[ranked_objectives] = weights(self.problem, ranked_objectives)
+                return Bounds(self.problem, ranked_objectives, units, self._weights[ranked_objectives])
         return self.bounds(ranked_objectives)
 
     @cached_property

@@ -17,6 +17,7 @@ import heapq
 import time
 from collections.abc import Iterable, Sequence
 
+from foon2asp.foon.derive import Implied
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.weights import UNIT_WEIGHTS, lexicographic
 
@@ -56,7 +57,7 @@ def cheapest_sets(
     """
     pool = range(len(problem.units)) if units is None else units
     kitchen = problem.kitchen
-    settled: dict[int, frozenset[int]] = dict.fromkeys(kitchen, frozenset())
+    settled: dict[int, frozenset[int]] = Implied({}, kitchen, frozenset())
     waiting: dict[int, int] = {}
     users: dict[int, list[int]] = {}
     heap: list[tuple[float, int, int, int, frozenset[int]]] = []

@@ -94,6 +94,13 @@ class Driver:
             control.assign(dict.fromkeys(switched, False))
         return shot
 
+    def depth_floor(self) -> int | None:
+        """With depth the first objective: a lower bound on the depth of every tree for the
+        current goal (every shallower bound is refuted), None otherwise."""
+        if self.depth_mode != "first" or not self.depth.bound:
+            return None
+        return self.depth.bound
+
     def _searched(self, complete: bool) -> None:
         """Note a search for the smallest optimal tree that its budget (or time) ended."""
         if not complete:
