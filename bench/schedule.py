@@ -9,8 +9,14 @@ targets (fixed tree 1 s, joint 10 s), median and max time per goal, and the
 makespan against the list-scheduling baseline and the lower bound.  Every
 schedule is checked by foon2asp.schedule.check.
 
+With ``--presets small,hard-4k,hard-10k`` it measures the hard presets of
+foon2asp.foon.synth instead (bench/hard.py): each preset's goals (at most
+``--preset-goals``) get their minimum-unit tree (``--tree-limit`` s each), and
+the table gives the share of schedules proven within 10 s.
+
 Usage:  python bench/schedule.py --shared ../shared [--encodings steps,dl] [--agents robot=1,arm=2,arm=3]
         [--limit 10] [--joint-limit 10] [--no-joint] [--no-shortcut] [--goals-table arm=2]
+        python bench/schedule.py --presets small,hard-4k,hard-10k [--preset-goals 10] [--encodings steps]
 """
 
 from __future__ import annotations
@@ -19,6 +25,7 @@ import argparse
 import json
 import statistics
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -76,6 +83,52 @@ def row(label: str, rs: list[dict], mode: str) -> str:
     )
 
 
+def presets(args) -> None:
+    """The share of the hard presets' schedules proven within 10 s (fixed tree and joint)."""
+    from foon2asp.foon.synth import preset
+
+    print(
+        "| preset, agents, durations, mode, encoding | trees | proven | proven within 10 s | median s | max s |"
+        " units (median, max) |\n|---|---|---|---|---|---|---|"
+    )
+    records = []
+    for name in args.presets.split(","):
+        with tempfile.TemporaryDirectory() as tmp:
+            preset(name).write(tmp)
+            kb = foon2asp.load(tmp)
+            ids = kb.select_goals((), "all")
+            step = max(1, len(ids) // args.preset_goals) if args.preset_goals else 1
+            chosen = ids[::step][: args.preset_goals or None]
+            trees = [t.raw for t in kb.solve_iter(chosen, "asp", kb.options(time_limit=args.tree_limit)) if t.has_tree]
+            sizes = sorted(len(t.units) for t in trees)
+            print(f"{name}: {len(chosen)} goals, {len(trees)} trees", file=sys.stderr, flush=True)
+            for agents in args.agents.split(";"):
+                for durations in (None, TABLE):
+                    spec = ScheduleSpec.from_files(agents, durations)
+                    dname = "1 s" if durations is None else "table"
+                    for encoding in args.encodings.split(","):
+                        for mode in ("fixed",) if args.no_joint else ("fixed", "joint"):
+                            limit = args.limit if mode == "fixed" else args.joint_limit
+                            rs = run(kb, trees, spec, encoding, mode == "joint", limit, not args.no_shortcut)
+                            times = [r["time_s"] for r in rs] or [0.0]
+                            proven = sum(r["status"] == "optimal" for r in rs)
+                            fast = sum(r["status"] == "optimal" and r["time_s"] <= 10.0 for r in rs)
+                            print(
+                                f"| {name}, {agents}, {dname}, {mode}, {encoding} | {len(rs)} | {proven}/{len(rs)} |"
+                                f" {fast}/{len(rs)} ({100 * fast / max(1, len(rs)):.0f}%) |"
+                                f" {statistics.median(times):.3f} | {max(times):.3f} |"
+                                f" {sizes[len(sizes) // 2] if sizes else '-'}, {sizes[-1] if sizes else '-'} |",
+                                flush=True,
+                            )
+                            for r in rs:
+                                records.append(
+                                    {"preset": name, "agents": agents, "durations": dname, "mode": mode,
+                                     "encoding": encoding, **r}
+                                )  # fmt: skip
+    if args.json:
+        Path(args.json).write_text("".join(json.dumps(r) + "\n" for r in records), encoding="utf-8")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--shared", default=str(ROOT.parent / "shared"))
@@ -87,8 +140,14 @@ def main() -> None:
     ap.add_argument("--no-shortcut", action="store_true", help="always run the solver")
     ap.add_argument("--goals-table", default="arm=2", help="agents of the per-goal table (duration table, steps)")
     ap.add_argument("--json", help="write every result as JSON lines here")
+    ap.add_argument("--presets", help="synthetic presets (foon2asp.foon.synth), e.g. small,hard-4k,hard-10k")
+    ap.add_argument("--preset-goals", type=int, default=10, help="goals per preset, spread over the list (0: all)")
+    ap.add_argument("--tree-limit", type=float, default=10.0, help="time limit per tree on a preset (s)")
     args = ap.parse_args()
     print(f"machine: {describe()}")
+    if args.presets:
+        presets(args)
+        return
     kb = foon2asp.load(Path(args.shared) / "foon")
     trees = [t.raw for t in kb.solve("all") if t.has_tree]
     print(f"{len(trees)} reachable goals of {args.shared}/foon (minimum-unit trees)")

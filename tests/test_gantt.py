@@ -55,7 +55,7 @@ def test_every_format(record, tmp_path):
     both = report.render("schedule", "svg", [record, record])
     assert both.count(">mix<") == 2
     assert report.render_bytes("schedule", "png", [record]).startswith(b"\x89PNG")
-    assert report.names("schedule") == ["dot", "svg", "png", "pdf"]
+    assert report.names("schedule") == ["dot", "svg", "png", "pdf", "html"]
 
 
 def test_a_schedule_without_units_still_draws(record):

@@ -380,3 +380,50 @@ def test_both_encodings_agree_on_shared_goals(shared_foon_dir):
             assert check_schedule(kb.problem, r.to_dict(), spec) is None
             got[encoding] = r.makespan
         assert len(set(got.values())) == 1, (label, got)
+
+
+def remade_tree(rng: random.Random, n: int):
+    """A FOON of n units where unit i makes p_i from earlier products, and sometimes makes an
+    earlier product again (an object with two makers in the tree, one of which may wait for
+    the unit that needs it); returns (problem, goal, units): every unit in the tree."""
+    units = []
+    for i in range(n):
+        ins = [f"p{j}" for j in range(i) if rng.random() < 0.5] or ["k"]
+        outs = [f"p{i}"]
+        if i >= 2 and rng.random() < 0.5:
+            outs.append(f"p{rng.randrange(i - 1)}")
+        units.append((rng.choice(MOTIONS), ins, outs))
+    units.append(("mix", [f"p{j}" for j in range(n)], ["g"]))
+    problem = build(units, ["k"])
+    return problem, goal_id(problem, "g"), list(range(n + 1))
+
+
+def test_a_maker_that_waits_for_the_consumer_cannot_supply_it():
+    from foon2asp.schedule.model import instance, tails
+
+    # B needs p, made by A and by C; C needs what B makes, so B must wait for A
+    problem = build([("a", ["k"], ["p"]), ("b", ["p"], ["q"]), ("c", ["q"], ["p"]), ("d", ["p", "q"], ["g"])], ["k"])
+    inst = instance(problem, [0, 1, 2, 3], ScheduleSpec())
+    assert inst.preds == {0: (), 1: (0,), 2: (1,), 3: (1,)}
+    assert tails(inst)[0] == 3000  # a, b, then c or d
+
+
+@pytest.mark.parametrize("seed", range(24))
+def test_objects_made_twice_keep_bounds_and_optimum_exact(seed):
+    """Precedence through a maker that waits for the consumer (Instance.preds) tightens the
+    bounds; they stay below the brute-force optimum, and the optimum equals it."""
+    from foon2asp.schedule.bounds import bounds
+    from foon2asp.schedule.model import instance
+
+    rng = random.Random(300 + seed)
+    problem, goal, units = remade_tree(rng, 4)
+    kinds = ((("arm", 2),), (("arm", 1), ("human", 1)), (("arm", 3),))[seed % 3]
+    spec = random_spec(rng, kinds)
+    spec = ScheduleSpec(spec.agents, spec.durations, {}, spec.resources)
+    want = brute_schedule(problem, units, spec)
+    assert want is not None
+    assert bounds(instance(problem, units, spec)).lower <= want[0]
+    for encoding in ENCODINGS:
+        r = schedule(problem, given(problem, goal, units), spec, encoding=encoding, shortcut=False)
+        assert r.status == "optimal" and (r.makespan, len(r.human)) == want, encoding
+        assert check_schedule(problem, r.to_dict(), spec) is None

@@ -11,7 +11,7 @@ calls: :func:`load` reads the data, :class:`KnowledgeBase` answers
 (:meth:`~KnowledgeBase.solve`, :meth:`~KnowledgeBase.check`,
 :meth:`~KnowledgeBase.compare`, :meth:`~KnowledgeBase.reachable`,
 :meth:`~KnowledgeBase.missing`, :meth:`~KnowledgeBase.query`,
-:meth:`~KnowledgeBase.batch`, :meth:`~KnowledgeBase.facts`) with the settings of
+:meth:`~KnowledgeBase.batch`, :meth:`~KnowledgeBase.schedule`, :meth:`~KnowledgeBase.facts`) with the settings of
 one request (:class:`Options`), and the answers render themselves in every
 format of :mod:`foon2asp.report`.  Tree files without a FOON: :func:`check_tree`
 judges one on its own, :func:`consolidate` merges candidate trees of one recipe
@@ -22,7 +22,8 @@ The modules: :mod:`~foon2asp.api.options` (the request), :mod:`~foon2asp.api.kb`
 :mod:`~foon2asp.api.load` (reading data), :mod:`~foon2asp.api.files` (FOON files,
 programs, drawings of tree files, output files), :mod:`~foon2asp.api.catalog`
 (methods, objectives and the other names a front end offers), :mod:`~foon2asp.api.trees`
-(tree files judged on their own, candidates consolidated).
+(tree files judged on their own, candidates consolidated), :mod:`~foon2asp.api.schedules`
+(schedules of trees on robot arms and people, schedule files checked).
 """
 
 from foon2asp.api.catalog import (
@@ -49,6 +50,19 @@ from foon2asp.api.kb import GoalLike, KnowledgeBase
 from foon2asp.api.load import load
 from foon2asp.api.options import Constraints, Options, Settings
 from foon2asp.api.results import BatchRun, CheckReport, Comparison, Missing, Reachability, Tree
+from foon2asp.api.schedules import (
+    DEFAULT_SCHEDULE_ENCODING,
+    SCHEDULE_ENCODINGS,
+    SCHEDULE_STATUSES,
+    Schedule,
+    ScheduleSpec,
+    ScheduleVerdict,
+    is_schedule_file,
+    parse_agents,
+    schedules_json,
+    schedules_path,
+    verdicts_json,
+)
 from foon2asp.api.trees import (
     CandidateReport,
     ConsolidatedGoal,
@@ -71,6 +85,17 @@ __all__ = [
     "Missing",
     "Reachability",
     "BatchRun",
+    "Schedule",
+    "ScheduleSpec",
+    "ScheduleVerdict",
+    "SCHEDULE_STATUSES",
+    "SCHEDULE_ENCODINGS",
+    "DEFAULT_SCHEDULE_ENCODING",
+    "parse_agents",
+    "is_schedule_file",
+    "schedules_path",
+    "schedules_json",
+    "verdicts_json",
     "check_tree",
     "TreeVerdict",
     "consolidate",

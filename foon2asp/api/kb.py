@@ -18,6 +18,7 @@ from foon2asp.analysis import queries
 from foon2asp.api.matching import Matching
 from foon2asp.api.options import Options, Settings
 from foon2asp.api.results import BatchRun, CheckReport, Comparison, Missing, Reachability, Tree
+from foon2asp.api.schedules import Scheduling
 from foon2asp.asp.constraints import unknown_names
 from foon2asp.asp.facts import facts as facts_text
 from foon2asp.asp.options import AspOptions
@@ -43,7 +44,7 @@ GoalLike = str | int | FoonObject
 
 
 @dataclass
-class KnowledgeBase(Matching):
+class KnowledgeBase(Matching, Scheduling):
     """A FOON with its kitchen, goals, motion success rates and utensils, ready to answer."""
 
     data: Dataset

@@ -3,16 +3,21 @@ reachability and batch runs; each renders itself in the formats of :mod:`foon2as
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Unpack
 
 from foon2asp import report
 from foon2asp.analysis import compare as compare_mod
+from foon2asp.api.options import Options, Settings
+from foon2asp.api.schedules import Schedule, ScheduleSpec, make_spec, schedule_raw, schedules_json
 from foon2asp.asp.multishot.driver import alternatives
+from foon2asp.asp.options import AspOptions
+from foon2asp.batch import schedules as batch_schedules
 from foon2asp.batch.results import summarize
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.report import draw
+from foon2asp.schedule import DEFAULT_ENCODING
 from foon2asp.tree.results import BatchReport, MissingResult, Report, Row
 from foon2asp.tree.serialize import tree_foon, tree_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
@@ -113,6 +118,27 @@ class Tree:
     def with_alternatives(self) -> list[Tree]:
         """This tree, then :attr:`alternatives`."""
         return [self if t is self.raw else Tree(self.kb, t) for t in alternatives(self.raw)]
+
+    def schedule(
+        self,
+        spec: ScheduleSpec | None = None,
+        *,
+        agents: str | dict[str, int] | None = None,
+        durations: str | Path | None = None,
+        capabilities: str | Path | None = None,
+        resources: str | Path | None = None,
+        joint: bool = False,
+        encoding: str = DEFAULT_ENCODING,
+        options: Options | AspOptions | None = None,
+        **settings: Unpack[Settings],
+    ) -> Schedule:
+        """This tree's units scheduled on ``spec``'s agents (or ``agents`` and the files, as
+        :meth:`KnowledgeBase.schedule`) with the proven-minimal makespan; ``joint``: the tree is
+        chosen again with the schedule (by the tree objective of ``options``), this one's own
+        schedule kept as the result's ``fixed``.  ``time_limit`` (a setting): seconds per solve."""
+        solver = options if isinstance(options, AspOptions) else self.kb.options(options, **settings)
+        chosen = make_spec(spec, agents, durations, capabilities, resources)
+        return schedule_raw(self.kb, self.raw, chosen, solver, joint, encoding)
 
     def judge(self) -> Tree:
         """Judge the tree with the independent validator (sets :attr:`valid`); returns the tree."""
@@ -271,6 +297,40 @@ class BatchRun:
 
     kb: KnowledgeBase
     raw: BatchReport
+    #: :meth:`schedule`'s schedules, one per goal (empty until it runs)
+    schedules: list[Schedule] = field(default_factory=list)
+
+    def schedule(
+        self,
+        spec: ScheduleSpec | None = None,
+        *,
+        agents: str | dict[str, int] | None = None,
+        durations: str | Path | None = None,
+        capabilities: str | Path | None = None,
+        resources: str | Path | None = None,
+        method: str | None = None,
+        joint: bool = False,
+        encoding: str = DEFAULT_ENCODING,
+        output: str | Path | None = None,
+        options: Options | None = None,
+        **settings: Unpack[Settings],
+    ) -> list[Schedule]:
+        """Schedule the tree of every goal of the run (of ``method``; default the first asked for),
+        as :meth:`Tree.schedule` does; ``output``: also write them there as one JSON list (the
+        shape of ``schedule --format json``; ``batch --schedule`` writes
+        :func:`foon2asp.batch.schedules.schedules_path` of the results file)."""
+        solver = self.kb.options(options, **settings)
+        chosen = make_spec(spec, agents, durations, capabilities, resources)
+        view = lambda goals: self.kb.judging_problem(solver, goals)  # noqa: E731  (with substitutes)
+        found = batch_schedules.schedule_records(
+            self.kb.problem, self.raw.records, chosen, solver, method, joint, encoding, view
+        )
+        self.schedules = [Schedule(self.kb, r, chosen) for r in found]
+        if output is not None:
+            from foon2asp.api.files import write_file  # files imports the knowledge base, which imports this
+
+            write_file(Path(output), schedules_json(self.schedules).encode("utf-8"))
+        return self.schedules
 
     @property
     def done(self) -> int:
@@ -315,4 +375,5 @@ class BatchRun:
 
     def render(self, fmt: str = "text") -> str:
         """The summary ``batch`` prints, in a format of ``batch --summary``."""
-        return report.render("summary", fmt, self.summary(), self.raw)
+        extra = [[s.to_dict() for s in self.schedules]] if self.schedules and fmt == "html" else []
+        return report.render("summary", fmt, self.summary(), self.raw, *extra)

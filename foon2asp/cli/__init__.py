@@ -20,6 +20,7 @@ from foon2asp.cli import (  # noqa: F401  (each module registers its command on 
     objects,
     query,
     reachable,
+    schedule,
     solve,
 )
 from foon2asp.cli.main import main

@@ -23,6 +23,10 @@ from foon2asp.cli.options import (
 )
 from foon2asp.cli.output import EXIT_CODES, exit_code
 from foon2asp.cli.params import SCHEDULER, int32
+from foon2asp.cli.schedule_options import schedule_options
+
+#: schedule statuses that answer their goal
+SCHEDULED = ("optimal", "unschedulable")
 
 #: --grounding and --shortcuts, into the request
 _batch_settings = request_options(
@@ -87,8 +91,31 @@ _batch_settings = request_options(
     help="Sync result lines to disk (grouped: at most 0.25 s apart, and at the end).",
 )
 @constraint_options
+@click.option(
+    "--schedule",
+    "with_schedules",
+    is_flag=True,
+    help="Also schedule each goal's tree (of the first method) on the agents of the schedule options, into"
+    " OUTPUT with the suffix .schedules.json (a JSON list as 'schedule --format json' writes).",
+)
+@schedule_options
 @guarded
-def batch(data, goal, goals, method_list, output, resume, workers, scheduler, summary_fmt, progress, fsync, options):
+def batch(
+    data,
+    goal,
+    goals,
+    method_list,
+    output,
+    resume,
+    workers,
+    scheduler,
+    summary_fmt,
+    progress,
+    fsync,
+    with_schedules,
+    spec,
+    options,
+):
     """Solve many goals with several methods; resumable JSON-lines output and a summary.
 
     Every result line carries "valid" (the independent validator's verdict); the
@@ -107,5 +134,11 @@ def batch(data, goal, goals, method_list, output, resume, workers, scheduler, su
         scheduler=scheduler,
         options=options,
     )
+    answers = [(r.get("status", "?"), r.get("valid")) for r in run.records]
+    if with_schedules:
+        path = api.schedules_path(output)
+        found = run.schedule(spec, output=path, options=options)
+        click.echo(f"wrote {len(found)} schedule(s) to {path}", err=True)
+        answers += [("optimal" if s.status in SCHEDULED else s.status, None) for s in found]
     click.echo(run.render(summary_fmt), nl=False)
-    sys.exit(exit_code((r.get("status", "?"), r.get("valid")) for r in run.records))
+    sys.exit(exit_code(answers))

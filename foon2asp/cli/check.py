@@ -10,6 +10,7 @@ from foon2asp import api, report
 from foon2asp.cli.main import guarded, main
 from foon2asp.cli.options import MatchArgs, data_options, format_option
 from foon2asp.cli.output import warn, warn_kb
+from foon2asp.cli.schedule_options import schedule_options
 from foon2asp.errors import InputError
 
 
@@ -35,8 +36,9 @@ from foon2asp.errors import InputError
 @click.option(
     "--optimum/--no-optimum", default=True, show_default=True, help="Also solve the ASP optimum to compare with."
 )
+@schedule_options
 @guarded
-def check(trees, data, goal, goals, fmt, optimum):
+def check(trees, data, goal, goals, fmt, optimum, spec):
     """Check the task tree(s) in each TREE (FOON text with // between units, FOON JSON, foon2asp JSON,
     or the unit-list JSON of generated trees), or a plan for a problem of 'export pddl'
     ('(action-name)' lines, as Fast Downward writes them); one report per tree.
@@ -47,9 +49,26 @@ def check(trees, data, goal, goals, fmt, optimum):
     the first unit that cannot and the object it waits for, or the cycle.
 
     \b
-    Exit codes: 0 every tree valid; 1 some tree invalid; 2 bad input or usage;
+    A schedule file ('schedule --format json') is judged with the FOON (--data or --foon) on the
+    agents, durations, capabilities and resources of the schedule options: the first violation of
+    the tree's validity, durations, capabilities, precedence, one unit per agent at a time or resources.
+
+    \b
+    Exit codes: 0 every tree (schedule) valid; 1 some tree (schedule) invalid; 2 bad input or usage;
     130 interrupted.
     """
+    schedules = [p for p in trees if api.is_schedule_file(p)]
+    verdicts: list = []
+    if schedules:
+        if fmt not in ("text", "json"):
+            raise InputError(f"schedules are checked in --format text or json, not {fmt}")
+        kb = data.load()
+        verdicts = [v for p in schedules for v in kb.check_schedules(p, spec, data.request())]
+        out = api.verdicts_json(verdicts) if fmt == "json" else "".join(v.to_text() for v in verdicts)
+        click.echo(out, nl=False)
+        if len(schedules) == len(trees):
+            sys.exit(0 if all(v.valid for v in verdicts) else 1)
+        trees = [p for p in trees if p not in schedules]
     reports: list = []
     if data.data_dir is None and not data.foon:
         if data.match != MatchArgs():
@@ -80,4 +99,4 @@ def check(trees, data, goal, goals, fmt, optimum):
             reports += [r.raw for r in found]
             warn_kb(kb)
         click.echo(report.render("check", fmt, kb.problem, reports), nl=False)
-    sys.exit(0 if all(r.valid for r in reports) else 1)
+    sys.exit(0 if all(r.valid for r in reports) and all(v.valid for v in verdicts) else 1)

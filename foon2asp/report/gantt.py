@@ -48,10 +48,15 @@ def _ticks(span: float) -> list[float]:
     return [round(k * step, 3) for k in range(n + 1)]
 
 
-def _title(record: Mapping) -> str:
+def goal_text(record: Mapping) -> str:
+    """The goal's label (a meal's labels joined by `` + ``)."""
     goal = record.get("goal") or {}
     names = [g.get("label", "?") for g in record.get("goals", [])] if "goals" in record else [goal.get("label", "?")]
-    line = " + ".join(str(n) for n in names)
+    return " + ".join(str(n) for n in names)
+
+
+def _title(record: Mapping) -> str:
+    line = goal_text(record)
     makespan = record.get("makespan")
     line += f" -- {record.get('status', '?')}"
     if makespan is not None:
@@ -75,7 +80,17 @@ def _place(x: float, y: float, w: float, h: float) -> dict:
 
 def _text(g: graphviz.Graph, node: str, label: str, x: float, y: float, w: float, size: str, **attrs: str) -> None:
     """A line of text at a fixed place (``label`` is HTML-like, already escaped)."""
-    g.node(node, f"<{label}>", shape="plaintext", style="", fontsize=size, **attrs, **_place(x, y, w, 14))
+    # not fixedsize: a title longer than a short chart widens its node instead of being cut
+    g.node(
+        node,
+        f"<{label}>",
+        shape="plaintext",
+        style="",
+        fontsize=size,
+        fixedsize="false",
+        **attrs,
+        **_place(x, y, w, 14),
+    )
 
 
 def add_chart(g: graphviz.Graph, record: Mapping, prefix: str = "", top: float = 0.0) -> float:
@@ -106,7 +121,7 @@ def add_chart(g: graphviz.Graph, record: Mapping, prefix: str = "", top: float =
         outs = "; ".join(str(o.get("label", "")) for o in unit.get("outputs", []) if isinstance(o, Mapping))
         g.node(
             f"{prefix}u{i}",
-            f"<{html.escape(motion)}>" if w >= 5.4 * len(motion) else "",
+            f"<{html.escape(motion)}>" if w >= 6.5 * len(motion) + 4 else "",
             fillcolor=HUMAN_FILL if human else UNIT_FILL,
             tooltip=f"{motion} ({agent}, {start:g}-{end:g} s) -> {outs}".replace("\\", "\\\\"),
             **{"class": "unit human" if human else "unit"},

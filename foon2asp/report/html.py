@@ -5,7 +5,9 @@ for each method beside the proven optimum, invalid trees marked) and, for
 each goal, the drawing of every tree as inline SVG; an invalid tree is
 flagged with the cycle that blocks it (in words and in red in its drawing).
 ``batch --summary html`` writes the per-method summary and the drawing of
-every tree in the results.  No scripts, no external files.
+every tree in the results (and with ``--schedule`` the Gantt chart of each
+schedule); ``schedule --format html`` the Gantt charts of the schedules.  No
+scripts, no external files.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ import json
 
 from foon2asp.foon.foonjson import parse_json
 from foon2asp.foon.problem import Problem
-from foon2asp.report import draw
+from foon2asp.report import draw, gantt
 from foon2asp.report.compare import summary, units_cell
 from foon2asp.report.registry import register
 from foon2asp.report.summary import _COLUMNS, _cell
@@ -102,8 +104,39 @@ def compare_html(problem: Problem, rows: list[Row]) -> str:
     return page("foon2asp: task trees compared", body)
 
 
-def summary_html(rows: list[dict], report: BatchReport | None = None) -> str:
-    """The batch summary table and the drawing of every tree in the results."""
+def schedules_body(records: list[dict]) -> list[str]:
+    """A table of the schedules' makespans and the Gantt chart of each (schedule JSON records)."""
+    draw.require_dot()
+    body = [
+        '<table id="schedules"><thead><tr><th>goal</th><th>status</th><th>makespan s</th>'
+        "<th>list scheduling s</th><th>lower bound s</th><th>agents</th></tr></thead><tbody>"
+    ]
+    for r in records:
+        cells = [
+            gantt.goal_text(r),
+            r.get("status"),
+            r.get("makespan"),
+            (r.get("baseline") or {}).get("makespan"),
+            (r.get("bounds") or {}).get("lower"),
+            ", ".join(map(str, r.get("agents", []))),
+        ]
+        body.append("<tr>" + "".join(f"<td>{_esc('-' if c is None else c)}</td>" for c in cells) + "</tr>")
+    body.append("</tbody></table>")
+    for k, r in enumerate(records, 1):
+        if r.get("schedule"):
+            svg = draw.inline_svg(gantt.gantt_svg(r), f"s{k}-")
+            body.append(f'<figure class="tree schedule" data-goal="{_esc(gantt.goal_text(r))}">{svg}</figure>')
+    return body
+
+
+def schedule_html(records: list[dict]) -> str:
+    """``schedule --format html``: the schedules' table and their Gantt charts."""
+    return page("foon2asp: schedules", schedules_body(list(records)))
+
+
+def summary_html(rows: list[dict], report: BatchReport | None = None, schedules: list[dict] | None = None) -> str:
+    """The batch summary table, the drawing of every tree in the results and the Gantt chart of
+    each of ``schedules`` (``batch --schedule``)."""
     body = []
     if report is not None:
         body.append(
@@ -138,8 +171,11 @@ def summary_html(rows: list[dict], report: BatchReport | None = None) -> str:
         )
     if trees:
         body.append("</div>")
+    if schedules:
+        body += ["<h2>Schedules</h2>", *schedules_body(schedules)]
     return page("foon2asp: batch summary", body)
 
 
 register("compare", "html", "html", "one self-contained HTML page: the table and a drawing of every tree")(compare_html)
 register("summary", "html", "html", "HTML page: the summary and a drawing of every tree")(summary_html)
+register("schedule", "html", "html", "HTML page: the schedules and their Gantt charts")(schedule_html)

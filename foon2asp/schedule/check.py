@@ -7,7 +7,7 @@ is replayed in time.  :func:`check_schedule` returns the first violation in
 words (None for a valid schedule), in this order:
 
 1. the shape (fields, numbers, agents of ``agents``, units of the FOON, start <= end,
-   times exact to 0.001 s, each unit once);
+   times exact to 0.001 s, each unit once); every agent of ``agents`` one of the spec's;
 2. the tree: valid for the goal by :func:`foon2asp.tree.validate.validate`;
 3. durations (end - start as the spec says for the agent's kind) and capabilities;
 4. precedence: when a unit starts, each required input that is not a kitchen item has
@@ -141,6 +141,10 @@ def check_schedule(problem: Problem, doc: Mapping, spec: ScheduleSpec) -> str | 
         goals = _goals(problem, doc)
     except ValueError as exc:
         return str(exc)
+    names = [name for name, _ in spec.agent_list()]
+    stranger = next((a for a in doc["agents"] if a not in names), None)
+    if stranger is not None:
+        return f"agent {stranger!r} is not one of the agents {', '.join(names)}"
     units = [u for u, *_ in rows]
     for g in goals:
         v = validate(problem, g, units)

@@ -34,7 +34,7 @@ from foon2asp.asp import encodings
 from foon2asp.asp.control import Control
 from foon2asp.asp.facts import q
 from foon2asp.errors import InputError
-from foon2asp.schedule.model import Entry, Instance, assign_agents, divisor, makespan
+from foon2asp.schedule.model import Entry, Instance, assign_agents, compact, divisor, makespan
 from foon2asp.schedule.spec import HUMAN
 
 ENCODINGS = ("steps", "dl")
@@ -154,7 +154,7 @@ def _steps_once(job: Job, windows: dict, horizon: int, floor: int, optimise: boo
     steps = horizon // scale
     parts = [
         ("encodings/schedule_steps.lp", encodings.encoding("schedule_steps")),
-        ("schedule facts", schedule_facts(inst, scale, windows, job.fixed, agents=False)),
+        ("schedule facts", schedule_facts(inst, scale, windows, job.fixed, False, job.tail if job.fixed else None)),
         ("horizon", f"horizon({steps}).\nfloor({-(-floor // scale)}).\n" + _priorities(job.levels)),
         *job.tree_parts,
     ]
@@ -164,9 +164,17 @@ def _steps_once(job: Job, windows: dict, horizon: int, floor: int, optimise: boo
     control.ground()
     ground_s = time.perf_counter() - t0
     best: dict[str, Any] = {}
+    # a fixed tree without tie-breakers: a schedule that compacts to the floor is optimal, so stop there
+    stop_at_floor = optimise and job.fixed and not job.breakers
 
-    def on_model(model: clingo.Model) -> None:
+    def on_model(model: clingo.Model) -> bool:
         best["atoms"] = model.symbols(shown=True)
+        if stop_at_floor:
+            entries = _entries_of_steps(inst, best["atoms"], scale, inst.units)
+            if makespan(compact(inst, entries)) <= floor:
+                best["met"] = True
+                return False
+        return True
 
     if not optimise:
         control.ctl.configuration.solve.models = "1"  # type: ignore[union-attr]
@@ -176,6 +184,9 @@ def _steps_once(job: Job, windows: dict, horizon: int, floor: int, optimise: boo
         return Solution(None, False, bool(result.unsatisfiable), (), stats), result.finished
     units = _used(best["atoms"]) if not job.fixed else inst.units
     entries = _entries_of_steps(inst, best["atoms"], scale, units)
+    if best.get("met"):
+        stats["floor"] = "met after compaction"
+        return Solution(compact(inst, entries), True, False, units, stats), True
     return Solution(entries, result.finished, False, units, stats), result.finished
 
 
@@ -279,6 +290,8 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
         if best.get("entries") is before:  # no schedule under this bound
             proven, unsat = True, opt is None
             break
+        if job.fixed:  # compacted, a schedule may be shorter still: the next bound is below that
+            best["entries"] = compact(inst, best["entries"])
         opt = makespan(best["entries"])
     if proven and opt is not None and job.breakers and (job.ties or best.get("entries") is not None):
         # the tie-breakers under the proven makespan

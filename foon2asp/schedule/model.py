@@ -63,8 +63,25 @@ class Instance:
 
     @property
     def preds(self) -> dict[int, tuple[int, ...]]:
-        """unit -> the units that must end before it starts: sole makers of a needed object."""
-        return {u: tuple(sorted({ms[0] for _, ms in self.needs[u] if len(ms) == 1})) for u in self.units}
+        """unit -> the units that must end before it starts: the sole maker of a needed object,
+        or its only maker that does not itself wait for the unit (a maker that waits, through
+        these edges, for what the unit makes cannot supply it); to a fixpoint."""
+        preds = {u: {ms[0] for _, ms in self.needs[u] if len(ms) == 1} for u in self.units}
+        several = [(u, ms) for u in self.units for _, ms in self.needs[u] if len(ms) > 1]
+        changed = bool(several)
+        while changed:
+            changed = False
+            succs: dict[int, set[int]] = {u: set() for u in self.units}
+            for v, ps in preds.items():
+                for p in ps:
+                    succs.setdefault(p, set()).add(v)
+            for v, ms in several:
+                after = _reach(succs, v)
+                left = [m for m in ms if m != v and m not in after]
+                if len(left) == 1 and left[0] not in preds[v]:
+                    preds[v].add(left[0])
+                    changed = True
+        return {u: tuple(sorted(ps)) for u, ps in preds.items()}
 
     def min_duration(self, u: int) -> int:
         return min(self.durations[u].values())
@@ -90,6 +107,18 @@ class Instance:
     def incapable(self) -> list[int]:
         """The units no agent can do."""
         return [u for u in self.units if not self.durations[u]]
+
+
+def _reach(succs: dict[int, set[int]], start: int) -> set[int]:
+    """The units reachable from ``start`` along ``succs`` (not ``start`` itself unless on a cycle)."""
+    out: set[int] = set()
+    stack = list(succs.get(start, ()))
+    while stack:
+        x = stack.pop()
+        if x not in out:
+            out.add(x)
+            stack.extend(succs.get(x, ()))
+    return out
 
 
 def instance(problem: Problem, units: Iterable[int], spec: ScheduleSpec) -> Instance:

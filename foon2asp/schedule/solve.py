@@ -148,7 +148,9 @@ def schedule_fixed(
     entries = base
     if sol.entries is not None and makespan(sol.entries) <= ub:
         entries = compact(inst, sol.entries)
-    status = "optimal" if sol.proven else "feasible"
+    # without tie-breakers a schedule at the lower bound is optimal, however the search ended
+    met = makespan(entries) <= b.lower and not spec.has_human()
+    status = "optimal" if sol.proven or met else "feasible"
     return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
 
 
@@ -359,6 +361,10 @@ def schedule_joint(
     if proven:  # no tree beats the given one's makespan: only the tie-breakers are left
         floor = horizon
     left = None if deadline is None else max(0.0, deadline - time.perf_counter())
+    if left == 0.0:  # no time for the one encoding (its grounding alone can take minutes): the given tree's
+        stats["joint"] = "time"
+        status = "feasible" if fixed.has_schedule else "unknown"
+        return replace(fixed, status=status, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
     sol = _solve(inst, start, tail, horizon, floor, options, encoding, left, parts, ties)
     stats.update(sol.stats, joint="tie-breakers in one encoding" if proven else "one encoding")
     elapsed = time.perf_counter() - t0

@@ -1,0 +1,109 @@
+"""``foon2asp schedule``: each goal's task tree on robot arms and people, with a proven-minimal makespan."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from foon2asp import api, report
+from foon2asp.cli.main import guarded, main
+from foon2asp.cli.options import (
+    constraint_options,
+    data_options,
+    goal_options,
+    objective_option,
+    progress_option,
+    strategy_options,
+    time_limit_option,
+)
+from foon2asp.cli.output import progress_bar, warn_kb
+from foon2asp.cli.schedule_options import schedule_options
+from foon2asp.report import draw
+
+#: formats of the schedules themselves; the others are pictures of them (report kind ``schedule``)
+OWN = ("text", "json")
+#: statuses that answer a goal (exit status 0)
+ANSWERED = ("optimal", "unschedulable", "unreachable")
+
+EXIT = """\b
+Exit codes: 0 every goal answered (makespan proven, or unschedulable or unreachable);
+1 some makespan is not proven (time limit); 2 bad input or usage; 130 interrupted."""
+
+
+@main.command(epilog=EXIT)
+@data_options
+@goal_options
+@constraint_options
+@objective_option(
+    "The tree's objective(s), comma-separated (units, success, inputs, depth, cost): the tree scheduled,"
+    " or with --joint the tie-breaker after makespan and human units."
+)
+@time_limit_option("Seconds per solve (tree, schedule); the best schedule so far is reported as 'feasible'.")
+@schedule_options
+@click.option(
+    "--joint",
+    is_flag=True,
+    help="Choose tree and schedule together: the makespan is minimal over every valid tree (the fixed tree's"
+    " is reported beside it).",
+)
+@click.option(
+    "--format",
+    "fmt",
+    type=click.Choice([*OWN, *report.names("schedule")]),
+    default="text",
+    show_default=True,
+    help="text: a timeline per agent; json: a list, one object per goal; svg/png/pdf/dot: Gantt charts;"
+    " html: a page of them.",
+)
+@click.option(
+    "-o", "--output", type=click.Path(dir_okay=False), help="Write to FILE instead of stdout (png, pdf: binary)."
+)
+@click.option(
+    "--encoding",
+    type=click.Choice(api.SCHEDULE_ENCODINGS),
+    default=api.DEFAULT_SCHEDULE_ENCODING,
+    show_default=True,
+    help="Time steps in plain ASP, or clingo-dl start times (needs clingo-dl).",
+)
+@strategy_options
+@progress_option
+@guarded
+def schedule(data, goal, goals, spec, joint, fmt, output, encoding, progress, options):
+    """Schedule each goal's task tree (the best by --objective) on the agents: who does which unit
+    when, with the makespan proven minimal, the list-scheduling baseline and the lower bounds.
+
+    A unit starts when the units making its required inputs have finished; an agent does one
+    unit at a time; capabilities and resources hold. Ties of makespan go to fewer units done by
+    a 'human' agent, then to the tree objective. Text output is printed goal by goal.
+    """
+    kb = data.load(goals)
+    goal_ids = kb.select_goals(goal, goals)
+    solver = kb.options(options)
+    warn_kb(kb)
+    if fmt not in OWN and fmt != "dot":
+        draw.require_dot()  # before solving, not after
+    found = kb.schedule_iter(goal_ids, spec, solver, joint=joint, encoding=encoding)
+    done: list = []
+    stream = fmt == "text" and output is None
+    for s in progress_bar(found, len(goal_ids), progress, "schedule"):
+        done.append(s)
+        warn_kb(kb)
+        if stream:
+            click.echo(("\n" if len(done) > 1 else "") + s.to_text(), nl=False)
+            sys.stdout.flush()
+    if fmt == "text":
+        out: str | bytes = "\n".join(s.to_text() for s in done)
+    elif fmt == "json":
+        out = api.schedules_json(done)
+    else:
+        out = report.render_bytes("schedule", fmt, [s.to_dict() for s in done])
+    if output is not None:
+        api.write_file(output, out)
+        click.echo(f"wrote {len(done)} schedule(s) as {fmt} to {output}", err=True)
+    elif not stream:
+        if isinstance(out, bytes):
+            sys.stdout.buffer.write(out)
+        else:
+            click.echo(out, nl=False)
+    sys.exit(0 if all(s.status in ANSWERED for s in done) else 1)
