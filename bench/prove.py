@@ -81,7 +81,9 @@ def main() -> None:
     a = ap.parse_args()
     print(f"machine: {describe()}")
     raw = open(a.raw, "a", encoding="utf-8") if a.raw else None
-    print("| preset · objective | proven ≤ 10 s | proven ≤ limit | median s | max s | not proven: goal (units, bound, gap) |")
+    print(
+        "| preset · objective | proven ≤ 10 s | proven ≤ limit | median s | max s | not proven: goal (units, bound, gap) |"
+    )
     print("|---|---|---|---|---|---|")
     for name in a.presets.split(","):
         for objective in a.objectives.split(","):
