@@ -2,12 +2,16 @@
 
 from __future__ import annotations
 
+import signal
 import sys
 from pathlib import Path
 
 import pytest
 
 HERE = Path(__file__).resolve().parent
+# the signal tests interrupt this process and its children: a run started in the background of
+# a non-interactive shell inherits SIGINT ignored, which would make them meaningless
+signal.signal(signal.SIGINT, signal.default_int_handler)
 sys.path.insert(0, str(HERE))  # for `import helpers`
 
 REPO = HERE.parent
