@@ -106,6 +106,9 @@ def test_every_method_answers_every_goal_and_the_validator_agrees(case, trees):
             ), (name, tree.goal, tree.status)
             if tree.has_tree:
                 assert tree.cost == measures(problem, tree.goal, tree.units), (name, tree.goal)
+            if tree.status == "optimal" and tree.bound is not None:
+                # a proven answer's bound is its own cost, on whatever path it was found
+                assert tree.gap == 0.0 and all(tree.bound[k] == tree.cost[k] for k in tree.bound if k in tree.cost)
 
 
 def test_every_optimum_is_no_worse_than_any_valid_tree_of_another_method(case, trees, options):

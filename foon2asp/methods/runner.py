@@ -281,7 +281,7 @@ class GoalRunner:
         tree.units = executable_order(self.problem, list(best))
         tree.cost = measures(self.problem, tree.goal, tree.units)
         tree.time_s = round(time.perf_counter() - t0, 6)
-        return tree
+        return settle(self.problem, tree, self._ranked)  # the bound is the new tree's cost
 
     def __call__(self, goal: Goals) -> TaskTree:
         """The tree for ``goal``: an object id, or a tuple of them (a meal, one tree for all)."""
