@@ -252,12 +252,22 @@ def longer_tree_shorter_chain():
     )
 
 
+def _trees_only(mp) -> None:
+    """Joint scheduling as with user programs: tree by tree, not by branch and bound."""
+    mp.setattr(solve_mod, "by_branch", lambda options: False)
+
+
 JOINT_WAYS = {
-    "tree by tree": None,
-    "tree by tree, least work first": lambda mp: mp.setattr(
-        joint, "candidate_trees", lambda *a, **k: joint.Trees([], False)
+    "branch and bound": None,
+    "tree by tree": _trees_only,
+    "tree by tree, least work first": lambda mp: (
+        _trees_only(mp),
+        mp.setattr(joint, "candidate_trees", lambda *a, **k: joint.Trees([], False)),
     ),
-    "one encoding": lambda mp: mp.setattr(solve_mod, "_by_trees", lambda *a, **k: (None, False)),
+    "one encoding": lambda mp: (
+        _trees_only(mp),
+        mp.setattr(solve_mod, "_by_trees", lambda *a, **k: (None, False)),
+    ),
 }
 
 
@@ -293,7 +303,7 @@ def random_choice_foon(rng: random.Random):
     return build(units, ["k0", "k1"])
 
 
-@pytest.mark.parametrize("seed, way", [(s, list(JOINT_WAYS)[s % 3]) for s in range(12)])
+@pytest.mark.parametrize("seed, way", [(s, list(JOINT_WAYS)[s % 4]) for s in range(12)])
 def test_joint_equals_brute_force_over_every_tree(seed, way, monkeypatch):
     """Tree by tree (foon2asp.schedule.joint): the trees listed, or asked for least work
     first; and tree and schedule in one encoding."""
@@ -317,6 +327,80 @@ def test_joint_equals_brute_force_over_every_tree(seed, way, monkeypatch):
         assert r.stats["joint"] == way or spec.has_human()
         assert r.makespan <= r.fixed.makespan == brute_schedule(problem, tree.units, spec)[0]
         assert check_schedule(problem, r.to_dict(), spec) is None
+
+
+def tangled_foon(rng: random.Random):
+    """A small FOON with choice, units of two products, objects made by several units (also
+    by units every tree holds) and cycles: kitchen k0, k1; objects a, b, c; goal g."""
+    made = ["a", "b", "c"]
+    while True:
+        units = []
+        for _ in range(rng.randint(5, 6)):
+            ins = rng.sample(["k0", "k1", *made], rng.randint(1, 2))
+            outs = rng.sample([o for o in [*made, "g"] if o not in ins], rng.randint(1, 2))
+            units.append((rng.choice(MOTIONS), ins, outs))
+        if not any("g" in outs for _, _, outs in units):
+            continue
+        problem = build(units, ["k0", "k1"])
+        g = goal_id(problem, "g")
+        trees = brute_force(problem, g)
+        if len(trees) >= 2 and max(len(t) for t in trees) <= 5:
+            return problem, g, trees
+
+
+@pytest.mark.parametrize("seed", range(16))
+def test_joint_over_tangled_foons_equals_brute_force(seed, monkeypatch):
+    """Every valid tree scheduled by brute force: the joint answer has the least makespan,
+    then the fewest human units, then the fewest units; branch and bound and tree by tree agree."""
+    rng = random.Random(500 + seed)
+    problem, g, trees = tangled_foon(rng)
+    kinds = AGENT_SETS[seed % 3]
+    spec = random_spec(rng, kinds)
+    spec = ScheduleSpec(spec.agents, spec.durations, spec.capabilities, {})
+    scored = [(brute_schedule(problem, t, spec), len(t)) for t in trees]
+    scored = [(ms, human, n) for (k, n) in scored if k is not None for ms, human in [k]]
+    smallest = min(trees, key=len)
+    tree = given(problem, g, list(smallest))
+    answers = []
+    for way in ("branch and bound", "tree by tree"):
+        with monkeypatch.context() as mp:
+            if JOINT_WAYS[way]:
+                JOINT_WAYS[way](mp)
+            r = schedule(problem, tree, spec, joint=True, shortcut=False)
+        if not scored or min(scored)[0] == math.inf:
+            assert r.status == "unschedulable", way
+            continue
+        assert r.status == "optimal", (way, r.stats)
+        assert (r.makespan, len(r.human), len(r.tree.units)) == min(scored), way
+        assert check_schedule(problem, r.to_dict(), spec) is None
+        answers.append(r.makespan)
+    assert len(set(answers)) <= 1
+
+
+@pytest.mark.parametrize("way", list(JOINT_WAYS))
+def test_joint_adds_an_earlier_maker_of_what_a_needed_unit_makes(way, monkeypatch):
+    """p (slow) makes x and y and is in every tree; q makes x sooner: the tree with q as well
+    is one unit larger and one second shorter on two arms."""
+    if JOINT_WAYS[way]:
+        JOINT_WAYS[way](monkeypatch)
+    problem = build(
+        [
+            ("slow", ["k"], ["x", "y"]),
+            ("fast", ["k"], ["x"]),
+            ("m", ["x"], ["z"]),
+            ("m", ["y", "z"], ["g"]),
+        ],
+        ["k"],
+    )
+    g = goal_id(problem, "g")
+    spec = ScheduleSpec((("arm", 2),), Durations({"slow": 3000, "fast": 1000, "m": 1000}))
+    tree = given(problem, g, [0, 2, 3])
+    assert brute_schedule(problem, [0, 2, 3], spec) == (5000, 0)
+    assert brute_schedule(problem, [0, 1, 2, 3], spec) == (4000, 0)
+    r = schedule(problem, tree, spec, joint=True, shortcut=False)
+    assert r.status == "optimal" and r.makespan == 4000 and r.fixed.makespan == 5000
+    assert sorted(r.tree.units) == [0, 1, 2, 3]
+    assert check_schedule(problem, r.to_dict(), spec) is None
 
 
 def test_joint_avoids_a_unit_nobody_can_do():

@@ -4,8 +4,10 @@
 * :mod:`foon2asp.schedule.model` -- the instance of a tree, agents dealt, schedules compacted
 * :mod:`foon2asp.schedule.bounds` -- lower bounds and the list-scheduling baseline
 * :mod:`foon2asp.schedule.encode` -- the time-step and clingo-dl encodings
+* :mod:`foon2asp.schedule.fixed` -- a fixed tree's optimal schedule
 * :mod:`foon2asp.schedule.solve` -- :func:`schedule`, the entry point (fixed tree or joint)
-* :mod:`foon2asp.schedule.joint` -- joint scheduling tree by tree
+* :mod:`foon2asp.schedule.branch` -- joint scheduling by branch and bound over first makers
+* :mod:`foon2asp.schedule.joint` -- joint scheduling tree by tree (when user programs constrain the tree)
 * :mod:`foon2asp.schedule.result` -- :class:`ScheduleResult`: JSON shape and text timeline
 * :mod:`foon2asp.schedule.check` -- an independent checker of schedule JSON
 """

@@ -8,7 +8,7 @@ makespan and whose units can each end within it (``asp/encodings/schedule_trees.
 enumerates them).  They are scheduled one by one (:func:`foon2asp.schedule.solve.schedule_fixed`),
 lowest lower bound first, stopping when the next lower bound reaches the best
 makespan found: the best is then proven.  Ties go to the fewest human units,
-then the tree objective.  When there are more than :data:`MAX_TREES` such trees,
+then the tree objective (equal trees: the given one, then the first found).  When there are more than :data:`MAX_TREES` such trees,
 :func:`best_by_work` asks for them one at a time, least work first (each tree
 found is excluded from the next question), until the work of the next one
 over the number of agents exceeds the best makespan found.
@@ -100,7 +100,7 @@ def tree_cost(problem: Problem, units: Sequence[int], human: Sequence[int], rank
             out.append(neglog_sum(problem, units, human))
         elif name == "inputs":
             out.append(sum(len(problem.inputs[u]) for u in units))
-    return (*out, tuple(sorted(units)))
+    return tuple(out)
 
 
 def best_tree(
@@ -112,8 +112,9 @@ def best_tree(
 ) -> tuple[Any, bool]:
     """The best result of ``solve`` (a tree, the time left, the best makespan so far: only a
     schedule as short matters) over ``trees`` by ``key`` (makespan, human units, tree
-    objective), lowest ``bound`` first (a lower bound on a tree's key, known before solving):
-    a tree whose bound is no better than the best key is not solved, and no later one is.
+    objective; equal keys keep the one found first), lowest ``bound`` first (a lower bound on
+    a tree's key, known before solving): a tree whose bound is no better than the best key is
+    not solved, and no later one is.
     (best, proven): proven when every tree solved was solved to its optimum."""
     t0 = time.perf_counter()
     best, proven = None, True

@@ -6,183 +6,39 @@ options (``units`` by default).  For a fixed tree the schedule is optimal for
 that tree; ``joint=True`` proves the makespan minimal over every valid tree
 of the goal (never longer than the given tree's, which is reported beside it).
 
-Statuses: ``optimal`` (makespan proven minimal), ``feasible`` (the time limit
-ended the search: the best schedule found, at worst the baseline's),
-``unschedulable`` (a unit of the tree no agent can do; joint: no valid tree
-can be scheduled), ``unreachable`` (no tree makes the goal), ``unknown`` (no
-tree was found in time).  Every answer carries the list-scheduling baseline
-and the lower bounds (:mod:`foon2asp.schedule.bounds`).
-
-A shortcut: when the baseline meets the lower bound and uses no more human
-units than the units only a person can do, it is optimal and no solver runs.
-
-Joint scheduling first schedules the given tree, then looks tree by tree
-(:mod:`foon2asp.schedule.joint`) at the trees that could be shorter; only when
-even asking for them least work first runs out of time does it solve tree and
-schedule in one encoding (tree.lp beside the schedule encoding).
+The fixed tree is scheduled by :mod:`foon2asp.schedule.fixed` (its statuses; joint:
+``unschedulable`` when no valid tree can be scheduled).  Joint scheduling first schedules
+the given tree, then searches the trees that could be shorter: by branch and bound over
+the first makers of what a tree needs (:mod:`foon2asp.schedule.branch`), or, when user
+programs constrain the tree, tree by tree through the tree encoding
+(:mod:`foon2asp.schedule.joint`); only when even asking for them least work first runs
+out of time does it solve tree and schedule in one encoding (tree.lp beside the schedule
+encoding).
 """
 
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import replace
 
 from foon2asp.asp import dominance, encodings, objectives
 from foon2asp.asp.facts import OPTIONAL, facts
 from foon2asp.asp.options import OBJECTIVES, AspOptions
-from foon2asp.asp.settings import solver_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
-from foon2asp.schedule import encode, joint
+from foon2asp.schedule import branch, encode, joint
 from foon2asp.schedule.bounds import bounds, list_schedule
-from foon2asp.schedule.model import (
-    Entry,
-    Instance,
-    compact,
-    divisor,
-    earliest,
-    human_units,
-    instance,
-    joint_tails,
-    makespan,
-    tails,
-)
+from foon2asp.schedule.fixed import DEFAULT_ENCODING, forced_human, schedule_fixed, solve_encoded, solver_arguments
+from foon2asp.schedule.model import Entry, Instance, compact, divisor, earliest, instance, joint_tails, makespan
 from foon2asp.schedule.result import ScheduleResult
-from foon2asp.schedule.spec import HUMAN, ScheduleSpec
+from foon2asp.schedule.spec import ScheduleSpec
 from foon2asp.tree.tasktree import TaskTree, executable_order, goal_fields, measures
 
-#: the encoding chosen by measurement (BENCHMARKS.md, "Schedules")
-DEFAULT_ENCODING = "steps"
-
-#: clasp's optimisation strategy for schedules when the options set none (BENCHMARKS.md)
-OPT_STRATEGY = "bb"
+__all__ = ["DEFAULT_ENCODING", "schedule", "schedule_fixed", "schedule_joint"]
 
 #: tree objectives joint scheduling supports (depth needs the multi-shot driver)
 JOINT_OBJECTIVES = ("units", "success", "inputs")
-
-
-def _args(options: AspOptions) -> list[str]:
-    return solver_args(options.opt_strategy or OPT_STRATEGY, options.threads, options.portfolio)
-
-
-def _forced_human(inst: Instance) -> int:
-    """Units only a person can do (every schedule gives them to one)."""
-    return sum(1 for u in inst.units if inst.durations[u] and set(inst.durations[u]) == {HUMAN})
-
-
-def _solve(
-    inst: Instance,
-    head: dict[int, int],
-    tail: dict[int, int],
-    horizon: int | None,
-    floor: int,
-    options: AspOptions,
-    encoding: str,
-    time_limit: float | None,
-    tree_parts: list[tuple[str, str]] | None = None,
-    ties: bool = True,
-) -> encode.Solution:
-    """Solve with ``encoding`` (:class:`foon2asp.schedule.encode.Job` says what the values are)."""
-    job = encode.Job(
-        inst,
-        head,
-        tail,
-        horizon,
-        floor,
-        _args(options),
-        tree_parts or (),
-        len(objectives.ranked(options)) if tree_parts else 0,
-        [name for name, _ in options.programs] if tree_parts else [],
-        ties,
-    )
-    if encoding == "steps":
-        return encode.solve_steps(job, time_limit)
-    if encoding == "dl":
-        return encode.solve_dl(job, time_limit)
-    raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(encode.ENCODINGS)})")
-
-
-def _none(problem: Problem, tree: TaskTree, spec: ScheduleSpec, status: str, reason: str | None, t0: float):
-    agents = [name for name, _ in spec.agent_list()]
-    return ScheduleResult(problem, tree, status, agents, reason=reason, time_s=time.perf_counter() - t0)
-
-
-def schedule_fixed(
-    problem: Problem,
-    tree: TaskTree,
-    spec: ScheduleSpec,
-    options: AspOptions,
-    encoding: str = DEFAULT_ENCODING,
-    time_limit: float | None = None,
-    shortcut: bool = True,
-    within: int | None = None,
-) -> ScheduleResult:
-    """The optimal schedule of ``tree``'s units.  ``within`` (ms; joint scheduling): only a
-    schedule of at most that makespan matters; when there is none the status is
-    ``unschedulable`` (reason: not within), found faster than the optimum of a longer one."""
-    t0 = time.perf_counter()
-    if not tree.has_tree:
-        status = "unreachable" if tree.status in ("unreachable", "not-found") else "unknown"
-        return _none(problem, tree, spec, status, tree.extra.get("reason"), t0)
-    inst = instance(problem, tree.units, spec)
-    agents = [name for name, _ in inst.agents]
-    bad = inst.incapable()
-    if bad:
-        why = f"no agent can do unit {bad[0]} ({problem.units[bad[0]].motion})"
-        return _none(problem, tree, spec, "unschedulable", why, t0)
-    if len(earliest(inst)) < len(inst.units):
-        return _none(problem, tree, spec, "unschedulable", "some unit of the tree never has its inputs", t0)
-    b = bounds(inst)
-    base = list_schedule(inst)
-    ub = makespan(base)
-    stats: dict = {"encoding": encoding}
-    if within is not None and (b.lower > within or ub > within):
-        return _within(problem, tree, spec, options, encoding, time_limit, inst, b, within, t0)
-    if shortcut and ub == b.lower and human_units(base) == _forced_human(inst):
-        stats["shortcut"] = "baseline meets the lower bound"
-        return ScheduleResult(
-            problem, tree, "optimal", agents, base, b, ub, time_s=time.perf_counter() - t0, stats=stats
-        )
-    sol = _solve(inst, earliest(inst), tails(inst), ub, b.lower, options, encoding, time_limit, ties=spec.has_human())
-    stats.update(sol.stats)
-    entries = base
-    if sol.entries is not None and makespan(sol.entries) <= ub:
-        entries = compact(inst, sol.entries)
-    # without tie-breakers a schedule at the lower bound is optimal, however the search ended
-    met = makespan(entries) <= b.lower and not spec.has_human()
-    status = "optimal" if sol.proven or met else "feasible"
-    return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
-
-
-def _within(
-    problem: Problem,
-    tree: TaskTree,
-    spec: ScheduleSpec,
-    options: AspOptions,
-    encoding: str,
-    time_limit: float | None,
-    inst: Instance,
-    b,
-    within: int,
-    t0: float,
-) -> ScheduleResult:
-    """:func:`schedule_fixed` when the baseline is longer than ``within``: is there a schedule
-    of at most ``within``, and the best one if so?"""
-    agents = [name for name, _ in inst.agents]
-    if b.lower > within:
-        return _none(problem, tree, spec, "unschedulable", f"no schedule within {within} ms", t0)
-    known = within + divisor(inst) if encoding == "dl" else within  # dl asks below its horizon first
-    sol = _solve(
-        inst, earliest(inst), tails(inst), known, b.lower, options, encoding, time_limit, ties=spec.has_human()
-    )
-    stats = {"encoding": encoding, **sol.stats}
-    if sol.entries is None:
-        status = "unschedulable" if sol.proven or sol.unsatisfiable else "unknown"
-        return _none(problem, tree, spec, status, f"no schedule within {within} ms", t0)
-    entries = compact(inst, sol.entries)
-    status = "optimal" if sol.proven else "feasible"
-    ub = makespan(list_schedule(inst))
-    return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
 
 
 def _check_joint(options: AspOptions) -> tuple[str, ...]:
@@ -203,12 +59,20 @@ def _dominance(problem: Problem, inst: Instance, ranked: tuple[str, ...]) -> str
     do U and uses no resource U does not: then V can replace U in a schedule (on U's agent,
     in U's time, what it needs is had earlier), nothing gets worse, so an optimum without U exists."""
     out = []
+    for v, u, extra in _replaceable(problem, inst, ranked):
+        out.append(f"dom({v},{u}).\n")
+        out += [f"dom_extra({v},{u},{o}).\n" for o in extra]
+    return "".join(out)
+
+
+def _replaceable(problem: Problem, inst: Instance, ranked: tuple[str, ...]) -> list[tuple[int, int, tuple]]:
+    """The dominance pairs (V, U, extra) of :func:`_dominance`."""
+    out = []
     for v, u, extra in dominance.dominance_pairs(problem, inst.units, ranked):
         dv, du = inst.durations[v], inst.durations[u]
         if all(k in dv and dv[k] <= d for k, d in du.items()) and set(inst.uses[v]) <= set(inst.uses[u]):
-            out.append(f"dom({v},{u}).\n")
-            out += [f"dom_extra({v},{u},{o}).\n" for o in extra]
-    return "".join(out)
+            out.append((v, u, extra))
+    return out
 
 
 def tree_parts(problem: Problem, meal: tuple[int, ...], inst: Instance, options: AspOptions) -> list:
@@ -234,6 +98,117 @@ def tree_parts(problem: Problem, meal: tuple[int, ...], inst: Instance, options:
     return [("facts", facts(problem, units=units, leave_out=leave_out)), *parts]
 
 
+def _tree_solver(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    fixed: ScheduleResult,
+    encoding: str,
+    shortcut: bool,
+) -> Callable[[tuple[int, ...], float | None, int | None], ScheduleResult]:
+    """``solve(units, time left, makespan to beat)``: the schedule of a tree chosen among the
+    candidates (the given tree's own when it is that tree and proven)."""
+    fixed_units = tuple(sorted(tree.units))
+
+    def solve(units: tuple[int, ...], limit: float | None, within: int | None) -> ScheduleResult:
+        if units == fixed_units and fixed.status == "optimal":
+            return fixed
+        given = TaskTree(
+            method=f"{tree.method}+schedule",
+            status="optimal",
+            units=executable_order(problem, list(units)),
+            cost=measures(problem, tree.meal, list(units)),
+            **goal_fields(tree.meal),
+        )
+        return schedule_fixed(problem, given, spec, options, encoding, limit, shortcut, within)
+
+    return solve
+
+
+def _finish(
+    problem: Problem,
+    tree: TaskTree,
+    fixed: ScheduleResult,
+    found: tuple[ScheduleResult | None, bool],
+    key: Callable[[ScheduleResult], tuple],
+    ties: bool,
+    stats: dict,
+) -> tuple[ScheduleResult | None, bool]:
+    """The joint answer from the best tree ``found`` (result, proven) and the given tree's
+    ``fixed`` schedule, which wins a tie; (None, proven) when ``ties`` leaves the tie-breakers
+    over the trees of the given one's makespan to the one encoding."""
+    best, proven = found
+    if fixed.has_schedule and (best is None or key(fixed) <= key(best)):
+        if ties:
+            return None, proven and fixed.status == "optimal"
+        best = fixed
+    if best is None:
+        if not proven:
+            return None, False
+        why = "no valid tree of the goal can be scheduled"
+        return ScheduleResult(problem, tree, "unschedulable", fixed.agents, joint=True, fixed=fixed, reason=why), True
+    status = "optimal" if proven and best.status == "optimal" else "feasible"
+    return replace(best, status=status, joint=True, fixed=fixed, stats={**best.stats, **stats}), proven
+
+
+def _rank(problem: Problem, ranked: tuple[str, ...]) -> Callable[[ScheduleResult], tuple]:
+    """A joint answer's rank: makespan, human units, the tree objective (equal ranks keep the
+    answer found first, the given tree before all)."""
+
+    def rank(r: ScheduleResult) -> tuple:
+        return (r.makespan, len(r.human), joint.tree_cost(problem, r.tree.units, r.human, ranked))
+
+    return rank
+
+
+def by_branch(options: AspOptions) -> bool:
+    """Does joint scheduling search by branch and bound (no user program constrains the tree)?"""
+    return not options.programs
+
+
+def _by_branch(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    fixed: ScheduleResult,
+    encoding: str,
+    shortcut: bool,
+    inst: Instance,
+    deadline: float | None,
+) -> tuple[ScheduleResult | None, bool]:
+    """Joint scheduling by branch and bound (:mod:`foon2asp.schedule.branch`): (result, proven).
+    Trees equal in makespan, human units and tree objective keep the given one, then the
+    first found.  Units a no worse unit can replace in any schedule (:func:`_replaceable`,
+    when none of their other products is needed) are left out first."""
+    ranked = objectives.ranked(options)
+    rank = _rank(problem, ranked)
+
+    def low_key(sub: Instance, units: tuple[int, ...], low: int, groups: list[list[int]] | None) -> tuple:
+        """A lower bound on ``rank`` of every tree of makespan at least ``low`` holding ``units``
+        (``sub``: their instance) and a unit of each of ``groups`` (None: the tree is ``units``)."""
+        if spec.has_human():
+            return (low, forced_human(sub), ())
+        cost = joint.tree_cost(problem, units, (), ranked)
+        if groups is None:
+            return (low, 0, cost)
+        least = [[min(c) for c in zip(*(joint.tree_cost(problem, (u,), (), ranked) for u in g))] for g in groups]
+        return (low, 0, tuple(c + sum(x[k] for x in least) for k, c in enumerate(cost)))
+
+    relevant = set(tree.meal) | {i for u in inst.units for i in problem.required[u]}
+    gone = {u for _, u, extra in _replaceable(problem, inst, ranked) if relevant.isdisjoint(extra)}
+    solve = _tree_solver(problem, tree, spec, options, fixed, encoding, shortcut)
+    products = {u: problem.products[u] for u in inst.units}
+    search = branch.Search(inst.restrict(set(inst.units) - gone), tree.meal, products, solve, rank, low_key)
+    left = None if deadline is None else max(0.0, deadline - time.perf_counter())
+    out = search.run(fixed if fixed.has_schedule else None, left)
+    stats: dict = {"joint": "branch and bound", "nodes": out.nodes}
+    if out.open_bound is not None:
+        stats["joint_lower_bound_ms"] = out.open_bound
+    return _finish(problem, tree, fixed, (out.best, out.proven), rank, False, stats)
+
+
 def _by_trees(
     problem: Problem,
     tree: TaskTree,
@@ -256,11 +231,10 @@ def _by_trees(
     makespan (then ``proven`` says its makespan is the optimum)."""
     within = horizon - divisor(inst) if fixed.has_schedule else horizon
     left = None if deadline is None else max(0.0, deadline - time.perf_counter())
-    found = joint.candidate_trees(inst, start, tail, within, parts, _args(options), left)
+    found = joint.candidate_trees(inst, start, tail, within, parts, solver_arguments(options), left)
     if not found.complete and (deadline is not None and time.perf_counter() >= deadline):
         return None, False
     ranked = objectives.ranked(options)
-    fixed_units = tuple(sorted(tree.units))
 
     def bound(units: tuple[int, ...]) -> tuple:
         """A lower bound on the key of the tree's schedule: chain and work bounds, the units
@@ -270,23 +244,11 @@ def _by_trees(
         chain = max((head[u] + sub.min_duration(u) for u in units), default=0)
         low = max(chain, -(-sum(sub.min_duration(u) for u in units) // len(sub.agents)))
         if spec.has_human():
-            return (low, _forced_human(sub), ())
+            return (low, forced_human(sub), ())
         return (low, 0, joint.tree_cost(problem, units, (), ranked))
 
-    def solve(units: tuple[int, ...], limit: float | None, within: int | None) -> ScheduleResult:
-        if units == fixed_units and fixed.status == "optimal":
-            return fixed
-        given = TaskTree(
-            method=f"{tree.method}+schedule",
-            status="optimal",
-            units=executable_order(problem, list(units)),
-            cost=measures(problem, tree.meal, list(units)),
-            **goal_fields(tree.meal),
-        )
-        return schedule_fixed(problem, given, spec, options, encoding, limit, shortcut, within)
-
-    def key(r: ScheduleResult) -> tuple:
-        return (r.makespan, len(r.human), joint.tree_cost(problem, r.tree.units, r.human, ranked))
+    solve = _tree_solver(problem, tree, spec, options, fixed, encoding, shortcut)
+    key = _rank(problem, ranked)
 
     left = None if deadline is None else max(0.0, deadline - time.perf_counter())
     if found.complete:
@@ -294,20 +256,10 @@ def _by_trees(
     else:  # too many to list: one at a time, least work first
         levels = len(ranked)
         best, proven = joint.best_by_work(
-            inst, start, tail, within, parts, _args(options), levels, bound, solve, key, left
+            inst, start, tail, within, parts, solver_arguments(options), levels, bound, solve, key, left
         )
-    if fixed.has_schedule and (best is None or key(fixed) <= key(best)):
-        if ties:
-            return None, proven and fixed.status == "optimal"
-        best = fixed
     stats = {"joint": "tree by tree" if found.complete else "tree by tree, least work first"}
-    if best is None:
-        if not proven:
-            return None, False
-        why = "no valid tree of the goal can be scheduled"
-        return ScheduleResult(problem, tree, "unschedulable", fixed.agents, joint=True, fixed=fixed, reason=why), True
-    status = "optimal" if proven and best.status == "optimal" else "feasible"
-    return replace(best, status=status, joint=True, fixed=fixed, stats={**best.stats, **stats}), proven
+    return _finish(problem, tree, fixed, (best, proven), key, ties, stats)
 
 
 def schedule_joint(
@@ -351,9 +303,12 @@ def schedule_joint(
     parts = tree_parts(problem, meal, inst, options)
     deadline = None if time_limit is None else t0 + time_limit
     ties = spec.has_human() or tree.status != "optimal"
-    by_trees, proven = _by_trees(
-        problem, tree, spec, options, fixed, encoding, shortcut, inst, start, tail, horizon, parts, ties, deadline
-    )
+    if by_branch(options):
+        by_trees, proven = _by_branch(problem, tree, spec, options, fixed, encoding, shortcut, inst, deadline)
+    else:
+        by_trees, proven = _by_trees(
+            problem, tree, spec, options, fixed, encoding, shortcut, inst, start, tail, horizon, parts, ties, deadline
+        )
     if by_trees is not None:
         by_trees.stats = {**stats, **by_trees.stats}
         by_trees.time_s = time.perf_counter() - t0
@@ -365,7 +320,7 @@ def schedule_joint(
         stats["joint"] = "time"
         status = "feasible" if fixed.has_schedule else "unknown"
         return replace(fixed, status=status, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
-    sol = _solve(inst, start, tail, horizon, floor, options, encoding, left, parts, ties)
+    sol = solve_encoded(inst, start, tail, horizon, floor, options, encoding, left, parts, ties)
     stats.update(sol.stats, joint="tie-breakers in one encoding" if proven else "one encoding")
     elapsed = time.perf_counter() - t0
     if sol.unsatisfiable:

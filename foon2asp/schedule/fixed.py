@@ -1,0 +1,169 @@
+"""A fixed tree's schedule: the shortest makespan, proven, then the fewest units done by a
+``human`` agent (:func:`schedule_fixed`).
+
+Statuses: ``optimal`` (makespan proven minimal), ``feasible`` (the time limit ended the
+search: the best schedule found, at worst the baseline's), ``unschedulable`` (a unit of the
+tree no agent can do), ``unreachable`` (no tree makes the goal), ``unknown`` (no tree was
+found in time).  Every answer carries the list-scheduling baseline and the lower bounds
+(:mod:`foon2asp.schedule.bounds`).
+
+A shortcut: when the baseline meets the lower bound and uses no more human units than the
+units only a person can do, it is optimal and no solver runs.
+"""
+
+from __future__ import annotations
+
+import time
+
+from foon2asp.asp import objectives
+from foon2asp.asp.options import AspOptions
+from foon2asp.asp.settings import solver_args
+from foon2asp.errors import InputError
+from foon2asp.foon.problem import Problem
+from foon2asp.schedule import encode
+from foon2asp.schedule.bounds import bounds, list_schedule
+from foon2asp.schedule.model import (
+    Instance,
+    compact,
+    divisor,
+    earliest,
+    human_units,
+    instance,
+    makespan,
+    tails,
+)
+from foon2asp.schedule.result import ScheduleResult
+from foon2asp.schedule.spec import HUMAN, ScheduleSpec
+from foon2asp.tree.tasktree import TaskTree
+
+#: the encoding chosen by measurement (BENCHMARKS.md, "Schedules")
+DEFAULT_ENCODING = "steps"
+
+#: clasp's optimisation strategy for schedules when the options set none (BENCHMARKS.md)
+OPT_STRATEGY = "bb"
+
+
+def solver_arguments(options: AspOptions) -> list[str]:
+    return solver_args(options.opt_strategy or OPT_STRATEGY, options.threads, options.portfolio)
+
+
+def forced_human(inst: Instance) -> int:
+    """Units only a person can do (every schedule gives them to one)."""
+    return sum(1 for u in inst.units if inst.durations[u] and set(inst.durations[u]) == {HUMAN})
+
+
+def solve_encoded(
+    inst: Instance,
+    head: dict[int, int],
+    tail: dict[int, int],
+    horizon: int | None,
+    floor: int,
+    options: AspOptions,
+    encoding: str,
+    time_limit: float | None,
+    tree_parts: list[tuple[str, str]] | None = None,
+    ties: bool = True,
+) -> encode.Solution:
+    """Solve with ``encoding`` (:class:`foon2asp.schedule.encode.Job` says what the values are)."""
+    job = encode.Job(
+        inst,
+        head,
+        tail,
+        horizon,
+        floor,
+        solver_arguments(options),
+        tree_parts or (),
+        len(objectives.ranked(options)) if tree_parts else 0,
+        [name for name, _ in options.programs] if tree_parts else [],
+        ties,
+    )
+    if encoding == "steps":
+        return encode.solve_steps(job, time_limit)
+    if encoding == "dl":
+        return encode.solve_dl(job, time_limit)
+    raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(encode.ENCODINGS)})")
+
+
+def _none(problem: Problem, tree: TaskTree, spec: ScheduleSpec, status: str, reason: str | None, t0: float):
+    agents = [name for name, _ in spec.agent_list()]
+    return ScheduleResult(problem, tree, status, agents, reason=reason, time_s=time.perf_counter() - t0)
+
+
+def schedule_fixed(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    encoding: str = DEFAULT_ENCODING,
+    time_limit: float | None = None,
+    shortcut: bool = True,
+    within: int | None = None,
+) -> ScheduleResult:
+    """The optimal schedule of ``tree``'s units.  ``within`` (ms; joint scheduling): only a
+    schedule of at most that makespan matters; when there is none the status is
+    ``unschedulable`` (reason: not within), found faster than the optimum of a longer one."""
+    t0 = time.perf_counter()
+    if not tree.has_tree:
+        status = "unreachable" if tree.status in ("unreachable", "not-found") else "unknown"
+        return _none(problem, tree, spec, status, tree.extra.get("reason"), t0)
+    inst = instance(problem, tree.units, spec)
+    agents = [name for name, _ in inst.agents]
+    bad = inst.incapable()
+    if bad:
+        why = f"no agent can do unit {bad[0]} ({problem.units[bad[0]].motion})"
+        return _none(problem, tree, spec, "unschedulable", why, t0)
+    if len(earliest(inst)) < len(inst.units):
+        return _none(problem, tree, spec, "unschedulable", "some unit of the tree never has its inputs", t0)
+    b = bounds(inst)
+    base = list_schedule(inst)
+    ub = makespan(base)
+    stats: dict = {"encoding": encoding}
+    if within is not None and (b.lower > within or ub > within):
+        return _within(problem, tree, spec, options, encoding, time_limit, inst, b, within, t0)
+    if shortcut and ub == b.lower and human_units(base) == forced_human(inst):
+        stats["shortcut"] = "baseline meets the lower bound"
+        return ScheduleResult(
+            problem, tree, "optimal", agents, base, b, ub, time_s=time.perf_counter() - t0, stats=stats
+        )
+    sol = solve_encoded(
+        inst, earliest(inst), tails(inst), ub, b.lower, options, encoding, time_limit, ties=spec.has_human()
+    )
+    stats.update(sol.stats)
+    entries = base
+    if sol.entries is not None and makespan(sol.entries) <= ub:
+        entries = compact(inst, sol.entries)
+    # without tie-breakers a schedule at the lower bound is optimal, however the search ended
+    met = makespan(entries) <= b.lower and not spec.has_human()
+    status = "optimal" if sol.proven or met else "feasible"
+    return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
+
+
+def _within(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    encoding: str,
+    time_limit: float | None,
+    inst: Instance,
+    b,
+    within: int,
+    t0: float,
+) -> ScheduleResult:
+    """:func:`schedule_fixed` when the baseline is longer than ``within``: is there a schedule
+    of at most ``within``, and the best one if so?"""
+    agents = [name for name, _ in inst.agents]
+    if b.lower > within:
+        return _none(problem, tree, spec, "unschedulable", f"no schedule within {within} ms", t0)
+    known = within + divisor(inst) if encoding == "dl" else within  # dl asks below its horizon first
+    sol = solve_encoded(
+        inst, earliest(inst), tails(inst), known, b.lower, options, encoding, time_limit, ties=spec.has_human()
+    )
+    stats = {"encoding": encoding, **sol.stats}
+    if sol.entries is None:
+        status = "unschedulable" if sol.proven or sol.unsatisfiable else "unknown"
+        return _none(problem, tree, spec, status, f"no schedule within {within} ms", t0)
+    entries = compact(inst, sol.entries)
+    status = "optimal" if sol.proven else "feasible"
+    ub = makespan(list_schedule(inst))
+    return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
