@@ -21,7 +21,7 @@ from foon2asp.asp.settings import solver_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule import encode
-from foon2asp.schedule.bounds import bounds, list_schedule
+from foon2asp.schedule.bounds import bounds, list_schedule, perturbed_schedule
 from foon2asp.schedule.model import (
     Instance,
     compact,
@@ -118,19 +118,32 @@ def schedule_fixed(
     base = list_schedule(inst)
     ub = makespan(base)
     stats: dict = {"encoding": encoding}
-    if within is not None and (b.lower > within or ub > within):
+    if within is not None and b.lower > within:
         return _within(problem, tree, spec, options, encoding, time_limit, inst, b, within, t0)
-    if shortcut and ub == b.lower and human_units(base) == forced_human(inst):
-        stats["shortcut"] = "baseline meets the lower bound"
+    # the baseline, or a shorter list schedule under perturbed priorities (the solver's horizon)
+    known = perturbed_schedule(inst, b.lower) if ub > b.lower else base
+    if within is not None and makespan(known) > within:
+        return _within(problem, tree, spec, options, encoding, time_limit, inst, b, within, t0)
+    if shortcut and makespan(known) == b.lower and human_units(known) == forced_human(inst):
+        met = "baseline" if known is base else "a list schedule with perturbed priorities"
+        stats["shortcut"] = f"{met} meets the lower bound"
         return ScheduleResult(
-            problem, tree, "optimal", agents, base, b, ub, time_s=time.perf_counter() - t0, stats=stats
+            problem, tree, "optimal", agents, known, b, ub, time_s=time.perf_counter() - t0, stats=stats
         )
     sol = solve_encoded(
-        inst, earliest(inst), tails(inst), ub, b.lower, options, encoding, time_limit, ties=spec.has_human()
+        inst,
+        earliest(inst),
+        tails(inst),
+        makespan(known),
+        b.lower,
+        options,
+        encoding,
+        time_limit,
+        ties=spec.has_human(),
     )
     stats.update(sol.stats)
-    entries = base
-    if sol.entries is not None and makespan(sol.entries) <= ub:
+    entries = known
+    if sol.entries is not None and makespan(sol.entries) <= makespan(known):
         entries = compact(inst, sol.entries)
     # without tie-breakers a schedule at the lower bound is optimal, however the search ended
     met = makespan(entries) <= b.lower and not spec.has_human()

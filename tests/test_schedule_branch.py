@@ -1,0 +1,103 @@
+"""The pieces of joint branch and bound and of the fixed-tree shortcut, against their plain versions."""
+
+from __future__ import annotations
+
+import random
+
+import numpy as np
+import pytest
+
+from foon2asp.schedule import ScheduleSpec, schedule
+from foon2asp.schedule.bounds import _window_length, bounds, energy_bound, list_schedule, perturbed_schedule
+from foon2asp.schedule.branch import designate, energy, landmarks, window_lengths
+from foon2asp.schedule.check import check_schedule
+from foon2asp.schedule.model import divisor, earliest, instance, makespan, tails
+from foon2asp.schedule.spec import Durations
+from helpers import build, goal_id
+from test_schedule import AGENT_SETS, brute_schedule, given, random_spec, random_tree
+
+
+@pytest.mark.parametrize("m", [1, 2, 3])
+def test_window_lengths_equal_the_plain_formula(m):
+    rng = random.Random(m)
+    rows = [[rng.choice([0, 0.5, 1, 2, 3, 5]) for _ in range(rng.randint(1, 7))] for _ in range(200)]
+    for row in rows:
+        got = window_lengths(np.array([row], dtype=float), m)[0]
+        assert got == pytest.approx(_window_length(row, m)), row
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_energy_over_single_units_equals_the_tree_bound(seed):
+    """With every unit a part of its own and the tree's own tails, the vectorised energetic
+    bound of the branch and bound is the fixed tree's energetic bound."""
+    rng = random.Random(seed)
+    problem, _, units = random_tree(rng, rng.randint(3, 9), knife=0.0)
+    spec = random_spec(rng, AGENT_SETS[seed % 2])
+    spec = ScheduleSpec(spec.agents, spec.durations, {}, {})
+    inst = instance(problem, units, spec)
+    start, tail = earliest(inst), tails(inst)
+    b = bounds(inst)
+    floor = max(b.chain, b.work)
+    want = energy_bound(inst, start, tail, floor, divisor(inst))
+    assert energy(inst, start, tail, [[u] for u in inst.units], floor, divisor(inst)) == want == b.energy
+
+
+def test_landmarks_of_a_designated_instance():
+    """x is made by a (also making y, which g needs) or by b: a is in every tree, b only once
+    x is designated to it."""
+    problem = build(
+        [("m", ["k"], ["x", "y"]), ("m", ["k"], ["x"]), ("m", ["x"], ["z"]), ("m", ["y", "z"], ["g"])],
+        ["k"],
+    )
+    g = goal_id(problem, "g")
+    inst = instance(problem, range(4), ScheduleSpec())
+    x = next(o for o, ms in inst.needs[2] if len(ms) == 2)
+
+    def makers(node):
+        out = {o: list(ms) for u in node.units for o, ms in node.needs[u]}
+        out[g] = [3]
+        return out
+
+    assert landmarks(inst, [g], makers(inst), earliest(inst)) == frozenset({0, 2, 3})
+    node = designate(inst, {x: 1})
+    assert landmarks(node, [g], makers(node), earliest(node)) == frozenset({0, 1, 2, 3})
+
+
+def test_perturbed_list_schedules_are_never_longer_and_the_same_every_time():
+    rng = random.Random(7)
+    for _ in range(20):
+        problem, _, units = random_tree(rng, rng.randint(4, 10), knife=0.3)
+        spec = random_spec(rng, AGENT_SETS[rng.randint(0, 3)])
+        inst = instance(problem, units, spec)
+        if inst.incapable():
+            continue
+        target = bounds(inst).lower
+        one, two = perturbed_schedule(inst, target), perturbed_schedule(inst, target)
+        assert one == two
+        assert target <= makespan(one) <= makespan(list_schedule(inst))
+
+
+def test_a_perturbed_list_schedule_at_the_lower_bound_is_the_optimum():
+    """Trees where plain list scheduling misses the lower bound and a perturbed one meets it:
+    the shortcut answer equals the solver's and brute force."""
+    rng = random.Random(11)
+    found = 0
+    for _ in range(400):
+        problem, goal, units = random_tree(rng, rng.randint(4, 6), knife=0.0)
+        spec = ScheduleSpec(
+            (("arm", 2),), Durations({m: rng.choice([500, 1000, 1500, 2000, 3000]) for m in ("chop", "pour", "mix")})
+        )
+        inst = instance(problem, units, spec)
+        b = bounds(inst)
+        if makespan(list_schedule(inst)) == b.lower or makespan(perturbed_schedule(inst, b.lower)) > b.lower:
+            continue
+        found += 1
+        tree = given(problem, goal, units)
+        fast, slow = schedule(problem, tree, spec), schedule(problem, tree, spec, shortcut=False)
+        assert "perturbed" in fast.stats["shortcut"] and fast.status == slow.status == "optimal"
+        assert fast.makespan == slow.makespan == brute_schedule(problem, units, spec)[0] == b.lower
+        assert fast.baseline > fast.makespan  # the baseline stays plain list scheduling
+        assert check_schedule(problem, fast.to_dict(), spec) is None
+        if found == 3:
+            break
+    assert found >= 1
