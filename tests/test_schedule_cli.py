@@ -153,6 +153,25 @@ def test_joint_reports_both_makespans(tmp_path):
     assert lib.check() is None and len(lib.tree.units) == 4
 
 
+def test_together_schedules_one_tree_of_the_meal(shared_foon_dir, tmp_path):
+    """A meal: one tree for both dishes (the tree solve --together gives), one schedule of it,
+    which check accepts; with --joint never longer; the library gives the same."""
+    meal = ["--goal", "carrot salad", "--goal", "coleslaw"]
+    (tree,) = json.loads(run("solve", "--data", shared_foon_dir, *meal, "--together", "--format", "json").stdout)
+    base = ["schedule", "--data", shared_foon_dir, *meal, "--agents", "arm=2", "--together", "--format", "json"]
+    (fixed,) = json.loads(run(*base).stdout)
+    assert fixed["status"] == "optimal" and len(fixed["tree"]["units"]) == len(tree["units"])
+    assert len(fixed["schedule"]) == len(tree["units"])
+    (joint,) = json.loads(run(*base, "--joint").stdout)
+    assert joint["status"] == "optimal" and joint["makespan"] <= fixed["makespan"]
+    path = tmp_path / "meal.json"
+    path.write_text(json.dumps([fixed, joint]))
+    lines = run("check", path, "--data", shared_foon_dir, "--agents", "arm=2").stdout.splitlines()
+    assert len(lines) == 2 and all("carrot salad + coleslaw: valid schedule" in line for line in lines)
+    lib = foon2asp.load(shared_foon_dir).schedule(["carrot salad", "coleslaw"], agents="arm=2", together=True)
+    assert lib.makespan == fixed["makespan"] and len(lib.tree.units) == len(tree["units"]) and lib.check() is None
+
+
 # ---------------------------------------------------------------- check rejects each violation
 
 

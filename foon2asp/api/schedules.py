@@ -186,6 +186,7 @@ class Scheduling:
         capabilities: str | Path | None = None,
         resources: str | Path | None = None,
         joint: bool = False,
+        together: bool = False,
         encoding: str = DEFAULT_ENCODING,
         options: Options | None = None,
         **settings: Unpack[Settings],
@@ -193,23 +194,27 @@ class Scheduling:
         """The schedule with the proven-minimal makespan of each goal's best tree (by ``objective``;
         ``joint``: tree and schedule chosen together) on ``spec``'s agents, or on ``agents``
         (``"arm=2,human=1"``, default one robot) with the ``durations``, ``capabilities`` and
-        ``resources`` files.  One goal gives a :class:`Schedule`, several a list (as :meth:`solve`)."""
+        ``resources`` files.  One goal gives a :class:`Schedule`, several a list (as :meth:`solve`);
+        ``together=True``: one schedule of one tree that makes every goal (a meal)."""
         solver = self.options(options, **settings)
         chosen = make_spec(spec, agents, durations, capabilities, resources)
-        found = list(self.schedule_iter(self.goal_ids(goals), chosen, solver, joint=joint, encoding=encoding))
-        single = isinstance(goals, str | int | FoonObject) and goals not in ("all", "all-objects")
+        ids = self.goal_ids(goals)
+        jobs: list[int | tuple[int, ...]] = [tuple(dict.fromkeys(ids))] if together else list(ids)
+        found = list(self.schedule_iter(jobs, chosen, solver, joint=joint, encoding=encoding))
+        single = together or (isinstance(goals, str | int | FoonObject) and goals not in ("all", "all-objects"))
         return found[0] if single else found
 
     def schedule_iter(
         self,
-        goal_ids: Sequence[int],
+        goal_ids: Sequence[int | tuple[int, ...]],
         spec: ScheduleSpec | None = None,
         options: Options | AspOptions | None = None,
         *,
         joint: bool = False,
         encoding: str = DEFAULT_ENCODING,
     ) -> Iterator[Schedule]:
-        """:meth:`schedule` goal after goal (the path ``foon2asp schedule`` takes)."""
+        """:meth:`schedule` goal after goal (the path ``foon2asp schedule`` takes); an element
+        that is a tuple of ids is a meal: one tree, and its schedule, for all of them."""
         solver = options if isinstance(options, AspOptions) else self.options(options)
         for tree in self.solve_iter(goal_ids, "asp", solver):
             yield tree.schedule(spec, joint=joint, encoding=encoding, options=solver)

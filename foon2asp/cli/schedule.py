@@ -66,10 +66,11 @@ Exit codes: 0 every goal answered (makespan proven, or unschedulable or unreacha
     show_default=True,
     help="Time steps in plain ASP, or clingo-dl start times (needs clingo-dl).",
 )
+@click.option("--together", is_flag=True, help="A meal: one tree that makes every goal, and one schedule of it.")
 @strategy_options
 @progress_option
 @guarded
-def schedule(data, goal, goals, spec, joint, fmt, output, encoding, progress, options):
+def schedule(data, goal, goals, spec, joint, fmt, output, encoding, together, progress, options):
     """Schedule each goal's task tree (the best by --objective) on the agents: who does which unit
     when, with the makespan proven minimal, the list-scheduling baseline and the lower bounds.
 
@@ -83,10 +84,11 @@ def schedule(data, goal, goals, spec, joint, fmt, output, encoding, progress, op
     warn_kb(kb)
     if fmt not in OWN and fmt != "dot":
         draw.require_dot()  # before solving, not after
-    found = kb.schedule_iter(goal_ids, spec, solver, joint=joint, encoding=encoding)
+    jobs: list = [tuple(dict.fromkeys(goal_ids))] if together else goal_ids
+    found = kb.schedule_iter(jobs, spec, solver, joint=joint, encoding=encoding)
     done: list = []
     stream = fmt == "text" and output is None
-    for s in progress_bar(found, len(goal_ids), progress, "schedule"):
+    for s in progress_bar(found, len(jobs), progress, "schedule"):
         done.append(s)
         warn_kb(kb)
         if stream:

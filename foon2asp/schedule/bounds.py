@@ -118,7 +118,7 @@ def list_schedule(inst: Instance, prio: dict[int, float] | None = None) -> list[
     free agent that can do it soonest (shortest duration, then not a person, then the first
     agent), if its resources allow; nobody waits while a unit it could do is ready (a
     non-delay schedule)."""
-    prio = tails(inst) if prio is None else prio
+    order: dict[int, float] = dict(tails(inst)) if prio is None else prio
     waiting = {u: {o for o, _ in inst.needs[u]} for u in inst.units}
     users: dict[int, list[tuple[int, int]]] = {}
     for v in inst.units:
@@ -142,7 +142,7 @@ def list_schedule(inst: Instance, prio: dict[int, float] | None = None) -> list[
                     waiting[v].discard(o)
                     if not waiting[v]:
                         ready.add(v)
-        for u in sorted(ready, key=lambda u: (-prio[u], u)):
+        for u in sorted(ready, key=lambda u: (-order[u], u)):
             if any(in_use[r] >= inst.capacity[r] for r in inst.uses[u]):
                 continue
             choice = [

@@ -125,8 +125,8 @@ def schedule_fixed(
     if within is not None and makespan(known) > within:
         return _within(problem, tree, spec, options, encoding, time_limit, inst, b, within, t0)
     if shortcut and makespan(known) == b.lower and human_units(known) == forced_human(inst):
-        met = "baseline" if known is base else "a list schedule with perturbed priorities"
-        stats["shortcut"] = f"{met} meets the lower bound"
+        which = "baseline" if known is base else "a list schedule with perturbed priorities"
+        stats["shortcut"] = f"{which} meets the lower bound"
         return ScheduleResult(
             problem, tree, "optimal", agents, known, b, ub, time_s=time.perf_counter() - t0, stats=stats
         )
