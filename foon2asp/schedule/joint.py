@@ -148,10 +148,13 @@ def best_by_work(
     solve: Callable[[tuple[int, ...], float | None, int | None], Any],
     key: Callable[[Any], tuple],
     time_limit: float | None,
+    first: bool = False,
 ) -> tuple[Any, bool]:
     """Like :func:`best_tree` over the same trees, asked for one at a time, least work first
     (a fresh grounding each time, the trees seen excluded): no tree after one whose work over
-    the agents exceeds the best makespan can reach it.  (best, proven)."""
+    the agents exceeds the best makespan can reach it.  ``first``: the first tree is the best
+    (one agent: a makespan is the work; ties go to the tree objective, the second order).
+    (best, proven)."""
     t0 = time.perf_counter()
     m = len(inst.agents)
     facts = _bound_facts(inst, head, tail, horizon)
@@ -185,3 +188,5 @@ def best_by_work(
             proven = proven and r.status in ("optimal", "unschedulable")
             if r.has_schedule and (best is None or key(r) < key(best)):
                 best = r
+        if first:
+            return best, proven

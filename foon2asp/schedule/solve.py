@@ -163,7 +163,8 @@ def _rank(problem: Problem, ranked: tuple[str, ...]) -> Callable[[ScheduleResult
 
 
 def by_branch(options: AspOptions) -> bool:
-    """Does joint scheduling search by branch and bound (no user program constrains the tree)?"""
+    """Does joint scheduling search by branch and bound (no user program constrains the tree;
+    one agent: least work first, the tree by tree way, is exact at once)?"""
     return not options.programs
 
 
@@ -229,11 +230,15 @@ def _by_trees(
     result None when there are too many trees to look at (or no time to list them), or when no
     tree beats the given one and ``ties`` asks for the tie-breakers over every tree of its
     makespan (then ``proven`` says its makespan is the optimum)."""
-    within = horizon - divisor(inst) if fixed.has_schedule else horizon
-    left = None if deadline is None else max(0.0, deadline - time.perf_counter())
-    found = joint.candidate_trees(inst, start, tail, within, parts, solver_arguments(options), left)
-    if not found.complete and (deadline is not None and time.perf_counter() >= deadline):
-        return None, False
+    single = len(inst.agents) == 1
+    if single:  # the makespan is the tree's work: least work first, the first tree is the best
+        within, found = horizon, joint.Trees([], False)
+    else:
+        within = horizon - divisor(inst) if fixed.has_schedule else horizon
+        left = None if deadline is None else max(0.0, deadline - time.perf_counter())
+        found = joint.candidate_trees(inst, start, tail, within, parts, solver_arguments(options), left)
+        if not found.complete and (deadline is not None and time.perf_counter() >= deadline):
+            return None, False
     ranked = objectives.ranked(options)
 
     def bound(units: tuple[int, ...]) -> tuple:
@@ -255,8 +260,9 @@ def _by_trees(
         best, proven = joint.best_tree(found.trees, bound, solve, key, left)
     else:  # too many to list: one at a time, least work first
         levels = len(ranked)
+        first = single and not spec.has_human()  # a person alone: fewest units among equal work
         best, proven = joint.best_by_work(
-            inst, start, tail, within, parts, solver_arguments(options), levels, bound, solve, key, left
+            inst, start, tail, within, parts, solver_arguments(options), levels, bound, solve, key, left, first
         )
     stats = {"joint": "tree by tree" if found.complete else "tree by tree, least work first"}
     return _finish(problem, tree, fixed, (best, proven), key, ties, stats)
@@ -303,7 +309,7 @@ def schedule_joint(
     parts = tree_parts(problem, meal, inst, options)
     deadline = None if time_limit is None else t0 + time_limit
     ties = spec.has_human() or tree.status != "optimal"
-    if by_branch(options):
+    if by_branch(options) and len(inst.agents) > 1:
         by_trees, proven = _by_branch(problem, tree, spec, options, fixed, encoding, shortcut, inst, deadline)
     else:
         by_trees, proven = _by_trees(
