@@ -6,7 +6,9 @@ agents, with every unit taking 1 s and with the duration table
 bench/durations.json; for each encoding (steps, dl) the fixed tree and
 ``--joint``: how many makespans are proven, the share proven within the
 targets (fixed tree 1 s, joint 10 s), median and max time per goal, and the
-makespan against the list-scheduling baseline and the lower bound.  Every
+makespan against the list-scheduling baseline and the lower bound.  Then the same with
+capabilities, resources and a person: the durations, capabilities and resources files of
+data/schedule on ``arm=2,human=1`` and ``arm=1,human=1``.  Every
 schedule is checked by foon2asp.schedule.check.
 
 With ``--presets small,hard-4k,hard-10k`` it measures the hard presets of
@@ -16,6 +18,7 @@ the table gives the share of schedules proven within 10 s.
 
 Usage:  python bench/schedule.py --shared ../shared [--encodings steps,dl] [--agents robot=1,arm=2,arm=3]
         [--limit 10] [--joint-limit 10] [--no-joint] [--no-shortcut] [--goals-table arm=2]
+        [--spec-dir data/schedule] [--spec-agents "arm=2,human=1;arm=1,human=1"]
         python bench/schedule.py --presets small,hard-4k,hard-10k [--preset-goals 10] [--encodings steps]
 """
 
@@ -102,7 +105,7 @@ def presets(args) -> None:
             trees = [t.raw for t in kb.solve_iter(chosen, "asp", kb.options(time_limit=args.tree_limit)) if t.has_tree]
             sizes = sorted(len(t.units) for t in trees)
             print(f"{name}: {len(chosen)} goals, {len(trees)} trees", file=sys.stderr, flush=True)
-            for agents in args.agents.split(";"):
+            for agents in [a for a in args.agents.split(";") if a]:
                 for durations in (None, TABLE):
                     spec = ScheduleSpec.from_files(agents, durations)
                     dname = "1 s" if durations is None else "table"
@@ -140,6 +143,12 @@ def main() -> None:
     ap.add_argument("--no-shortcut", action="store_true", help="always run the solver")
     ap.add_argument("--goals-table", default="arm=2", help="agents of the per-goal table (duration table, steps)")
     ap.add_argument("--json", help="write every result as JSON lines here")
+    ap.add_argument(
+        "--spec-dir",
+        default=str(ROOT / "data" / "schedule"),
+        help="durations, capabilities, resources files ('': none)",
+    )
+    ap.add_argument("--spec-agents", default="arm=2,human=1;arm=1,human=1", help="agent sets for --spec-dir")
     ap.add_argument("--presets", help="synthetic presets (foon2asp.foon.synth), e.g. small,hard-4k,hard-10k")
     ap.add_argument("--preset-goals", type=int, default=10, help="goals per preset, spread over the list (0: all)")
     ap.add_argument("--tree-limit", type=float, default=10.0, help="time limit per tree on a preset (s)")
@@ -159,7 +168,7 @@ def main() -> None:
     )
     print(header)
     per_goal: dict[str, list[dict]] = {}
-    for agents in args.agents.split(";"):
+    for agents in [a for a in args.agents.split(";") if a]:
         for durations in (None, TABLE):
             spec = ScheduleSpec.from_files(agents, durations)
             dname = "1 s" if durations is None else "table"
@@ -172,6 +181,19 @@ def main() -> None:
                         records.append({"agents": agents, "durations": dname, "mode": mode, "encoding": encoding, **r})
                     if agents == args.goals_table and durations is not None and encoding == "steps":
                         per_goal[mode] = rs
+    if args.spec_dir:  # capabilities, resources and a person: the data/schedule files
+        d = Path(args.spec_dir)
+        files = (d / "durations.json", d / "capabilities.json", d / "resources.json")
+        for agents in args.spec_agents.split(";"):
+            spec = ScheduleSpec.from_files(agents, *files)
+            for mode in ("fixed",) if args.no_joint else ("fixed", "joint"):
+                limit = args.limit if mode == "fixed" else args.joint_limit
+                rs = run(kb, trees, spec, "steps", mode == "joint", limit, shortcut)
+                print(row(f"{agents}, {d.name} files, {mode}, steps", rs, mode), flush=True)
+                for r in rs:
+                    records.append(
+                        {"agents": agents, "durations": f"{d.name} files", "mode": mode, "encoding": "steps", **r}
+                    )
     if per_goal.get("fixed"):
         print(f"\nper goal, {args.goals_table}, duration table, steps (makespan / baseline / lower bound, s):")
         print("| goal | units | makespan | baseline | lower bound | time s | joint | joint time s |")

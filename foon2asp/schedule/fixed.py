@@ -120,7 +120,8 @@ def schedule_fixed(
     stats: dict = {"encoding": encoding}
     if within is not None and b.lower > within:
         return _within(problem, tree, spec, options, encoding, time_limit, inst, b, within, t0)
-    # the baseline, or a shorter list schedule under perturbed priorities (the solver's horizon)
+    # the baseline, or a shorter list schedule under perturbed priorities (the solver keeps the
+    # baseline's makespan as its horizon: a tighter one left clingo-dl stuck above the optimum)
     known = perturbed_schedule(inst, b.lower) if ub > b.lower else base
     if within is not None and makespan(known) > within:
         return _within(problem, tree, spec, options, encoding, time_limit, inst, b, within, t0)
@@ -134,7 +135,7 @@ def schedule_fixed(
         inst,
         earliest(inst),
         tails(inst),
-        makespan(known),
+        ub,
         b.lower,
         options,
         encoding,
