@@ -7,6 +7,8 @@ import random
 import numpy as np
 import pytest
 
+import foon2asp
+from conftest import REPO
 from foon2asp.schedule import ScheduleSpec, schedule
 from foon2asp.schedule.bounds import _window_length, bounds, energy_bound, list_schedule, perturbed_schedule
 from foon2asp.schedule.branch import designate, energy, landmarks, window_lengths
@@ -101,3 +103,17 @@ def test_a_perturbed_list_schedule_at_the_lower_bound_is_the_optimum():
         if found == 3:
             break
     assert found >= 1
+
+
+def test_a_joint_search_cut_short_bounds_every_tree(shared_foon_dir):
+    """Beef stroganoff on two arms with the duration table: the branch and bound takes seconds;
+    cut at 0.1 s its answer says how short any tree could be, no more than the proven optimum."""
+    kb = foon2asp.load(shared_foon_dir)
+    table = REPO / "bench" / "durations.json"
+    full = kb.schedule("beef stroganoff", agents="arm=2", durations=table, joint=True)
+    cut = kb.schedule("beef stroganoff", agents="arm=2", durations=table, joint=True, time_limit=0.1)
+    assert full.status == "optimal" and full.raw.joint_bound is None and "joint_bound" not in full.to_dict()
+    assert cut.status == "feasible" and cut.makespan >= full.makespan
+    d = cut.to_dict()
+    assert d["joint_bound"] <= full.makespan and d["joint_bound"] <= d["makespan"]
+    assert f"Every tree: at least {d['joint_bound']:g} s" in cut.to_text()

@@ -10,7 +10,8 @@ JSON (one object per goal; times in seconds, exact to 0.001 s)::
      "schedule": [{"unit": {"motion", "inputs", "outputs"}, "agent": "arm-1", "start": 0.0, "end": 1.0}, ...],
      "tree": {...},                       # foon2asp.tree.serialize.tree_json of the scheduled tree
      "success": 0.012, "human_units": 1, "joint": false, "encoding": "steps", "time_s": 0.01,
-     "fixed_tree": {"status", "makespan", "units"}}   # joint scheduling only: the given tree's
+     "fixed_tree": {"status", "makespan", "units"},   # joint scheduling only: the given tree's
+     "joint_bound": 7.0}   # joint, when the search over trees was cut short: no tree is shorter
 
 A meal has ``"goals"`` instead of ``"goal"``, as in tree_json.  ``bounds`` and
 ``baseline`` are ``{}`` and ``makespan`` null when there is no schedule;
@@ -69,6 +70,8 @@ class ScheduleResult:
     reason: str | None = None
     time_s: float = 0.0
     stats: dict = field(default_factory=dict)
+    #: joint scheduling cut short: a lower bound on the makespan of every tree (milliseconds)
+    joint_bound: int | None = None
 
     def __post_init__(self) -> None:
         order = {name: k for k, name in enumerate(self.agents)}
@@ -134,6 +137,8 @@ class ScheduleResult:
         if self.fixed is not None:
             f = self.fixed
             out["fixed_tree"] = {"status": f.status, "makespan": seconds(f.makespan), "units": len(f.tree.units)}
+        if self.joint_bound is not None:
+            out["joint_bound"] = seconds(self.joint_bound)
         return out
 
     def headline(self) -> str:
@@ -149,6 +154,8 @@ class ScheduleResult:
                 )
         if self.fixed is not None:
             line += f"  Given tree: {seconds_text(self.fixed.makespan)} s ({self.fixed.status})"
+        if self.joint_bound is not None:
+            line += f"  Every tree: at least {seconds_text(self.joint_bound)} s"
         if self.reason:
             line += f"  ({self.reason})"
         return line

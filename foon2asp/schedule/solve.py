@@ -205,9 +205,11 @@ def _by_branch(
     left = None if deadline is None else max(0.0, deadline - time.perf_counter())
     out = search.run(fixed if fixed.has_schedule else None, left)
     stats: dict = {"joint": "branch and bound", "nodes": out.nodes}
-    if out.open_bound is not None:
-        stats["joint_lower_bound_ms"] = out.open_bound
-    return _finish(problem, tree, fixed, (out.best, out.proven), rank, False, stats)
+    result, proven = _finish(problem, tree, fixed, (out.best, out.proven), rank, False, stats)
+    if result is not None and not proven and out.open_bound is not None and result.makespan is not None:
+        # the trees cut were no shorter than the answer, the ones left at least their nodes' bound
+        result.joint_bound = min(out.open_bound, result.makespan)
+    return result, proven
 
 
 def _by_trees(
