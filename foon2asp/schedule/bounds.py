@@ -11,8 +11,10 @@ The baseline is list scheduling, longest remaining chain first (:func:`list_sche
 
 from __future__ import annotations
 
+import itertools
 import math
 import random
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 from foon2asp.schedule.model import Entry, Instance, divisor, earliest, makespan, tails
@@ -62,14 +64,48 @@ def energy_bound(inst: Instance, start: dict[int, int], tail: dict[int, int], fl
     possible.  The bound is the least C >= ``floor``, a multiple of ``step`` (every makespan
     of a left-justified schedule is a sum of durations), outside all those gaps, for a over
     the heads and b over the tails of the units."""
-    m = len(inst.agents)
     d = {u: inst.min_duration(u) for u in inst.units}
+    return _clear(_gaps(inst.units, d, start, tail, len(inst.agents)), floor, step)
+
+
+def pools(inst: Instance) -> list[tuple[list[int], dict[int, int], int]]:
+    """Sets of units that share fewer servers than the agents: ``(units, durations, servers)``
+    for each set of kinds but all (the units only those kinds can do, each at its least
+    duration among them, on their agents) and for each resource (the units using it, on its
+    capacity)."""
+    kinds = sorted(inst.kinds)
+    out = []
+    for r in range(1, len(kinds)):
+        for chosen in itertools.combinations(kinds, r):
+            mine = set(chosen)
+            units = [u for u in inst.units if inst.durations[u] and set(inst.durations[u]) <= mine]
+            if units:
+                d = {u: min(inst.durations[u][k] for k in inst.durations[u] if k in mine) for u in units}
+                out.append((units, d, sum(inst.kinds[k] for k in chosen)))
+    for label, capacity in sorted(inst.capacity.items()):
+        units = [u for u in inst.units if label in inst.uses[u]]
+        if units and capacity < len(inst.agents):
+            out.append((units, {u: inst.min_duration(u) for u in units}, capacity))
+    return out
+
+
+def _gaps(
+    units: Iterable[int], d: dict[int, int], start: dict[int, int], tail: dict[int, int], m: int
+) -> list[tuple[int, float]]:
+    """The makespans energetic reasoning rules out for ``units`` (durations ``d``) on ``m``
+    servers: open intervals (a + b, a + b + window length), as in :func:`energy_bound`."""
+    units = list(units)
     gaps = []
-    for a in sorted({start[u] for u in inst.units}):
-        for b in sorted({tail[u] - d[u] for u in inst.units}):
-            length = _window_length([min(d[u], start[u] + d[u] - a, tail[u] - b) for u in inst.units], m)
+    for a in sorted({start[u] for u in units}):
+        for b in sorted({tail[u] - d[u] for u in units}):
+            length = _window_length([min(d[u], start[u] + d[u] - a, tail[u] - b) for u in units], m)
             if length > 0:
                 gaps.append((a + b, a + b + length))
+    return gaps
+
+
+def _clear(gaps: list[tuple[int, float]], floor: int, step: int) -> int:
+    """The least multiple of ``step`` at least ``floor`` in none of the open intervals ``gaps``."""
     best = -(-floor // step) * step
     moved = True
     while moved:
@@ -82,13 +118,22 @@ def energy_bound(inst: Instance, start: dict[int, int], tail: dict[int, int], fl
 
 
 def bounds(inst: Instance) -> Bounds:
-    """The chain, work and energy bounds (each unit at its minimum duration over the kinds that can do it)."""
+    """The chain, work and energy bounds (each unit at its minimum duration over the kinds that
+    can do it); the energy bound also counts each pool of units sharing fewer servers
+    (:func:`pools`: the units only some kinds can do, the units using a resource)."""
     start = earliest(inst)
     if len(start) < len(inst.units):
         raise ValueError("some unit never becomes ready")
     chain = max((start[u] + inst.min_duration(u) for u in inst.units), default=0)
     work = -(-sum(inst.min_duration(u) for u in inst.units) // len(inst.agents))
-    return Bounds(chain, work, energy_bound(inst, start, tails(inst), max(chain, work), divisor(inst)))
+    tail = tails(inst)
+    d = {u: inst.min_duration(u) for u in inst.units}
+    gaps = _gaps(inst.units, d, start, tail, len(inst.agents))
+    floor = max(chain, work)
+    for units, pd, servers in pools(inst):
+        gaps += _gaps(units, pd, start, tail, servers)
+        floor = max(floor, -(-sum(pd.values()) // servers))
+    return Bounds(chain, work, _clear(gaps, floor, divisor(inst)))
 
 
 #: randomised list-scheduling runs tried before the solver (BENCHMARKS.md, "Schedules")
