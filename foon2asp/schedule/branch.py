@@ -16,14 +16,18 @@ maker of what it needs.  At each node:
 * the lower bound is the energetic bound (:func:`foon2asp.schedule.bounds.energy_bound`'s
   reasoning) over the landmarks and one part per needed object no landmark makes (the
   least any of its makers could run in a window; the makers of distinct parts disjoint),
-  at least the earliest a goal can be made and the landmarks' work over the agents.
+  at least the earliest a goal can be made and the parts' work over the agents; a
+  landmark's chain to the goal is at least the longest chain of landmarks waiting for it
+  (:func:`chain_tails`).
 
 A node whose bound is no better than the best key (makespan, human units, tree
-objective) is cut.  When every object the landmarks need has its maker, the
-landmarks are a tree: it is scheduled alone (:func:`foon2asp.schedule.solve.schedule_fixed`
-through the ``solve`` callback) and may become the best.  Every designation lies
-under exactly one leaf, so when the search ends without a time limit cutting it
-(and every leaf was solved to its optimum) the best is proven.
+objective) is cut.  Otherwise it branches on an object the landmarks (or the goals) need
+that still has several makers -- even one a landmark makes, since another maker may make
+it first -- one child per maker.  When there is none, the landmarks are a tree: it is
+scheduled alone (:func:`foon2asp.schedule.solve.schedule_fixed` through the ``solve``
+callback) and may become the best.  Every designation lies under exactly one leaf, so when
+the search ends without a time limit cutting it (and every leaf was solved to its optimum)
+the best is proven.
 """
 
 from __future__ import annotations
@@ -37,9 +41,6 @@ from typing import Any
 import numpy as np
 
 from foon2asp.schedule.model import Instance, divisor, earliest, joint_tails
-
-#: (object, its makers) for each object a unit needs
-Needs = tuple[tuple[int, tuple[int, ...]], ...]
 
 
 @dataclass
