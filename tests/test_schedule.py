@@ -8,6 +8,8 @@ import random
 
 import pytest
 
+from foon2asp.asp import constraints
+from foon2asp.asp.options import AspOptions
 from foon2asp.schedule import ScheduleSpec, joint, schedule
 from foon2asp.schedule import solve as solve_mod
 from foon2asp.schedule.check import check_schedule
@@ -377,6 +379,79 @@ def test_joint_over_tangled_foons_equals_brute_force(seed, monkeypatch):
         assert check_schedule(problem, r.to_dict(), spec) is None
         answers.append(r.makespan)
     assert len(set(answers)) <= 1
+
+
+def forbidding_case(seed: int):
+    """A tangled FOON, a spec, and constraints that cut its best joint tree: a motion of that
+    tree forbidden (and sometimes a cap on the units), some tree still allowed; also the best
+    answer without the constraints."""
+    rng = random.Random(700 + seed)
+    while True:
+        problem, g, trees = tangled_foon(rng)
+        spec = random_spec(rng, AGENT_SETS[1 + seed % 2])  # two arms, or an arm and a person
+        spec = ScheduleSpec(spec.agents, spec.durations, {}, {})
+        scored = {t: brute_schedule(problem, t, spec) for t in trees}
+        free = min(((*k, len(t), t) for t, k in scored.items() if k is not None), default=None)
+        if free is None:
+            continue
+        motion = rng.choice(sorted({problem.units[u].motion for u in free[3]}))
+        most = rng.choice([None, None, len(free[3]), len(free[3]) + 1])
+        allowed = [
+            t
+            for t in trees
+            if scored[t] is not None
+            and all(problem.units[u].motion != motion for u in t)
+            and (most is None or len(t) <= most)
+        ]
+        if allowed:
+            want = min((*scored[t], len(t)) for t in allowed)
+            return problem, g, spec, motion, most, allowed, want, free[:3]
+
+
+@pytest.mark.parametrize("seed", range(16))
+def test_joint_under_forbidding_constraints_equals_brute_force(seed, monkeypatch):
+    """--forbid-motion and --max-units: the branch and bound (on the allowed units) and tree by
+    tree (the constraints as programs) agree with brute force over the allowed trees."""
+    problem, g, spec, motion, most, allowed, want, _ = forbidding_case(seed)
+    options = AspOptions(programs=constraints.programs(forbid_motions=[motion.upper()], max_unit_count=most))
+    assert constraints.shrinking(options.programs) is not None
+    tree = given(problem, g, list(min(allowed, key=len)))
+    for way in ("branch and bound", "tree by tree"):
+        with monkeypatch.context() as mp:
+            if JOINT_WAYS[way]:
+                JOINT_WAYS[way](mp)
+            r = schedule(problem, tree, spec, joint=True, shortcut=False, options=options)
+        assert r.status == "optimal", (way, r.stats)
+        assert r.stats["joint"] == way or spec.has_human(), (way, r.stats)  # a person: ties, one encoding
+        assert (r.makespan, len(r.human), len(r.tree.units)) == want, way
+        assert all(problem.units[u].motion != motion for u in r.tree.units)
+        assert most is None or len(r.tree.units) <= most
+
+
+def test_joint_with_a_forbidden_object_or_a_required_motion():
+    """Forbidding b2 leaves only the chain (branch and bound); requiring a motion is not a
+    forbidding program, so the trees are listed tree by tree."""
+    problem = longer_tree_shorter_chain()
+    g = goal_id(problem, "g")
+    tree = given(problem, g, [0, 1, 2])
+    spec = ScheduleSpec((("arm", 3),))
+    free = schedule(problem, tree, spec, joint=True, shortcut=False)
+    assert free.makespan == 2000 and sorted(free.tree.units) == [3, 4, 5, 6]
+    no_b2 = AspOptions(programs=constraints.programs(forbid_objects=["B2"]))
+    r = schedule(problem, tree, spec, joint=True, shortcut=False, options=no_b2)
+    assert r.status == "optimal" and r.makespan == 3000 and sorted(r.tree.units) == [0, 1, 2]
+    assert r.stats["joint"] == "branch and bound"
+    need_m = AspOptions(programs=constraints.programs(require_motions=["m"]))
+    assert constraints.shrinking(need_m.programs) is None
+    r = schedule(problem, tree, spec, joint=True, shortcut=False, options=need_m)
+    assert r.status == "optimal" and r.makespan == 2000 and r.stats["joint"].startswith("tree by tree")
+
+
+def test_forbidding_cases_bite():
+    """The cases above are not trivial: a tree the constraints forbid is the best without them,
+    and in some the best allowed one is worse."""
+    cases = [forbidding_case(seed) for seed in range(16)]
+    assert sum(case[6] > case[7] for case in cases) >= 4
 
 
 @pytest.mark.parametrize("way", list(JOINT_WAYS))

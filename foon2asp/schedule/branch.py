@@ -195,12 +195,15 @@ class Search:
         solve: Callable[[tuple[int, ...], float | None, int | None], Any],
         key: Callable[[Any], tuple],
         low_key: Callable[[Instance, tuple[int, ...], int, list[list[int]] | None], tuple],
+        max_units: int | None = None,
     ) -> None:
         """``solve(units, time left, makespan to beat)``: a unit set's own schedule; ``key``: a
         result's rank; ``low_key(instance of the units, units, makespan bound, groups)``: a lower
         bound on the key of every tree holding those units and one unit of each group (disjoint
-        from them and each other; None: the tree is those units)."""
+        from them and each other; None: the tree is those units); ``max_units``: trees hold at
+        most that many units."""
         self.inst = inst
+        self.max_units = max_units
         self.goals = goals
         self.products = products
         self.solve = solve
@@ -285,6 +288,8 @@ class Search:
         tail = chain_tails(node, lm, tail)
         low = energy(node, start, tail, groups, max(floor, work), self.step, limit)
         others = groups[len(lm) :]
+        if self.max_units is not None and len(groups) > self.max_units:
+            return None  # every tree here holds the landmarks and a unit of each other part
         if best is not None and self.low_key(node.restrict(lm), tuple(sorted(lm)), low, others) >= self.key(best):
             return None
         # an object with several makers is open even when a landmark makes it: another maker

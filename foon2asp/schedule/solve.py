@@ -22,7 +22,7 @@ import time
 from collections.abc import Callable
 from dataclasses import replace
 
-from foon2asp.asp import dominance, encodings, objectives
+from foon2asp.asp import constraints, dominance, encodings, objectives
 from foon2asp.asp.facts import OPTIONAL, facts
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
@@ -162,10 +162,18 @@ def _rank(problem: Problem, ranked: tuple[str, ...]) -> Callable[[ScheduleResult
     return rank
 
 
+def _allowed(problem: Problem, u: int, cut: constraints.Shrinking) -> bool:
+    """May unit ``u`` be in a tree under the forbidding programs ``cut``?"""
+    unit = problem.units[u]
+    return unit.motion not in cut.motions and not any(o.label in cut.labels for o in (*unit.inputs, *unit.outputs))
+
+
 def by_branch(options: AspOptions) -> bool:
-    """Does joint scheduling search by branch and bound (no user program constrains the tree;
-    one agent: least work first, the tree by tree way, is exact at once)?"""
-    return not options.programs
+    """Does joint scheduling search by branch and bound?  Yes when the user programs only
+    forbid motions or objects or cap the units (:func:`foon2asp.asp.constraints.shrinking`: a
+    schedule's first-maker tree keeps to them); otherwise, and on one agent (least work first
+    is exact at once), tree by tree."""
+    return constraints.shrinking(options.programs) is not None
 
 
 def _by_branch(
@@ -197,11 +205,16 @@ def _by_branch(
         least = [[min(c) for c in zip(*(joint.tree_cost(problem, (u,), (), ranked) for u in g))] for g in groups]
         return (low, 0, tuple(c + sum(x[k] for x in least) for k, c in enumerate(cost)))
 
+    cut = constraints.shrinking(options.programs)
+    assert cut is not None  # by_branch
+    inst = inst.restrict(u for u in inst.units if _allowed(problem, u, cut))
     relevant = set(tree.meal) | {i for u in inst.units for i in problem.required[u]}
     gone = {u for _, u, extra in _replaceable(problem, inst, ranked) if relevant.isdisjoint(extra)}
     solve = _tree_solver(problem, tree, spec, options, fixed, encoding, shortcut)
     products = {u: problem.products[u] for u in inst.units}
-    search = branch.Search(inst.restrict(set(inst.units) - gone), tree.meal, products, solve, rank, low_key)
+    search = branch.Search(
+        inst.restrict(set(inst.units) - gone), tree.meal, products, solve, rank, low_key, cut.max_units
+    )
     left = None if deadline is None else max(0.0, deadline - time.perf_counter())
     out = search.run(fixed if fixed.has_schedule else None, left)
     stats: dict = {"joint": "branch and bound", "nodes": out.nodes}
