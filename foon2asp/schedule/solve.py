@@ -9,11 +9,11 @@ of the goal (never longer than the given tree's, which is reported beside it).
 The fixed tree is scheduled by :mod:`foon2asp.schedule.fixed` (its statuses; joint:
 ``unschedulable`` when no valid tree can be scheduled).  Joint scheduling first schedules
 the given tree, then searches the trees that could be shorter: by branch and bound over
-the first makers of what a tree needs (:mod:`foon2asp.schedule.branch`), or, when user
-programs constrain the tree, tree by tree through the tree encoding
-(:mod:`foon2asp.schedule.joint`); only when even asking for them least work first runs
-out of time does it solve tree and schedule in one encoding (tree.lp beside the schedule
-encoding).
+the first makers of what a tree needs (:mod:`foon2asp.schedule.branch`; user programs that
+only forbid are applied to its units), or tree by tree through the tree encoding
+(:mod:`foon2asp.schedule.joint`) on one agent and when other user programs constrain the
+tree; only when even asking for them least work first runs out of time does it solve tree
+and schedule in one encoding (tree.lp beside the schedule encoding).
 """
 
 from __future__ import annotations
