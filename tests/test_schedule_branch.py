@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import random
 
 import numpy as np
@@ -10,13 +11,53 @@ import pytest
 import foon2asp
 from conftest import REPO
 from foon2asp.schedule import ScheduleSpec, schedule
-from foon2asp.schedule.bounds import _window_length, bounds, energy_bound, list_schedule, perturbed_schedule
-from foon2asp.schedule.branch import designate, energy, landmarks, window_lengths
+from foon2asp.schedule.bounds import bounds, energy_bound, list_schedule, perturbed_schedule, window_lengths
+from foon2asp.schedule.branch import designate, energy, landmarks
 from foon2asp.schedule.check import check_schedule
 from foon2asp.schedule.model import divisor, earliest, instance, makespan, tails
 from foon2asp.schedule.spec import Durations
 from helpers import build, goal_id
 from test_schedule import AGENT_SETS, brute_schedule, given, random_spec, random_tree
+
+
+def _window_length(c: list[float], m: int) -> float:
+    """The plain formula: the least L > 0 with sum(min(c_i, L)) <= m L, scanning the sorted
+    parts (L in [c[j-1], c[j]) has n - j parts longer than L)."""
+    c = sorted(x for x in c if x > 0)
+    n = len(c)
+    prefix = 0.0
+    for j in range(n + 1):
+        slope = m - (n - j)
+        low = c[j - 1] if j else 0
+        high = c[j] if j < n else math.inf
+        if slope > 0:
+            root = max(low, prefix / slope)
+            if root < high or j == n:
+                return root
+        if j < n:
+            prefix += c[j]
+    return math.inf
+
+
+def _plain_energy(inst, start, tail, floor, step) -> int:
+    """Energetic reasoning written out loop by loop, every unit a part of its own."""
+    m = len(inst.agents)
+    d = {u: inst.min_duration(u) for u in inst.units}
+    gaps = []
+    for a in sorted({start[u] for u in inst.units}):
+        for b in sorted({tail[u] - d[u] for u in inst.units}):
+            length = _window_length([min(d[u], start[u] + d[u] - a, tail[u] - b) for u in inst.units], m)
+            if length > 0:
+                gaps.append((a + b, a + b + length))
+    best = -(-floor // step) * step
+    moved = True
+    while moved:
+        moved = False
+        for low, high in gaps:
+            if low < best < high:
+                best = math.ceil(high / step) * step
+                moved = True
+    return best
 
 
 @pytest.mark.parametrize("m", [1, 2, 3])
@@ -30,8 +71,8 @@ def test_window_lengths_equal_the_plain_formula(m):
 
 @pytest.mark.parametrize("seed", range(12))
 def test_energy_over_single_units_equals_the_tree_bound(seed):
-    """With every unit a part of its own and the tree's own tails, the vectorised energetic
-    bound of the branch and bound is the fixed tree's energetic bound."""
+    """With every unit a part of its own and the tree's own tails, the energetic bound of the
+    branch and bound is the fixed tree's, and equals the one written out loop by loop."""
     rng = random.Random(seed)
     problem, _, units = random_tree(rng, rng.randint(3, 9), knife=0.0)
     spec = random_spec(rng, AGENT_SETS[seed % 2])
@@ -42,6 +83,7 @@ def test_energy_over_single_units_equals_the_tree_bound(seed):
     floor = max(b.chain, b.work)
     want = energy_bound(inst, start, tail, floor, divisor(inst))
     assert energy(inst, start, tail, [[u] for u in inst.units], floor, divisor(inst)) == want == b.energy
+    assert want == _plain_energy(inst, start, tail, floor, divisor(inst))
 
 
 def test_landmarks_of_a_designated_instance():

@@ -4,7 +4,8 @@
 * chain: the longest chain of minimum durations (each unit at its least duration over the
   kinds that can do it; a unit waits for the first maker of each object it needs);
 * work: the total minimum work over the number of agents, rounded up;
-* energy: energetic reasoning over time windows (:func:`energy_bound`), at least both.
+* energy: energetic reasoning over time windows (:func:`energy_over`), at least both, also
+  over the pools of units that share fewer servers (:func:`pools`).
 
 The baseline is list scheduling, longest remaining chain first (:func:`list_schedule`).
 """
@@ -14,8 +15,9 @@ from __future__ import annotations
 import itertools
 import math
 import random
-from collections.abc import Iterable
 from dataclasses import dataclass
+
+import numpy as np
 
 from foon2asp.schedule.model import Entry, Instance, divisor, earliest, makespan, tails
 from foon2asp.schedule.spec import HUMAN
@@ -37,35 +39,33 @@ class Bounds:
         return max(self.chain, self.work, self.energy)
 
 
-def _window_length(c: list[int], m: int) -> float:
-    """The least L > 0 with sum(min(c_i, L)) <= m L: the shortest window that can hold parts
-    of length c_i on m agents (0 when m >= len(c))."""
-    c = sorted(x for x in c if x > 0)
-    n = len(c)
-    prefix = 0
-    for j in range(n + 1):  # L in [c[j-1], c[j]): n - j parts longer than L
-        slope = m - (n - j)
-        low = c[j - 1] if j else 0
-        high = c[j] if j < n else math.inf
-        if slope > 0:
-            root = max(low, prefix / slope)
-            if root < high or j == n:
-                return root
-        if j < n:
-            prefix += c[j]
-    return math.inf  # pragma: no cover - slope is m > 0 at j == n
-
-
 def energy_bound(inst: Instance, start: dict[int, int], tail: dict[int, int], floor: int, step: int) -> int:
-    """Energetic reasoning: in a schedule of makespan C, unit u (minimum duration d, earliest
-    start r, at least q from its start to the end) runs at least ``min(d, r + d - a, q - b)``
-    within ``[a, C - b]``, and those parts fit on the m agents only if that window is at least
-    :func:`_window_length` long; so no C strictly between a + b and a + b + that length is
-    possible.  The bound is the least C >= ``floor``, a multiple of ``step`` (every makespan
-    of a left-justified schedule is a sum of durations), outside all those gaps, for a over
-    the heads and b over the tails of the units."""
+    """Energetic reasoning over every unit of ``inst`` on its agents (:func:`energy_over`)."""
     d = {u: inst.min_duration(u) for u in inst.units}
-    return _clear(_gaps(inst.units, d, start, tail, len(inst.agents)), floor, step)
+    return energy_over([[u] for u in inst.units], d, start, tail, len(inst.agents), floor, step)
+
+
+def energy_over(
+    parts: list[list[int]],
+    d: dict[int, int],
+    start: dict[int, int],
+    tail: dict[int, int],
+    servers: int,
+    floor: int,
+    step: int,
+    limit: int | None = None,
+) -> int:
+    """Energetic reasoning: in a schedule of makespan C, unit u (duration ``d[u]``, earliest
+    start r, at least q from its start to the end) runs at least ``min(d, r + d - a, q - b)``
+    within ``[a, C - b]``; a part (a list of units of which one runs; a unit alone, or the
+    possible makers of an object) at least the least of its units.  Those parts fit on the
+    ``servers`` only if that window is at least :func:`window_lengths` long; so no C strictly
+    between a + b and a + b + that length is possible.  The bound is the least C >= ``floor``,
+    a multiple of ``step`` (every makespan of a left-justified schedule is a sum of
+    durations), outside all those gaps, for a over the heads and b over the tails of the
+    units; windows with a + b at ``limit`` or later are not looked at (the bound is then at
+    most what they would give, still a bound)."""
+    return _clear([_gaps(parts, d, start, tail, servers, limit)], floor, step)
 
 
 def pools(inst: Instance) -> list[tuple[list[int], dict[int, int], int]]:
@@ -89,32 +89,66 @@ def pools(inst: Instance) -> list[tuple[list[int], dict[int, int], int]]:
     return out
 
 
+def window_lengths(c: np.ndarray, m: int) -> np.ndarray:
+    """Per row of ``c`` (parts of length c_i), the least L > 0 with sum(min(c_i, L)) <= m L:
+    the shortest window that holds the parts on m servers (0 when they need no window).  With
+    the c_i sorted, L lies in [c_(j-1), c_j) for the first j where prefix_j / (m - (n - j))
+    does (prefix_j: the sum of the j shortest)."""
+    rows, n = c.shape
+    c = np.sort(c, axis=1)
+    prefix = np.concatenate([np.zeros((rows, 1)), np.cumsum(c, axis=1)], axis=1)
+    j = np.arange(n + 1)
+    slope = m - (n - j)
+    low = np.concatenate([np.zeros((rows, 1)), c], axis=1)
+    high = np.concatenate([c, np.full((rows, 1), np.inf)], axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        root = np.where(slope > 0, np.maximum(low, prefix / np.where(slope > 0, slope, 1)), np.inf)
+    valid = (slope > 0) & ((root < high) | (j == n))
+    first = np.argmax(valid, axis=1)
+    return root[np.arange(rows), first]
+
+
 def _gaps(
-    units: Iterable[int], d: dict[int, int], start: dict[int, int], tail: dict[int, int], m: int
-) -> list[tuple[int, float]]:
-    """The makespans energetic reasoning rules out for ``units`` (durations ``d``) on ``m``
-    servers: open intervals (a + b, a + b + window length), as in :func:`energy_bound`."""
-    units = list(units)
-    gaps = []
-    for a in sorted({start[u] for u in units}):
-        for b in sorted({tail[u] - d[u] for u in units}):
-            length = _window_length([min(d[u], start[u] + d[u] - a, tail[u] - b) for u in units], m)
-            if length > 0:
-                gaps.append((a + b, a + b + length))
-    return gaps
+    parts: list[list[int]],
+    d: dict[int, int],
+    start: dict[int, int],
+    tail: dict[int, int],
+    servers: int,
+    limit: int | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The makespans :func:`energy_over` rules out: open intervals (lows, highs)."""
+    order = [u for g in parts for u in g]
+    if not order:
+        return np.zeros(0), np.zeros(0)
+    dur = np.array([d[u] for u in order], dtype=np.int64)
+    s = np.array([start[u] for u in order], dtype=np.int64)
+    t = np.array([tail[u] for u in order], dtype=np.int64)
+    cuts = np.cumsum([0] + [len(g) for g in parts[:-1]])
+    after = np.unique(t - dur)
+    lows: list[np.ndarray] = [np.zeros(0)]
+    highs: list[np.ndarray] = [np.zeros(0)]
+    for a in np.unique(s):
+        b = after if limit is None else after[a + after < limit]
+        if not len(b):
+            continue
+        part = np.maximum(np.minimum(np.minimum(dur, s + dur - a)[None, :], t[None, :] - b[:, None]), 0)
+        length = window_lengths(np.minimum.reduceat(part, cuts, axis=1).astype(float), servers)
+        keep = length > 0
+        lows.append(a + b[keep])
+        highs.append(a + b[keep] + length[keep])
+    return np.concatenate(lows), np.concatenate(highs)
 
 
-def _clear(gaps: list[tuple[int, float]], floor: int, step: int) -> int:
+def _clear(gaps: list[tuple[np.ndarray, np.ndarray]], floor: int, step: int) -> int:
     """The least multiple of ``step`` at least ``floor`` in none of the open intervals ``gaps``."""
+    low = np.concatenate([g[0] for g in gaps])
+    high = np.concatenate([g[1] for g in gaps])
     best = -(-floor // step) * step
-    moved = True
-    while moved:
-        moved = False
-        for low, high in gaps:
-            if low < best < high:
-                best = math.ceil(high / step) * step
-                moved = True
-    return best
+    while True:
+        inside = (low < best) & (best < high)
+        if not inside.any():
+            return best
+        best = math.ceil(float(high[inside].max()) / step) * step
 
 
 def bounds(inst: Instance) -> Bounds:
@@ -128,10 +162,10 @@ def bounds(inst: Instance) -> Bounds:
     work = -(-sum(inst.min_duration(u) for u in inst.units) // len(inst.agents))
     tail = tails(inst)
     d = {u: inst.min_duration(u) for u in inst.units}
-    gaps = _gaps(inst.units, d, start, tail, len(inst.agents))
+    gaps = [_gaps([[u] for u in inst.units], d, start, tail, len(inst.agents))]
     floor = max(chain, work)
     for units, pd, servers in pools(inst):
-        gaps += _gaps(units, pd, start, tail, servers)
+        gaps.append(_gaps([[u] for u in units], pd, start, tail, servers))
         floor = max(floor, -(-sum(pd.values()) // servers))
     return Bounds(chain, work, _clear(gaps, floor, divisor(inst)))
 

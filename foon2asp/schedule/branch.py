@@ -13,8 +13,7 @@ maker of what it needs.  At each node:
 * the units every remaining tree holds are the *landmarks* (a greatest fixpoint:
   an object's landmarks are those shared by all its makers, a unit's are itself and
   those of what it needs);
-* the lower bound is the energetic bound (:func:`foon2asp.schedule.bounds.energy_bound`'s
-  reasoning) over the landmarks and one part per needed object no landmark makes (the
+* the lower bound is the energetic bound (:func:`foon2asp.schedule.bounds.energy_over`) over the landmarks and one part per needed object no landmark makes (the
   least any of its makers could run in a window; the makers of distinct parts disjoint),
   at least the earliest a goal can be made and the parts' work over the agents; a
   landmark's chain to the goal is at least the longest chain of landmarks waiting for it
@@ -32,14 +31,12 @@ the best is proven.
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, replace
 from typing import Any
 
-import numpy as np
-
+from foon2asp.schedule.bounds import energy_over
 from foon2asp.schedule.model import Instance, divisor, earliest, joint_tails
 
 
@@ -100,24 +97,6 @@ def landmarks(
     return frozenset(out)
 
 
-def window_lengths(c: np.ndarray, m: int) -> np.ndarray:
-    """Per row of ``c`` (parts of length c_i), the least L > 0 with sum(min(c_i, L)) <= m L: the
-    shortest window that holds the parts on m agents (0 when they need no window), as
-    :func:`foon2asp.schedule.bounds._window_length` for one row."""
-    rows, n = c.shape
-    c = np.sort(c, axis=1)
-    prefix = np.concatenate([np.zeros((rows, 1)), np.cumsum(c, axis=1)], axis=1)  # sum of c_i, i < j
-    j = np.arange(n + 1)
-    slope = m - (n - j)
-    low = np.concatenate([np.zeros((rows, 1)), c], axis=1)
-    high = np.concatenate([c, np.full((rows, 1), np.inf)], axis=1)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        root = np.where(slope > 0, np.maximum(low, prefix / np.where(slope > 0, slope, 1)), np.inf)
-    valid = (slope > 0) & ((root < high) | (j == n))
-    first = np.argmax(valid, axis=1)
-    return root[np.arange(rows), first]
-
-
 def energy(
     inst: Instance,
     start: dict[int, int],
@@ -127,39 +106,10 @@ def energy(
     step: int,
     limit: int | None = None,
 ) -> int:
-    """The energetic bound over ``groups`` (each: the units one part may be, landmarks alone in
-    theirs; a part runs at least the least of its units in each window), from ``floor``, a
-    multiple of ``step``; windows starting at ``limit`` or later are not looked at (the bound
-    is then at most what they would give, still a bound)."""
-    m = len(inst.agents)
-    order = [u for g in groups for u in g]
-    if not order:
-        return -(-floor // step) * step
-    d = np.array([inst.min_duration(u) for u in order], dtype=np.int64)
-    s = np.array([start[u] for u in order], dtype=np.int64)
-    t = np.array([tail[u] for u in order], dtype=np.int64)
-    cuts = np.cumsum([0] + [len(g) for g in groups[:-1]])
-    tails_b = np.unique(t - d)
-    lows: list[np.ndarray] = []
-    highs: list[np.ndarray] = []
-    for a in np.unique(s):
-        b = tails_b if limit is None else tails_b[a + tails_b < limit]
-        if not len(b):
-            continue
-        part = np.maximum(np.minimum(np.minimum(d, s + d - a)[None, :], t[None, :] - b[:, None]), 0)
-        length = window_lengths(np.minimum.reduceat(part, cuts, axis=1).astype(float), m)
-        keep = length > 0
-        lows.append(a + b[keep])
-        highs.append(a + b[keep] + length[keep])
-    best = -(-floor // step) * step
-    if not lows:
-        return best
-    low, high = np.concatenate(lows), np.concatenate(highs)
-    while True:
-        inside = (low < best) & (best < high)
-        if not inside.any():
-            return best
-        best = math.ceil(float(high[inside].max()) / step) * step
+    """The energetic bound (:func:`foon2asp.schedule.bounds.energy_over`) over ``groups`` (each:
+    the units one part may be, landmarks alone in theirs) on the agents of ``inst``."""
+    d = {u: inst.min_duration(u) for g in groups for u in g}
+    return energy_over(groups, d, start, tail, len(inst.agents), floor, step, limit)
 
 
 def chain_tails(node: Instance, units: frozenset[int], tail: dict[int, int]) -> dict[int, int]:
