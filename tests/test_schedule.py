@@ -256,7 +256,7 @@ def longer_tree_shorter_chain():
 
 def _trees_only(mp) -> None:
     """Joint scheduling as with user programs: tree by tree, not by branch and bound."""
-    mp.setattr(solve_mod, "by_branch", lambda options: False)
+    mp.setattr(solve_mod, "by_branch", lambda options, inst: False)
 
 
 JOINT_WAYS = {

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 from foon2asp.asp import constraints, dominance, encodings, objectives
 from foon2asp.asp.facts import OPTIONAL, facts
@@ -98,58 +98,56 @@ def tree_parts(problem: Problem, meal: tuple[int, ...], inst: Instance, options:
     return [("facts", facts(problem, units=units, leave_out=leave_out)), *parts]
 
 
-def _tree_solver(
-    problem: Problem,
-    tree: TaskTree,
-    spec: ScheduleSpec,
-    options: AspOptions,
-    fixed: ScheduleResult,
-    encoding: str,
-    shortcut: bool,
-) -> Callable[[tuple[int, ...], float | None, int | None], ScheduleResult]:
-    """``solve(units, time left, makespan to beat)``: the schedule of a tree chosen among the
-    candidates (the given tree's own when it is that tree and proven)."""
-    fixed_units = tuple(sorted(tree.units))
+@dataclass
+class _Joint:
+    """One joint scheduling request: the given tree, its own (``fixed``) schedule and how to
+    schedule the trees looked at."""
 
-    def solve(units: tuple[int, ...], limit: float | None, within: int | None) -> ScheduleResult:
-        if units == fixed_units and fixed.status == "optimal":
-            return fixed
+    problem: Problem
+    tree: TaskTree
+    spec: ScheduleSpec
+    options: AspOptions
+    fixed: ScheduleResult
+    encoding: str
+    shortcut: bool
+
+    def solve(self, units: tuple[int, ...], limit: float | None, within: int | None) -> ScheduleResult:
+        """The schedule of a tree chosen among the candidates (time left ``limit``; only one of
+        at most ``within`` matters); the given tree's own when it is that tree and proven."""
+        if units == tuple(sorted(self.tree.units)) and self.fixed.status == "optimal":
+            return self.fixed
+        meal = self.tree.meal
         given = TaskTree(
-            method=f"{tree.method}+schedule",
+            method=f"{self.tree.method}+schedule",
             status="optimal",
-            units=executable_order(problem, list(units)),
-            cost=measures(problem, tree.meal, list(units)),
-            **goal_fields(tree.meal),
+            units=executable_order(self.problem, list(units)),
+            cost=measures(self.problem, meal, list(units)),
+            **goal_fields(meal),
         )
-        return schedule_fixed(problem, given, spec, options, encoding, limit, shortcut, within)
+        return schedule_fixed(self.problem, given, self.spec, self.options, self.encoding, limit, self.shortcut, within)
 
-    return solve
-
-
-def _finish(
-    problem: Problem,
-    tree: TaskTree,
-    fixed: ScheduleResult,
-    found: tuple[ScheduleResult | None, bool],
-    key: Callable[[ScheduleResult], tuple],
-    ties: bool,
-    stats: dict,
-) -> tuple[ScheduleResult | None, bool]:
-    """The joint answer from the best tree ``found`` (result, proven) and the given tree's
-    ``fixed`` schedule, which wins a tie; (None, proven) when ``ties`` leaves the tie-breakers
-    over the trees of the given one's makespan to the one encoding."""
-    best, proven = found
-    if fixed.has_schedule and (best is None or key(fixed) <= key(best)):
-        if ties:
-            return None, proven and fixed.status == "optimal"
-        best = fixed
-    if best is None:
-        if not proven:
-            return None, False
-        why = "no valid tree of the goal can be scheduled"
-        return ScheduleResult(problem, tree, "unschedulable", fixed.agents, joint=True, fixed=fixed, reason=why), True
-    status = "optimal" if proven and best.status == "optimal" else "feasible"
-    return replace(best, status=status, joint=True, fixed=fixed, stats={**best.stats, **stats}), proven
+    def finish(
+        self, found: tuple[ScheduleResult | None, bool], key: Callable[[ScheduleResult], tuple], ties: bool, stats: dict
+    ) -> tuple[ScheduleResult | None, bool]:
+        """The joint answer from the best tree ``found`` (result, proven) and the given tree's
+        schedule, which wins a tie; (None, proven) when ``ties`` leaves the tie-breakers over
+        the trees of the given one's makespan to the one encoding."""
+        best, proven = found
+        fixed = self.fixed
+        if fixed.has_schedule and (best is None or key(fixed) <= key(best)):
+            if ties:
+                return None, proven and fixed.status == "optimal"
+            best = fixed
+        if best is None:
+            if not proven:
+                return None, False
+            why = "no valid tree of the goal can be scheduled"
+            none = ScheduleResult(
+                self.problem, self.tree, "unschedulable", fixed.agents, joint=True, fixed=fixed, reason=why
+            )
+            return none, True
+        status = "optimal" if proven and best.status == "optimal" else "feasible"
+        return replace(best, status=status, joint=True, fixed=fixed, stats={**best.stats, **stats}), proven
 
 
 def _rank(problem: Problem, ranked: tuple[str, ...]) -> Callable[[ScheduleResult], tuple]:
@@ -168,29 +166,20 @@ def _allowed(problem: Problem, u: int, cut: constraints.Shrinking) -> bool:
     return unit.motion not in cut.motions and not any(o.label in cut.labels for o in (*unit.inputs, *unit.outputs))
 
 
-def by_branch(options: AspOptions) -> bool:
-    """Does joint scheduling search by branch and bound?  Yes when the user programs only
-    forbid motions or objects or cap the units (:func:`foon2asp.asp.constraints.shrinking`: a
-    schedule's first-maker tree keeps to them); otherwise, and on one agent (least work first
-    is exact at once), tree by tree."""
-    return constraints.shrinking(options.programs) is not None
+def by_branch(options: AspOptions, inst: Instance) -> bool:
+    """Does joint scheduling search by branch and bound?  Yes on two agents or more when the
+    user programs only forbid motions or objects or cap the units
+    (:func:`foon2asp.asp.constraints.shrinking`: a schedule's first-maker tree keeps to them);
+    otherwise tree by tree (on one agent least work first is exact at once)."""
+    return len(inst.agents) > 1 and constraints.shrinking(options.programs) is not None
 
 
-def _by_branch(
-    problem: Problem,
-    tree: TaskTree,
-    spec: ScheduleSpec,
-    options: AspOptions,
-    fixed: ScheduleResult,
-    encoding: str,
-    shortcut: bool,
-    inst: Instance,
-    deadline: float | None,
-) -> tuple[ScheduleResult | None, bool]:
+def _by_branch(job: _Joint, inst: Instance, deadline: float | None) -> tuple[ScheduleResult | None, bool]:
     """Joint scheduling by branch and bound (:mod:`foon2asp.schedule.branch`): (result, proven).
     Trees equal in makespan, human units and tree objective keep the given one, then the
     first found.  Units a no worse unit can replace in any schedule (:func:`_replaceable`,
     when none of their other products is needed) are left out first."""
+    problem, spec, options = job.problem, job.spec, job.options
     ranked = objectives.ranked(options)
     rank = _rank(problem, ranked)
 
@@ -208,17 +197,17 @@ def _by_branch(
     cut = constraints.shrinking(options.programs)
     assert cut is not None  # by_branch
     inst = inst.restrict(u for u in inst.units if _allowed(problem, u, cut))
-    relevant = set(tree.meal) | {i for u in inst.units for i in problem.required[u]}
+    meal = job.tree.meal
+    relevant = set(meal) | {i for u in inst.units for i in problem.required[u]}
     gone = {u for _, u, extra in _replaceable(problem, inst, ranked) if relevant.isdisjoint(extra)}
-    solve = _tree_solver(problem, tree, spec, options, fixed, encoding, shortcut)
     products = {u: problem.products[u] for u in inst.units}
     search = branch.Search(
-        inst.restrict(set(inst.units) - gone), tree.meal, products, solve, rank, low_key, cut.max_units
+        inst.restrict(set(inst.units) - gone), meal, products, job.solve, rank, low_key, cut.max_units
     )
     left = None if deadline is None else max(0.0, deadline - time.perf_counter())
-    out = search.run(fixed if fixed.has_schedule else None, left)
+    out = search.run(job.fixed if job.fixed.has_schedule else None, left)
     stats: dict = {"joint": "branch and bound", "nodes": out.nodes}
-    result, proven = _finish(problem, tree, fixed, (out.best, out.proven), rank, False, stats)
+    result, proven = job.finish((out.best, out.proven), rank, False, stats)
     if result is not None and not proven and out.open_bound is not None and result.makespan is not None:
         # the trees cut were no shorter than the answer, the ones left at least their nodes' bound
         result.joint_bound = min(out.open_bound, result.makespan)
@@ -226,13 +215,7 @@ def _by_branch(
 
 
 def _by_trees(
-    problem: Problem,
-    tree: TaskTree,
-    spec: ScheduleSpec,
-    options: AspOptions,
-    fixed: ScheduleResult,
-    encoding: str,
-    shortcut: bool,
+    job: _Joint,
     inst: Instance,
     start: dict[int, int],
     tail: dict[int, int],
@@ -245,11 +228,12 @@ def _by_trees(
     result None when there are too many trees to look at (or no time to list them), or when no
     tree beats the given one and ``ties`` asks for the tie-breakers over every tree of its
     makespan (then ``proven`` says its makespan is the optimum)."""
+    problem, spec, options = job.problem, job.spec, job.options
     single = len(inst.agents) == 1
     if single:  # the makespan is the tree's work: least work first, the first tree is the best
         within, found = horizon, joint.Trees([], False)
     else:
-        within = horizon - divisor(inst) if fixed.has_schedule else horizon
+        within = horizon - divisor(inst) if job.fixed.has_schedule else horizon
         left = None if deadline is None else max(0.0, deadline - time.perf_counter())
         found = joint.candidate_trees(inst, start, tail, within, parts, solver_arguments(options), left)
         if not found.complete and (deadline is not None and time.perf_counter() >= deadline):
@@ -267,20 +251,19 @@ def _by_trees(
             return (low, forced_human(sub), ())
         return (low, 0, joint.tree_cost(problem, units, (), ranked))
 
-    solve = _tree_solver(problem, tree, spec, options, fixed, encoding, shortcut)
     key = _rank(problem, ranked)
 
     left = None if deadline is None else max(0.0, deadline - time.perf_counter())
     if found.complete:
-        best, proven = joint.best_tree(found.trees, bound, solve, key, left)
+        best, proven = joint.best_tree(found.trees, bound, job.solve, key, left)
     else:  # too many to list: one at a time, least work first
         levels = len(ranked)
         first = single and not spec.has_human()  # a person alone: fewest units among equal work
         best, proven = joint.best_by_work(
-            inst, start, tail, within, parts, solver_arguments(options), levels, bound, solve, key, left, first
+            inst, start, tail, within, parts, solver_arguments(options), levels, bound, job.solve, key, left, first
         )
     stats = {"joint": "tree by tree" if found.complete else "tree by tree, least work first"}
-    return _finish(problem, tree, fixed, (best, proven), key, ties, stats)
+    return job.finish((best, proven), key, ties, stats)
 
 
 def schedule_joint(
@@ -321,15 +304,15 @@ def schedule_joint(
         stats["shortcut"] = "the given tree's makespan meets the lower bound over every tree"
         return replace(fixed, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
     tail = joint_tails(inst, meal, {u: problem.products[u] for u in inst.units})
-    parts = tree_parts(problem, meal, inst, options)
     deadline = None if time_limit is None else t0 + time_limit
     ties = spec.has_human() or tree.status != "optimal"
-    if by_branch(options) and len(inst.agents) > 1:
-        by_trees, proven = _by_branch(problem, tree, spec, options, fixed, encoding, shortcut, inst, deadline)
+    job = _Joint(problem, tree, spec, options, fixed, encoding, shortcut)
+    parts: list | None = None  # the tree encoding's programs, only when they are needed
+    if by_branch(options, inst):
+        by_trees, proven = _by_branch(job, inst, deadline)
     else:
-        by_trees, proven = _by_trees(
-            problem, tree, spec, options, fixed, encoding, shortcut, inst, start, tail, horizon, parts, ties, deadline
-        )
+        parts = tree_parts(problem, meal, inst, options)
+        by_trees, proven = _by_trees(job, inst, start, tail, horizon, parts, ties, deadline)
     if by_trees is not None:
         by_trees.stats = {**stats, **by_trees.stats}
         by_trees.time_s = time.perf_counter() - t0
@@ -341,6 +324,8 @@ def schedule_joint(
         stats["joint"] = "time"
         status = "feasible" if fixed.has_schedule else "unknown"
         return replace(fixed, status=status, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
+    if parts is None:
+        parts = tree_parts(problem, meal, inst, options)
     sol = solve_encoded(inst, start, tail, horizon, floor, options, encoding, left, parts, ties)
     stats.update(sol.stats, joint="tie-breakers in one encoding" if proven else "one encoding")
     elapsed = time.perf_counter() - t0
