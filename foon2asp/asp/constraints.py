@@ -247,12 +247,17 @@ def shrinking(programs: Iterable[tuple[str, str]]) -> Shrinking | None:
             motions.add(_motion(value))
         elif flag == "--forbid-object" and text == forbid_object(value):
             labels.add(normalise(value))
-        elif name == "--max-units" and (found := re.fullmatch(r":- #count \{ U : use\(U\) \} > (\d+)\.\n", text)):
-            n = int(found.group(1))
+        elif name == "--max-units" and (n := _cap(text)) is not None:
             most = n if most is None else min(most, n)
         else:
             return None
     return Shrinking(frozenset(motions), frozenset(labels), most)
+
+
+def _cap(text: str) -> int | None:
+    """The number of a :func:`max_units` program (None: some other text)."""
+    digits = text.rpartition("> ")[2].rstrip(".\n")
+    return int(digits) if digits.isdigit() and text == max_units(int(digits)) else None
 
 
 def unknown_names(problem, spec: ConstraintSpec) -> list[str]:
