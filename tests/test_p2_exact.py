@@ -114,38 +114,48 @@ def test_search_finds_the_optimum_and_every_optimal_tree(seed):
             assert part.ids(smallest) == tuple(lex_smallest(best, len(problem.units))), (seed, goal)
 
 
-def test_runner_answers_by_branch_and_bound_and_falls_back_to_the_solver():
+def test_runner_answers_by_branch_and_bound_and_falls_back_to_maxsat_and_the_solver():
     """Goals the bounds do not decide are answered by the search (``"shortcut": "branch-and-bound"``);
-    with no nodes to search, the solver on the pruned part gives the same trees."""
-    searched = solved = 0
+    with no nodes to search, MaxSAT on the pruned part (``"shortcut": "maxsat"``), and with MaxSAT
+    off too, the solver on the pruned part: all three give the same trees."""
+    searched = proven = solved = 0
     for seed, grounding in itertools.product(range(30), ("per-goal", "whole")):
         problem = random_foon(seed)
         for ranked in RANKED:
             options = AspOptions(objective=(ranked[0],))
             fast = GoalRunner("asp", problem, options, grounding)
+            sat = GoalRunner("asp", problem, options, grounding)
+            sat.search_nodes = 0
             slow = GoalRunner("asp", problem, options, grounding)
             slow.search_nodes = 0
+            slow.maxsat = False
             for goal in sorted(problem.derivable - problem.kitchen):
-                a, b = fast(goal), slow(goal)
-                assert a.status == b.status == "optimal"
-                assert sorted(a.units) == sorted(b.units), (seed, ranked, goal)
-                assert a.extra["asp_cost"] == b.extra["asp_cost"]
-                assert a.cost == b.cost
-            assert fast.counts["solver"] == 0
+                a, m, b = fast(goal), sat(goal), slow(goal)
+                assert a.status == m.status == b.status == "optimal"
+                assert sorted(a.units) == sorted(m.units) == sorted(b.units), (seed, ranked, goal)
+                assert a.extra["asp_cost"] == m.extra["asp_cost"] == b.extra["asp_cost"]
+                assert a.cost == m.cost == b.cost
+                assert a.bound == m.bound == b.bound and a.gap == m.gap == b.gap == 0.0
+            assert fast.counts["solver"] == fast.counts["maxsat"] == sat.counts["solver"] == 0
             searched += fast.counts["branch-and-bound"]
+            proven += sat.counts["maxsat"]
             solved += slow.counts["solver"]
-            assert slow.counts["branch-and-bound"] == 0
-    assert searched > 0 and searched == solved
+            assert slow.counts["branch-and-bound"] == sat.counts["branch-and-bound"] == slow.counts["maxsat"] == 0
+    assert searched > 0 and searched == proven == solved
 
 
 def test_synthetic_foon_equals_the_solver():
     """On the ``small`` synthetic preset (parts of a few hundred units, cycles): every tree the
-    search settles is the solver's (on the pruned part: the runner without search nodes)."""
+    search settles is the solver's (on the pruned part: the runner without search nodes and
+    without MaxSAT) and MaxSAT's (without search nodes)."""
     problem = preset("small").problem()
     parts = Parts(problem)
     bounds = parts.bounds(("units",))
     solver = GoalRunner("asp", problem, AspOptions(), "per-goal")
     solver.search_nodes = 0
+    solver.maxsat = False
+    sat = GoalRunner("asp", problem, AspOptions(), "per-goal")
+    sat.search_nodes = 0
     settled = complete = 0
     for goal in sorted(problem.derivable - problem.kitchen)[::3]:
         units, _, choice = parts.relevant(goal)
@@ -162,6 +172,11 @@ def test_synthetic_foon_equals_the_solver():
             # the solver's search for the smallest optimal tree ended within its budget
             assert tuple(sorted(answer.units)) == tree, goal
             complete += 1
+        proven = sat(goal)
+        assert proven.status == "optimal" and proven.stats["shortcut"] == "maxsat", goal
+        assert proven.extra["asp_cost"] == bounds.cost(tree), goal
+        if proven.stats.get("canonical_search") is None:
+            assert tuple(sorted(proven.units)) == tree, goal
         # without search nodes the runner's canonical step still settles it by the branch and bound
         again = GoalRunner("asp", problem, AspOptions(), "per-goal", shortcuts=False)(goal)
         assert tuple(sorted(again.units)) == tree, goal

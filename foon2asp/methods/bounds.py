@@ -245,10 +245,13 @@ class Bounds:
         """A lower bound on the first objective's weight (as the solver weighs it) of every
         tree for ``goal``: :meth:`lower` with the tie-break on units taken out (the weights
         are ``w(u) * M + 1`` with ``M`` above the number of units, foon2asp.tree.weights)."""
-        lower = self.lower(goal)
+        return self.first(self.lower(goal))
+
+    def first(self, weight: int) -> int:
+        """A lower bound ``weight`` on the weights :attr:`w` as one on the first objective's."""
         if self.ranked[0] == "units":
-            return lower
-        return lower // (len(self.problem.units) + 1)
+            return weight
+        return weight // (len(self.problem.units) + 1)
 
     def proven(self, goal: int) -> bool:
         """Is the bounds tree of ``goal`` optimal (lower bound == upper bound)?"""

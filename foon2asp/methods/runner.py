@@ -33,15 +33,19 @@ and pruning:
   - otherwise the branch and bound of :mod:`foon2asp.methods.exact` finds the
     optimum and the canonical tree on the goal's part
     (``"shortcut": "branch-and-bound"``), unless it runs out of nodes
-    (:attr:`GoalRunner.search_nodes`).
+    (:attr:`GoalRunner.search_nodes`);
+  - otherwise MaxSAT (:mod:`foon2asp.maxsat.trees`) proves the optimum on the goal's
+    pruned part, and the goal's canonical session searches for the canonical tree
+    from its tree (``"shortcut": "maxsat"``); cut short by the time limit or the gap,
+    the answer is the bounds tree, ``feasible``, with the lower bound MaxSAT proved.
 
   Shortcuts are taken only for plain optimisation (no user programs, extra
   encodings, depth bounds, human steps, alternatives or greedy heuristics);
   anything else goes to the solver.  They are exact also when the caller
   restricts the units (``options.units``, as :func:`solve_goals` does), as
   long as the goal's relevant part lies inside them.
-* pruning: a goal with choice that neither the bounds nor the branch and bound
-  decide is solved on its part without the units no optimal tree uses, the
+* pruning: a goal with choice that neither the bounds, the branch and bound nor
+  MaxSAT decide (:attr:`GoalRunner.maxsat` off) is solved on its part without the units no optimal tree uses, the
   landmark units required (:meth:`~foon2asp.methods.bounds.Bounds.keep`), on a
   small grounding.
 
@@ -60,17 +64,22 @@ from collections.abc import Iterable, Iterator
 from dataclasses import replace
 from functools import cached_property
 
+from foon2asp.asp.answers import Watch
+from foon2asp.asp.canonical import canonical_problem
+from foon2asp.asp.dominance import applies as dominance_applies
+from foon2asp.asp.dominance import dominance_pairs
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
 from foon2asp.asp.substitutes import prepare as with_substitutes
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem, walk_back
+from foon2asp.maxsat.trees import minimum_tree
 from foon2asp.methods.bounds import Bounds, weights
 from foon2asp.methods.bounds import supports as bounds_supports
 from foon2asp.methods.exact import NODE_LIMIT, canonical_tree
 from foon2asp.methods.registry import Runner, check_substitutes, effective_options, get
-from foon2asp.tree.gap import settle
+from foon2asp.tree.gap import first_level, settle
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
 from foon2asp.tree.weights import UNIT_WEIGHTS, total
 
@@ -169,6 +178,9 @@ class GoalRunner:
     ``problem`` when the caller has them (several runners share them).
     """
 
+    #: MaxSAT (foon2asp.maxsat) proves what the branch and bound leaves, before clingo is asked
+    maxsat = True
+
     def __init__(
         self,
         name: str,
@@ -197,7 +209,7 @@ class GoalRunner:
         self.parts = parts if parts is not None and parts.problem is problem else Parts(problem)
         self.shortcuts = shortcuts and self.kind == "asp" and plain(self.options)
         #: how each goal was answered: "solver" | "unreachable" | "no-choice" | "bounds" | "branch-and-bound"
-        self.counts = {"solver": 0, "unreachable": 0, "no-choice": 0, "bounds": 0, "branch-and-bound": 0}
+        self.counts = {"solver": 0, "unreachable": 0, "no-choice": 0, "bounds": 0, "branch-and-bound": 0, "maxsat": 0}
         #: nodes the branch and bound (foon2asp.methods.exact) may search per goal before the solver is asked
         self.search_nodes = NODE_LIMIT
         self._label: str | None = None
@@ -324,8 +336,66 @@ class GoalRunner:
         if found is not None:
             self.counts["branch-and-bound"] += 1
             return self._answer(goal, label, executable_order(self.problem, list(found)), "branch-and-bound", t0)
+        if self.maxsat:
+            return self._maxsat(goal, label, units, bounds, t0)
         # the branch and bound ran out of nodes: it would again
         return self._canonical(self._solve_pruned(goal, units, objects, bounds), bounds, t0, search=False)
+
+    def _maxsat(self, goal: int, label: str, units: list[int], bounds: Bounds, t0: float) -> TaskTree:
+        """The optimum by MaxSAT on the goal's pruned part, dominated units left out; the
+        canonical tree searched from its tree (or the bounds tree, when that is optimal).
+        Cut short (time limit, gap): the bounds tree, ``feasible``, with the bound proven."""
+        self.counts["maxsat"] += 1
+        options = self._effective
+        keep = bounds.keep(goal, units)
+        if dominance_applies(options, self._ranked):
+            relevant = {goal}.union(*(self.problem.required[u] for u in keep))
+            dominated = {
+                u for _, u, extra in dominance_pairs(self.problem, keep, self._ranked) if relevant.isdisjoint(extra)
+            }
+            keep = [u for u in keep if u not in dominated]
+        best = bounds.tree(goal) or ()
+        upper = tuple(bounds.cost(best))
+        floor = bounds.first_lower(goal)
+        watch = Watch(first_level(self._ranked), options.gap, floor, options.progress)
+        watch.cost = upper
+        seen = [-1]
+
+        def stop(lower: int) -> bool:
+            if lower > seen[0]:
+                seen[0] = lower
+                watch.floor = max(floor, bounds.first(lower))
+                watch.on_lower(())
+            return watch.stop()
+
+        limit = options.time_limit
+        found = minimum_tree(
+            self.problem, goal, keep, bounds.w, bounds.landmarks(goal), t0 + limit if limit else None, stop
+        )
+        stats = {"shortcut": "maxsat", "maxsat_s": round(found.time_s, 6), "pruned_units": len(units) - len(keep)}
+        if found.cuts:
+            stats["loop_cuts"] = found.cuts
+        if found.tree is None:
+            # cut short (no tree over the pruned part cannot be: the bounds tree lies in it)
+            order = executable_order(self.problem, list(best))
+            elapsed = round(time.perf_counter() - t0, 6)
+            cost_of = {"asp_cost": list(upper)}
+            tree = TaskTree(
+                goal, label, "feasible", order, measures(self.problem, goal, order), elapsed, stats, cost_of
+            )
+            return settle(self.problem, tree, self._ranked, None, max(floor, bounds.first(found.lower)))
+        cost = bounds.cost(found.tree)
+        if cost == list(upper) or not options.canonical:
+            chosen = best if cost == list(upper) else found.tree
+            tree = self._answer(goal, label, executable_order(self.problem, list(chosen)), "maxsat", t0)
+            tree.stats.update(stats)
+            return tree
+        left = None if not limit else max(0.0, limit - (time.perf_counter() - t0))
+        view, part = canonical_problem(self.problem, [goal])
+        tree = Session(view, replace(options, units=part), goal=goal).canonical_from(goal, found.tree, cost, left)
+        tree.stats.update(stats)
+        tree.time_s = round(time.perf_counter() - t0, 6)
+        return tree
 
     def _answer(self, goal: int, label: str, order: list[int], shortcut: str, t0: float) -> TaskTree:
         """An optimal tree found without the solver."""

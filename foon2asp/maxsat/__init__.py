@@ -1,0 +1,6 @@
+"""Optimal trees by maximum satisfiability: the second exact back end beside clingo.
+
+:mod:`foon2asp.maxsat.oracle` is the one wrapper of the MaxSAT solver (RC2 of PySAT,
+interruptible, with a valid lower bound at every moment); :mod:`foon2asp.maxsat.trees`
+writes a goal's minimum-weight tree problem for it and reads the answer back.
+"""

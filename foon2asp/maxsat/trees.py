@@ -1,0 +1,140 @@
+"""A goal's minimum-weight tree as weighted MaxSAT, closed by loop cuts.
+
+**The relaxation.**  A set ``S`` of units is *closed* for the goal ``g`` when every
+object that is ``g`` or a required input of a unit of ``S``, and not a kitchen item,
+is a product of a unit of ``S``.  Every tree is closed (its units fire, so whatever
+they need is had, and what is had and not in the kitchen was made).  With a variable
+``use(u)`` per unit and ``need(o)`` per object:
+
+* ``need(g)``;
+* ``use(u) -> need(i)`` for every required input ``i`` of ``u`` that is not a kitchen item;
+* ``need(o) -> use(p1) or ... or use(pk)`` over the producers ``p`` of ``o``;
+* soft: ``not use(u)`` at the price of ``u``'s weight.
+
+No unit has to *fire*: units may support each other around a cycle, so a closed set
+need not be a tree, and the least weight of a closed set is a lower bound on the
+least weight of a tree.
+
+**Loop cuts.**  When an optimum ``S`` of the relaxation derives ``g`` from the kitchen
+(the least fixpoint over ``S``), it is a tree of that least weight: an optimal tree.
+Otherwise let ``L`` be the needed objects that ``S`` does not derive.  In any tree that
+needs an object of ``L``, consider the first object of ``L`` it has: its producer
+fired with its inputs had before, so none of them is in ``L``.  So every tree
+satisfies ``need(o) -> OR use(p)`` over the producers ``p`` of objects of ``L`` whose
+required inputs avoid ``L`` (the *external* producers), for each ``o`` in ``L``; ``S``
+does not (each producer ``S`` has of an object of ``L`` needs an object of ``L``,
+else it would fire).  The clauses are added and the solver goes on with its cores:
+they remain valid, as the cut only removes closed sets that are not trees.  Each
+round removes the last optimum, and only finitely many sets exist, so the loop ends
+with an optimal tree.  On the hard presets the relaxation's first optimum has been a
+tree every time (BENCHMARKS.md, "MaxSAT").
+
+The solver's cost is a lower bound at every moment (:mod:`foon2asp.maxsat.oracle`),
+so a search cut short still says how far from proven the best known tree is.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass
+
+from foon2asp.foon.derive import least_fixpoint
+from foon2asp.foon.problem import Problem
+from foon2asp.maxsat.oracle import Oracle, Stopped
+
+
+@dataclass
+class Result:
+    """A MaxSAT search for one goal: the optimal tree (None: cut short, or no tree) and
+    the least weight proven for every tree (the optimum's when ``tree`` is set)."""
+
+    tree: tuple[int, ...] | None
+    lower: int
+    #: "optimal" | "stopped" (deadline or ``stop``) | "unreachable" (no tree over the units)
+    status: str
+    #: loop cuts added (rounds whose optimum was not a tree)
+    cuts: int = 0
+    time_s: float = 0.0
+
+
+class _Encoding:
+    """Variables ``use(u)`` and ``need(o)`` of one goal over ``units``."""
+
+    def __init__(self, problem: Problem, goal: int, units: Sequence[int]):
+        self.problem, self.goal, self.units = problem, goal, list(units)
+        self.use = {u: k + 1 for k, u in enumerate(self.units)}
+        self.need: dict[int, int] = {}
+        self.producers: dict[int, list[int]] = {}
+        for u in self.units:
+            for o in problem.products[u]:
+                self.producers.setdefault(o, []).append(u)
+
+    def need_var(self, o: int) -> int:
+        if o not in self.need:
+            self.need[o] = len(self.use) + len(self.need) + 1
+        return self.need[o]
+
+    def clauses(self) -> Iterable[list[int]]:
+        kitchen = self.problem.kitchen
+        yield [self.need_var(self.goal)]
+        for u in self.units:
+            for i in self.problem.required[u]:
+                if i not in kitchen:
+                    yield [-self.use[u], self.need_var(i)]
+        for o in list(self.need):
+            # every needed object is made by one of its producers (none: never needed)
+            yield [-self.need[o]] + [self.use[p] for p in self.producers.get(o, ())]
+
+    def cut(self, chosen: set[int]) -> list[list[int]] | None:
+        """The loop cut of the closed set ``chosen`` (None: it derives the goal, a tree)."""
+        problem, kitchen = self.problem, self.problem.kitchen
+        made, _ = least_fixpoint(kitchen, problem.required, problem.products, sorted(chosen))
+        if self.goal in made or self.goal in kitchen:
+            return None
+        needed = {i for u in chosen for i in problem.required[u] if i not in kitchen} | {self.goal}
+        loop = {o for o in needed if o not in made}
+        external = sorted({p for o in loop for p in self.producers.get(o, ()) if loop.isdisjoint(problem.required[p])})
+        outside = [self.use[p] for p in external]
+        return [[-self.need_var(o)] + outside for o in sorted(loop)]
+
+
+def minimum_tree(
+    problem: Problem,
+    goal: int,
+    units: Iterable[int],
+    weights: Sequence[int],
+    require: Iterable[int] = (),
+    deadline: float | None = None,
+    stop: Callable[[int], bool] | None = None,
+) -> Result:
+    """The least-weight tree for ``goal`` over ``units`` (each unit ``u`` weighs
+    ``weights[u] > 0``), every unit of ``require`` in it.
+
+    ``deadline`` (``time.perf_counter()``) and ``stop(lower)`` end the search early:
+    the result is then ``stopped`` with the lower bound proven so far."""
+    t0 = time.perf_counter()
+    enc = _Encoding(problem, goal, sorted(set(units)))
+    oracle = Oracle()
+    for clause in enc.clauses():
+        oracle.hard(clause)
+    for u in sorted(set(require)):
+        if u in enc.use:
+            oracle.hard([enc.use[u]])
+    for u in enc.units:
+        oracle.soft(-enc.use[u], weights[u])
+    cuts = 0
+    try:
+        while True:
+            model = oracle.solve(deadline, stop)
+            if model is None:
+                return Result(None, oracle.lower, "unreachable", cuts, time.perf_counter() - t0)
+            chosen = {u for u in enc.units if enc.use[u] in model}
+            clauses = enc.cut(chosen)
+            if clauses is None:
+                return Result(tuple(sorted(chosen)), oracle.lower, "optimal", cuts, time.perf_counter() - t0)
+            cuts += 1
+            for clause in clauses:
+                oracle.hard(clause)
+    except Stopped:
+        return Result(None, oracle.lower, "stopped", cuts, time.perf_counter() - t0)

@@ -1,0 +1,153 @@
+"""MaxSAT (foon2asp.maxsat): the optimum against brute force, loop cuts, bounds of a search cut short.
+
+The relaxation and its loop cuts are checked on random FOONs with cycles against every valid
+subset (tests/helpers.brute_force, judged by the independent validator), on a hand-made FOON
+whose relaxation is cheaper than any tree, and on a hard synthetic goal cut short: the bound
+it reports is at most the optimum a full run proves.
+"""
+
+from __future__ import annotations
+
+import random
+import time
+
+import pytest
+
+from foon2asp.asp.options import AspOptions
+from foon2asp.foon.synth import preset
+from foon2asp.maxsat.oracle import Oracle, Stopped
+from foon2asp.maxsat.trees import minimum_tree
+from foon2asp.methods.bounds import Bounds
+from foon2asp.methods.runner import GoalRunner, solve_goals
+from foon2asp.tree.validate import validate
+from helpers import brute_force, build, goal_id
+
+RANKED = [("units",), ("success", "units"), ("inputs", "units")]
+
+
+def cyclic_foon(seed: int):
+    """A random FOON with several producers per object and many back edges (cycles)."""
+    rng = random.Random(seed)
+    kitchen = ["k0", "k1", "k2"]
+    made = [f"o{i}" for i in range(7)]
+    units = []
+    for i in range(rng.randint(8, 13)):
+        out = rng.choice(made)
+        pool = kitchen + [m for m in made if m != out] * 2  # made objects twice as likely: cycles
+        ins = list(dict.fromkeys(rng.sample(pool, rng.randint(1, 3))))
+        outs = [out] if rng.random() < 0.7 else [out, rng.choice([m for m in made if m != out])]
+        units.append((f"m{i % 4}", ins, outs))
+    rates = {f"m{i}": r for i, r in enumerate((0.9, 0.5, 0.7, 0.3))}
+    return build(units, kitchen, rates)
+
+
+@pytest.mark.parametrize("chunk", range(8))
+def test_minimum_tree_is_the_brute_force_optimum(chunk):
+    checked = cut = 0
+    for seed, ranked in [(s, r) for s in range(5 * chunk, 5 * chunk + 5) for r in RANKED]:
+        problem = cyclic_foon(seed)
+        bounds = Bounds(problem, ranked)
+        for goal in range(len(problem.objects)):
+            if goal in problem.kitchen:
+                continue
+            trees = brute_force(problem, goal)
+            found = minimum_tree(problem, goal, range(len(problem.units)), bounds.w)
+            cut += found.cuts
+            if not trees:
+                assert found.status == "unreachable" and found.tree is None
+                continue
+            opt = min(bounds.weight(t) for t in trees)
+            assert found.status == "optimal", (seed, ranked, goal)
+            assert validate(problem, goal, list(found.tree)).valid
+            assert bounds.weight(found.tree) == opt == found.lower, (seed, ranked, goal)
+            checked += 1
+    assert checked > 0 and cut > 0  # the relaxation's optimum was no tree, and was cut, somewhere
+
+
+def test_a_cycle_cheaper_than_any_tree_is_cut():
+    """g needs x; x is made from g (a cycle of two units) or from the kitchen in three steps:
+    the relaxation's optimum is the cycle, which is no tree; one loop cut later the optimum is 4."""
+    problem = build(
+        [
+            ("mix", ["x"], ["g"]),
+            ("melt", ["g"], ["x"]),
+            ("cut", ["k"], ["y"]),
+            ("boil", ["y"], ["z"]),
+            ("fry", ["z"], ["x"]),
+        ],
+        ["k"],
+    )
+    goal = goal_id(problem, "g")
+    found = minimum_tree(problem, goal, range(len(problem.units)), [1] * len(problem.units))
+    assert found.status == "optimal" and found.cuts >= 1
+    assert found.tree == (0, 2, 3, 4) and found.lower == 4
+    assert validate(problem, goal, list(found.tree)).valid
+    # a required unit is in the tree: the cycle's second unit fires once g is made
+    forced = minimum_tree(problem, goal, range(5), [1] * 5, require=[1])
+    assert forced.status == "optimal" and forced.tree == (0, 1, 2, 3, 4) and forced.lower == 5
+
+
+def test_an_oracle_told_to_stop_keeps_a_valid_bound():
+    oracle = Oracle()
+    for v in range(1, 6):
+        oracle.soft(-v, 1)
+    oracle.hard([1, 2])
+    oracle.hard([3, 4])
+    with pytest.raises(Stopped):
+        oracle.solve(deadline=time.perf_counter() - 1)
+    assert oracle.lower == 0
+    model = Oracle()
+    for v in range(1, 6):
+        model.soft(-v, 1)
+    model.hard([1, 2])
+    model.hard([3, 4])
+    best = model.solve()
+    assert best is not None and len(best & {1, 2, 3, 4, 5}) == 2 and model.lower == 2
+    model.hard([5])  # a clause after a solve: a new solver, the bound kept
+    again = model.solve()
+    assert again is not None and 5 in again and model.lower == 3
+
+
+@pytest.fixture(scope="module")
+def hard():
+    syn = preset("hard-4k")
+    problem = syn.problem()
+    return problem, [problem.foon.object_ids[g] for g in syn.goals]
+
+
+def test_a_search_cut_short_bounds_the_optimum_from_below(hard):
+    problem, goals = hard
+    goal = goals[8]  # about 50 units in a part of about 2,900: seconds to prove
+    bounds = Bounds(problem, ("units",), problem.units_for([goal]))
+    part = bounds.keep(goal, problem.units_for([goal]))
+    full = minimum_tree(problem, goal, part, bounds.w, bounds.landmarks(goal))
+    assert full.status == "optimal" and validate(problem, goal, list(full.tree)).valid
+    assert bounds.lower(goal) <= full.lower == len(full.tree) <= bounds.upper(goal)
+    lowers = []
+    for limit in (0.05, 0.3, 1.0):
+        short = minimum_tree(problem, goal, part, bounds.w, deadline=time.perf_counter() + limit)
+        lowers.append(short.lower)
+        assert short.lower <= full.lower
+        assert short.status in ("stopped", "optimal")
+    # a stop asked for by the caller (a gap reached) ends it with the bound seen
+    seen: list[int] = []
+    stopped = minimum_tree(problem, goal, part, bounds.w, stop=lambda lower: seen.append(lower) or lower >= 10)
+    assert stopped.status == "stopped" and 10 <= stopped.lower <= full.lower and max(seen) >= 10
+
+
+def test_the_runner_proves_a_hard_goal_by_maxsat_and_reports_a_bound_when_cut_short(hard):
+    problem, goals = hard
+    goal = goals[8]
+    (full,) = solve_goals(problem, [goal], "asp", AspOptions())
+    assert full.status == "optimal" and full.stats["shortcut"] == "maxsat"
+    assert validate(problem, goal, full.units).valid
+    assert full.bound == {"units": len(full.units)} and full.gap == 0.0
+    (short,) = solve_goals(problem, [goal], "asp", AspOptions(time_limit=0.2))
+    assert short.status == "feasible" and short.stats["shortcut"] == "maxsat"
+    assert validate(problem, goal, short.units).valid
+    assert short.bound["units"] <= len(full.units) < len(short.units)
+    # without MaxSAT the solver's answer is the same tree
+    runner = GoalRunner("asp", problem, AspOptions(time_limit=120), "per-goal")
+    runner.maxsat = False
+    clingo = runner(goal)
+    assert clingo.status == "optimal" and len(clingo.units) == len(full.units)
