@@ -1,5 +1,5 @@
 """`python -m foon2asp`: the command line."""
 
-from foon2asp.cli import main
+from foon2asp.cli.main import run
 
-main(prog_name="foon2asp")
+run()

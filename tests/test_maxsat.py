@@ -19,6 +19,7 @@ from foon2asp.maxsat.oracle import Oracle, Stopped
 from foon2asp.maxsat.trees import minimum_tree
 from foon2asp.methods.bounds import Bounds
 from foon2asp.methods.runner import GoalRunner, solve_goals
+from foon2asp.tree.tasktree import measures
 from foon2asp.tree.validate import validate
 from helpers import brute_force, build, goal_id
 
@@ -151,3 +152,61 @@ def test_the_runner_proves_a_hard_goal_by_maxsat_and_reports_a_bound_when_cut_sh
     runner.maxsat = False
     clingo = runner(goal)
     assert clingo.status == "optimal" and len(clingo.units) == len(full.units)
+
+
+@pytest.mark.parametrize("chunk", range(4))
+def test_minimum_tree_within_a_depth_is_the_brute_force_optimum(chunk):
+    """Within the goal's level (no tree is shallower): the least weight among the trees that deep."""
+    checked = 0
+    for seed, ranked in [(s, r) for s in range(10 * chunk, 10 * chunk + 10) for r in RANKED]:
+        problem = cyclic_foon(seed)
+        levels, _ = problem.derivation_levels()
+        bounds = Bounds(problem, ranked)
+        for goal in range(len(problem.objects)):
+            if goal in problem.kitchen or goal not in levels:
+                continue
+            depth = levels[goal]
+            trees = [t for t in brute_force(problem, goal) if measures(problem, goal, list(t))["depth"] <= depth]
+            found = minimum_tree(problem, goal, range(len(problem.units)), bounds.w, depth=depth)
+            assert found.status == "optimal" and found.cuts == 0
+            assert validate(problem, goal, list(found.tree)).valid
+            assert measures(problem, goal, list(found.tree))["depth"] == depth
+            assert bounds.weight(found.tree) == min(bounds.weight(t) for t in trees) == found.lower, (seed, goal)
+            checked += 1
+    assert checked > 0
+
+
+@pytest.mark.parametrize("objective", [("depth",), ("depth", "success"), ("depth", "inputs")])
+def test_depth_first_by_maxsat_equals_the_rounds_of_clingo(objective):
+    """Depth first: MaxSAT within the goal's level gives the trees, costs and bounds of the
+    driver's rounds (MaxSAT off), goal by goal on random FOONs with cycles."""
+    options = AspOptions(objective=objective)
+    proven = 0
+    for seed in range(25):
+        problem = cyclic_foon(seed)
+        sat = GoalRunner("asp", problem, options, "per-goal")
+        rounds = GoalRunner("asp", problem, options, "per-goal")
+        rounds.maxsat = False
+        for goal in sorted(problem.derivable - problem.kitchen):
+            a, b = sat(goal), rounds(goal)
+            assert a.status == b.status == "optimal", (seed, goal)
+            assert sorted(a.units) == sorted(b.units), (seed, goal)
+            assert a.cost == b.cost and a.bound == b.bound and a.gap == b.gap == 0.0
+            assert a.extra["asp_cost"] == list(b.extra["asp_cost"])
+            assert a.stats["shortcut"] in ("maxsat", "no-choice") and "shortcut" not in b.stats
+            proven += a.stats["shortcut"] == "maxsat"
+        assert rounds.counts["maxsat"] == 0
+    assert proven > 20
+
+
+def test_depth_first_cut_short_reports_the_depth_and_a_bound(hard):
+    problem, goals = hard
+    goal = goals[8]
+    options = AspOptions(objective=("depth", "success"))
+    (full,) = solve_goals(problem, [goal], "asp", options)
+    assert full.status == "optimal" and full.stats["shortcut"] == "maxsat"
+    assert validate(problem, goal, full.units).valid
+    (short,) = solve_goals(problem, [goal], "asp", AspOptions(objective=("depth", "success"), time_limit=0.05))
+    assert short.status in ("feasible", "optimal") and validate(problem, goal, short.units).valid
+    assert short.cost["depth"] == full.cost["depth"] == short.bound["depth"]
+    assert short.bound["success"] >= full.cost["success"] - 1e-12  # a bound on the product: from above

@@ -339,6 +339,13 @@ class Session:
         optimisation first.  The tree found depends only on the input and ``units``."""
         t0 = time.perf_counter()
         meal = (goal,)
+        if self.options.driven:
+            # depth first: the search runs under the goal's depth bound, on the driver's rounds
+            if self._driver is None:
+                self._driver = Driver(self)
+            start = Answer(tuple(sorted(units)), tuple(cost), True)
+            tree = self._driver.canonical_from(goal, start, time_limit)
+            return settle(self.problem, tree, self.levels, tuple(cost))
         if not self._canonical_here(meal):
             view, part = canonical_problem(self.problem, meal)
             tree = Session(view, replace(self.options, units=part), goal=meal).canonical_from(

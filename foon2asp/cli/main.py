@@ -154,3 +154,14 @@ def main(debug):
     unsatisfiable), 2 bad input or usage, 3 an internal error, 130 interrupted
     (SIGINT), 143 terminated (SIGTERM).
     """
+
+
+def run(prog_name: str = "foon2asp") -> None:
+    """The process's entry point (the ``foon2asp`` script, ``python -m foon2asp``): the command
+    group, then an exit no signal can turn into a kill by the default action -- the command
+    is over and its output written, so SIGINT and SIGTERM are ignored from then on."""
+    try:
+        main(prog_name=prog_name)
+    finally:
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)
+        signal.signal(signal.SIGINT, signal.SIG_IGN)

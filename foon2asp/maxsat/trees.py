@@ -29,6 +29,16 @@ round removes the last optimum, and only finitely many sets exist, so the loop e
 with an optimal tree.  On the hard presets the relaxation's first optimum has been a
 tree every time (BENCHMARKS.md, "MaxSAT").
 
+**Within a depth.**  With a depth bound ``d`` (:func:`minimum_tree`'s ``depth``) the
+variables are indexed by rounds, as in ``encodings/depth.lp``: ``need(o,t)`` (``o`` must
+be had after ``t`` rounds) and ``fire(u,t)`` (``u`` fires within ``t`` rounds):
+``need(g,d)``; ``need(o,t) -> OR fire(p,t)`` over the producers ``p`` of ``o`` that can
+fire by round ``t`` (their level in the least fixpoint is at most ``t``);
+``fire(u,t) -> need(i,t-1)`` for its required inputs that are not kitchen items;
+``fire(u,t) -> use(u)``.  Rounds only go down, so nothing rests on a cycle: an optimum's
+used units (each fires, or it would be dropped) are a tree of depth at most ``d``, and
+every such tree is a model.  No loop cut is needed.
+
 The solver's cost is a lower bound at every moment (:mod:`foon2asp.maxsat.oracle`),
 so a search cut short still says how far from proven the best known tree is.
 """
@@ -64,16 +74,23 @@ class _Encoding:
     def __init__(self, problem: Problem, goal: int, units: Sequence[int]):
         self.problem, self.goal, self.units = problem, goal, list(units)
         self.use = {u: k + 1 for k, u in enumerate(self.units)}
+        #: the highest variable so far
+        self.top = len(self.use)
         self.need: dict[int, int] = {}
         self.producers: dict[int, list[int]] = {}
         for u in self.units:
             for o in problem.products[u]:
                 self.producers.setdefault(o, []).append(u)
 
+    def var(self, table: dict, key) -> int:
+        """The variable of ``key`` in ``table``, a new one the first time."""
+        if key not in table:
+            self.top += 1
+            table[key] = self.top
+        return table[key]
+
     def need_var(self, o: int) -> int:
-        if o not in self.need:
-            self.need[o] = len(self.use) + len(self.need) + 1
-        return self.need[o]
+        return self.var(self.need, o)
 
     def clauses(self) -> Iterable[list[int]]:
         kitchen = self.problem.kitchen
@@ -99,6 +116,45 @@ class _Encoding:
         return [[-self.need_var(o)] + outside for o in sorted(loop)]
 
 
+class _Rounds(_Encoding):
+    """Variables ``use(u)``, ``need(o,t)`` and ``fire(u,t)`` of one goal within ``depth`` rounds."""
+
+    def __init__(self, problem: Problem, goal: int, units: Sequence[int], depth: int):
+        super().__init__(problem, goal, units)
+        self.depth = depth
+        _, self.level = least_fixpoint(problem.kitchen, problem.required, problem.products, self.units)
+        self.fire: dict[tuple[int, int], int] = {}
+
+    def clauses(self) -> Iterable[list[int]]:
+        kitchen = self.problem.kitchen
+        needs: dict[tuple[int, int], int] = {}
+        start = (self.goal, self.depth)
+        yield [self.var(needs, start)]
+        todo = [start]
+        while todo:
+            o, t = todo.pop()
+            makers = []
+            for p in self.producers.get(o, ()):
+                if p not in self.level or self.level[p] > t:
+                    continue
+                new = (p, t) not in self.fire
+                f = self.var(self.fire, (p, t))
+                makers.append(f)
+                if not new:
+                    continue
+                yield [-f, self.use[p]]
+                for i in self.problem.required[p]:
+                    if i in kitchen:
+                        continue
+                    if (i, t - 1) not in needs:
+                        todo.append((i, t - 1))
+                    yield [-f, self.var(needs, (i, t - 1))]
+            yield [-needs[(o, t)]] + makers
+
+    def cut(self, chosen: set[int]) -> list[list[int]] | None:
+        return None  # rounds only go down: every optimum is a tree
+
+
 def minimum_tree(
     problem: Problem,
     goal: int,
@@ -107,14 +163,17 @@ def minimum_tree(
     require: Iterable[int] = (),
     deadline: float | None = None,
     stop: Callable[[int], bool] | None = None,
+    depth: int | None = None,
 ) -> Result:
     """The least-weight tree for ``goal`` over ``units`` (each unit ``u`` weighs
-    ``weights[u] > 0``), every unit of ``require`` in it.
+    ``weights[u] > 0``), every unit of ``require`` in it; with ``depth``, among the
+    trees of at most that depth.
 
     ``deadline`` (``time.perf_counter()``) and ``stop(lower)`` end the search early:
     the result is then ``stopped`` with the lower bound proven so far."""
     t0 = time.perf_counter()
-    enc = _Encoding(problem, goal, sorted(set(units)))
+    pool = sorted(set(units))
+    enc = _Encoding(problem, goal, pool) if depth is None else _Rounds(problem, goal, pool, depth)
     oracle = Oracle()
     for clause in enc.clauses():
         oracle.hard(clause)

@@ -37,7 +37,10 @@ and pruning:
   - otherwise MaxSAT (:mod:`foon2asp.maxsat.trees`) proves the optimum on the goal's
     pruned part, and the goal's canonical session searches for the canonical tree
     from its tree (``"shortcut": "maxsat"``); cut short by the time limit or the gap,
-    the answer is the bounds tree, ``feasible``, with the lower bound MaxSAT proved.
+    the answer is the bounds tree, ``feasible``, with the lower bound MaxSAT proved;
+  - depth first, then one of those objectives (nothing else asked): MaxSAT among the
+    trees within the goal's level (:func:`foon2asp.methods.proofs.by_maxsat_depth`)
+    instead of the rounds of the depth driver.
 
   Shortcuts are taken only for plain optimisation (no user programs, extra
   encodings, depth bounds, human steps, alternatives or greedy heuristics);
@@ -64,24 +67,20 @@ from collections.abc import Iterable, Iterator
 from dataclasses import replace
 from functools import cached_property
 
-from foon2asp.asp.answers import Watch
-from foon2asp.asp.canonical import canonical_problem
-from foon2asp.asp.dominance import applies as dominance_applies
-from foon2asp.asp.dominance import dominance_pairs
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
 from foon2asp.asp.substitutes import prepare as with_substitutes
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem, walk_back
-from foon2asp.maxsat.trees import minimum_tree
+from foon2asp.methods import proofs
 from foon2asp.methods.bounds import Bounds, weights
 from foon2asp.methods.bounds import supports as bounds_supports
 from foon2asp.methods.exact import NODE_LIMIT, canonical_tree
 from foon2asp.methods.registry import Runner, check_substitutes, effective_options, get
-from foon2asp.tree.gap import first_level, settle
+from foon2asp.tree.gap import settle
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
-from foon2asp.tree.weights import UNIT_WEIGHTS, total
+from foon2asp.tree.weights import UNIT_WEIGHTS
 
 GROUNDINGS = ("whole", "per-goal")
 
@@ -224,6 +223,16 @@ class GoalRunner:
         self._monotone = all(objective in MONOTONE for objective in ranked_objectives)
         #: the bounds of foon2asp.methods.bounds decide canonical trees and (with shortcuts) answer goals
         self._bounded = self.kind == "asp" and plain(self._effective) and bounds_supports(ranked_objectives)
+        #: depth first, then an objective of the bounds, nothing else asked: MaxSAT within the goal's level
+        rest = tuple(o for o in self._effective.objective if o != "depth")
+        self._depth_first = (
+            shortcuts
+            and self.kind == "asp"
+            and ranked_objectives[:1] == ("depth",)
+            and bounds_supports(ranked_objectives[1:])
+            and plain(replace(self._effective, objective=rest))
+        )
+        self._weights: list[int] | None = None
         if self.kind == "asp":
             self._label = self._effective.method
         else:
@@ -300,6 +309,10 @@ class GoalRunner:
         meal = meal_of(goal)
         if len(meal) > 1 and self.kind != "asp":
             raise InputError(f"meals (several goals in one tree) need an ASP method; {self.name!r} is not one")
+        if self._depth_first and len(meal) == 1 and self.maxsat:
+            by_depth = self._by_depth(meal[0], time.perf_counter())
+            if by_depth is not None:
+                return by_depth
         if self.kind != "asp" or len(meal) > 1 or not (self.shortcuts or self._bounded):
             # meals go to the solver: it names the goals that cannot be made
             return self._solve(meal if len(meal) > 1 else meal[0])
@@ -337,80 +350,32 @@ class GoalRunner:
             self.counts["branch-and-bound"] += 1
             return self._answer(goal, label, executable_order(self.problem, list(found)), "branch-and-bound", t0)
         if self.maxsat:
-            return self._maxsat(goal, label, units, bounds, t0)
+            self.counts["maxsat"] += 1
+            return proofs.by_maxsat(self.problem, self._effective, self._ranked, goal, label, units, bounds, t0)
         # the branch and bound ran out of nodes: it would again
         return self._canonical(self._solve_pruned(goal, units, objects, bounds), bounds, t0, search=False)
 
-    def _maxsat(self, goal: int, label: str, units: list[int], bounds: Bounds, t0: float) -> TaskTree:
-        """The optimum by MaxSAT on the goal's pruned part, dominated units left out; the
-        canonical tree searched from its tree (or the bounds tree, when that is optimal).
-        Cut short (time limit, gap): the bounds tree, ``feasible``, with the bound proven."""
-        self.counts["maxsat"] += 1
-        options = self._effective
-        keep = bounds.keep(goal, units)
-        if dominance_applies(options, self._ranked):
-            relevant = {goal}.union(*(self.problem.required[u] for u in keep))
-            dominated = {
-                u for _, u, extra in dominance_pairs(self.problem, keep, self._ranked) if relevant.isdisjoint(extra)
-            }
-            keep = [u for u in keep if u not in dominated]
-        best = bounds.tree(goal) or ()
-        upper = tuple(bounds.cost(best))
-        floor = bounds.first_lower(goal)
-        watch = Watch(first_level(self._ranked), options.gap, floor, options.progress)
-        watch.cost = upper
-        seen = [-1]
-
-        def stop(lower: int) -> bool:
-            if lower > seen[0]:
-                seen[0] = lower
-                watch.floor = max(floor, bounds.first(lower))
-                watch.on_lower(())
-            return watch.stop()
-
-        limit = options.time_limit
-        found = minimum_tree(
-            self.problem, goal, keep, bounds.w, bounds.landmarks(goal), t0 + limit if limit else None, stop
-        )
-        stats = {"shortcut": "maxsat", "maxsat_s": round(found.time_s, 6), "pruned_units": len(units) - len(keep)}
-        if found.cuts:
-            stats["loop_cuts"] = found.cuts
-        if found.tree is None:
-            # cut short (no tree over the pruned part cannot be: the bounds tree lies in it)
-            order = executable_order(self.problem, list(best))
-            elapsed = round(time.perf_counter() - t0, 6)
-            cost_of = {"asp_cost": list(upper)}
-            tree = TaskTree(
-                goal, label, "feasible", order, measures(self.problem, goal, order), elapsed, stats, cost_of
-            )
-            return settle(self.problem, tree, self._ranked, None, max(floor, bounds.first(found.lower)))
-        cost = bounds.cost(found.tree)
-        if cost == list(upper) or not options.canonical:
-            chosen = best if cost == list(upper) else found.tree
-            tree = self._answer(goal, label, executable_order(self.problem, list(chosen)), "maxsat", t0)
-            tree.stats.update(stats)
-            return tree
-        left = None if not limit else max(0.0, limit - (time.perf_counter() - t0))
-        view, part = canonical_problem(self.problem, [goal])
-        tree = Session(view, replace(options, units=part), goal=goal).canonical_from(goal, found.tree, cost, left)
-        tree.stats.update(stats)
-        tree.time_s = round(time.perf_counter() - t0, 6)
-        return tree
-
     def _answer(self, goal: int, label: str, order: list[int], shortcut: str, t0: float) -> TaskTree:
         """An optimal tree found without the solver."""
-        asp_cost = [total(self.problem, name, order) for name in self._ranked]
-        tree = TaskTree(
-            goal,
-            label,
-            "optimal",
-            order,
-            measures(self.problem, goal, order),
-            round(time.perf_counter() - t0, 6),
-            {"shortcut": shortcut},
-            {"asp_cost": asp_cost},
+        return proofs.answer(self.problem, goal, label, order, self._ranked, shortcut, t0)
+
+    def _by_depth(self, goal: int, t0: float) -> TaskTree | None:
+        """Depth first by MaxSAT (foon2asp.methods.proofs), or None: the driver's rounds answer."""
+        if goal not in self.parts.derivable or goal in self.problem.kitchen:
+            return None
+        units, _, choice = self.parts.relevant(goal)
+        if self._allowed is not None and not self._allowed.issuperset(units):
+            return None
+        label = self._label or self._effective.method
+        if not choice:  # the whole part is the only tree
+            self.counts["no-choice"] += 1
+            return self._answer(goal, label, executable_order(self.problem, units), "no-choice", t0)
+        self.counts["maxsat"] += 1
+        if self._weights is None:
+            self._weights = weights(self.problem, self._ranked[1:])
+        return proofs.by_maxsat_depth(
+            self.problem, self._effective, self._ranked, goal, label, units, self._weights, t0
         )
-        return settle(self.problem, tree, self._ranked)
 
 
 def solve_goals(
