@@ -101,11 +101,24 @@ def _feasible(
 
 
 def _canonical(
-    problem: Problem, options: AspOptions, goal: int, units: tuple[int, ...], cost: list[int], t0: float, stats: dict
+    problem: Problem,
+    options: AspOptions,
+    ranked: tuple[str, ...],
+    goal: int,
+    label: str,
+    units: tuple[int, ...],
+    cost: list[int],
+    t0: float,
+    stats: dict,
 ) -> TaskTree:
-    """The canonical tree searched from the optimal tree ``units`` in the goal's canonical session."""
+    """The canonical tree searched from the optimal tree ``units`` in the goal's canonical
+    session; with the time limit spent, ``units`` as they are (marked)."""
     limit = options.time_limit
-    left = None if not limit else max(0.0, limit - (time.perf_counter() - t0))
+    left = None if not limit else limit - (time.perf_counter() - t0)
+    if left is not None and left <= 0:
+        tree = answer(problem, goal, label, executable_order(problem, list(units)), ranked, "maxsat", t0)
+        tree.stats.update(stats, canonical_search="time")
+        return tree
     view, part = canonical_problem(problem, [goal])
     tree = Session(view, replace(options, units=part), goal=goal).canonical_from(goal, units, cost, left)
     tree.stats.update(stats)
@@ -148,7 +161,7 @@ def by_maxsat(
         tree = answer(problem, goal, label, executable_order(problem, list(chosen)), ranked, "maxsat", t0)
         tree.stats.update(stats)
         return tree
-    return _canonical(problem, options, goal, found.tree, cost, t0, stats)
+    return _canonical(problem, options, ranked, goal, label, found.tree, cost, t0, stats)
 
 
 def by_maxsat_depth(
@@ -184,7 +197,7 @@ def by_maxsat_depth(
         tree = answer(problem, goal, label, executable_order(problem, list(found.tree)), ranked, "maxsat", t0)
         tree.stats.update(stats)
         return tree
-    return _canonical(problem, options, goal, found.tree, cost, t0, stats)
+    return _canonical(problem, options, ranked, goal, label, found.tree, cost, t0, stats)
 
 
 def _shallowest(problem: Problem, goal: int, units: list[int], levels, unit_levels: dict[int, int]) -> list[int]:
