@@ -30,9 +30,6 @@ SAT_SOLVER = "g4"
 #: rounds of PySAT's formula preprocessing before the search (the soft literals frozen):
 #: hard-10k 11968 · units 30.2 s against 46.3 s without, hard-4k 4748 10.2 s against 12.1 s
 PROCESS = 1
-#: conflicts and propagations per slice of a SAT call (the time limit is looked at between slices)
-SLICE = 2000
-SLICE_PROPAGATIONS = 2_000_000
 #: how often the watcher looks at the clock and the bound (seconds)
 POLL_S = 0.02
 
@@ -42,38 +39,15 @@ class Stopped(Exception):
 
 
 class _Halting:
-    """RC2's SAT calls, interruptible, never counting an interrupted call.
-
-    A call without a budget of RC2's own runs in slices of :data:`SLICE` conflicts or
-    :data:`SLICE_PROPAGATIONS` propagations (the learnt clauses stay), and the flag
-    ``halt`` is looked at between them as well as at the interrupt."""
+    """RC2's SAT calls, always interruptible, and never counting an interrupted call."""
 
     halt = False
-    _budgeted = False
     oracle: Any
-
-    def minimize_core(self) -> None:
-        self._budgeted = True  # RC2 sets its own conflict budget there
-        try:
-            super().minimize_core()  # type: ignore[misc]
-        finally:
-            self._budgeted = False
 
     def _call_oracle(self, assumptions=(), expect_interrupt=False):  # noqa: ARG002 (RC2's signature)
         if self.halt:
             raise Stopped
-        assumptions = list(assumptions)
-        if self._budgeted:
-            result = self.oracle.solve_limited(assumptions=assumptions, expect_interrupt=True)
-        else:
-            while True:
-                self.oracle.conf_budget(SLICE)
-                self.oracle.prop_budget(SLICE_PROPAGATIONS)
-                result = self.oracle.solve_limited(assumptions=assumptions, expect_interrupt=True)
-                if result is not None or self.halt:
-                    break
-            self.oracle.conf_budget(-1)
-            self.oracle.prop_budget(-1)
+        result = self.oracle.solve_limited(assumptions=list(assumptions), expect_interrupt=True)
         if self.halt:
             raise Stopped
         return result
