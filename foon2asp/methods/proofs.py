@@ -14,8 +14,8 @@ Cut short by the time limit or the gap, the answer is ``feasible``: the bounds t
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Sequence
-from dataclasses import replace
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, replace
 
 from foon2asp.asp.answers import Watch
 from foon2asp.asp.canonical import canonical_problem
@@ -24,7 +24,7 @@ from foon2asp.asp.dominance import dominance_pairs
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
 from foon2asp.foon.problem import Problem
-from foon2asp.maxsat.trees import Result, minimum_tree
+from foon2asp.maxsat.trees import minimum_tree
 from foon2asp.methods.bounds import Bounds
 from foon2asp.tree.gap import first_level, settle
 from foon2asp.tree.tasktree import TaskTree, executable_order, measures
@@ -82,47 +82,68 @@ def _stop(ranked: tuple[str, ...], options: AspOptions, upper: Sequence[int], fl
     return stop
 
 
-def _stats(found: Result, units: list[int], keep: list[int]) -> dict:
-    stats: dict = {"shortcut": "maxsat", "maxsat_s": round(found.time_s, 6), "pruned_units": len(units) - len(keep)}
+@dataclass
+class _Goal:
+    """One goal being answered: the problem, the runner's options and ranked objectives, the
+    method's label, the goal's relevant part and the time the runner started on it."""
+
+    problem: Problem
+    options: AspOptions
+    ranked: tuple[str, ...]
+    goal: int
+    label: str
+    units: list[int]
+    t0: float
+
+    def answer(self, units: Sequence[int], stats: dict) -> TaskTree:
+        order = executable_order(self.problem, list(units))
+        tree = answer(self.problem, self.goal, self.label, order, self.ranked, "maxsat", self.t0)
+        tree.stats.update(stats)
+        return tree
+
+
+def _prove(
+    at: _Goal,
+    keep: list[int],
+    weights: Sequence[int],
+    best: Sequence[int],
+    cost_of: Callable[[Sequence[int]], list[int]],
+    lower_of: Callable[[int], list[int]],
+    require: Iterable[int] = (),
+    depth: int | None = None,
+    best_is_canonical: bool = False,
+) -> TaskTree:
+    """MaxSAT over ``keep``, then the answer: ``best`` (a valid tree) with the bound when cut
+    short; ``best`` again when it is optimal and ``best_is_canonical``; else the canonical tree
+    searched from MaxSAT's (or MaxSAT's itself when the options ask for no canonical tree)."""
+    problem, options = at.problem, at.options
+    upper = cost_of(best)
+    limit = options.time_limit
+    deadline = at.t0 + limit if limit else None
+    stop = _stop(at.ranked, options, upper, lower_of)
+    found = minimum_tree(problem, at.goal, keep, weights, require, deadline, stop, depth)
+    stats: dict = {"shortcut": "maxsat", "maxsat_s": round(found.time_s, 6), "pruned_units": len(at.units) - len(keep)}
     if found.cuts:
         stats["loop_cuts"] = found.cuts
-    return stats
-
-
-def _feasible(
-    problem: Problem, goal: int, label: str, order: list[int], ranked, cost, stats: dict, lower: list[int], t0: float
-) -> TaskTree:
-    """A tree cut short, with the lower bound per level."""
-    elapsed = round(time.perf_counter() - t0, 6)
-    tree = TaskTree(
-        goal, label, "feasible", order, measures(problem, goal, order), elapsed, stats, {"asp_cost": list(cost)}
-    )
-    return settle(problem, tree, ranked, lower)
-
-
-def _canonical(
-    problem: Problem,
-    options: AspOptions,
-    ranked: tuple[str, ...],
-    goal: int,
-    label: str,
-    units: tuple[int, ...],
-    cost: list[int],
-    t0: float,
-    stats: dict,
-) -> TaskTree:
-    """The canonical tree searched from the optimal tree ``units`` in the goal's canonical
-    session; with the time limit spent, ``units`` as they are (marked)."""
-    limit = options.time_limit
-    left = None if not limit else limit - (time.perf_counter() - t0)
-    if left is not None and left <= 0:
-        tree = answer(problem, goal, label, executable_order(problem, list(units)), ranked, "maxsat", t0)
-        tree.stats.update(stats, canonical_search="time")
-        return tree
-    view, part = canonical_problem(problem, [goal])
-    tree = Session(view, replace(options, units=part), goal=goal).canonical_from(goal, units, cost, left)
+    if found.tree is None:  # cut short (no tree cannot be: ``best`` lies in ``keep``)
+        order = executable_order(problem, list(best))
+        elapsed = round(time.perf_counter() - at.t0, 6)
+        extra = {"asp_cost": list(upper)}
+        tree = TaskTree(at.goal, at.label, "feasible", order, measures(problem, at.goal, order), elapsed, stats, extra)
+        return settle(problem, tree, at.ranked, lower_of(found.lower))
+    cost = cost_of(found.tree)
+    if best_is_canonical and cost == upper:
+        return at.answer(best, stats)
+    if not options.canonical:
+        return at.answer(found.tree, stats)
+    left = None if not limit else limit - (time.perf_counter() - at.t0)
+    if left is not None and left <= 0:  # the time limit spent: MaxSAT's tree as it is (marked)
+        return at.answer(found.tree, {**stats, "canonical_search": "time"})
+    view, part = canonical_problem(problem, [at.goal])
+    session = Session(view, replace(options, units=part), goal=at.goal)
+    tree = session.canonical_from(at.goal, found.tree, cost, left)
     tree.stats.update(stats)
-    tree.time_s = round(time.perf_counter() - t0, 6)
+    tree.time_s = round(time.perf_counter() - at.t0, 6)
     return tree
 
 
@@ -138,30 +159,15 @@ def by_maxsat(
 ) -> TaskTree:
     """The optimum by MaxSAT on the goal's part pruned by ``bounds``, the landmark units
     required; the canonical tree searched from its tree (the bounds tree when that is optimal)."""
-    pruned = bounds.keep(goal, units)
-    keep = undominated(problem, goal, pruned, ranked, options)
-    best = bounds.tree(goal) or ()
-    upper = bounds.cost(best)
+    at = _Goal(problem, options, ranked, goal, label, units, t0)
+    keep = undominated(problem, goal, bounds.keep(goal, units), ranked, options)
     floor = bounds.first_lower(goal)
 
     def lower_of(weight: int) -> list[int]:
         return [max(floor, bounds.first(weight))]
 
-    limit = options.time_limit
-    deadline = t0 + limit if limit else None
-    stop = _stop(ranked, options, upper, lower_of)
-    found = minimum_tree(problem, goal, keep, bounds.w, bounds.landmarks(goal), deadline, stop)
-    stats = _stats(found, units, keep)
-    if found.tree is None:  # cut short (no tree cannot be: the bounds tree lies in the pruned part)
-        order = executable_order(problem, list(best))
-        return _feasible(problem, goal, label, order, ranked, upper, stats, lower_of(found.lower), t0)
-    cost = bounds.cost(found.tree)
-    if cost == upper or not options.canonical:
-        chosen = best if cost == upper else found.tree
-        tree = answer(problem, goal, label, executable_order(problem, list(chosen)), ranked, "maxsat", t0)
-        tree.stats.update(stats)
-        return tree
-    return _canonical(problem, options, ranked, goal, label, found.tree, cost, t0, stats)
+    best = bounds.tree(goal) or ()
+    return _prove(at, keep, bounds.w, best, bounds.cost, lower_of, bounds.landmarks(goal), best_is_canonical=True)
 
 
 def by_maxsat_depth(
@@ -176,6 +182,7 @@ def by_maxsat_depth(
 ) -> TaskTree:
     """Depth first (``ranked[0]``), then the sum objective ``ranked[1:]`` of ``weights``:
     MaxSAT over the trees within the goal's level."""
+    at = _Goal(problem, options, ranked, goal, label, units, t0)
     levels, unit_levels = problem.derivation_levels(units)
     depth = levels[goal]
     keep = undominated(problem, goal, units, ranked, options)
@@ -184,20 +191,11 @@ def by_maxsat_depth(
     def lower_of(weight: int) -> list[int]:
         return [depth, weight // scale]
 
-    shallow = executable_order(problem, _shallowest(problem, goal, units, levels, unit_levels))
-    upper = [depth] + [total(problem, name, shallow) for name in ranked[1:]]
-    limit = options.time_limit
-    deadline = t0 + limit if limit else None
-    found = minimum_tree(problem, goal, keep, weights, (), deadline, _stop(ranked, options, upper, lower_of), depth)
-    stats = _stats(found, units, keep)
-    if found.tree is None:
-        return _feasible(problem, goal, label, shallow, ranked, upper, stats, lower_of(found.lower), t0)
-    cost = [depth] + [total(problem, name, found.tree) for name in ranked[1:]]
-    if not options.canonical:
-        tree = answer(problem, goal, label, executable_order(problem, list(found.tree)), ranked, "maxsat", t0)
-        tree.stats.update(stats)
-        return tree
-    return _canonical(problem, options, ranked, goal, label, found.tree, cost, t0, stats)
+    def cost_of(tree: Sequence[int]) -> list[int]:
+        return [depth] + [total(problem, name, tree) for name in ranked[1:]]
+
+    shallow = _shallowest(problem, goal, units, levels, unit_levels)
+    return _prove(at, keep, weights, shallow, cost_of, lower_of, depth=depth)
 
 
 def _shallowest(problem: Problem, goal: int, units: list[int], levels, unit_levels: dict[int, int]) -> list[int]:
