@@ -51,3 +51,13 @@ def demo_problem():
 
     data = Dataset.load(DEMO)
     return data, Problem.from_dataset(data)
+
+
+@pytest.fixture(scope="session")
+def hard():
+    """The hard-4k preset's problem and its goals' ids (generated once per test run)."""
+    from foon2asp.foon.synth import preset
+
+    syn = preset("hard-4k")
+    problem = syn.problem()
+    return problem, [problem.foon.object_ids[g] for g in syn.goals]

@@ -102,13 +102,6 @@ def replace_units(options, problem, goal):
     return AspOptions(**{**options.__dict__, "units": problem.units_for([goal])})
 
 
-@pytest.fixture(scope="module")
-def hard():
-    syn = preset("hard-4k")
-    problem = syn.problem()
-    return problem, [problem.foon.object_ids[g] for g in syn.goals]
-
-
 def test_a_goal_cut_short_reports_a_bound_at_most_the_proven_optimum(hard):
     problem, goals = hard
     goal = goals[7]  # about 40 units; proven in a few seconds, not in a fraction of one

@@ -14,7 +14,6 @@ import time
 import pytest
 
 from foon2asp.asp.options import AspOptions
-from foon2asp.foon.synth import preset
 from foon2asp.maxsat.oracle import Oracle, Stopped
 from foon2asp.maxsat.trees import minimum_tree
 from foon2asp.methods.bounds import Bounds
@@ -107,13 +106,6 @@ def test_an_oracle_told_to_stop_keeps_a_valid_bound():
     model.hard([5])  # a clause after a solve: a new solver, the bound kept
     again = model.solve()
     assert again is not None and 5 in again and model.lower == 3
-
-
-@pytest.fixture(scope="module")
-def hard():
-    syn = preset("hard-4k")
-    problem = syn.problem()
-    return problem, [problem.foon.object_ids[g] for g in syn.goals]
 
 
 def test_a_search_cut_short_bounds_the_optimum_from_below(hard):
