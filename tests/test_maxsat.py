@@ -64,6 +64,57 @@ def test_minimum_tree_is_the_brute_force_optimum(chunk):
     assert checked > 0 and cut > 0  # the relaxation's optimum was no tree, and was cut, somewhere
 
 
+def tied_foon(seed: int):
+    """A random FOON where objects have several producers of the same size: many optimal trees."""
+    rng = random.Random(seed)
+    kitchen = ["k0", "k1", "k2", "k3"]
+    made = [f"o{i}" for i in range(5)]
+    units = []
+    for i, out in enumerate(made):
+        for _ in range(rng.randint(2, 3)):
+            pool = kitchen + made[:i] * 2 + made[i + 1 :]  # a few back edges
+            units.append(("m0", list(dict.fromkeys(rng.sample(pool, rng.randint(1, 2)))), [out]))
+    rng.shuffle(units)  # producers of one object apart in id order
+    return build(units, kitchen, {"m0": 0.5})
+
+
+def canonical_key(n: int):
+    """Sort key of the canonical order (foon2asp.asp.canonical): the tree holding the smallest
+    unit on which two trees differ comes first."""
+    return lambda tree: tuple(0 if u in tree else 1 for u in range(n))
+
+
+@pytest.mark.parametrize("chunk", range(4))
+def test_the_walk_ends_on_the_smallest_optimal_tree(chunk):
+    """With ``smallest``, the tree is the first optimal tree of brute force in the canonical
+    order (for the sum objectives, and within the goal's level), and the walk is proven."""
+    walked = 0
+    for seed, ranked in [(s, r) for s in range(10 * chunk, 10 * chunk + 10) for r in RANKED]:
+        problem = (cyclic_foon if seed % 2 else tied_foon)(seed)
+        levels, _ = problem.derivation_levels()
+        bounds = Bounds(problem, ranked)
+        key = canonical_key(len(problem.units))
+        for goal in sorted(levels):
+            if goal in problem.kitchen:
+                continue
+            for depth in (None, levels[goal]):
+                trees = brute_force(problem, goal)
+                if depth is not None:
+                    trees = [t for t in trees if measures(problem, goal, list(t))["depth"] <= depth]
+                opt = min(bounds.weight(t) for t in trees)
+                smallest = min((set(t) for t in trees if bounds.weight(t) == opt), key=key)
+                found = minimum_tree(problem, goal, range(len(problem.units)), bounds.w, depth=depth, smallest=True)
+                assert found.status == "optimal" and found.search == "complete", (seed, ranked, goal, depth)
+                assert set(found.tree) == smallest, (seed, ranked, goal, depth)
+                plain = minimum_tree(problem, goal, range(len(problem.units)), bounds.w, depth=depth)
+                walked += set(plain.tree) != smallest
+                known = minimum_tree(
+                    problem, goal, range(len(problem.units)), bounds.w, depth=depth, smallest=True, known=opt
+                )
+                assert known.search is None and bounds.weight(known.tree) == opt  # the caller has an optimum
+    assert walked > 0  # the first optimum was not the smallest, somewhere
+
+
 def test_a_cycle_cheaper_than_any_tree_is_cut():
     """g needs x; x is made from g (a cycle of two units) or from the kitchen in three steps:
     the relaxation's optimum is the cycle, which is no tree; one loop cut later the optimum is 4."""

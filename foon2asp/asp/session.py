@@ -330,36 +330,6 @@ class Session:
             stats["canonical_search"] = "budget" if not deadline or time.perf_counter() < deadline else "time"
         return Answer(answer.units, answer.cost, True, answer.human)
 
-    def canonical_from(
-        self, goal: int, units: Sequence[int], cost: Sequence[int], time_limit: float | None = None
-    ) -> TaskTree:
-        """``goal``'s canonical tree from an optimal tree proven elsewhere (``units``; ``cost``
-        its cost vector as the solver weighs it, the optimum): the search for smaller optimal
-        trees of foon2asp.asp.canonical from it, in the goal's canonical session, with no
-        optimisation first.  The tree found depends only on the input and ``units``."""
-        t0 = time.perf_counter()
-        meal = (goal,)
-        if self.options.driven:
-            # depth first: the search runs under the goal's depth bound, on the driver's rounds
-            if self._driver is None:
-                self._driver = Driver(self)
-            start = Answer(tuple(sorted(units)), tuple(cost), True)
-            tree = self._driver.canonical_from(goal, start, time_limit)
-            return settle(self.problem, tree, self.levels, tuple(cost))
-        if not self._canonical_here(meal):
-            view, part = canonical_problem(self.problem, meal)
-            tree = Session(view, replace(self.options, units=part), goal=meal).canonical_from(
-                goal, units, cost, time_limit
-            )
-            tree.time_s = round(time.perf_counter() - t0, 6)
-            return tree
-        stats: dict = {}
-        with self._goals_on(meal):
-            answer = self._canonicalise(Answer(tuple(sorted(units)), tuple(cost), True), t0, time_limit, stats)
-        self._lower = answer.cost
-        tree = self._tree(meal, answer, "optimal", t0, stats)
-        return settle(self.problem, tree, self.levels, self._lower)
-
     def _canonical_session(
         self,
         meal: tuple[int, ...],

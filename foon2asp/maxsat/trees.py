@@ -39,6 +39,12 @@ fire by round ``t`` (their level in the least fixpoint is at most ``t``);
 used units (each fires, or it would be dropped) are a tree of depth at most ``d``, and
 every such tree is a model.  No loop cut is needed.
 
+**The smallest optimal tree.**  Asked for it (``smallest``), the search walks on from
+the optimum to the lexicographically smallest optimum over the units in id order
+(:meth:`foon2asp.maxsat.oracle.Oracle.smallest`, within a budget of SAT conflicts):
+the canonical tree of :mod:`foon2asp.asp.canonical` when the walk completes.  A
+closed set it ends on that is no tree is cut as above and the walk starts again.
+
 The solver's cost is a lower bound at every moment (:mod:`foon2asp.maxsat.oracle`),
 so a search cut short still says how far from proven the best known tree is.
 """
@@ -66,6 +72,9 @@ class Result:
     #: loop cuts added (rounds whose optimum was not a tree)
     cuts: int = 0
     time_s: float = 0.0
+    #: how the walk to the smallest optimal tree ended: "complete" | "budget" | "time" (None: not asked,
+    #: or the optimum weighed ``known``)
+    search: str | None = None
 
 
 class _Encoding:
@@ -164,13 +173,17 @@ def minimum_tree(
     deadline: float | None = None,
     stop: Callable[[int], bool] | None = None,
     depth: int | None = None,
+    smallest: bool = False,
+    known: int | None = None,
 ) -> Result:
     """The least-weight tree for ``goal`` over ``units`` (each unit ``u`` weighs
     ``weights[u] > 0``), every unit of ``require`` in it; with ``depth``, among the
-    trees of at most that depth.
+    trees of at most that depth; with ``smallest``, the smallest such tree in the
+    canonical order unless the least weight is ``known`` (the caller has that tree).
 
     ``deadline`` (``time.perf_counter()``) and ``stop(lower)`` end the search early:
-    the result is then ``stopped`` with the lower bound proven so far."""
+    the result is then ``stopped`` with the lower bound proven so far (a walk to the
+    smallest tree cut short ends on the smallest reached, ``search == "time"``)."""
     t0 = time.perf_counter()
     pool = sorted(set(units))
     enc = _Encoding(problem, goal, pool) if depth is None else _Rounds(problem, goal, pool, depth)
@@ -183,15 +196,24 @@ def minimum_tree(
     for u in enc.units:
         oracle.soft(-enc.use[u], weights[u])
     cuts = 0
+    order = [enc.use[u] for u in enc.units]
+    unit_of = {v: u for u, v in enc.use.items()}
     try:
         while True:
             model = oracle.solve(deadline, stop)
             if model is None:
                 return Result(None, oracle.lower, "unreachable", cuts, time.perf_counter() - t0)
             chosen = {u for u in enc.units if enc.use[u] in model}
+            search = None
+            if smallest and enc.cut(chosen) is None and sum(weights[u] for u in chosen) != known:
+                true, search = oracle.smallest(order, deadline)
+                walked = {unit_of[v] for v in true}
+                if search != "time" or enc.cut(walked) is None:  # out of time on a closed set: the tree before
+                    chosen = walked
             clauses = enc.cut(chosen)
             if clauses is None:
-                return Result(tuple(sorted(chosen)), oracle.lower, "optimal", cuts, time.perf_counter() - t0)
+                took = time.perf_counter() - t0
+                return Result(tuple(sorted(chosen)), oracle.lower, "optimal", cuts, took, search)
             cuts += 1
             for clause in clauses:
                 oracle.hard(clause)

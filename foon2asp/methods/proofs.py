@@ -5,8 +5,9 @@ goal the bounds and the branch and bound leave open; :func:`by_maxsat_depth` ans
 depth first, then one of those objectives: no tree is shallower than the goal's level
 in the least fixpoint, so the optimum is the least weight among the trees within that
 many rounds.  Both solve on the goal's part without the units a dominance rule leaves
-out (:mod:`foon2asp.asp.dominance`), and hand the tree found to the goal's canonical
-session, which searches for the canonical tree from it (:mod:`foon2asp.asp.canonical`).
+out (:mod:`foon2asp.asp.dominance`; the canonical tree uses none of them) and walk on
+to the smallest optimal tree in the canonical order (:mod:`foon2asp.asp.canonical`)
+inside the MaxSAT solver (:func:`foon2asp.maxsat.trees.minimum_tree`).
 Cut short by the time limit or the gap, the answer is ``feasible``: the bounds tree
 (or a shallowest tree, for depth) with the lower bound MaxSAT proved.
 """
@@ -15,14 +16,12 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 from foon2asp.asp.answers import Watch
-from foon2asp.asp.canonical import canonical_problem
 from foon2asp.asp.dominance import applies as dominance_applies
 from foon2asp.asp.dominance import dominance_pairs
 from foon2asp.asp.options import AspOptions
-from foon2asp.asp.session import Session
 from foon2asp.foon.problem import Problem
 from foon2asp.maxsat.trees import minimum_tree
 from foon2asp.methods.bounds import Bounds
@@ -114,14 +113,15 @@ def _prove(
     best_is_canonical: bool = False,
 ) -> TaskTree:
     """MaxSAT over ``keep``, then the answer: ``best`` (a valid tree) with the bound when cut
-    short; ``best`` again when it is optimal and ``best_is_canonical``; else the canonical tree
-    searched from MaxSAT's (or MaxSAT's itself when the options ask for no canonical tree)."""
+    short; ``best`` again when it is optimal and ``best_is_canonical``; else the smallest
+    optimal tree MaxSAT walked to (its first optimum when the options ask for no canonical tree)."""
     problem, options = at.problem, at.options
     upper = cost_of(best)
     limit = options.time_limit
     deadline = at.t0 + limit if limit else None
     stop = _stop(at.ranked, options, upper, lower_of)
-    found = minimum_tree(problem, at.goal, keep, weights, require, deadline, stop, depth)
+    known = sum(weights[u] for u in best) if best_is_canonical else None
+    found = minimum_tree(problem, at.goal, keep, weights, require, deadline, stop, depth, options.canonical, known)
     stats: dict = {"shortcut": "maxsat", "maxsat_s": round(found.time_s, 6), "pruned_units": len(at.units) - len(keep)}
     if found.cuts:
         stats["loop_cuts"] = found.cuts
@@ -131,20 +131,11 @@ def _prove(
         extra = {"asp_cost": list(upper)}
         tree = TaskTree(at.goal, at.label, "feasible", order, measures(problem, at.goal, order), elapsed, stats, extra)
         return settle(problem, tree, at.ranked, lower_of(found.lower))
-    cost = cost_of(found.tree)
-    if best_is_canonical and cost == upper:
+    if best_is_canonical and cost_of(found.tree) == upper:
         return at.answer(best, stats)
-    if not options.canonical:
-        return at.answer(found.tree, stats)
-    left = None if not limit else limit - (time.perf_counter() - at.t0)
-    if left is not None and left <= 0:  # the time limit spent: MaxSAT's tree as it is (marked)
-        return at.answer(found.tree, {**stats, "canonical_search": "time"})
-    view, part = canonical_problem(problem, [at.goal])
-    session = Session(view, replace(options, units=part), goal=at.goal)
-    tree = session.canonical_from(at.goal, found.tree, cost, left)
-    tree.stats.update(stats)
-    tree.time_s = round(time.perf_counter() - at.t0, 6)
-    return tree
+    if found.search not in (None, "complete"):
+        stats["canonical_search"] = found.search
+    return at.answer(found.tree, stats)
 
 
 def by_maxsat(

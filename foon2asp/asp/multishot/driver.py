@@ -193,28 +193,6 @@ class Driver:
             best.extra["note"] = f"more than {cap} optimal trees: only the first {cap} are given"
         return best
 
-    def canonical_from(self, goal: int, answer: Answer, time_limit: float | None = None) -> TaskTree:
-        """The smallest optimal tree from ``answer``, proven optimal elsewhere, with depth the
-        first objective: the search of foon2asp.asp.canonical under the goal's level as
-        depth bound (no tree is shallower), its depth counted."""
-        t0 = time.perf_counter()
-        deadline = None if not time_limit else t0 + time_limit
-        self.solves, self.last_stats, self.canonical_search = 0, {}, None
-        self.depth = depth_mod.DepthSearch()
-        if self.rounds is None:
-            self.rounds = depth_mod.Rounds.of(self.session)
-        bound = self.rounds.levels.level(goal)
-        assert bound is not None, "a goal with a tree has a level"
-        switched = {clingo.Function("goal", [clingo.Number(goal)]): True}
-        switched.update(self.rounds.externals(goal, bound, True))
-        self.control.assign(switched)
-        try:
-            found, complete = canonicalise(self.control, answer, deadline)
-            self._searched(complete)
-        finally:
-            self.control.assign(dict.fromkeys(switched, False))
-        return self._tree(goal, found, "optimal", t0, bound)
-
     def _levels(self, goal: Goals, deadline, on_model) -> tuple[list[tuple[Answer, int | None]], Shot, bool]:
         """The trees (with their depth bounds) level by level, each level's trees excluded from
         the next, until enough are found; the first level's shot; whether --all-optimal's cap cut."""
