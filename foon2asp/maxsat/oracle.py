@@ -141,8 +141,9 @@ class Oracle:
         lexicographically smallest optimum (the first variable of ``order`` on which two
         optima differ is true in the smaller), and how the walk ended: ``"complete"``
         (proven smallest), ``"budget"`` (``conflicts`` spent: the smallest reached) or
-        ``"time"`` (the ``deadline``).  The variables must be frozen by the preprocessing
-        (soft literals are)."""
+        ``"time"`` (the ``deadline``).  Each variable of ``order`` must cost when true (its
+        negation a soft literal: frozen by the preprocessing, and a model with one more of
+        them true costs more)."""
         solver = self._solver
         assert solver is not None, "smallest() after solve()"
         sat = solver.oracle
@@ -154,8 +155,7 @@ class Oracle:
             if left <= 0:
                 return current, "budget"
             act = solver.pool.id()
-            for clause in _smaller(order, current, solver.pool.id):
-                sat.add_clause([-act, *clause])
+            sat.append_formula([[-act, *clause] for clause in _smaller(order, current, solver.pool.id)])
             sat.conf_budget(left)
             try:
                 step = [*assumptions, act]
@@ -176,12 +176,15 @@ class Oracle:
 def _smaller(order: Sequence[int], current: set[int], new: Callable[[], int]) -> list[list[int]]:
     """Clauses whose models are lexicographically smaller than ``current`` over ``order``:
     some ``d`` true, where ``d`` (for a variable of ``order`` false in ``current``) makes it
-    true and ``e`` (before it) keeps every earlier variable as ``current`` has it."""
+    true and ``e`` (before it) keeps every earlier variable as ``current`` has it.  Only
+    variables before the last one true in ``current`` can be ``d``: a model that agrees with
+    ``current`` up to a later variable and makes it true has more true variables than
+    ``current``, so it costs more (every soft literal here weighs something)."""
     clauses: list[list[int]] = []
     some: list[int] = []
-    last = max((k for k, v in enumerate(order) if v not in current), default=-1)
+    last = max((k for k, v in enumerate(order) if v in current), default=-1)
     agree = 0  # the variable "every variable before this position agrees" (0: none yet, true)
-    for v in order[: last + 1]:
+    for v in order[: max(last, 0)]:
         if v not in current:
             d = new()
             some.append(d)

@@ -35,7 +35,8 @@ and pruning:
     (``"shortcut": "branch-and-bound"``), unless it runs out of nodes
     (:attr:`GoalRunner.search_nodes`);
   - otherwise MaxSAT (:mod:`foon2asp.maxsat.trees`) proves the optimum on the goal's
-    pruned part and walks on to the smallest optimal tree (``"shortcut": "maxsat"``); cut short by the time limit or the gap,
+    part (dominated units left out) and walks on to the smallest optimal tree
+    (``"shortcut": "maxsat"``); cut short by the time limit or the gap,
     the answer is the bounds tree, ``feasible``, with the lower bound MaxSAT proved;
   - depth first, then one of those objectives (nothing else asked): MaxSAT among the
     trees within the goal's level (:func:`foon2asp.methods.proofs.by_maxsat_depth`)
