@@ -89,7 +89,7 @@ def test_the_walk_ends_on_the_smallest_optimal_tree(chunk):
     """With ``smallest``, the tree is the first optimal tree of brute force in the canonical
     order (for the sum objectives, and within the goal's level), and the walk is proven."""
     walked = 0
-    for seed, ranked in [(s, r) for s in range(10 * chunk, 10 * chunk + 10) for r in RANKED]:
+    for seed, ranked in [(s, r) for s in range(5 * chunk, 5 * chunk + 5) for r in RANKED]:
         problem = (cyclic_foon if seed % 2 else tied_foon)(seed)
         levels, _ = problem.derivation_levels()
         bounds = Bounds(problem, ranked)
@@ -97,8 +97,9 @@ def test_the_walk_ends_on_the_smallest_optimal_tree(chunk):
         for goal in sorted(levels):
             if goal in problem.kitchen:
                 continue
+            every = brute_force(problem, goal)
             for depth in (None, levels[goal]):
-                trees = brute_force(problem, goal)
+                trees = every
                 if depth is not None:
                     trees = [t for t in trees if measures(problem, goal, list(t))["depth"] <= depth]
                 opt = min(bounds.weight(t) for t in trees)
