@@ -204,13 +204,14 @@ def minimum_tree(
             if model is None:
                 return Result(None, oracle.lower, "unreachable", cuts, time.perf_counter() - t0)
             chosen = {u for u in enc.units if enc.use[u] in model}
+            clauses = enc.cut(chosen)
             search = None
-            if smallest and enc.cut(chosen) is None and sum(weights[u] for u in chosen) != known:
+            if clauses is None and smallest and sum(weights[u] for u in chosen) != known:
                 true, search = oracle.smallest(order, deadline)
                 walked = {unit_of[v] for v in true}
-                if search != "time" or enc.cut(walked) is None:  # out of time on a closed set: the tree before
-                    chosen = walked
-            clauses = enc.cut(chosen)
+                walked_cut = enc.cut(walked)
+                if walked_cut is None or search != "time":  # out of time on a closed set: the tree before
+                    chosen, clauses = walked, walked_cut
             if clauses is None:
                 took = time.perf_counter() - t0
                 return Result(tuple(sorted(chosen)), oracle.lower, "optimal", cuts, took, search)
