@@ -116,6 +116,33 @@ def test_the_walk_ends_on_the_smallest_optimal_tree(chunk):
     assert walked > 0  # the first optimum was not the smallest, somewhere
 
 
+@pytest.mark.parametrize("seed", range(6))
+def test_the_walk_clauses_hold_exactly_the_smaller_assignments(seed):
+    """oracle._smaller against brute force: an assignment of ``order`` extends to a model of
+    the clauses iff it first differs from ``current`` where it is true and ``current`` is
+    false, before ``current``'s last true variable."""
+    from itertools import product
+
+    from pysat.solvers import Solver
+
+    from foon2asp.maxsat.oracle import _smaller
+
+    rng = random.Random(seed)
+    for _ in range(12):
+        n = rng.randint(0, 7)
+        order = rng.sample(range(1, n + 1), n)
+        current = {v for v in order if rng.random() < 0.4}
+        fresh = iter(range(n + 1, 10_000))
+        clauses = _smaller(order, current, lambda: next(fresh))  # noqa: B023
+        last = max((k for k, v in enumerate(order) if v in current), default=-1)
+        with Solver(name="g4", bootstrap_with=clauses) as sat:
+            for bits in product((False, True), repeat=n):
+                first = next((k for k in range(n) if bits[k] != (order[k] in current)), None)
+                smaller = first is not None and bits[first] and first < last
+                assumptions = [v if b else -v for v, b in zip(order, bits, strict=True)]
+                assert sat.solve(assumptions=assumptions) == smaller, (order, current, bits)
+
+
 def test_a_cycle_cheaper_than_any_tree_is_cut():
     """g needs x; x is made from g (a cycle of two units) or from the kitchen in three steps:
     the relaxation's optimum is the cycle, which is no tree; one loop cut later the optimum is 4."""

@@ -174,28 +174,38 @@ class Oracle:
 
 
 def _smaller(order: Sequence[int], current: set[int], new: Callable[[], int]) -> list[list[int]]:
-    """Clauses whose models are lexicographically smaller than ``current`` over ``order``:
-    some ``d`` true, where ``d`` (for a variable of ``order`` false in ``current``) makes it
-    true and ``e`` (before it) keeps every earlier variable as ``current`` has it.  Only
-    variables before the last one true in ``current`` can be ``d``: a model that agrees with
+    """Clauses whose models are lexicographically smaller than ``current`` over ``order``.
+
+    The variables of ``order`` true in ``current`` cut it into gaps (the false ones before
+    the first, between two, ...).  A model is smaller when, for some gap, it has every true
+    variable of ``current`` before the gap true, every variable of the earlier gaps false
+    and some variable of the gap true (the first of those is where it first differs, and
+    it makes it true).  A selector ``s`` per gap says so; ``z`` (per gap) says that the
+    model agrees with ``current`` on everything before the gap, as a chain.  So the clauses
+    number about one per variable of ``order`` and the new variables two per true one.
+    Only gaps before the last variable true in ``current`` count: a model that agrees with
     ``current`` up to a later variable and makes it true has more true variables than
     ``current``, so it costs more (every soft literal here weighs something)."""
     clauses: list[list[int]] = []
     some: list[int] = []
-    last = max((k for k, v in enumerate(order) if v in current), default=-1)
-    agree = 0  # the variable "every variable before this position agrees" (0: none yet, true)
-    for v in order[: max(last, 0)]:
+    gap: list[int] = []
+    agree = 0  # "the model agrees with current on everything before here" (0: nothing yet, true)
+    for v in order:
         if v not in current:
-            d = new()
-            some.append(d)
-            clauses.append([-d, v])
+            gap.append(v)
+            continue
+        if gap:  # the gap before v: some variable of it true, everything before it agreeing
+            s = new()
+            some.append(s)
+            clauses.append([-s, *gap])
             if agree:
-                clauses.append([-d, agree])
-        e = new()
-        clauses.append([-e, v if v in current else -v])
+                clauses.append([-s, agree])
+        z = new()  # agrees up to and including v: the gap false, v true, and before it
+        clauses.extend([-z, -g] for g in gap)
+        clauses.append([-z, v])
         if agree:
-            clauses.append([-e, agree])
-        agree = e
+            clauses.append([-z, agree])
+        agree, gap = z, []
     clauses.append(some)
     return clauses
 
