@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 
+import foon2asp
 from foon2asp import methods
 from foon2asp.asp.session import AspOptions, Session
 from foon2asp.batch.pool import BatchSpec
@@ -227,6 +228,49 @@ def test_workers_give_same_results(shared_problem, tmp_path):
     b = {key(r): outcome(r) for r in read_results(tmp_path / "two.jsonl")}
     assert a == b
     assert {s for s, _ in a.values()} >= {"optimal", "found"}
+
+
+def test_auto_workers_hand_the_rest_to_a_pool(shared_problem, tmp_path, monkeypatch):
+    """AUTO: a short batch stays in this process; one past the switch time goes on in a pool
+    of every usable core, with the same results as one process."""
+    from foon2asp.batch import pool
+
+    _, p = shared_problem
+    goal_ids = _subset(p, 24)
+    spec = BatchSpec(p, ["asp"], AspOptions())
+    one = run_batch(spec, goal_ids, tmp_path / "one.jsonl", progress=False)
+    short = run_batch(spec, goal_ids, tmp_path / "short.jsonl", workers=pool.AUTO, progress=False)
+    assert short.workers == 1
+    monkeypatch.setattr(pool, "SWITCH_S", 0.0)
+    cores = pool.usable_cores()
+    long = run_batch(spec, goal_ids, tmp_path / "long.jsonl", workers=pool.AUTO, progress=False)
+    assert long.workers == cores
+    assert one.done == short.done == long.done == len(goal_ids)
+    results = [
+        {key(r): outcome(r) for r in read_results(tmp_path / f"{name}.jsonl")} for name in ("one", "short", "long")
+    ]
+    assert results[0] == results[1] == results[2]
+    assert {s for s, _ in results[0].values()} == {"optimal"}
+
+
+def test_workers_option_takes_a_number_or_auto(shared_foon_dir, tmp_path):
+    from click.testing import CliRunner
+
+    from foon2asp.cli import main
+
+    base = ["batch", "--data", str(shared_foon_dir), "--goal", "#0"]
+    for bad, said in (("0", "0 is not in 1..1024"), ("x", "'x' is not a number of workers or 'auto'")):
+        got = CliRunner().invoke(main, [*base, "-o", str(tmp_path / f"{bad}.jsonl"), "--workers", bad])
+        assert got.exit_code == 2 and said in got.output, got.output
+    for good in ("auto", "AUTO", "1"):
+        got = CliRunner().invoke(main, [*base, "-o", str(tmp_path / f"{good}.jsonl"), "--workers", good])
+        assert got.exit_code == 0, got.output
+        assert "with 1 worker(s)" in got.output
+    kb = foon2asp.load(shared_foon_dir)
+    assert kb.batch(goals=["#0"], workers="auto").workers == 1
+    for bad in (0, "two", True):
+        with pytest.raises(InputError, match="workers must be 1..1024 or 'auto'"):
+            kb.batch(goals=["#0"], workers=bad)
 
 
 def test_dask_local_cluster(shared_problem, tmp_path):

@@ -25,7 +25,7 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.asp.substitutes import report as report_substitutions
 from foon2asp.batch import cluster
 from foon2asp.batch import run as batch_run
-from foon2asp.batch.pool import BatchSpec
+from foon2asp.batch.pool import AUTO, BatchSpec
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.loaders import Dataset
@@ -414,7 +414,7 @@ class KnowledgeBase(Matching, Scheduling):
         output: str | Path | None = None,
         *,
         methods: Sequence[str] = ("asp",),
-        workers: int = 1,
+        workers: int | str = 1,
         resume: bool = False,
         progress: bool | None = False,
         fsync: bool = True,
@@ -426,6 +426,9 @@ class KnowledgeBase(Matching, Scheduling):
 
         ``grounding``: ``"whole"``, ``"per-goal"`` or ``"auto"`` (chosen from the FOON and the goals by
         :func:`foon2asp.batch.run.choose_grounding`; the run's ``grounding`` and ``grounding_reason`` say which).
+        ``workers``: processes, or ``"auto"`` (this process, then a pool on every usable core once the batch has
+        run 5 s; the run's ``workers`` says how many ran; a script using a pool needs the usual
+        ``if __name__ == "__main__":`` guard).
         """
         request = Options.of(options, **settings)
         solver = self.options(request)
@@ -433,5 +436,15 @@ class KnowledgeBase(Matching, Scheduling):
         executor = None
         if scheduler:
             executor = cluster.executor(scheduler)
-        outcome = batch_run.run_batch(spec, self.goal_ids(goals), output, resume, workers, progress, fsync, executor)
+        count = _workers(workers)
+        outcome = batch_run.run_batch(spec, self.goal_ids(goals), output, resume, count, progress, fsync, executor)
         return BatchRun(self, outcome)
+
+
+def _workers(workers: int | str) -> int:
+    """``workers`` of :meth:`KnowledgeBase.batch` as the pool takes it (``"auto"``: :data:`AUTO`)."""
+    if isinstance(workers, str) and workers.strip().lower() == "auto":
+        return AUTO
+    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= 1024:
+        raise InputError(f"workers must be 1..1024 or 'auto', not {workers!r}")
+    return workers

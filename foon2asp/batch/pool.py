@@ -1,11 +1,17 @@
 """The worker pool of a batch: runners built once per process, asked goal after goal.
 
 A :class:`Worker` holds the runners of one process (one per method, built
-once from a :class:`BatchSpec`); :func:`execute` runs (goal, method) tasks
+once from a :class:`BatchSpec`); :class:`Execution` runs (goal, method) tasks
 in this process or, with ``workers > 1``, in a process pool whose
 initializer builds each worker's runners once, and yields each result as one
 JSON line as it finishes (:mod:`foon2asp.batch.cluster` runs the same
 workers on a Dask cluster).
+
+``workers=AUTO`` (the default of ``batch``) starts in this process and hands
+the tasks left to a pool of one worker per usable core once the batch has run
+for :data:`SWITCH_S` seconds: a short batch never pays for starting
+processes (on ../shared/foon two workers take as long as one), a long one
+runs on every core (BENCHMARKS.md, "Workers").
 
 Pool workers ignore SIGINT (the parent stops them) and exit when the
 parent dies, even by SIGKILL (``PR_SET_PDEATHSIG`` on Linux, and a thread
@@ -30,6 +36,19 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.runner import GoalRunner, Parts
 from foon2asp.tree.serialize import tree_json
+
+#: ``workers``: one process, then a pool on every usable core once the batch is long
+AUTO = 0
+#: seconds in this process before ``AUTO`` hands the remaining tasks to a pool
+SWITCH_S = 5.0
+
+
+def usable_cores() -> int:
+    """The cores this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
 
 
 @dataclass
@@ -106,30 +125,65 @@ def _chunks(tasks: list[tuple[int, str]], size: int) -> Iterator[list[tuple[int,
         yield tasks[i : i + size]
 
 
+class Execution:
+    """Run ``tasks``; iterating yields ``(goal, method, json_line)`` as results finish.
+
+    With ``workers > 1`` a process pool runs them; with :data:`AUTO` this process
+    first, then a pool on every usable core (:attr:`workers` says how many ran them).
+    When the caller stops (:meth:`close`: an interrupt, an error) the pool's workers
+    are terminated at once."""
+
+    def __init__(self, spec: BatchSpec, tasks: list[tuple[int, str]], workers: int = 1, chunk: int = 1):
+        self.spec, self.tasks, self.chunk = spec, tasks, max(1, chunk)
+        self.requested = workers
+        #: the most processes that ran tasks so far
+        self.workers = 1 if workers == AUTO else workers
+        self._results = self._run()
+
+    def __iter__(self) -> Iterator[tuple[int, str, str]]:
+        return self._results
+
+    def close(self) -> None:
+        self._results.close()
+
+    def _run(self) -> Iterator[tuple[int, str, str]]:
+        tasks, workers = self.tasks, self.requested
+        if workers == AUTO:
+            cores = usable_cores()
+            worker = Worker(self.spec)
+            t0 = time.perf_counter()
+            done = 0
+            for goal, method in tasks:
+                if cores > 1 and time.perf_counter() - t0 >= SWITCH_S:
+                    break
+                yield goal, method, worker.run(goal, method)
+                done += 1
+            del worker
+            tasks, workers = tasks[done:], cores
+        elif workers <= 1:
+            worker = Worker(self.spec)
+            for goal, method in tasks:
+                yield goal, method, worker.run(goal, method)
+            return
+        if not tasks:
+            return
+        self.workers = workers
+        context = multiprocessing.get_context("spawn")
+        pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec,))
+        try:
+            for results in pool.imap_unordered(_run_in_worker, _chunks(tasks, self.chunk)):
+                yield from results
+            pool.close()
+        finally:
+            pool.terminate()
+            pool.join()
+
+
 def execute(
     spec: BatchSpec,
     tasks: list[tuple[int, str]],
     workers: int = 1,
     chunk: int = 1,
-) -> Iterator[tuple[int, str, str]]:
-    """Run ``tasks``; yield ``(goal, method, json_line)`` as results finish.
-
-    With ``workers > 1`` a process pool runs them; when the caller stops (an
-    interrupt, an error) the pool's workers are terminated at once.
-    """
-    if workers <= 1:
-        worker = Worker(spec)
-        for goal, method in tasks:
-            yield goal, method, worker.run(goal, method)
-        return
-    if not tasks:
-        return
-    context = multiprocessing.get_context("spawn")
-    pool = context.Pool(workers, initializer=_init_worker, initargs=(spec,))
-    try:
-        for results in pool.imap_unordered(_run_in_worker, _chunks(tasks, max(1, chunk))):
-            yield from results
-        pool.close()
-    finally:
-        pool.terminate()
-        pool.join()
+) -> Execution:
+    """:class:`Execution` of ``tasks`` on ``workers`` processes (:data:`AUTO`: as the batch needs)."""
+    return Execution(spec, tasks, workers, chunk)

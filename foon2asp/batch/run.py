@@ -22,7 +22,7 @@ from tqdm import tqdm
 
 from foon2asp import methods as methods_mod
 from foon2asp.batch.grounding import GROUNDING_CHOICES, choose_grounding
-from foon2asp.batch.pool import BatchSpec, execute
+from foon2asp.batch.pool import AUTO, BatchSpec, execute
 from foon2asp.batch.results import (
     ResultFile,
     config_differences,
@@ -58,6 +58,8 @@ def run_batch(
 
     Without ``resume`` an existing, non-empty ``output`` is an error (nothing
     is overwritten).  ``executor`` replaces the local runner (the Dask path).
+    ``workers``: processes, or :data:`foon2asp.batch.pool.AUTO` (this process, then
+    a pool on every core once the batch is long; the report says how many ran).
     """
     for name in spec.methods:
         methods_mod.get(name)  # unknown names fail before any work
@@ -100,6 +102,7 @@ def run_batch(
         new_records: list[dict] = []
         bar = _progress(len(todo), progress)
         results: Iterable[tuple[int, str, str]] = ()
+        used = 1 if workers == AUTO else workers  # the processes that ran tasks (the pool's, once it started)
         try:
             if executor is not None:
                 results = executor(spec, todo)
@@ -110,6 +113,7 @@ def run_batch(
                     out.append(line)
                 new_records.append(json.loads(line))
                 bar.update(1)
+            used = getattr(results, "workers", used)
         finally:
             close = getattr(results, "close", None)
             if close is not None:
@@ -126,7 +130,7 @@ def run_batch(
         skipped,
         elapsed,
         kept + new_records,
-        workers,
+        used,
         str(output) if output else None,
         spec.grounding,
         reason,

@@ -22,7 +22,7 @@ from foon2asp.cli.options import (
     time_limit_option,
 )
 from foon2asp.cli.output import EXIT_CODES, exit_code
-from foon2asp.cli.params import SCHEDULER, int32
+from foon2asp.cli.params import SCHEDULER, WORKERS
 from foon2asp.cli.schedule_options import schedule_options
 
 #: schedule statuses that answer their goal
@@ -67,7 +67,13 @@ _batch_settings = request_options(
     is_flag=True,
     help="Continue OUTPUT: skip the (goal, method) pairs it already holds for the same configuration.",
 )
-@click.option("--workers", type=int32(min=1, max=1024), default=1, show_default=True, help="Worker processes.")
+@click.option(
+    "--workers",
+    type=WORKERS,
+    default="auto",
+    show_default=True,
+    help="Worker processes; auto: this process, and once the batch has run 5 s the rest on every usable core.",
+)
 @click.option(
     "--scheduler", type=SCHEDULER, metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra)."
 )

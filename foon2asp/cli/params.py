@@ -45,6 +45,28 @@ def int32(min: int = 0, max: int = INT32_MAX) -> click.IntRange:
     return click.IntRange(min=min, max=max)
 
 
+class Workers(click.ParamType):
+    """A number of worker processes (1..1024), or ``"auto"`` (one process, then every core)."""
+
+    name = "N|auto"
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, int):
+            number = value
+        elif str(value).strip().lower() == "auto":
+            return "auto"
+        else:
+            try:
+                number = int(str(value).strip())
+            except ValueError:
+                self.fail(f"{escape(str(value))!r} is not a number of workers or 'auto'", param, ctx)
+        if not 1 <= number <= 1024:
+            self.fail(f"{number} is not in 1..1024 (or 'auto')", param, ctx)
+        return number
+
+
+WORKERS = Workers()
+
 _ADDRESS = re.compile(r"^(?:(tcp|tls|inproc|ucx|ws|wss)://)?(\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.\-]+)(?::(\d{1,5}))?/?$")
 
 
