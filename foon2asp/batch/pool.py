@@ -28,7 +28,7 @@ import signal
 import sys
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Generator, Iterator
 from dataclasses import dataclass, field
 
 from foon2asp.analysis.compare import judge
@@ -146,7 +146,7 @@ class Execution:
     def close(self) -> None:
         self._results.close()
 
-    def _run(self) -> Iterator[tuple[int, str, str]]:
+    def _run(self) -> Generator[tuple[int, str, str], None, None]:
         tasks, workers = self.tasks, self.requested
         if workers == AUTO:
             cores = usable_cores()
