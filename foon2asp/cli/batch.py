@@ -70,6 +70,7 @@ _batch_settings = request_options(
 @click.option(
     "--workers",
     type=WORKERS,
+    metavar="N|auto",
     default="auto",
     show_default=True,
     help="Worker processes; auto: this process, and once the batch has run 5 s the rest on every usable core.",
