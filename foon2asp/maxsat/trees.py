@@ -47,16 +47,26 @@ closed set it ends on that is no tree is cut as above and the walk starts again.
 
 The solver's cost is a lower bound at every moment (:mod:`foon2asp.maxsat.oracle`),
 so a search cut short still says how far from proven the best known tree is.
+
+**HiGHS beside RC2.**  With ``mip_after`` set, a goal RC2 has not proven after that many
+seconds is also given, on a second thread, to HiGHS (:mod:`foon2asp.maxsat.mip`) as a
+0/1 program over the same clauses and loop cuts (:func:`minimum_tree_mip`); whichever
+proves the optimum first ends both.  The bound is the better of the two, and the best
+tree HiGHS found (a closed set that derives the goal) is offered when both are cut
+short.  A tree HiGHS proves is its optimum, not the smallest in the canonical order
+(``search == "mip"``).
 """
 
 from __future__ import annotations
 
+import threading
 import time
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 
 from foon2asp.foon.derive import least_fixpoint
 from foon2asp.foon.problem import Problem
+from foon2asp.maxsat import mip
 from foon2asp.maxsat.oracle import Oracle, Stopped
 
 
@@ -73,8 +83,12 @@ class Result:
     cuts: int = 0
     time_s: float = 0.0
     #: how the walk to the smallest optimal tree ended: "complete" | "budget" | "time" (None: not asked,
-    #: or the optimum weighed ``known``)
+    #: or the optimum weighed ``known``; "mip": HiGHS proved the tree, no walk)
     search: str | None = None
+    #: cut short: the best tree found all the same (HiGHS's), None when there is none
+    incumbent: tuple[int, ...] | None = None
+    #: the solver that proved the result: "rc2" | "highs"
+    solver: str = "rc2"
 
 
 class _Encoding:
@@ -164,6 +178,64 @@ class _Rounds(_Encoding):
         return None  # rounds only go down: every optimum is a tree
 
 
+def _encoding(problem: Problem, goal: int, units: Iterable[int], depth: int | None) -> _Encoding:
+    pool = sorted(set(units))
+    return _Encoding(problem, goal, pool) if depth is None else _Rounds(problem, goal, pool, depth)
+
+
+class _Race:
+    """What HiGHS reports to RC2's search beside it: its bound, its best tree, its proof."""
+
+    def __init__(self) -> None:
+        self.done = threading.Event()  # RC2 is done: HiGHS stops
+        self.lower = 0
+        self.proof: Result | None = None
+        self.incumbent: tuple[int, ...] | None = None
+
+
+def minimum_tree_mip(
+    problem: Problem,
+    goal: int,
+    units: Iterable[int],
+    weights: Sequence[int],
+    require: Iterable[int] = (),
+    deadline: float | None = None,
+    depth: int | None = None,
+    halt: Callable[[], bool] | None = None,
+    race: _Race | None = None,
+) -> Result:
+    """:func:`minimum_tree` by HiGHS (no walk to the smallest tree): the same clauses, loop
+    cuts and result; ``halt()`` ends it early; ``race`` (the search beside RC2) receives the
+    bound and the best tree as they come."""
+    t0 = time.perf_counter()
+    enc = _encoding(problem, goal, units, depth)
+    clauses = list(enc.clauses())
+    require = sorted({enc.use[u] for u in require if u in enc.use})
+    program = mip.Program(enc.top, {enc.use[u]: weights[u] for u in enc.units}, require)
+    program.add(clauses)
+    race = race or _Race()
+    cuts = 0
+    while True:
+        status, model = program.solve(deadline, halt)
+        race.lower = max(race.lower, program.lower)
+        chosen = None if model is None else {u for u in enc.units if enc.use[u] in model}
+        clauses_ = None if chosen is None else enc.cut(chosen)
+        if chosen is not None and clauses_ is None:
+            tree = tuple(sorted(chosen))
+            if status == "optimal":
+                cost = sum(weights[u] for u in tree)
+                took = time.perf_counter() - t0
+                return Result(tree, cost, "optimal", cuts, took, "mip", None, "highs")
+            race.incumbent = tree
+        if status == "infeasible":
+            return Result(None, program.lower, "unreachable", cuts, time.perf_counter() - t0, solver="highs")
+        if status == "stopped":
+            took = time.perf_counter() - t0
+            return Result(None, program.lower, "stopped", cuts, took, incumbent=race.incumbent, solver="highs")
+        cuts += 1
+        program.add(clauses_ or ())
+
+
 def minimum_tree(
     problem: Problem,
     goal: int,
@@ -175,6 +247,7 @@ def minimum_tree(
     depth: int | None = None,
     smallest: bool = False,
     known: int | None = None,
+    mip_after: float | None = None,
 ) -> Result:
     """The least-weight tree for ``goal`` over ``units`` (each unit ``u`` weighs
     ``weights[u] > 0``), every unit of ``require`` in it; with ``depth``, among the
@@ -183,10 +256,65 @@ def minimum_tree(
 
     ``deadline`` (``time.perf_counter()``) and ``stop(lower)`` end the search early:
     the result is then ``stopped`` with the lower bound proven so far (a walk to the
-    smallest tree cut short ends on the smallest reached, ``search == "time"``)."""
+    smallest tree cut short ends on the smallest reached, ``search == "time"``).
+    ``mip_after``: HiGHS starts beside RC2 after that many seconds (None: never)."""
     t0 = time.perf_counter()
-    pool = sorted(set(units))
-    enc = _Encoding(problem, goal, pool) if depth is None else _Rounds(problem, goal, pool, depth)
+    units = sorted(set(units))
+    race = _Race()
+    helper = None
+    if mip_after is not None and mip.available():
+
+        def beside() -> None:
+            if race.done.wait(mip_after):
+                return
+            try:
+                found = minimum_tree_mip(
+                    problem, goal, units, weights, require, deadline, depth, race.done.is_set, race
+                )
+            except Exception:  # noqa: BLE001 (the helper failing leaves RC2's search as it was)
+                return
+            if found.status == "optimal":
+                race.proof = found
+
+        helper = threading.Thread(target=beside, daemon=True)
+        helper.start()
+        user_stop = stop
+
+        def stop(lower: int) -> bool:
+            return race.proof is not None or (user_stop is not None and user_stop(max(lower, race.lower)))
+
+    try:
+        found = _by_cores(problem, goal, units, weights, require, deadline, stop, depth, smallest, known, race)
+    finally:
+        race.done.set()
+        if helper is not None:
+            helper.join()
+    proof = race.proof
+    if found.status == "stopped" and proof is not None and proof.lower >= found.lower:
+        proof.time_s = time.perf_counter() - t0
+        return proof
+    found.lower = max(found.lower, race.lower) if found.status == "stopped" else found.lower
+    found.incumbent = race.incumbent if found.status == "stopped" else None
+    found.time_s = time.perf_counter() - t0
+    return found
+
+
+def _by_cores(
+    problem: Problem,
+    goal: int,
+    units: Sequence[int],
+    weights: Sequence[int],
+    require: Iterable[int],
+    deadline: float | None,
+    stop: Callable[[int], bool] | None,
+    depth: int | None,
+    smallest: bool,
+    known: int | None,
+    race: _Race,
+) -> Result:
+    """:func:`minimum_tree` by RC2 (``race.done`` set once it has an optimum)."""
+    t0 = time.perf_counter()
+    enc = _encoding(problem, goal, units, depth)
     oracle = Oracle()
     for clause in enc.clauses():
         oracle.hard(clause)
@@ -202,9 +330,12 @@ def minimum_tree(
         while True:
             model = oracle.solve(deadline, stop)
             if model is None:
+                race.done.set()
                 return Result(None, oracle.lower, "unreachable", cuts, time.perf_counter() - t0)
             chosen = {u for u in enc.units if enc.use[u] in model}
             clauses = enc.cut(chosen)
+            if clauses is None:
+                race.done.set()  # an optimal tree: HiGHS stops, the walk starts
             search = None
             if clauses is None and smallest and sum(weights[u] for u in chosen) != known:
                 true, search = oracle.smallest(order, deadline)

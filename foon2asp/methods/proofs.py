@@ -14,6 +14,7 @@ Cut short by the time limit or the gap, the answer is ``feasible``: the bounds t
 
 from __future__ import annotations
 
+import os
 import time
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
@@ -28,6 +29,9 @@ from foon2asp.methods.bounds import Bounds
 from foon2asp.tree.gap import first_level, settle
 from foon2asp.tree.tasktree import TaskTree, executable_order, measures
 from foon2asp.tree.weights import total
+
+#: seconds of RC2 before HiGHS joins it on the second core (BENCHMARKS.md, "HiGHS beside RC2")
+MIP_AFTER_S = 1.0
 
 
 def answer(
@@ -121,11 +125,17 @@ def _prove(
     deadline = at.t0 + limit if limit else None
     stop = _stop(at.ranked, options, upper, lower_of)
     known = sum(weights[u] for u in best) if best_is_canonical else None
-    found = minimum_tree(problem, at.goal, keep, weights, require, deadline, stop, depth, options.canonical, known)
+    found = minimum_tree(
+        problem, at.goal, keep, weights, require, deadline, stop, depth, options.canonical, known, mip_after()
+    )
     stats: dict = {"shortcut": "maxsat", "maxsat_s": round(found.time_s, 6), "pruned_units": len(at.units) - len(keep)}
     if found.cuts:
         stats["loop_cuts"] = found.cuts
+    if found.solver != "rc2":
+        stats["proven_by"] = found.solver
     if found.tree is None:  # cut short (no tree cannot be: ``best`` lies in ``keep``)
+        if found.incumbent is not None and cost_of(found.incumbent) < list(upper):
+            best, upper = found.incumbent, cost_of(found.incumbent)
         order = executable_order(problem, list(best))
         elapsed = round(time.perf_counter() - at.t0, 6)
         extra = {"asp_cost": list(upper)}
@@ -136,6 +146,13 @@ def _prove(
     if found.search not in (None, "complete"):
         stats["canonical_search"] = found.search
     return at.answer(found.tree, stats)
+
+
+def mip_after() -> float | None:
+    """When HiGHS starts beside RC2 (:func:`foon2asp.maxsat.trees.minimum_tree`): after
+    :data:`MIP_AFTER_S` seconds on a machine with two cores or more for this process,
+    never on one core (it would halve RC2's speed)."""
+    return MIP_AFTER_S if len(os.sched_getaffinity(0)) >= 2 else None
 
 
 def by_maxsat(

@@ -1,0 +1,179 @@
+"""HiGHS on the MaxSAT formula (foon2asp.maxsat.mip) and beside RC2 (minimum_tree's ``mip_after``).
+
+The 0/1 program is checked against brute force on random FOONs with cycles (every objective,
+with and without a depth bound, loop cuts included), the race's plumbing with an RC2 that
+never finishes on its own (HiGHS's proof is the answer, with its bound and solver), a race
+cut short (the bound at most the optimum, the incumbent a valid tree), and HiGHS's banner
+kept off the standard output.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import threading
+import time
+
+import pytest
+
+import foon2asp.maxsat.oracle as oracle_module
+from foon2asp.maxsat import mip
+from foon2asp.maxsat.trees import minimum_tree, minimum_tree_mip
+from foon2asp.methods.bounds import Bounds
+from foon2asp.tree.tasktree import measures
+from foon2asp.tree.validate import validate
+from helpers import brute_force, build, goal_id
+from test_maxsat import RANKED, cyclic_foon
+
+pytestmark = pytest.mark.skipif(not mip.available(), reason="highspy is not installed")
+
+
+@pytest.mark.parametrize("chunk", range(3))
+def test_the_program_is_the_brute_force_optimum(chunk):
+    checked = 0
+    for seed, ranked in [(s, r) for s in range(5 * chunk, 5 * chunk + 5) for r in RANKED]:
+        problem = cyclic_foon(seed)
+        levels, _ = problem.derivation_levels()
+        bounds = Bounds(problem, ranked)
+        for goal in range(len(problem.objects)):
+            if goal in problem.kitchen:
+                continue
+            every = brute_force(problem, goal)
+            for depth in (None, levels[goal]) if goal in levels else (None,):
+                trees = (
+                    every if depth is None else [t for t in every if measures(problem, goal, list(t))["depth"] <= depth]
+                )
+                found = minimum_tree_mip(problem, goal, range(len(problem.units)), bounds.w, depth=depth)
+                if not trees:
+                    assert found.status == "unreachable" and found.tree is None, (seed, ranked, goal, depth)
+                    continue
+                opt = min(bounds.weight(t) for t in trees)
+                assert found.status == "optimal" and found.solver == "highs", (seed, ranked, goal, depth)
+                assert validate(problem, goal, list(found.tree)).valid
+                assert bounds.weight(found.tree) == opt == found.lower, (seed, ranked, goal, depth)
+                if depth is not None:
+                    assert measures(problem, goal, list(found.tree))["depth"] <= depth
+                checked += 1
+    assert checked > 0
+
+
+def test_a_cycle_cheaper_than_any_tree_is_cut_in_the_program():
+    """As in test_maxsat: the program's first optimum is the cycle g <-> x (no tree); one loop cut later it is 4."""
+    problem = build(
+        [
+            ("mix", ["x"], ["g"]),
+            ("melt", ["g"], ["x"]),
+            ("cut", ["k"], ["y"]),
+            ("boil", ["y"], ["z"]),
+            ("fry", ["z"], ["x"]),
+        ],
+        ["k"],
+    )
+    goal = goal_id(problem, "g")
+    found = minimum_tree_mip(problem, goal, range(5), [1] * 5)
+    assert found.status == "optimal" and found.cuts >= 1 and found.tree == (0, 2, 3, 4) and found.lower == 4
+    forced = minimum_tree_mip(problem, goal, range(5), [1] * 5, require=[1])
+    assert forced.status == "optimal" and forced.tree == (0, 1, 2, 3, 4) and forced.lower == 5
+
+
+def test_required_units_are_in_the_programs_tree():
+    problem = cyclic_foon(3)
+    bounds = Bounds(problem, ("units",))
+    levels, unit_levels = problem.derivation_levels()
+    goal = max(levels, key=lambda o: levels[o])
+    trees = brute_force(problem, goal)
+    for u in sorted(unit_levels):
+        with_u = [t for t in trees if u in t]
+        found = minimum_tree_mip(problem, goal, range(len(problem.units)), bounds.w, require=[u])
+        if not with_u:
+            assert found.status != "optimal" or u in found.tree
+            continue
+        assert found.status == "optimal" and u in found.tree
+        assert len(found.tree) == min(len(t) for t in with_u)
+
+
+@pytest.fixture
+def slow_rc2(monkeypatch):
+    """RC2 that finds nothing: every solve waits until it is told to stop."""
+
+    def solve(self, deadline=None, stop=None):
+        while not (stop is not None and stop(self.lower)):
+            if deadline is not None and time.perf_counter() >= deadline:
+                break
+            time.sleep(0.01)
+        raise oracle_module.Stopped
+
+    monkeypatch.setattr(oracle_module.Oracle, "solve", solve)
+
+
+def test_highs_beside_a_stuck_rc2_proves_the_optimum(slow_rc2):
+    checked = 0
+    for seed in range(6):
+        problem = cyclic_foon(seed)
+        bounds = Bounds(problem, ("success", "units"))
+        for goal in range(len(problem.objects)):
+            trees = brute_force(problem, goal) if goal not in problem.kitchen else []
+            if not trees:
+                continue
+            units = range(len(problem.units))
+            found = minimum_tree(problem, goal, units, bounds.w, deadline=time.perf_counter() + 30, mip_after=0.0)
+            opt = min(bounds.weight(t) for t in trees)
+            assert found.status == "optimal" and found.solver == "highs" and found.search == "mip"
+            assert bounds.weight(found.tree) == opt == found.lower and validate(problem, goal, list(found.tree)).valid
+            checked += 1
+    assert checked > 10
+
+
+def test_without_highs_a_stuck_rc2_stops_at_the_deadline(slow_rc2):
+    problem = cyclic_foon(1)
+    bounds = Bounds(problem, ("units",))
+    levels, _ = problem.derivation_levels()
+    goal = max(levels, key=lambda o: levels[o])
+    found = minimum_tree(problem, goal, range(len(problem.units)), bounds.w, deadline=time.perf_counter() + 0.2)
+    assert found.status == "stopped" and found.tree is None and found.incumbent is None and found.lower == 0
+
+
+def test_a_race_cut_short_bounds_the_optimum_and_offers_a_tree(hard):
+    problem, goals = hard
+    goal = goals[8]  # about 50 units in a part of about 2,900: seconds to prove
+    bounds = Bounds(problem, ("units",), problem.units_for([goal]))
+    part = bounds.keep(goal, problem.units_for([goal]))
+    full = minimum_tree(problem, goal, part, bounds.w)
+    assert full.status == "optimal"
+    for limit in (0.5, 1.5):
+        short = minimum_tree(problem, goal, part, bounds.w, deadline=time.perf_counter() + limit, mip_after=0.0)
+        if short.status == "optimal":
+            assert bounds.weight(short.tree) == full.lower
+            continue
+        assert short.status == "stopped" and short.lower <= full.lower
+        if short.incumbent is not None:
+            assert validate(problem, goal, list(short.incumbent)).valid
+            assert bounds.weight(short.incumbent) >= full.lower
+
+
+def test_the_helper_thread_ends_with_the_search():
+    problem = cyclic_foon(2)
+    bounds = Bounds(problem, ("units",))
+    before = threading.active_count()
+    for goal in range(len(problem.objects)):
+        if goal not in problem.kitchen:
+            minimum_tree(problem, goal, range(len(problem.units)), bounds.w, mip_after=0.0)
+    assert threading.active_count() == before
+
+
+def test_a_program_past_its_deadline_stops_at_once():
+    program = mip.Program(3, {1: 1, 2: 1, 3: 1})
+    program.add([[1, 2], [-1, 3]])
+    assert program.solve(deadline=time.perf_counter() - 1) == ("stopped", None)
+    status, model = program.solve()
+    assert status == "optimal" and model == {2}
+    program.add([[-2]])
+    assert program.solve() == ("optimal", {1, 3}) and program.lower == 2
+    program.add([[-1]])
+    assert program.solve() == ("infeasible", None)
+
+
+def test_highs_prints_nothing():
+    code = "from foon2asp.maxsat import mip; p = mip.Program(2, {1: 1, 2: 2}); p.add([[1, 2]]); print(p.solve())"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "('optimal', {1})" and out.stderr == ""
