@@ -53,6 +53,7 @@ def run(name: str, objective: str, limit: float, raw) -> dict:
             "bound": tree.bound,
             "gap": tree.gap,
             "how": tree.stats.get("shortcut") or tree.stats.get("proof") or "solver",
+            "proven_by": tree.stats.get("proven_by"),
         }
         rows.append(row)
         if raw is not None:

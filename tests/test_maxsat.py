@@ -281,3 +281,38 @@ def test_depth_first_cut_short_reports_the_depth_and_a_bound(hard):
     assert short.status in ("feasible", "optimal") and validate(problem, goal, short.units).valid
     assert short.cost["depth"] == full.cost["depth"] == short.bound["depth"]
     assert short.bound["success"] >= full.cost["success"] - 1e-12  # a bound on the product: from above
+
+
+def test_a_sat_call_deaf_to_the_interrupt_is_given_up():
+    """A SAT call that does not answer the interrupt: the caller goes on (Stopped) while the
+    call still runs, marks the solver abandoned, and the call ends later on its own."""
+    import threading
+
+    from foon2asp.maxsat.oracle import _watched
+
+    release, ended = threading.Event(), threading.Event()
+
+    class Sat:
+        interrupts = 0
+
+        def interrupt(self):
+            self.interrupts += 1
+
+    class Solver:
+        cost, halt, abandoned, oracle = 3, False, False, Sat()
+
+    def deaf():
+        release.wait(30)
+        ended.set()
+        return [1]
+
+    solver = Solver()
+    with pytest.raises(Stopped):
+        _watched(solver, time.perf_counter() + 0.05, None, deaf)
+    assert not ended.is_set() and solver.halt and solver.abandoned and solver.oracle.interrupts >= 1
+    release.set()
+    assert ended.wait(5)
+    # a call that returns: its result, and the stop asked with the solver's cost
+    asked = []
+    assert _watched(Solver(), None, lambda cost: asked.append(cost) or False, lambda: (time.sleep(0.1), 7)[1]) == 7
+    assert asked and set(asked) == {3}

@@ -158,7 +158,10 @@ def test_the_helper_thread_ends_with_the_search():
     for goal in range(len(problem.objects)):
         if goal not in problem.kitchen:
             minimum_tree(problem, goal, range(len(problem.units)), bounds.w, mip_after=0.0)
-    assert threading.active_count() == before
+    waited = time.perf_counter()
+    while threading.active_count() > before and time.perf_counter() - waited < 20:
+        time.sleep(0.05)
+    assert threading.active_count() == before  # the helpers stopped on their own
 
 
 def test_a_program_past_its_deadline_stops_at_once():
@@ -177,3 +180,19 @@ def test_highs_prints_nothing():
     code = "from foon2asp.maxsat import mip; p = mip.Program(2, {1: 1, 2: 2}); p.add([[1, 2]]); print(p.solve())"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "('optimal', {1})" and out.stderr == ""
+
+
+def test_highs_starts_later_on_shared_cores_and_never_on_one(monkeypatch):
+    from foon2asp.methods import proofs
+
+    for cores, processes, expected in [
+        (1, 1, None),
+        (1, 2, None),
+        (2, 1, proofs.MIP_AFTER_S),
+        (2, 2, proofs.MIP_AFTER_SHARED_S),
+        (4, 2, proofs.MIP_AFTER_S),
+    ]:
+        monkeypatch.setattr(proofs, "_cores", lambda c=cores: c)
+        proofs.share_cores(processes)
+        assert proofs.mip_after() == expected, (cores, processes)
+    proofs.share_cores(1)

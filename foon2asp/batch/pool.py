@@ -34,6 +34,7 @@ from dataclasses import dataclass, field
 from foon2asp.analysis.compare import judge
 from foon2asp.asp.options import AspOptions
 from foon2asp.foon.problem import Problem
+from foon2asp.methods.proofs import share_cores
 from foon2asp.methods.runner import GoalRunner, Parts
 from foon2asp.tree.serialize import tree_json
 
@@ -108,10 +109,11 @@ def _exit_with_parent() -> None:
     threading.Thread(target=watch, name="parent-watch", daemon=True).start()
 
 
-def _init_worker(spec: BatchSpec) -> None:
+def _init_worker(spec: BatchSpec, processes: int = 1) -> None:
     global _WORKER
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # an interrupt is the parent's to handle
     _exit_with_parent()
+    share_cores(processes)  # the pool's workers share the cores: HiGHS joins RC2 later
     _WORKER = Worker(spec)
 
 
@@ -169,7 +171,7 @@ class Execution:
             return
         self.workers = workers
         context = multiprocessing.get_context("spawn")
-        pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec,))
+        pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec, workers))
         try:
             for results in pool.imap_unordered(_run_in_worker, _chunks(tasks, self.chunk)):
                 yield from results

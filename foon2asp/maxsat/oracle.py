@@ -10,8 +10,10 @@ optimum.
 RC2 itself finishes the iteration a time limit interrupts, and reads a core from the
 interrupted call.  :class:`Oracle` does not: once it is told to stop, every call to
 the SAT solver raises :class:`Stopped` instead, so the cost it reports afterwards
-counts only cores that were proven.  A watcher thread interrupts the SAT solver at the
-deadline, or when the caller's ``stop`` says so (a gap reached).
+counts only cores that were proven.  The search runs on a thread of its own and the
+caller watches it: it interrupts the SAT solver at the deadline, or when the caller's
+``stop`` says so (a gap reached), and goes on without it if the solver has not answered
+the interrupt a moment later.
 
 *The smallest optimum.*  Once RC2 has an optimum, the models of its SAT solver under
 its assumptions (every soft literal and every bound of a relaxed core) are exactly the
@@ -44,6 +46,8 @@ PROCESS = 1
 CONFLICTS = 5000
 #: how often the watcher looks at the clock and the bound (seconds)
 POLL_S = 0.02
+#: how long after an interrupt the caller waits for the SAT call to end (seconds)
+GIVE_UP_S = 0.25
 
 
 class Stopped(Exception):
@@ -54,6 +58,8 @@ class _Halting:
     """RC2's SAT calls, always interruptible, and never counting an interrupted call."""
 
     halt = False
+    #: a call still runs on its thread (the caller gave up waiting): deleted by nobody
+    abandoned = False
     oracle: Any
 
     def _call_oracle(self, assumptions=(), expect_interrupt=False):  # noqa: ARG002 (RC2's signature)
@@ -99,7 +105,8 @@ class Oracle:
         self.formula.append(list(clause))
         if self._solver is not None:
             self._lower = self.lower
-            self._solver.delete()
+            if not self._solver.abandoned:
+                self._solver.delete()
             self._solver = None
 
     def soft(self, lit: int, weight: int) -> None:
@@ -163,8 +170,9 @@ class Oracle:
             except Stopped:
                 return current, "time"
             finally:
-                sat.add_clause([-act])  # the step's clauses off for good
-                sat.conf_budget(-1)
+                if not solver.abandoned:  # (an abandoned call still runs on the solver)
+                    sat.add_clause([-act])  # the step's clauses off for good
+                    sat.conf_budget(-1)
             if found is None:
                 return current, "budget"
             if not found:
@@ -212,27 +220,50 @@ def _smaller(order: Sequence[int], current: set[int], new: Callable[[], int]) ->
 
 def _watched(solver: Any, deadline: float | None, stop: Callable[[int], bool] | None, call: Callable[[], Any]) -> Any:
     """``call()`` on RC2 ``solver``, interrupted at the ``deadline`` (``time.perf_counter()``)
-    or once ``stop(cost)`` is true, which raises :class:`Stopped`."""
-    done = threading.Event()
+    or once ``stop(cost)`` is true, which raises :class:`Stopped`.
 
-    def watch() -> None:
-        while not done.wait(POLL_S):
-            if (deadline is not None and time.perf_counter() >= deadline) or (stop is not None and stop(solver.cost)):
-                solver.halt = True
-                solver.oracle.interrupt()
+    The call runs on a thread of its own: Glucose answers an interrupt only at its next
+    conflict check, seconds later at times (BENCHMARKS.md, "Time limits overrun"), so
+    :data:`GIVE_UP_S` after the interrupt the caller stops waiting and goes on; the call
+    ends by itself later (every SAT call after the interrupt raises :class:`Stopped`) and
+    keeps the solver alive until then."""
+    if deadline is None and stop is None:
+        return call()
+    if deadline is not None and time.perf_counter() >= deadline:
+        raise Stopped
+    box: dict[str, Any] = {}
+    finished = threading.Event()
 
-    watcher = None
-    if deadline is not None or stop is not None:
-        if deadline is not None and time.perf_counter() >= deadline:
-            raise Stopped
-        watcher = threading.Thread(target=watch, daemon=True)
-        watcher.start()
+    def run(keep: Any) -> None:  # ``keep``: the solver stays alive while its call runs
+        try:
+            box["result"] = call()
+        except BaseException as error:  # noqa: BLE001 (handed to the caller's thread)
+            box["error"] = error
+        finally:
+            finished.set()
+
+    threading.Thread(target=run, args=(solver,), daemon=True).start()
+    halted = None
     try:
-        result = call()
-    finally:
-        done.set()
-        if watcher is not None:
-            watcher.join()
+        while not finished.wait(POLL_S):
+            now = time.perf_counter()
+            if halted is None:
+                if (deadline is not None and now >= deadline) or (stop is not None and stop(solver.cost)):
+                    solver.halt = True
+                    solver.oracle.interrupt()
+                    halted = now
+            elif now - halted >= GIVE_UP_S:
+                raise Stopped
+            else:
+                solver.oracle.interrupt()
+    except BaseException:  # given up, or an interrupt (Ctrl-C) or error here: the call is told to stop
+        solver.halt = True
+        solver.oracle.interrupt()
+        if not finished.is_set():
+            solver.abandoned = True  # never deleted by the caller: its call still runs
+        raise
+    if "error" in box:
+        raise box["error"]
     if solver.halt:
         raise Stopped
-    return result
+    return box["result"]

@@ -261,7 +261,6 @@ def minimum_tree(
     t0 = time.perf_counter()
     units = sorted(set(units))
     race = _Race()
-    helper = None
     if mip_after is not None and mip.available():
 
         def beside() -> None:
@@ -276,8 +275,7 @@ def minimum_tree(
             if found.status == "optimal":
                 race.proof = found
 
-        helper = threading.Thread(target=beside, daemon=True)
-        helper.start()
+        threading.Thread(target=beside, daemon=True).start()
         user_stop = stop
 
         def stop(lower: int) -> bool:
@@ -286,9 +284,7 @@ def minimum_tree(
     try:
         found = _by_cores(problem, goal, units, weights, require, deadline, stop, depth, smallest, known, race)
     finally:
-        race.done.set()
-        if helper is not None:
-            helper.join()
+        race.done.set()  # HiGHS stops at its next callback (about once a second): not waited for
     proof = race.proof
     if found.status == "stopped" and proof is not None and proof.lower >= found.lower:
         proof.time_s = time.perf_counter() - t0

@@ -32,6 +32,11 @@ from foon2asp.tree.weights import total
 
 #: seconds of RC2 before HiGHS joins it on the second core (BENCHMARKS.md, "HiGHS beside RC2")
 MIP_AFTER_S = 1.0
+#: the same for a worker that shares the cores (a batch's pool): the hard-4k batch over every
+#: object took 1,183 s with HiGHS after 1 s, 863 s without it (2 answers then not proven)
+MIP_AFTER_SHARED_S = 10.0
+#: the processes solving goals at once on this machine's cores (:func:`share_cores`)
+_processes = 1
 
 
 def answer(
@@ -148,11 +153,29 @@ def _prove(
     return at.answer(found.tree, stats)
 
 
+def share_cores(processes: int) -> None:
+    """This process is one of ``processes`` that solve goals at once (a batch's pool of
+    workers): HiGHS starts beside RC2 only when each of them has two cores or more."""
+    global _processes
+    _processes = max(1, processes)
+
+
+def _cores() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
 def mip_after() -> float | None:
     """When HiGHS starts beside RC2 (:func:`foon2asp.maxsat.trees.minimum_tree`): after
-    :data:`MIP_AFTER_S` seconds on a machine with two cores or more for this process,
-    never on one core (it would halve RC2's speed)."""
-    return MIP_AFTER_S if len(os.sched_getaffinity(0)) >= 2 else None
+    :data:`MIP_AFTER_S` seconds when this process has two cores or more to itself; after
+    :data:`MIP_AFTER_SHARED_S` when it shares them with other workers (HiGHS then takes a
+    core from another goal); never on one core."""
+    cores = _cores()
+    if cores < 2:
+        return None
+    return MIP_AFTER_S if cores // _processes >= 2 else MIP_AFTER_SHARED_S
 
 
 def by_maxsat(
