@@ -22,7 +22,7 @@ from foon2asp.maxsat.trees import minimum_tree, minimum_tree_mip
 from foon2asp.methods.bounds import Bounds
 from foon2asp.tree.tasktree import measures
 from foon2asp.tree.validate import validate
-from helpers import brute_force, build, goal_id
+from helpers import brute_force
 from test_maxsat import RANKED, cyclic_foon
 
 pytestmark = pytest.mark.skipif(not mip.available(), reason="highspy is not installed")
@@ -55,25 +55,6 @@ def test_the_program_is_the_brute_force_optimum(chunk):
                     assert measures(problem, goal, list(found.tree))["depth"] <= depth
                 checked += 1
     assert checked > 0
-
-
-def test_a_cycle_cheaper_than_any_tree_is_cut_in_the_program():
-    """As in test_maxsat: the program's first optimum is the cycle g <-> x (no tree); one loop cut later it is 4."""
-    problem = build(
-        [
-            ("mix", ["x"], ["g"]),
-            ("melt", ["g"], ["x"]),
-            ("cut", ["k"], ["y"]),
-            ("boil", ["y"], ["z"]),
-            ("fry", ["z"], ["x"]),
-        ],
-        ["k"],
-    )
-    goal = goal_id(problem, "g")
-    found = minimum_tree_mip(problem, goal, range(5), [1] * 5)
-    assert found.status == "optimal" and found.cuts >= 1 and found.tree == (0, 2, 3, 4) and found.lower == 4
-    forced = minimum_tree_mip(problem, goal, range(5), [1] * 5, require=[1])
-    assert forced.status == "optimal" and forced.tree == (0, 1, 2, 3, 4) and forced.lower == 5
 
 
 def test_required_units_are_in_the_programs_tree():
