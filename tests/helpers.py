@@ -11,7 +11,7 @@ import itertools
 import math
 
 from foon2asp.foon.model import Foon, FoonObject, Unit
-from foon2asp.foon.problem import Problem
+from foon2asp.foon.problem import Problem, product_outputs
 from foon2asp.tree.tasktree import measures
 from foon2asp.tree.validate import validate
 
@@ -43,12 +43,36 @@ def brute_force(problem: Problem, goal: int, limit: int = 16) -> list[tuple[int,
     is not required: all valid subsets of the units are returned."""
     n = len(problem.units)
     assert n <= limit, f"brute force over {n} units is too slow"
-    out = []
-    for k in range(n + 1):
-        for subset in itertools.combinations(range(n), k):
-            if validate(problem, goal, list(subset)).valid:
-                out.append(subset)
-    return out
+    target = problem.objects[goal]
+    return [subset for subset, had in _fireable(problem) if target in had]
+
+
+_FIREABLE: dict[tuple, list[tuple[tuple[int, ...], frozenset[FoonObject]]]] = {}
+
+
+def _fireable(problem: Problem) -> list[tuple[tuple[int, ...], frozenset[FoonObject]]]:
+    """Every subset of the units whose units all fire (as the validator judges: it is a
+    valid tree for each object it has), with the objects it has; once per FOON, kitchen
+    and utensil rule (tests build the same small FOON for several objectives)."""
+    key = (
+        tuple(problem.units),
+        frozenset(problem.kitchen_items),
+        frozenset(problem.utensils),
+        problem.utensil_rule,
+    )
+    if key not in _FIREABLE:
+        n, probe = len(problem.units), problem.objects[0]
+        out = []
+        for k in range(n + 1):
+            for subset in itertools.combinations(range(n), k):
+                verdict = validate(problem, probe, list(subset))
+                if not verdict.stuck:  # every unit fired (the probe had or not)
+                    had = set(problem.kitchen_items).union(*(product_outputs(problem.units[u]) for u in subset))
+                    out.append((subset, frozenset(had)))
+        if len(_FIREABLE) > 64:
+            _FIREABLE.clear()
+        _FIREABLE[key] = out
+    return _FIREABLE[key]
 
 
 def best(problem: Problem, goal: int, key) -> tuple[float, list[tuple[int, ...]]]:
