@@ -76,7 +76,7 @@ from foon2asp.foon.problem import Problem, walk_back
 from foon2asp.methods import proofs
 from foon2asp.methods.bounds import Bounds, weights
 from foon2asp.methods.bounds import supports as bounds_supports
-from foon2asp.methods.exact import NODE_LIMIT, canonical_tree
+from foon2asp.methods.exact import NODE_LIMIT, canonical_tree, hopeless
 from foon2asp.methods.registry import Runner, check_substitutes, effective_options, get
 from foon2asp.tree.gap import settle
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
@@ -345,7 +345,8 @@ class GoalRunner:
             self.counts["bounds"] += 1
             tree = bounds.tree(goal) or ()
             return self._answer(goal, label, executable_order(self.problem, list(tree)), "bounds", t0)
-        found = canonical_tree(bounds, goal, units, self.search_nodes)
+        skip = self.maxsat and hopeless(bounds, goal)  # MaxSAT without the search that would fail
+        found = None if skip else canonical_tree(bounds, goal, units, self.search_nodes)
         if found is not None:
             self.counts["branch-and-bound"] += 1
             return self._answer(goal, label, executable_order(self.problem, list(found)), "branch-and-bound", t0)
