@@ -320,3 +320,23 @@ def test_a_sat_call_deaf_to_the_interrupt_is_given_up():
     asked = []
     assert _watched(Solver(), None, lambda cost: asked.append(cost) or False, lambda: (time.sleep(0.1), 7)[1]) == 7
     assert asked and set(asked) == {3}
+
+
+@pytest.mark.parametrize("size", [3, 8, 9, 14])
+def test_rc2_minimises_only_small_cores_with_equal_weights(size):
+    """A core of ``size`` soft literals of which one alone is unsatisfiable: minimised to that
+    one up to oracle.MINIMISE_UP_TO literals, kept as found above."""
+    from pysat.formula import WCNF
+
+    from foon2asp.maxsat import oracle
+
+    formula = WCNF()
+    formula.append([1])  # x1 must hold: the soft literal -x1 alone is a core
+    for v in range(1, size + 1):
+        formula.append([-v], weight=1)
+    rc2 = oracle._RC2(formula, solver=oracle.SAT_SOLVER, exhaust=True, minz=True, trim=0, process=0)
+    rc2.core = [-v for v in range(size, 0, -1)]
+    rc2.minw = 1
+    rc2.minimize_core()
+    assert sorted(rc2.core) == ([-1] if size <= oracle.MINIMISE_UP_TO else sorted(-v for v in range(1, size + 1)))
+    rc2.delete()

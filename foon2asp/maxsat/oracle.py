@@ -2,7 +2,8 @@
 
 RC2 solves weighted partial MaxSAT with an incremental SAT solver (Glucose 4 here), after
 one round of preprocessing of the hard clauses, and strengthens each unsatisfiable core it finds: *trimming* (the core of the core, up to
-five times), *minimisation* (dropping literals under a small conflict budget) and
+five times), *minimisation* (dropping literals under a small conflict budget; with equal
+weights only for small cores, :data:`MINIMISE_UP_TO`) and
 *exhaustion* (raising the bound of a new sum while it stays unsatisfiable).  Its cost
 at any moment is the total weight of the cores processed so far, a lower bound on the
 optimum.
@@ -42,6 +43,10 @@ SAT_SOLVER = "g4"
 #: rounds of PySAT's formula preprocessing before the search (the soft literals frozen):
 #: hard-10k 11968 · units 30.2 s against 46.3 s without, hard-4k 4748 10.2 s against 12.1 s
 PROCESS = 1
+#: with equal weights, RC2 minimises the cores of at most this many literals (larger ones as
+#: found): every 20th object of hard-4k 33.9 s against 49.1 s, hard-4k 4748 11.0 s against 6.2 s
+#: (BENCHMARKS.md, "Searches that would fail")
+MINIMISE_UP_TO = 8
 #: the budget of :meth:`Oracle.smallest`, in conflicts of the SAT solver
 CONFLICTS = 5000
 #: how often the watcher looks at the clock and the bound (seconds)
@@ -72,7 +77,11 @@ class _Halting:
 
 
 class _RC2(_Halting, RC2):
-    """RC2 for equal weights."""
+    """RC2 for equal weights, minimising only cores of at most :data:`MINIMISE_UP_TO` literals."""
+
+    def minimize_core(self) -> None:
+        if len(self.core) <= MINIMISE_UP_TO:
+            super().minimize_core()
 
 
 class _RC2Stratified(_Halting, RC2Stratified):
