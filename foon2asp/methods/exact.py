@@ -59,18 +59,16 @@ from foon2asp.methods.bounds import Bounds
 NODE_LIMIT = 20_000
 #: ... and on a large part fewer: nodes times units of the part at most this (a node's work grows with the part)
 WORK_LIMIT = 5_000_000
-#: with ``units`` first, a goal whose bounds are further apart than this is left to the solver
-#: without the search: on every 10th object of hard-4k the search settled 10 of 26 goals at gaps
-#: 6-8, 2 of 31 at 9-11 and none of 182 at 12 or more (BENCHMARKS.md, "Searches that would fail")
+#: with ``units`` first, a goal whose bounds are further apart than this goes to MaxSAT without
+#: the search: on every 10th object of hard-4k the search settled 12 of 31 goals at gaps 6-8, 2 of
+#: 31 at 9-11 and none of 182 at 12 or more (BENCHMARKS.md, "Searches that would fail")
 UNITS_GAP_LIMIT = 11
 
 
 def hopeless(bounds: Bounds, goal: int) -> bool:
     """Is the branch and bound not worth trying on ``goal`` (:data:`UNITS_GAP_LIMIT`)?"""
-    if bounds.ranked[0] != "units":
-        return False
-    tree = bounds.tree(goal)
-    return tree is not None and bounds.weight(tree) - bounds.first_lower(goal) > UNITS_GAP_LIMIT
+    upper = bounds.upper(goal)
+    return bounds.ranked[0] == "units" and upper is not None and upper - bounds.lower(goal) > UNITS_GAP_LIMIT
 
 
 class OutOfNodes(Exception):
