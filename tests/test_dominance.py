@@ -53,6 +53,56 @@ def test_pairs_are_cheaper_earlier_producers_from_fewer_inputs(small):
     assert any(v > u for v, u, _ in dominance.dominance_pairs(p, units, ("success",)))
 
 
+def _dominated_by_definition(p: Problem, goal: int, pool: list[int], ranked: tuple[str, ...]) -> set[int]:
+    """The module docstring's rule read straight off, over the units of ``pool`` alone."""
+    kitchen = p.kitchen
+    relevant = {goal}.union(*(p.required[u] for u in pool))
+    weigh = [objectives_weight(p, name) for name in ranked if name != "depth"]
+    out = set()
+    for u in pool:
+        need_u = set(p.required[u]) - kitchen
+        made_u = set(p.products[u]) - kitchen
+        for v in pool:
+            made_v = set(p.products[v]) - kitchen
+            if v == u or not made_u & made_v or not set(p.required[v]) - kitchen <= need_u:
+                continue
+            if any(w(v) > w(u) for w in weigh) or (v > u and not any(w(v) < w(u) for w in weigh)):
+                continue
+            if relevant.isdisjoint(made_u - made_v):
+                out.add(u)
+    return out
+
+
+def objectives_weight(p: Problem, name: str):
+    return {
+        "units": lambda u: 1,
+        "success": lambda u: neglog_weight(p.rates[u]),
+        "inputs": lambda u: len(p.inputs[u]),
+    }[name]
+
+
+@pytest.mark.parametrize("ranked", [("units",), ("success",), ("depth", "inputs")])
+def test_one_dominators_table_for_the_problem_gives_each_parts_dominated_units(small, ranked):
+    p, _ = small
+    table = dominance.Dominators(p, ranked)  # over the whole problem, kept across goals
+    checked = dominated = 0
+    for goal in sorted(p.derivable - p.kitchen)[::3]:
+        pool = sorted(p.relevant_units(goal))
+        expected = _dominated_by_definition(p, goal, pool, ranked)
+        assert table.dominated(goal, pool) == expected
+        thinned = pool[::2]  # a pool that leaves out producers: only dominators inside it count
+        assert table.dominated(goal, thinned) == _dominated_by_definition(p, goal, thinned, ranked)
+        on_part = {
+            u
+            for v, u, extra in dominance.dominance_pairs(p, pool, ranked)
+            if {goal}.union(*(p.required[x] for x in pool)).isdisjoint(extra)
+        }
+        assert on_part == expected
+        checked += 1
+        dominated += len(expected)
+    assert checked > 10 and dominated > 0
+
+
 def test_only_plain_optimisation_forbids_dominated_units():
     def used(**kw) -> bool:
         options = AspOptions(**kw)

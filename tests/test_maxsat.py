@@ -14,6 +14,7 @@ import time
 import pytest
 
 from foon2asp.asp.options import AspOptions
+from foon2asp.maxsat import oracle as oracle_module
 from foon2asp.maxsat.oracle import Oracle, Stopped
 from foon2asp.maxsat.trees import minimum_tree, minimum_tree_mip
 from foon2asp.methods.bounds import Bounds
@@ -189,6 +190,43 @@ def test_an_oracle_told_to_stop_keeps_a_valid_bound():
     model.hard([5])  # a clause after a solve: a new solver, the bound kept
     again = model.solve()
     assert again is not None and 5 in again and model.lower == 3
+
+
+def test_the_preprocessed_oracle_answers_as_the_plain_one():
+    """Random weighted formulas with auxiliary variables the preprocessor eliminates: the same
+    optimum with and without preprocessing, every model satisfying the original hard clauses,
+    and None for unsatisfiable hard clauses."""
+    rng = random.Random(11)
+    compared = unsat = 0
+    for _ in range(60):
+        softs = rng.randint(3, 7)
+        top = softs + rng.randint(2, 6)
+        hard = [
+            [rng.choice([-1, 1]) * rng.randint(1, top) for _ in range(rng.randint(1, 3))]
+            for _ in range(rng.randint(4, 14))
+        ]
+        weights = [rng.choice([1, 1, 2, 5]) for _ in range(softs)]
+        costs = []
+        for rounds in (0, 1):
+            oracle = Oracle()
+            for v, w in enumerate(weights, 1):
+                oracle.soft(-v, w)
+            oracle.hards([list(c) for c in hard])
+            previous, oracle_module.PROCESS = oracle_module.PROCESS, rounds
+            try:
+                model = oracle.solve()
+            finally:
+                oracle_module.PROCESS = previous
+            if model is None:
+                costs.append(None)
+                continue
+            assert all(any((lit > 0) == (abs(lit) in model) for lit in clause) for clause in hard)
+            costs.append(sum(w for v, w in enumerate(weights, 1) if v in model))
+            assert costs[-1] == oracle.lower
+        assert costs[0] == costs[1]
+        compared += 1
+        unsat += costs[0] is None
+    assert compared == 60 and 0 < unsat < 60
 
 
 def test_a_search_cut_short_bounds_the_optimum_from_below(hard):

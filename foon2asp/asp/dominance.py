@@ -50,38 +50,81 @@ def applies(options, ranked: Iterable[str]) -> bool:
     )
 
 
+class Dominators:
+    """The units that dominate each unit, for one problem and ranked objectives: ``of(u)``
+    lists ``(V, extra)`` over ``producers`` (object -> its producers in id order; the
+    problem's viable producers when not given), computed once per unit.
+
+    Whether ``V`` dominates ``U`` depends on the two units alone, so the pairs among any
+    set of units are those whose ``V`` is in the set (:func:`dominance_pairs`); the goal
+    runner keeps one per problem instead of listing the pairs of each goal's part again
+    (2.1 of 34.5 s on every 20th object of hard-4k, BENCHMARKS.md, "Less Python around
+    the solver")."""
+
+    def __init__(
+        self, problem: Problem, ranked: Iterable[str] = ("units",), producers: dict[int, list[int]] | None = None
+    ):
+        self.problem = problem
+        self.producers = problem.viable_producers if producers is None else producers
+        # the ranked objectives that weigh units differently (units weighs them all 1; depth is not a sum)
+        self._weights = [UNIT_WEIGHTS[n] for n in sorted(set(ranked)) if n in UNIT_WEIGHTS]
+        self._unit: dict[int, tuple[frozenset[int], frozenset[int], tuple[int, ...]]] = {}
+        self._of: dict[int, list[tuple[int, tuple[int, ...]]]] = {}
+
+    def _facts(self, u: int) -> tuple[frozenset[int], frozenset[int], tuple[int, ...]]:
+        """``u``'s required inputs and products that are not kitchen items, and its weights."""
+        if u not in self._unit:
+            problem, kitchen = self.problem, self.problem.kitchen
+            required = frozenset(i for i in problem.required[u] if i not in kitchen)
+            products = frozenset(o for o in problem.products[u] if o not in kitchen)
+            self._unit[u] = required, products, tuple(w(problem, u) for w in self._weights)
+        return self._unit[u]
+
+    def of(self, u: int) -> list[tuple[int, tuple[int, ...]]]:
+        """``(V, extra)`` for each unit ``V`` that dominates ``u`` when none of ``extra`` is relevant."""
+        if u in self._of:
+            return self._of[u]
+        required, products, weight = self._facts(u)
+        found = []
+        seen: set[int] = set()
+        for o in sorted(products):
+            for v in self.producers.get(o, ()):
+                if v == u or v in seen:
+                    continue
+                seen.add(v)
+                required_v, products_v, weight_v = self._facts(v)
+                if not required_v <= required:
+                    continue
+                if any(a > b for a, b in zip(weight_v, weight, strict=True)):
+                    continue
+                if v > u and not any(a < b for a, b in zip(weight_v, weight, strict=True)):
+                    continue
+                found.append((v, tuple(sorted(products - products_v))))
+        self._of[u] = found
+        return found
+
+    def dominated(self, goal: int, units: Iterable[int]) -> set[int]:
+        """The units of ``units`` that a unit among them dominates for ``goal`` (every product
+        not made by the dominating unit irrelevant: not the goal, no required input of ``units``)."""
+        pool = set(units)
+        relevant = {goal}.union(*(self.problem.required[u] for u in pool))
+        return {u for u in pool if any(v in pool and relevant.isdisjoint(extra) for v, extra in self.of(u))}
+
+
 def dominance_pairs(
     problem: Problem, units: Iterable[int], ranked: Iterable[str] = ("units",)
 ) -> list[tuple[int, int, tuple[int, ...]]]:
     """``(V, U, extra)`` for each unit ``V`` of ``units`` that dominates a unit ``U`` of
     ``units`` when none of the products ``extra`` (made by ``U``, not by ``V``) is relevant."""
-    ranked = set(ranked)
     kitchen = problem.kitchen
     pool = sorted(set(units))
-    required = {u: frozenset(i for i in problem.required[u] if i not in kitchen) for u in pool}
-    products = {u: frozenset(o for o in problem.products[u] if o not in kitchen) for u in pool}
     producers: dict[int, list[int]] = {}
     for u in pool:
-        for o in products[u]:
-            producers.setdefault(o, []).append(u)  # in id order
-    # the ranked objectives that weigh units differently (units weighs them all 1; depth is not a sum)
-    weight = {n: {u: UNIT_WEIGHTS[n](problem, u) for u in pool} for n in ranked if n in UNIT_WEIGHTS}
-    pairs = []
-    for u in pool:
-        seen: set[int] = set()
-        for o in sorted(products[u]):
-            for v in producers[o]:
-                if v == u or v in seen:
-                    continue
-                seen.add(v)
-                if not required[v] <= required[u]:
-                    continue
-                if any(w[v] > w[u] for w in weight.values()):
-                    continue
-                if v > u and not any(w[v] < w[u] for w in weight.values()):
-                    continue
-                pairs.append((v, u, tuple(sorted(products[u] - products[v]))))
-    return pairs
+        for o in problem.products[u]:
+            if o not in kitchen:
+                producers.setdefault(o, []).append(u)  # in id order
+    dominators = Dominators(problem, ranked, producers)
+    return [(v, u, extra) for u in pool for v, extra in dominators.of(u)]
 
 
 def dominance_facts(problem: Problem, units: Iterable[int], ranked: Iterable[str] = ("units",)) -> str:

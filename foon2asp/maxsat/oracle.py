@@ -31,11 +31,12 @@ from __future__ import annotations
 
 import threading
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 from pysat.examples.rc2 import RC2, RC2Stratified
 from pysat.formula import WCNF
+from pysat.process import Processor
 
 #: the SAT solver under RC2: Glucose 4 (BENCHMARKS.md, "MaxSAT": faster than Glucose 3 on the
 #: hard presets, and it stops at once when interrupted, where Glucose 3 ran on for seconds)
@@ -66,6 +67,31 @@ class _Halting:
     #: a call still runs on its thread (the caller gave up waiting): deleted by nobody
     abandoned = False
     oracle: Any
+    process: int
+    processor: Any
+
+    def init(self, formula: WCNF, incr: bool = False) -> None:
+        """RC2's set-up, the hard clauses preprocessed (:data:`PROCESS` rounds, the soft
+        literals frozen) before RC2 sees them: RC2 then adds them as they are and
+        restores each model through the preprocessor, as when it preprocesses itself."""
+        rounds = self.process
+        if not rounds:
+            super().init(formula, incr)  # type: ignore[misc]
+            return
+        processor = Processor(bootstrap_with=formula.hard)
+        frozen = [clause[0] for clause in formula.soft]  # soft clauses are unit clauses here
+        # CaDiCaL's clauses as they come: Processor.process deep-copies them (4.7 of 41 s on every
+        # 20th object of hard-4k, BENCHMARKS.md, "Less Python around the solver"); PySAT's defaults
+        _, clauses = processor.cadical.process(rounds=rounds, freeze=frozen)
+        processed = WCNF()
+        processed.hard, processed.soft, processed.wght = clauses, formula.soft, formula.wght
+        processed.nv, processed.topw = formula.nv, formula.topw
+        self.process = 0
+        try:
+            super().init(processed, incr)  # type: ignore[misc]
+        finally:
+            self.process = rounds
+        self.processor = processor
 
     def _call_oracle(self, assumptions=(), expect_interrupt=False):  # noqa: ARG002 (RC2's signature)
         if self.halt:
@@ -104,14 +130,29 @@ class Oracle:
     """
 
     def __init__(self) -> None:
-        self.formula = WCNF()
+        # the formula as plain lists, handed to RC2 as a WCNF at the next solve (appending to a
+        # WCNF clause by clause cost 2.3 of 41 s on every 20th object of hard-4k)
+        self._hard: list[list[int]] = []
+        self._soft: list[list[int]] = []
+        self._weights: list[int] = []
+        #: the highest variable so far
+        self._top = 0
         self._solver: _RC2 | _RC2Stratified | None = None
         self._lower = 0
         #: the true variables of the last optimum
         self._model: set[int] = set()
 
     def hard(self, clause: Sequence[int]) -> None:
-        self.formula.append(list(clause))
+        self.hards([list(clause)])
+
+    def hards(self, clauses: Iterable[list[int]], top: int | None = None) -> None:
+        """Hard clauses, many at once (lists the oracle keeps); ``top``: their highest
+        variable, when the caller knows it."""
+        new = list(clauses)
+        self._hard += new
+        if top is None:
+            top = max((abs(lit) for clause in new for lit in clause), default=0)
+        self._top = max(self._top, top)
         if self._solver is not None:
             self._lower = self.lower
             if not self._solver.abandoned:
@@ -119,7 +160,17 @@ class Oracle:
             self._solver = None
 
     def soft(self, lit: int, weight: int) -> None:
-        self.formula.append([lit], weight=weight)
+        self._soft.append([lit])
+        self._weights.append(weight)
+        self._top = max(self._top, abs(lit))
+
+    @property
+    def formula(self) -> WCNF:
+        """The problem as PySAT's WCNF (its lists are the oracle's: RC2 only reads them here)."""
+        formula = WCNF()
+        formula.hard, formula.soft, formula.wght = self._hard, self._soft, self._weights
+        formula.nv, formula.topw = self._top, sum(self._weights) + 1
+        return formula
 
     @property
     def lower(self) -> int:
@@ -136,7 +187,7 @@ class Oracle:
         Raises :class:`Stopped` at the ``deadline`` (``time.perf_counter()``) or once
         ``stop(lower)`` is true; :attr:`lower` then holds the bound proven so far."""
         if self._solver is None:
-            kind = _RC2 if len(set(self.formula.wght)) <= 1 else _RC2Stratified
+            kind = _RC2 if len(set(self._weights)) <= 1 else _RC2Stratified
             self._solver = kind(
                 self.formula, solver=SAT_SOLVER, adapt=True, exhaust=True, minz=True, trim=5, process=PROCESS
             )

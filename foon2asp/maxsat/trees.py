@@ -312,11 +312,8 @@ def _by_cores(
     t0 = time.perf_counter()
     enc = _encoding(problem, goal, units, depth)
     oracle = Oracle()
-    for clause in enc.clauses():
-        oracle.hard(clause)
-    for u in sorted(set(require)):
-        if u in enc.use:
-            oracle.hard([enc.use[u]])
+    oracle.hards(list(enc.clauses()), enc.top)
+    oracle.hards([[enc.use[u]] for u in sorted(set(require)) if u in enc.use], enc.top)
     for u in enc.units:
         oracle.soft(-enc.use[u], weights[u])
     cuts = 0
@@ -343,7 +340,6 @@ def _by_cores(
                 took = time.perf_counter() - t0
                 return Result(tuple(sorted(chosen)), oracle.lower, "optimal", cuts, took, search)
             cuts += 1
-            for clause in clauses:
-                oracle.hard(clause)
+            oracle.hards(clauses)
     except Stopped:
         return Result(None, oracle.lower, "stopped", cuts, time.perf_counter() - t0)

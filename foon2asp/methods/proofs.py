@@ -20,8 +20,8 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 
 from foon2asp.asp.answers import Watch
+from foon2asp.asp.dominance import Dominators
 from foon2asp.asp.dominance import applies as dominance_applies
-from foon2asp.asp.dominance import dominance_pairs
 from foon2asp.asp.options import AspOptions
 from foon2asp.foon.problem import Problem
 from foon2asp.maxsat.trees import minimum_tree
@@ -62,13 +62,18 @@ def _depth(problem: Problem, goal: int, units: list[int]) -> int:
 
 
 def undominated(
-    problem: Problem, goal: int, units: list[int], ranked: tuple[str, ...], options: AspOptions
+    problem: Problem,
+    goal: int,
+    units: list[int],
+    ranked: tuple[str, ...],
+    options: AspOptions,
+    dominators: Dominators | None = None,
 ) -> list[int]:
-    """``units`` without those a unit among them dominates for ``goal`` (none when the rule does not apply)."""
+    """``units`` without those a unit among them dominates for ``goal`` (none when the rule
+    does not apply); ``dominators``: the problem's, kept by the caller for ``ranked``."""
     if not dominance_applies(options, ranked):
         return units
-    relevant = {goal}.union(*(problem.required[u] for u in units))
-    dominated = {u for _, u, extra in dominance_pairs(problem, units, ranked) if relevant.isdisjoint(extra)}
+    dominated = (dominators or Dominators(problem, ranked)).dominated(goal, units)
     return [u for u in units if u not in dominated]
 
 
@@ -187,12 +192,14 @@ def by_maxsat(
     units: list[int],
     bounds: Bounds,
     t0: float,
+    dominators: Dominators | None = None,
 ) -> TaskTree:
-    """The optimum by MaxSAT on the goal's part without dominated units, the landmark units
-    of ``bounds`` required; the smallest optimal tree (the bounds tree when that is optimal)."""
+    """The optimum by MaxSAT on the goal's part without dominated units (``dominators``: the
+    problem's for ``ranked``), the landmark units of ``bounds`` required; the smallest optimal
+    tree (the bounds tree when that is optimal)."""
     at = _Goal(problem, options, ranked, goal, label, units, t0)
     # the bounds' pruning (Bounds.keep) is left out: it cost more than it saved MaxSAT (BENCHMARKS.md, "MaxSAT")
-    keep = undominated(problem, goal, units, ranked, options)
+    keep = undominated(problem, goal, units, ranked, options, dominators)
     floor = bounds.first_lower(goal)
 
     def lower_of(weight: int) -> list[int]:
@@ -211,13 +218,14 @@ def by_maxsat_depth(
     units: list[int],
     weights: Sequence[int],
     t0: float,
+    dominators: Dominators | None = None,
 ) -> TaskTree:
     """Depth first (``ranked[0]``), then the sum objective ``ranked[1:]`` of ``weights``:
-    MaxSAT over the trees within the goal's level."""
+    MaxSAT over the trees within the goal's level (``dominators`` as for :func:`by_maxsat`)."""
     at = _Goal(problem, options, ranked, goal, label, units, t0)
     levels, unit_levels = problem.derivation_levels(units)
     depth = levels[goal]
-    keep = undominated(problem, goal, units, ranked, options)
+    keep = undominated(problem, goal, units, ranked, options, dominators)
     scale = 1 if ranked[1] == "units" else len(problem.units) + 1
 
     def lower_of(weight: int) -> list[int]:

@@ -67,6 +67,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import replace
 from functools import cached_property
 
+from foon2asp.asp.dominance import Dominators
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
@@ -107,6 +108,13 @@ class Parts:
         #: units covered so far by bounds built on goals' parts (Parts.bounds_for)
         self._part_bounds_spent: dict[tuple[str, ...], int] = {}
         self._weights: dict[tuple[str, ...], list[int]] = {}
+        self._dominators: dict[tuple[str, ...], Dominators] = {}
+
+    def dominators(self, ranked_objectives: tuple[str, ...]) -> Dominators:
+        """The dominated units' dominators (foon2asp.asp.dominance) for these objectives, kept."""
+        if ranked_objectives not in self._dominators:
+            self._dominators[ranked_objectives] = Dominators(self.problem, ranked_objectives)
+        return self._dominators[ranked_objectives]
 
     def bounds(self, ranked_objectives: tuple[str, ...]) -> Bounds:
         """The bounds (foon2asp.methods.bounds) for these ranked objectives, built once."""
@@ -352,7 +360,10 @@ class GoalRunner:
             return self._answer(goal, label, executable_order(self.problem, list(found)), "branch-and-bound", t0)
         if self.maxsat:
             self.counts["maxsat"] += 1
-            return proofs.by_maxsat(self.problem, self._effective, self._ranked, goal, label, units, bounds, t0)
+            dominators = self.parts.dominators(self._ranked)
+            return proofs.by_maxsat(
+                self.problem, self._effective, self._ranked, goal, label, units, bounds, t0, dominators
+            )
         # the branch and bound ran out of nodes: it would again
         return self._canonical(self._solve_pruned(goal, units, objects, bounds), bounds, t0, search=False)
 
@@ -374,8 +385,9 @@ class GoalRunner:
         self.counts["maxsat"] += 1
         if self._weights is None:
             self._weights = weights(self.problem, self._ranked[1:])
+        dominators = self.parts.dominators(self._ranked)
         return proofs.by_maxsat_depth(
-            self.problem, self._effective, self._ranked, goal, label, units, self._weights, t0
+            self.problem, self._effective, self._ranked, goal, label, units, self._weights, t0, dominators
         )
 
 
