@@ -181,3 +181,20 @@ def test_highs_starts_later_on_shared_cores_and_never_on_one(monkeypatch):
         proofs.share_cores(processes)
         assert proofs.mip_after() == expected, (cores, processes)
     proofs.share_cores(1)
+
+
+def test_a_goal_cut_short_while_highs_runs_exits_with_status_1(tmp_path):
+    """The time limit ends RC2 and HiGHS beside it: the process reports ``feasible`` and exits
+    with 1, not aborted by a HiGHS run the interpreter's exit cut off (status 134)."""
+    from foon2asp.foon.synth import preset
+    from foon2asp.methods import proofs
+
+    if proofs._cores() < 2:
+        pytest.skip("HiGHS starts beside RC2 only with two cores or more")
+    syn = preset("hard-4k")
+    syn.write(tmp_path)
+    goal = syn.problem().foon.object_ids[syn.goals[16]]  # RC2 alone takes about 10 s on it
+    command = [sys.executable, "-m", "foon2asp", "solve", "--data", str(tmp_path), "--goal", f"#{goal}"]
+    out = subprocess.run([*command, "--time-limit", "2.5", "--format", "json"], capture_output=True, text=True)
+    assert out.returncode == 1, out.stderr[-300:]
+    assert '"status": "feasible"' in out.stdout and "terminate" not in out.stderr

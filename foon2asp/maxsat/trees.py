@@ -275,7 +275,9 @@ def minimum_tree(
             if found.status == "optimal":
                 race.proof = found
 
-        threading.Thread(target=beside, daemon=True).start()
+        # not a daemon: the interpreter waits for it at exit (it stops at HiGHS's next callback once
+        # ``race.done`` is set); a HiGHS run cut off by the exit aborted the process (status 134)
+        threading.Thread(target=beside, name="highs-beside", daemon=False).start()
         user_stop = stop
 
         def stop(lower: int) -> bool:
