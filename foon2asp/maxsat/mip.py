@@ -90,6 +90,8 @@ class Program:
         h.changeColsCost(nvars, cols, cost)
         h.changeColsIntegrality(nvars, cols, np.full(nvars, highspy.HighsVarType.kInteger))
         self._halt: Callable[[], bool] = lambda: False
+        #: called with the new bound whenever HiGHS raises it during a solve (the caller's to set)
+        self.on_lower: Callable[[int], None] = lambda bound: None
         self._deadline: float | None = None
         h.cbMipInterrupt += self._on_mip
         h.cbSimplexInterrupt += self._on_simplex
@@ -127,8 +129,9 @@ class Program:
 
     def _on_mip(self, event: Any) -> None:
         bound = event.data_out.mip_dual_bound
-        if math.isfinite(bound):
-            self.lower = max(self.lower, _ceil(bound))
+        if math.isfinite(bound) and _ceil(bound) > self.lower:
+            self.lower = _ceil(bound)
+            self.on_lower(self.lower)
         if self._stopping():
             event.interrupt()
 

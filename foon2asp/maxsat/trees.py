@@ -55,6 +55,14 @@ proves the optimum first ends both.  The bound is the better of the two, and the
 tree HiGHS found (a closed set that derives the goal) is offered when both are cut
 short.  A tree HiGHS proves is its optimum, not the smallest in the canonical order
 (``search == "mip"``).
+
+**UWrMaxSat after RC2.**  With ``uwr_after`` set, a goal RC2 has not proven after that many
+seconds is handed to UWrMaxSat (:mod:`foon2asp.maxsat.uwr`, in a child process): the same
+clauses, loop cuts and required units (:func:`minimum_tree_uwr`).  RC2 stops there, so the
+two do not share a core; the bound it proved stays (UWrMaxSat reports none), and HiGHS, when
+it runs beside, may raise it.  Its tree, like HiGHS's, is its first optimum
+(``search == "uwrmaxsat"``).  On the hardest goals of the hard presets it proves in seconds
+what takes RC2 tens of seconds (BENCHMARKS.md, "UWrMaxSat after RC2").
 """
 
 from __future__ import annotations
@@ -66,7 +74,7 @@ from dataclasses import dataclass
 
 from foon2asp.foon.derive import least_fixpoint
 from foon2asp.foon.problem import Problem
-from foon2asp.maxsat import mip
+from foon2asp.maxsat import mip, uwr
 from foon2asp.maxsat.oracle import Oracle, Stopped
 
 
@@ -184,13 +192,31 @@ def _encoding(problem: Problem, goal: int, units: Iterable[int], depth: int | No
 
 
 class _Race:
-    """What HiGHS reports to RC2's search beside it: its bound, its best tree, its proof."""
+    """What the solvers beside RC2 (HiGHS, UWrMaxSat) report to its search: a bound, a best
+    tree, a proof (the first one stands)."""
 
     def __init__(self) -> None:
-        self.done = threading.Event()  # RC2 is done: HiGHS stops
+        self.done = threading.Event()  # RC2 is done: the others stop
+        self.handed = threading.Event()  # UWrMaxSat has taken over: RC2 stops
         self.lower = 0
         self.proof: Result | None = None
         self.incumbent: tuple[int, ...] | None = None
+        self._lock = threading.Lock()
+
+    def raise_lower(self, bound: int) -> None:
+        """A helper proved every tree weighs at least ``bound``."""
+        with self._lock:
+            self.lower = max(self.lower, bound)
+
+    def over(self) -> bool:
+        """Is the race over: RC2 done, or a proof in?"""
+        return self.done.is_set() or self.proof is not None
+
+    def prove(self, found: Result) -> None:
+        """``found`` (an optimum) is the answer unless another solver proved one first."""
+        with self._lock:
+            if self.proof is None:
+                self.proof = found
 
 
 def minimum_tree_mip(
@@ -214,10 +240,11 @@ def minimum_tree_mip(
     program = mip.Program(enc.top, {enc.use[u]: weights[u] for u in enc.units}, require)
     program.add(clauses)
     race = race or _Race()
+    program.on_lower = race.raise_lower  # the bound as it rises (an answer cut short reports it)
     cuts = 0
     while True:
         status, model = program.solve(deadline, halt)
-        race.lower = max(race.lower, program.lower)
+        race.raise_lower(program.lower)
         chosen = None if model is None else {u for u in enc.units if enc.use[u] in model}
         clauses_ = None if chosen is None else enc.cut(chosen)
         if chosen is not None and clauses_ is None:
@@ -236,6 +263,42 @@ def minimum_tree_mip(
         program.add(clauses_ or ())
 
 
+def minimum_tree_uwr(
+    problem: Problem,
+    goal: int,
+    units: Iterable[int],
+    weights: Sequence[int],
+    require: Iterable[int] = (),
+    deadline: float | None = None,
+    depth: int | None = None,
+    halt: Callable[[], bool] | None = None,
+    race: _Race | None = None,
+) -> Result:
+    """:func:`minimum_tree` by UWrMaxSat in its child process (:mod:`foon2asp.maxsat.uwr`; no
+    walk to the smallest tree, no bound of its own: ``lower`` is 0 unless it proves): the
+    same clauses and loop cuts; ``halt()`` ends it early. ``race`` is the caller's."""
+    t0 = time.perf_counter()
+    enc = _encoding(problem, goal, units, depth)
+    hard = list(enc.clauses())
+    hard += [[enc.use[u]] for u in sorted(set(require)) if u in enc.use]
+    soft = [(-enc.use[u], weights[u]) for u in enc.units]
+    cuts = 0
+    while True:
+        status, model = uwr.solver().solve(enc.top, hard, soft, deadline, halt)
+        if status == "infeasible":
+            return Result(None, 0, "unreachable", cuts, time.perf_counter() - t0, solver="uwrmaxsat")
+        if status != "optimal" or model is None:
+            return Result(None, 0, "stopped", cuts, time.perf_counter() - t0, solver="uwrmaxsat")
+        chosen = {u for u in enc.units if enc.use[u] in model}
+        more = enc.cut(chosen)
+        if more is None:
+            tree = tuple(sorted(chosen))
+            cost = sum(weights[u] for u in tree)
+            return Result(tree, cost, "optimal", cuts, time.perf_counter() - t0, "uwrmaxsat", None, "uwrmaxsat")
+        cuts += 1
+        hard += more
+
+
 def minimum_tree(
     problem: Problem,
     goal: int,
@@ -248,6 +311,7 @@ def minimum_tree(
     smallest: bool = False,
     known: int | None = None,
     mip_after: float | None = None,
+    uwr_after: float | None = None,
 ) -> Result:
     """The least-weight tree for ``goal`` over ``units`` (each unit ``u`` weighs
     ``weights[u] > 0``), every unit of ``require`` in it; with ``depth``, among the
@@ -257,36 +321,59 @@ def minimum_tree(
     ``deadline`` (``time.perf_counter()``) and ``stop(lower)`` end the search early:
     the result is then ``stopped`` with the lower bound proven so far (a walk to the
     smallest tree cut short ends on the smallest reached, ``search == "time"``).
-    ``mip_after``: HiGHS starts beside RC2 after that many seconds (None: never)."""
+    ``mip_after``: HiGHS starts beside RC2 after that many seconds (None: never);
+    ``uwr_after``: UWrMaxSat takes over from RC2 after that many seconds (None: never):
+    RC2 stops (its bound stays) and UWrMaxSat goes on in its child process."""
     t0 = time.perf_counter()
     units = sorted(set(units))
     race = _Race()
-    if mip_after is not None and mip.available():
+    helpers = [
+        (after, how, name)
+        for after, how, name, have in (
+            (mip_after, minimum_tree_mip, "highs-beside", mip.available),
+            (uwr_after, minimum_tree_uwr, "uwrmaxsat", uwr.available),
+        )
+        if after is not None and have()
+    ]
+    taking_over: threading.Thread | None = None
+    for after, how, name in helpers:
 
-        def beside() -> None:
-            if race.done.wait(mip_after):
+        def beside(after: float = after, how: Callable[..., Result] = how) -> None:
+            if race.done.wait(after):
                 return
+            if how is minimum_tree_uwr:
+                race.handed.set()  # RC2 stops at its next look at ``stop``
             try:
-                found = minimum_tree_mip(
-                    problem, goal, units, weights, require, deadline, depth, race.done.is_set, race
-                )
+                found = how(problem, goal, units, weights, require, deadline, depth, race.over, race)
             except Exception:  # noqa: BLE001 (the helper failing leaves RC2's search as it was)
                 return
             if found.status == "optimal":
-                race.proof = found
+                race.prove(found)
 
         # not a daemon: the interpreter waits for it at exit (it stops at HiGHS's next callback once
         # ``race.done`` is set); a HiGHS run cut off by the exit aborted the process (status 134)
-        threading.Thread(target=beside, name="highs-beside", daemon=False).start()
-        user_stop = stop
+        thread = threading.Thread(target=beside, name=name, daemon=False)
+        thread.start()
+        if how is minimum_tree_uwr:
+            taking_over = thread
+    user_stop = stop
+    if helpers:
 
         def stop(lower: int) -> bool:
-            return race.proof is not None or (user_stop is not None and user_stop(max(lower, race.lower)))
+            return (
+                race.proof is not None
+                or race.handed.is_set()
+                or (user_stop is not None and user_stop(max(lower, race.lower)))
+            )
 
     try:
         found = _by_cores(problem, goal, units, weights, require, deadline, stop, depth, smallest, known, race)
+        if found.status == "stopped" and taking_over is not None and race.handed.is_set():
+            # UWrMaxSat goes on alone (HiGHS beside it) until a proof, the deadline or the caller's stop
+            while taking_over.is_alive() and not (user_stop is not None and user_stop(max(found.lower, race.lower))):
+                taking_over.join(0.05)
     finally:
-        race.done.set()  # HiGHS stops at its next callback (about once a second): not waited for
+        race.done.set()  # the helpers stop (HiGHS at its next callback, about once a second): not waited for
     proof = race.proof
     if found.status == "stopped" and proof is not None and proof.lower >= found.lower:
         proof.time_s = time.perf_counter() - t0

@@ -9,7 +9,9 @@ out (:mod:`foon2asp.asp.dominance`; the canonical tree uses none of them) and wa
 to the smallest optimal tree in the canonical order (:mod:`foon2asp.asp.canonical`)
 inside the MaxSAT solver (:func:`foon2asp.maxsat.trees.minimum_tree`).
 Cut short by the time limit or the gap, the answer is ``feasible``: the bounds tree
-(or a shallowest tree, for depth) with the lower bound MaxSAT proved.
+(or a shallowest tree, for depth) with the lower bound MaxSAT proved.  RC2 hands a goal it
+has not proven after :data:`UWR_AFTER_S` to UWrMaxSat, and HiGHS joins after
+:func:`mip_after` (:func:`foon2asp.maxsat.trees.minimum_tree`).
 """
 
 from __future__ import annotations
@@ -35,6 +37,8 @@ MIP_AFTER_S = 1.0
 #: the same for a worker that shares the cores (a batch's pool): the hard-4k batch over every
 #: object took 1,183 s with HiGHS after 1 s, 863 s without it (2 answers then not proven)
 MIP_AFTER_SHARED_S = 10.0
+#: seconds of RC2 before UWrMaxSat takes over from it (BENCHMARKS.md, "UWrMaxSat after RC2")
+UWR_AFTER_S = 0.5
 #: the processes solving goals at once on this machine's cores (:func:`share_cores`)
 _processes = 1
 
@@ -136,7 +140,18 @@ def _prove(
     stop = _stop(at.ranked, options, upper, lower_of)
     known = sum(weights[u] for u in best) if best_is_canonical else None
     found = minimum_tree(
-        problem, at.goal, keep, weights, require, deadline, stop, depth, options.canonical, known, mip_after()
+        problem,
+        at.goal,
+        keep,
+        weights,
+        require,
+        deadline,
+        stop,
+        depth,
+        options.canonical,
+        known,
+        mip_after(),
+        UWR_AFTER_S,
     )
     stats: dict = {"shortcut": "maxsat", "maxsat_s": round(found.time_s, 6), "pruned_units": len(at.units) - len(keep)}
     if found.cuts:
