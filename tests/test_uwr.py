@@ -298,3 +298,27 @@ def test_the_child_outlives_the_thread_that_started_it():
     assert answers == [("optimal", {1})] and solver._child.poll() is None
     assert solver.solve(2, [[1, 2], [-1]], [(-1, 1), (-2, 2)]) == ("optimal", {2}) and solver._child.pid == pid
     solver.stop()
+
+
+def test_an_answer_cut_short_while_uwrmaxsat_runs_has_highs_bound(slow_rc2, monkeypatch, hard):
+    """RC2 proves nothing and UWrMaxSat nothing before the deadline: the bound is the one HiGHS
+    reached beside them by then (reported as it rises, not when HiGHS returns)."""
+    from foon2asp.maxsat import mip, trees
+
+    if not mip.available():
+        pytest.skip("highspy is not installed")
+
+    def stuck(problem, goal, units, weights, require, deadline, depth, halt, race):
+        while not halt() and time.perf_counter() < deadline:
+            time.sleep(0.01)
+        return trees.Result(None, 0, "stopped", solver="uwrmaxsat")
+
+    problem, goals = hard
+    goal = goals[8]
+    bounds = Bounds(problem, ("units",), problem.units_for([goal]))
+    part = bounds.keep(goal, problem.units_for([goal]))
+    optimum = minimum_tree_uwr(problem, goal, part, bounds.w).lower
+    monkeypatch.setattr(trees, "minimum_tree_uwr", stuck)
+    t0 = time.perf_counter()
+    short = minimum_tree(problem, goal, part, bounds.w, deadline=t0 + 4, mip_after=0.0, uwr_after=0.0)
+    assert short.status == "stopped" and short.tree is None and 0 < short.lower <= optimum

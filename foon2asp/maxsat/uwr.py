@@ -2,7 +2,7 @@
 
 UWrMaxSat (Piotrów, ICTAI 2020; the competition version of hermax's
 ``UWrMaxSATCompetition``) proves the optimum of the hardest goals of the hard presets
-about ten times as fast as RC2 (BENCHMARKS.md, "UWrMaxSat beside RC2"), but its
+about ten times as fast as RC2 (BENCHMARKS.md, "UWrMaxSat after RC2"), but its
 Python binding can be neither interrupted nor asked for a lower bound.  So it runs in
 a child process of its own (:class:`Solver`), which a deadline or a halt kills; one
 child serves one process's goals one after another and is started again after a
