@@ -91,11 +91,11 @@ class Result:
     cuts: int = 0
     time_s: float = 0.0
     #: how the walk to the smallest optimal tree ended: "complete" | "budget" | "time" (None: not asked,
-    #: or the optimum weighed ``known``; "mip": HiGHS proved the tree, no walk)
+    #: or the optimum weighed ``known``; "mip" or "uwrmaxsat": HiGHS or UWrMaxSat proved the tree, no walk)
     search: str | None = None
     #: cut short: the best tree found all the same (HiGHS's), None when there is none
     incumbent: tuple[int, ...] | None = None
-    #: the solver that proved the result: "rc2" | "highs"
+    #: the solver that proved the result: "rc2" | "highs" | "uwrmaxsat"
     solver: str = "rc2"
 
 
@@ -133,6 +133,13 @@ class _Encoding:
         for o in list(self.need):
             # every needed object is made by one of its producers (none: never needed)
             yield [-self.need[o]] + [self.use[p] for p in self.producers.get(o, ())]
+
+    def weighted(self, weights: Sequence[int], require: Iterable[int]) -> tuple[list[list[int]], list[tuple[int, int]]]:
+        """The formula as MaxSAT solvers take it: the hard clauses (with a unit clause per
+        unit of ``require``) and the soft literals ``not use(u)`` with ``u``'s weight."""
+        hard = list(self.clauses())
+        hard += [[self.use[u]] for u in sorted(set(require)) if u in self.use]
+        return hard, [(-self.use[u], weights[u]) for u in self.units]
 
     def cut(self, chosen: set[int]) -> list[list[int]] | None:
         """The loop cut of the closed set ``chosen`` (None: it derives the goal, a tree)."""
@@ -279,9 +286,7 @@ def minimum_tree_uwr(
     same clauses and loop cuts; ``halt()`` ends it early. ``race`` is the caller's."""
     t0 = time.perf_counter()
     enc = _encoding(problem, goal, units, depth)
-    hard = list(enc.clauses())
-    hard += [[enc.use[u]] for u in sorted(set(require)) if u in enc.use]
-    soft = [(-enc.use[u], weights[u]) for u in enc.units]
+    hard, soft = enc.weighted(weights, require)
     cuts = 0
     while True:
         status, model = uwr.solver().solve(enc.top, hard, soft, deadline, halt)
@@ -401,10 +406,10 @@ def _by_cores(
     t0 = time.perf_counter()
     enc = _encoding(problem, goal, units, depth)
     oracle = Oracle()
-    oracle.hards(list(enc.clauses()), enc.top)
-    oracle.hards([[enc.use[u]] for u in sorted(set(require)) if u in enc.use], enc.top)
-    for u in enc.units:
-        oracle.soft(-enc.use[u], weights[u])
+    hard, soft = enc.weighted(weights, require)
+    oracle.hards(hard, enc.top)
+    for literal, weight in soft:
+        oracle.soft(literal, weight)
     cuts = 0
     order = [enc.use[u] for u in enc.units]
     unit_of = {v: u for u, v in enc.use.items()}
