@@ -22,24 +22,7 @@ from foon2asp.methods.runner import GoalRunner, solve_goals
 from foon2asp.tree.tasktree import measures
 from foon2asp.tree.validate import validate
 from helpers import brute_force, build, goal_id
-
-RANKED = [("units",), ("success", "units"), ("inputs", "units")]
-
-
-def cyclic_foon(seed: int):
-    """A random FOON with several producers per object and many back edges (cycles)."""
-    rng = random.Random(seed)
-    kitchen = ["k0", "k1", "k2"]
-    made = [f"o{i}" for i in range(7)]
-    units = []
-    for i in range(rng.randint(8, 13)):
-        out = rng.choice(made)
-        pool = kitchen + [m for m in made if m != out] * 2  # made objects twice as likely: cycles
-        ins = list(dict.fromkeys(rng.sample(pool, rng.randint(1, 3))))
-        outs = [out] if rng.random() < 0.7 else [out, rng.choice([m for m in made if m != out])]
-        units.append((f"m{i % 4}", ins, outs))
-    rates = {f"m{i}": r for i, r in enumerate((0.9, 0.5, 0.7, 0.3))}
-    return build(units, kitchen, rates)
+from maxsat_checks import RANKED, cyclic_foon
 
 
 @pytest.mark.parametrize("chunk", range(8))

@@ -16,93 +16,26 @@ import time
 
 import pytest
 
-import foon2asp.maxsat.oracle as oracle_module
 from foon2asp.maxsat import mip
 from foon2asp.maxsat.trees import minimum_tree, minimum_tree_mip
 from foon2asp.methods.bounds import Bounds
-from foon2asp.tree.tasktree import measures
 from foon2asp.tree.validate import validate
-from helpers import brute_force
-from test_maxsat import RANKED, cyclic_foon
+from maxsat_checks import check_brute_force_optima, check_proof_after_a_stuck_rc2, check_required_units, cyclic_foon
 
 pytestmark = pytest.mark.skipif(not mip.available(), reason="highspy is not installed")
 
 
 @pytest.mark.parametrize("chunk", range(3))
 def test_the_program_is_the_brute_force_optimum(chunk):
-    checked = 0
-    for seed, ranked in [(s, r) for s in range(5 * chunk, 5 * chunk + 5) for r in RANKED]:
-        problem = cyclic_foon(seed)
-        levels, _ = problem.derivation_levels()
-        bounds = Bounds(problem, ranked)
-        for goal in range(len(problem.objects)):
-            if goal in problem.kitchen:
-                continue
-            every = brute_force(problem, goal)
-            for depth in (None, levels[goal]) if goal in levels else (None,):
-                trees = (
-                    every if depth is None else [t for t in every if measures(problem, goal, list(t))["depth"] <= depth]
-                )
-                found = minimum_tree_mip(problem, goal, range(len(problem.units)), bounds.w, depth=depth)
-                if not trees:
-                    assert found.status == "unreachable" and found.tree is None, (seed, ranked, goal, depth)
-                    continue
-                opt = min(bounds.weight(t) for t in trees)
-                assert found.status == "optimal" and found.solver == "highs", (seed, ranked, goal, depth)
-                assert validate(problem, goal, list(found.tree)).valid
-                assert bounds.weight(found.tree) == opt == found.lower, (seed, ranked, goal, depth)
-                if depth is not None:
-                    assert measures(problem, goal, list(found.tree))["depth"] <= depth
-                checked += 1
-    assert checked > 0
+    check_brute_force_optima(minimum_tree_mip, "highs", chunk)
 
 
 def test_required_units_are_in_the_programs_tree():
-    problem = cyclic_foon(3)
-    bounds = Bounds(problem, ("units",))
-    levels, unit_levels = problem.derivation_levels()
-    goal = max(levels, key=lambda o: levels[o])
-    trees = brute_force(problem, goal)
-    for u in sorted(unit_levels):
-        with_u = [t for t in trees if u in t]
-        found = minimum_tree_mip(problem, goal, range(len(problem.units)), bounds.w, require=[u])
-        if not with_u:
-            assert found.status != "optimal" or u in found.tree
-            continue
-        assert found.status == "optimal" and u in found.tree
-        assert len(found.tree) == min(len(t) for t in with_u)
-
-
-@pytest.fixture
-def slow_rc2(monkeypatch):
-    """RC2 that finds nothing: every solve waits until it is told to stop."""
-
-    def solve(self, deadline=None, stop=None):
-        while not (stop is not None and stop(self.lower)):
-            if deadline is not None and time.perf_counter() >= deadline:
-                break
-            time.sleep(0.01)
-        raise oracle_module.Stopped
-
-    monkeypatch.setattr(oracle_module.Oracle, "solve", solve)
+    check_required_units(minimum_tree_mip)
 
 
 def test_highs_beside_a_stuck_rc2_proves_the_optimum(slow_rc2):
-    checked = 0
-    for seed in range(6):
-        problem = cyclic_foon(seed)
-        bounds = Bounds(problem, ("success", "units"))
-        for goal in range(len(problem.objects)):
-            trees = brute_force(problem, goal) if goal not in problem.kitchen else []
-            if not trees:
-                continue
-            units = range(len(problem.units))
-            found = minimum_tree(problem, goal, units, bounds.w, deadline=time.perf_counter() + 30, mip_after=0.0)
-            opt = min(bounds.weight(t) for t in trees)
-            assert found.status == "optimal" and found.solver == "highs" and found.search == "mip"
-            assert bounds.weight(found.tree) == opt == found.lower and validate(problem, goal, list(found.tree)).valid
-            checked += 1
-    assert checked > 10
+    check_proof_after_a_stuck_rc2(("success", "units"), "highs", "mip", mip_after=0.0)
 
 
 def test_without_highs_a_stuck_rc2_stops_at_the_deadline(slow_rc2):

@@ -18,61 +18,46 @@ import time
 
 import pytest
 
-import foon2asp.maxsat.oracle as oracle_module
 from foon2asp.maxsat import uwr
 from foon2asp.maxsat.trees import minimum_tree, minimum_tree_uwr
 from foon2asp.methods.bounds import Bounds
-from foon2asp.tree.tasktree import measures
 from foon2asp.tree.validate import validate
 from helpers import brute_force
-from test_maxsat import RANKED, cyclic_foon
+from maxsat_checks import check_brute_force_optima, check_proof_after_a_stuck_rc2, check_required_units, cyclic_foon
 
 pytestmark = pytest.mark.skipif(not uwr.available(), reason="hermax (UWrMaxSat) is not installed")
 
 
 @pytest.mark.parametrize("chunk", range(3))
 def test_the_solver_finds_the_brute_force_optimum(chunk):
-    checked = 0
-    for seed, ranked in [(s, r) for s in range(5 * chunk, 5 * chunk + 5) for r in RANKED]:
-        problem = cyclic_foon(seed)
-        levels, _ = problem.derivation_levels()
-        bounds = Bounds(problem, ranked)
-        for goal in range(len(problem.objects)):
-            if goal in problem.kitchen:
-                continue
-            every = brute_force(problem, goal)
-            for depth in (None, levels[goal]) if goal in levels else (None,):
-                trees = (
-                    every if depth is None else [t for t in every if measures(problem, goal, list(t))["depth"] <= depth]
-                )
-                found = minimum_tree_uwr(problem, goal, range(len(problem.units)), bounds.w, depth=depth)
-                if not trees:
-                    assert found.status == "unreachable" and found.tree is None, (seed, ranked, goal, depth)
-                    continue
-                opt = min(bounds.weight(t) for t in trees)
-                assert found.status == "optimal" and found.solver == "uwrmaxsat", (seed, ranked, goal, depth)
-                assert validate(problem, goal, list(found.tree)).valid
-                assert bounds.weight(found.tree) == opt == found.lower, (seed, ranked, goal, depth)
-                if depth is not None:
-                    assert measures(problem, goal, list(found.tree))["depth"] <= depth
-                checked += 1
-    assert checked > 0
+    check_brute_force_optima(minimum_tree_uwr, "uwrmaxsat", chunk)
 
 
 def test_required_units_are_in_the_solvers_tree():
-    problem = cyclic_foon(3)
-    bounds = Bounds(problem, ("units",))
-    levels, unit_levels = problem.derivation_levels()
-    goal = max(levels, key=lambda o: levels[o])
-    trees = brute_force(problem, goal)
-    for u in sorted(unit_levels):
-        with_u = [t for t in trees if u in t]
-        found = minimum_tree_uwr(problem, goal, range(len(problem.units)), bounds.w, require=[u])
-        if not with_u:
-            assert found.status != "optimal" or u in found.tree
-            continue
-        assert found.status == "optimal" and u in found.tree
-        assert len(found.tree) == min(len(t) for t in with_u)
+    check_required_units(minimum_tree_uwr)
+
+
+def _stuck(halted: list[bool]):
+    """A UWrMaxSat that never finishes: it waits for its halt or deadline (``halted`` gets
+    whether it was halted) and answers "stopped"."""
+    from foon2asp.maxsat import trees
+
+    def stuck(problem, goal, units, weights, require, deadline, depth, halt, race):
+        while not halt() and time.perf_counter() < deadline:
+            time.sleep(0.01)
+        halted.append(halt())
+        return trees.Result(None, 0, "stopped", solver="uwrmaxsat")
+
+    return stuck
+
+
+def _hard_part(hard):
+    """hard-4k's ninth preset goal (about 50 units in a part of about 2,900: seconds to prove),
+    its weights (``units``) and its part without dominated units."""
+    problem, goals = hard
+    goal = goals[8]
+    bounds = Bounds(problem, ("units",), problem.units_for([goal]))
+    return problem, goal, bounds, bounds.keep(goal, problem.units_for([goal]))
 
 
 def _deepest_goal():
@@ -84,36 +69,8 @@ def _deepest_goal():
     return problem, goal
 
 
-@pytest.fixture
-def slow_rc2(monkeypatch):
-    """RC2 that finds nothing: every solve waits until it is told to stop."""
-
-    def solve(self, deadline=None, stop=None):
-        while not (stop is not None and stop(self.lower)):
-            if deadline is not None and time.perf_counter() >= deadline:
-                break
-            time.sleep(0.01)
-        raise oracle_module.Stopped
-
-    monkeypatch.setattr(oracle_module.Oracle, "solve", solve)
-
-
 def test_uwrmaxsat_after_a_stuck_rc2_proves_the_optimum(slow_rc2):
-    checked = 0
-    for seed in range(6):
-        problem = cyclic_foon(seed)
-        bounds = Bounds(problem, ("inputs", "units"))
-        for goal in range(len(problem.objects)):
-            trees = brute_force(problem, goal) if goal not in problem.kitchen else []
-            if not trees:
-                continue
-            units = range(len(problem.units))
-            found = minimum_tree(problem, goal, units, bounds.w, deadline=time.perf_counter() + 30, uwr_after=0.0)
-            opt = min(bounds.weight(t) for t in trees)
-            assert found.status == "optimal" and found.solver == "uwrmaxsat" and found.search == "uwrmaxsat"
-            assert bounds.weight(found.tree) == opt == found.lower and validate(problem, goal, list(found.tree)).valid
-            checked += 1
-    assert checked > 10
+    check_proof_after_a_stuck_rc2(("inputs", "units"), "uwrmaxsat", "uwrmaxsat", uwr_after=0.0)
 
 
 def test_a_proof_by_highs_ends_the_takeover_at_once(slow_rc2, monkeypatch):
@@ -123,15 +80,8 @@ def test_a_proof_by_highs_ends_the_takeover_at_once(slow_rc2, monkeypatch):
 
     if not mip.available():
         pytest.skip("highspy is not installed")
-    halted = []
-
-    def stuck(problem, goal, units, weights, require, deadline, depth, halt, race):
-        while not halt() and time.perf_counter() < deadline:
-            time.sleep(0.01)
-        halted.append(halt())
-        return trees.Result(None, 0, "stopped", solver="uwrmaxsat")
-
-    monkeypatch.setattr(trees, "minimum_tree_uwr", stuck)
+    halted: list[bool] = []
+    monkeypatch.setattr(trees, "minimum_tree_uwr", _stuck(halted))
     problem, goal = _deepest_goal()
     bounds = Bounds(problem, ("success", "units"))
     t0 = time.perf_counter()
@@ -147,10 +97,7 @@ def test_a_proof_by_highs_ends_the_takeover_at_once(slow_rc2, monkeypatch):
 
 
 def test_a_race_cut_short_bounds_the_optimum(hard):
-    problem, goals = hard
-    goal = goals[8]  # about 50 units in a part of about 2,900: seconds to prove
-    bounds = Bounds(problem, ("units",), problem.units_for([goal]))
-    part = bounds.keep(goal, problem.units_for([goal]))
+    problem, goal, bounds, part = _hard_part(hard)
     full = minimum_tree_uwr(problem, goal, part, bounds.w)
     assert full.status == "optimal" and validate(problem, goal, list(full.tree)).valid
     for after, limit in ((0.1, 0.3), (1.0, 1.5)):
@@ -181,10 +128,7 @@ def _children() -> set[int]:
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
 def test_the_child_is_stopped_at_the_deadline_and_by_a_halt_and_starts_again(hard):
-    problem, goals = hard
-    goal = goals[8]
-    bounds = Bounds(problem, ("units",), problem.units_for([goal]))
-    part = bounds.keep(goal, problem.units_for([goal]))
+    problem, goal, bounds, part = _hard_part(hard)
     solver = uwr.Solver()
     hard_clauses = [[1, 2], [-1, 3], [-2, 3]]
     assert solver.solve(3, hard_clauses, [(-1, 1), (-2, 2), (-3, 1)]) == ("optimal", {1, 3})
@@ -217,8 +161,7 @@ def _formula(problem, goal, units, weights):
     from foon2asp.maxsat.trees import _encoding
 
     enc = _encoding(problem, goal, units, None)
-    hard = list(enc.clauses())
-    return enc.top, hard, [(-enc.use[u], weights[u]) for u in enc.units]
+    return (enc.top, *enc.weighted(weights, ()))
 
 
 def test_the_child_prints_nothing_and_ends_with_its_parent():
@@ -266,10 +209,8 @@ def test_a_child_that_keeps_dying_is_given_up(monkeypatch):
 def test_a_second_thread_waits_for_the_child_no_longer_than_its_deadline(hard):
     import threading
 
-    problem, goals = hard
-    goal = goals[8]
-    bounds = Bounds(problem, ("units",), problem.units_for([goal]))
-    formula = _formula(problem, goal, bounds.keep(goal, problem.units_for([goal])), bounds.w)
+    problem, goal, bounds, part = _hard_part(hard)
+    formula = _formula(problem, goal, part, bounds.w)
     solver = uwr.Solver()
     first: list = []
     busy = threading.Thread(target=lambda: first.append(solver.solve(*formula, deadline=time.perf_counter() + 3)))
@@ -308,17 +249,9 @@ def test_an_answer_cut_short_while_uwrmaxsat_runs_has_highs_bound(slow_rc2, monk
     if not mip.available():
         pytest.skip("highspy is not installed")
 
-    def stuck(problem, goal, units, weights, require, deadline, depth, halt, race):
-        while not halt() and time.perf_counter() < deadline:
-            time.sleep(0.01)
-        return trees.Result(None, 0, "stopped", solver="uwrmaxsat")
-
-    problem, goals = hard
-    goal = goals[8]
-    bounds = Bounds(problem, ("units",), problem.units_for([goal]))
-    part = bounds.keep(goal, problem.units_for([goal]))
+    problem, goal, bounds, part = _hard_part(hard)
     optimum = minimum_tree_uwr(problem, goal, part, bounds.w).lower
-    monkeypatch.setattr(trees, "minimum_tree_uwr", stuck)
+    monkeypatch.setattr(trees, "minimum_tree_uwr", _stuck([]))
     t0 = time.perf_counter()
     short = minimum_tree(problem, goal, part, bounds.w, deadline=t0 + 4, mip_after=0.0, uwr_after=0.0)
     assert short.status == "stopped" and short.tree is None and 0 < short.lower <= optimum
