@@ -33,7 +33,8 @@ from foon2asp.cli.main import main  # noqa: E402
 from foon2asp.cli.params import SCHEDULER, SECONDS, int32  # noqa: E402
 from foon2asp.errors import BAD_CHAR, InputError  # noqa: E402
 from foon2asp.foon.loaders import read_goals, read_kitchen, read_motion, read_utensils  # noqa: E402
-from foon2asp.foon.parser import read_foon  # noqa: E402
+from foon2asp.foon.model import Foon  # noqa: E402
+from foon2asp.foon.parser import format_units, parse_text, read_foon  # noqa: E402
 from foon2asp.foon.treefiles import read_trees  # noqa: E402
 
 EXAMPLES = int(os.environ.get("FUZZ_EXAMPLES", "25"))
@@ -202,6 +203,47 @@ def test_command_line_end_to_end(tmp_path_factory, data, which):
     if res.exit_code == 2:
         lines = res.stderr.strip().splitlines()
         assert len(lines) == 1 and lines[0].startswith("foon2asp: error: "), res.stderr
+
+
+def pairs_up(text: str) -> bool:
+    """Do the brackets of ``text`` pair up (``[`` with ``]``, ``{`` with ``}``)?  Said without the
+    parser: pairs ``[]``/``{}`` are taken out until none is left."""
+    kept = "".join(c for c in text if c in "[]{}")
+    while "[]" in kept or "{}" in kept:
+        kept = kept.replace("[]", "").replace("{}", "")
+    return not kept
+
+
+def one_list(arg: str) -> bool:
+    """Is ``arg`` what ``in`` and ``contains`` take: a label or list, in one pair of brackets or none?"""
+    arg = arg.strip()
+    if arg[:1] in ("[", "{") and arg[-1:] in ("]", "}"):
+        arg = arg[1:-1]
+    return not any(c in arg for c in "[]{}")
+
+
+@FUZZ
+@given(
+    relation=st.sampled_from(["", "in", "contains", "on", "attached to"]),
+    arg=st.text(alphabet="ab ,[]{}", max_size=12),
+    official=st.booleans(),
+)
+def test_state_brackets_pair_up_or_the_line_is_named(relation, arg, official):
+    """A state line's brackets that do not pair up (``in [bowl``) are an error naming the
+    line and column; those that do are read, and written back the same."""
+    assume(relation or arg.strip())
+    fields = f"{relation}\t{arg}" if relation else arg
+    text = f"O\tbowl\nS\tempty\nM\tpour\nO\tbowl\nS{'5' if official else ''}\t{fields}\n//\n"
+    result = outcome(lambda: parse_text(text, "f.txt"))
+    if not pairs_up(arg) or (relation in ("in", "contains") and not one_list(arg)):
+        assert isinstance(result, InputError), (text, result)
+        assert (result.path, result.line) == ("f.txt", 5) and result.column is not None, str(result)
+        assert str(result).startswith(f"f.txt:5:{result.column}: ")
+        return
+    assert isinstance(result, Foon), (text, str(result))
+    (out,) = result.units[0].outputs
+    assert not any(c in label for label in (*out.ingredients, out.container or "") for c in "[]{}")
+    assert parse_text(format_units(result.units), "again.txt").units == result.units
 
 
 LABEL = st.text(

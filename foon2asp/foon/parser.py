@@ -16,6 +16,9 @@ NEL, U+2028/U+2029 or a byte that is not UTF-8 is an error naming
 ``FILE:LINE:COLUMN``; a byte-order mark at the start is skipped.
 ``in`` sets the container, ``contains`` the ingredients; any other relation
 (``on``, ``with``, ``attached to``, ...) is kept as the state ``"rel [arg]"``.
+The brackets of a state line must pair up (``[``/``]``, ``{``/``}``) and the
+argument of ``in``/``contains`` is one bracketed list: ``in\t[bowl`` or
+``in\t[[bowl]]`` is an error naming ``FILE:LINE:COLUMN``.
 A trailing ``*`` on a motion label is dropped.
 
 The ids of official files are kept on the FOON (:attr:`Foon.ids`: one id per
@@ -46,11 +49,67 @@ _KINDS = frozenset("OSM")
 _RELATION_STATE = re.compile(r"^(.+?) ([\[{].*[\]}])$")
 
 
+_BRACKET = re.compile(r"[\[\]{}]")
+#: the usual state line with brackets (``in\t[bowl]``, ``contains\t{a,b}``): checked without a scan
+_ONE_LIST = re.compile(r"[^\[\]{}\t]*\t *(?:\[[^\[\]{}\t]*\]|\{[^\[\]{}\t]*\}) *")
+_CLOSING = {"[": "]", "{": "}"}
+_OPENING = {"]": "[", "}": "{"}
+
+
 def _strip_brackets(arg: str) -> str:
     arg = arg.strip()
     if arg[:1] in "[{" and arg[-1:] in "]}":
         arg = arg[1:-1]
     return arg.strip()
+
+
+def _bracket_problem(text: str) -> tuple[str, int] | None:
+    """Why the brackets of ``text`` do not pair up (``[``/``]``, ``{``/``}``), with the offset
+    of the bracket at fault; None when they pair up."""
+    open_: list[tuple[str, int]] = []
+    for m in _BRACKET.finditer(text):
+        c, at = m.group(), m.start()
+        if c in _CLOSING:
+            open_.append((c, at))
+        elif not open_:
+            return f"stray {c!r} (no {_OPENING[c]!r} before it)", at
+        elif _CLOSING[open_[-1][0]] != c:
+            return f"{open_[-1][0]!r} closed by {c!r}", at
+        else:
+            open_.pop()
+    if open_:
+        c, at = open_[0]
+        return f"unbalanced {c!r} (no {_CLOSING[c]!r} after it)", at
+    return None
+
+
+def _check_brackets(line: str, tab: int, path: str, lineno: int) -> None:
+    """An error naming ``FILE:LINE:COLUMN`` when a field of the state line ``line`` (its fields
+    start after ``tab``) has brackets that do not pair up, or when the argument of ``in`` or
+    ``contains`` is not one bracketed list (``in [[bowl]`` would be a container ``[bowl``)."""
+    start = tab + 1
+    raw = line[start:].split("\t")
+    shown = " ".join(f.strip() for f in raw if f.strip())
+    for field in raw:
+        problem = _bracket_problem(field)
+        if problem is not None:
+            what, at = problem
+            raise InputError(f"{what} in the state {shown!r}", path, lineno, start + at + 1)
+        start += len(field) + 1
+    name = raw[0].strip().lower()
+    if len(raw) > 1 and name in ("in", "contains", "ingredients"):
+        arg = raw[1]
+        inner = _strip_brackets(arg)
+        m = _BRACKET.search(inner)
+        if m is not None:
+            column = tab + 1 + len(raw[0]) + 1 + arg.find(inner) + m.start() + 1
+            example = "in [bowl]" if name == "in" else f"{name} {{flour,sugar}}"
+            raise InputError(
+                f"nested or extra brackets in the state {shown!r} ({name!r} takes one list, e.g. {example!r})",
+                path,
+                lineno,
+                column,
+            )
 
 
 class _Obj:
@@ -149,6 +208,8 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
             name = fields[0]
             if not name:
                 raise InputError("state line with an empty state", path, lineno)
+            if _BRACKET.search(rest) is not None and _ONE_LIST.fullmatch(rest) is None:
+                _check_brackets(line, tab, path, lineno)
             arg = fields[1] if len(fields) > 1 and fields[1] else None
             if arg is None:
                 current.states.append(name)
@@ -229,9 +290,15 @@ DIALECTS = ("official", "plain")
 
 
 def state_parts(state: str) -> tuple[str, str | None]:
-    """``"on [plate]"`` -> ``("on", "[plate]")``; a plain state -> ``(state, None)``."""
+    """``"on [plate]"`` -> ``("on", "[plate]")``; a plain state -> ``(state, None)``.  A state is
+    split only where both parts read back as they are: their brackets pair up, and the name is
+    not ``in``/``contains`` (``"in [bowl]"`` read from one field is a state, not the container)."""
     m = _RELATION_STATE.match(state)
-    return (m.group(1), m.group(2)) if m else (state, None)
+    if m is None or m.group(1).lower() in ("in", "contains", "ingredients"):
+        return state, None
+    if _bracket_problem(m.group(1)) is not None or _bracket_problem(m.group(2)) is not None:
+        return state, None
+    return m.group(1), m.group(2)
 
 
 def object_fields(obj: FoonObject) -> list[tuple[str, str | None]]:
