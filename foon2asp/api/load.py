@@ -8,7 +8,8 @@ from pathlib import Path
 from foon2asp.api.kb import KnowledgeBase
 from foon2asp.errors import InputError
 from foon2asp.foon.demo import demo_dir
-from foon2asp.foon.loaders import FILE_NAMES, Dataset
+from foon2asp.foon.leaves import LEAVES
+from foon2asp.foon.loaders import FILE_NAMES, Dataset, check_foon_file
 from foon2asp.foon.matching import Projection, Texts, parse_synonyms, project_dataset, read_synonyms
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.substitutes import LINE_BREAKS
@@ -28,7 +29,7 @@ def _beside(foon: Path, given: dict, warnings: list[str]) -> dict:
         if value is not None:
             continue
         candidate = foon.parent / FILE_NAMES[key]
-        if candidate.is_file():
+        if candidate.exists():  # a directory there is an error naming it when it is read
             out[key] = str(candidate)
         elif key == "kitchen":
             raise InputError(
@@ -83,6 +84,8 @@ def load(
     )
     beside: list[str] = []
     if path is None and foon_paths:
+        for name in foon_paths if isinstance(foon_paths, list) else [foon_paths]:
+            check_foon_file(name)  # a mistyped FOON path is named itself, not the files beside it
         first = Path(foon_paths[0] if isinstance(foon_paths, list) else foon_paths)
         found = _beside(first, {"kitchen": kitchen, "goals": goals, "motion": motion, "utensils": utensils}, beside)
         kitchen, goals, motion, utensils = found["kitchen"], found["goals"], found["motion"], found["utensils"]
@@ -126,6 +129,12 @@ def knowledge_base(
     unknown = problem.unknown_motions()
     if data.motion and unknown:
         found.append(
-            f"{len(unknown)} motion(s) not in {data.paths.get('motion')} get success rate 0.5: {', '.join(unknown[:5])}"
+            f"{len(unknown)} motion(s) not in {data.paths.get('motion') or 'the motion file'} get success rate 0.5:"
+            f" {', '.join(unknown[:5])}"
         )
+    if not data.kitchen:
+        kitchen = data.paths.get("kitchen")
+        where = "" if kitchen in (None, LEAVES) else f"{kitchen}: "
+        why = " (every object of the FOON is made by some unit)" if kitchen == LEAVES else ""
+        found.append(f"{where}the kitchen is empty{why}: no unit can start, so every goal is unreachable")
     return KnowledgeBase(data, problem, found, seen_as)

@@ -26,8 +26,38 @@ FILE_NAMES = {
 }
 
 
+#: what a missing or empty motion file means
+DEFAULT_RATE_NOTE = "every motion gets the default success rate 0.5"
+
+
 def _read_text(path: Path, what: str) -> str:
     return read_text(path, what)
+
+
+def check_foon_file(path: str | Path) -> None:
+    """An error naming ``path`` when it is not a FOON file that can be read: missing, a directory, not a file."""
+    path = Path(path)
+    if path.is_file():
+        return
+    if path.is_dir():
+        raise InputError("FOON file is a directory, not a file", str(path))
+    if path.exists():
+        raise InputError("FOON file is not a regular file", str(path))
+    raise InputError("FOON file not found", str(path))
+
+
+def read_foon_files(paths: list[str], strict: bool = False) -> Foon:
+    """The FOON files ``paths`` merged (:func:`foon2asp.foon.parser.read_foons`); an error naming
+    them when there is no functional unit in them (an empty file would leave every goal unknown)."""
+    for p in paths:
+        check_foon_file(p)
+    foon = read_foons(paths, strict)
+    if not foon.units:
+        skipped = f" ({len(foon.warnings)} skipped, first: {foon.warnings[0]})" if foon.warnings else ""
+        if len(paths) == 1:
+            raise InputError(f"FOON file has no functional units{skipped}", paths[0])
+        raise InputError(f"none of the FOON files {', '.join(paths)} has a functional unit{skipped}")
+    return foon
 
 
 def _json_elements(text: str, path: str) -> list[tuple[object, int]]:
@@ -105,7 +135,7 @@ def read_motion(path: str | Path, warnings: list[str] | None = None) -> dict[str
             raise InputError(f"success rate {rate} is not in (0, 1]", str(path), lineno)
         rates[" ".join(parts[0].split()).lower()] = rate
     if not rates and warnings is not None:
-        warnings.append(f"{path}: no success rate in the file: every motion gets the default rate 0.5")
+        warnings.append(f"{path}: no success rate in the file: {DEFAULT_RATE_NOTE}")
     return rates
 
 
@@ -160,7 +190,9 @@ class Dataset:
         """Read a data directory; explicit file arguments override its files.
 
         ``goals``, ``motion`` and ``utensils`` are optional when absent from
-        the directory; ``FOON.txt`` and ``kitchen.json`` are required, unless
+        the directory (a missing ``motion.txt`` is warned about: every motion then
+        gets the success rate 0.5); ``FOON.txt`` and ``kitchen.json`` are required
+        (a FOON without a functional unit is an error), unless
         ``kitchen`` is ``"leaves"`` (:data:`foon2asp.foon.leaves.LEAVES`): then
         the kitchen is every object no unit of the FOON makes.
         """
@@ -175,17 +207,18 @@ class Dataset:
                 if candidate.exists() or key in ("foon", "kitchen"):
                     paths[key] = str(candidate)
         if base is not None and not base.is_dir():
-            raise InputError("data directory not found", str(base))
+            raise InputError(
+                "data directory is a file, not a directory" if base.exists() else "data directory not found", str(base)
+            )
         for key in ("foon", "kitchen"):
             if key not in paths:
                 raise InputError(f"no {FILE_NAMES[key]} given (use --data DIR or --{key} FILE)")
         foon_paths = paths["foon"] if isinstance(paths["foon"], list) else [paths["foon"]]
-        for p in foon_paths:
-            if not Path(p).is_file():
-                raise InputError("FOON file not found", str(p))
         one = {k: str(v) for k, v in paths.items() if k != "foon"}
         warnings: list[str] = []
-        units = read_foons(foon_paths, strict)
+        units = read_foon_files([str(p) for p in foon_paths], strict)
+        if base is not None and "motion" not in paths:
+            warnings.append(f"{base / FILE_NAMES['motion']}: no such file in the data directory: {DEFAULT_RATE_NOTE}")
         return cls(
             foon=units,
             kitchen=leaves(units) if one["kitchen"] == LEAVES else read_kitchen(one["kitchen"]),
