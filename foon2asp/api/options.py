@@ -8,9 +8,10 @@ place that knows them.  The command line builds one per command from its flags.
 
 from __future__ import annotations
 
+import difflib
 import json
 import math
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import TypedDict, Unpack, cast
@@ -77,6 +78,38 @@ _CONSTRAINT_KEYWORDS = {
 }
 
 
+#: why a value is not a time limit, in the words the command line's ``--time-limit`` uses too
+NOT_A_TIME_LIMIT = "is not a finite number of seconds > 0"
+
+
+def time_limit_error(value: object) -> str | None:
+    """What is wrong with ``value`` as a time limit (None: nothing).  A limit is a finite number
+    of seconds > 0: 0, a negative number, NaN and infinity are refused (no limit is None)."""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return f"{value!r} is not a number of seconds"
+    if not math.isfinite(value) or value <= 0:
+        return f"{value!r} {NOT_A_TIME_LIMIT}"
+    return None
+
+
+def unexpected_keywords(given: Iterable[str], known: Collection[str], where: str = "") -> TypeError | None:
+    """A TypeError (``where`` first) naming the keywords of ``given`` not in ``known``, each with
+    the closest known keyword ("did you mean ...?"); None when every keyword is known."""
+    unknown = sorted(set(given) - set(known))
+    if not unknown:
+        return None
+    names = sorted(known)
+    parts = []
+    guessed = True
+    for name in unknown:
+        close = difflib.get_close_matches(name, names, n=1)
+        parts.append(f"{name!r} (did you mean {close[0]!r}?)" if close else repr(name))
+        guessed = guessed and bool(close)
+    word = "argument" if len(parts) == 1 else "arguments"
+    known_ones = "" if guessed else f"; the keywords are {', '.join(names)}"
+    return TypeError(f"{where}unexpected keyword {word} {', '.join(parts)}{known_ones}")
+
+
 def split_objective(value: str | Sequence[str]) -> tuple[str, ...]:
     """``"success,units"`` or ``["success", "units"]`` as a tuple of names (``("units",)`` when empty)."""
     parts = [p.strip() for p in value.split(",")] if isinstance(value, str) else [str(p).strip() for p in value]
@@ -94,7 +127,7 @@ class Options:
     #: lexicographic, most important first: ``units``, ``success``, ``inputs``, ``depth``, ``cost``
     objective: tuple[str, ...] = ("units",)
     constraints: Constraints = field(default_factory=Constraints)
-    #: seconds per goal; the best tree so far is then ``feasible``
+    #: seconds per goal (a finite number > 0; None: no limit); the best tree so far is then ``feasible``
     time_limit: float | None = None
     #: stop a goal once its relative gap (answer against the proven lower bound, first
     #: objective; foon2asp.tree.gap) is at most this, e.g. 0.05; the answer is then
@@ -128,18 +161,28 @@ class Options:
     #: at most this many substitutions per tree
     max_substitutions: int | None = None
 
+    def __new__(cls, *args: object, **kwargs: object) -> Options:
+        error = unexpected_keywords(kwargs, [f.name for f in fields(cls)], "Options(): ")
+        if error is not None:
+            raise error
+        return super().__new__(cls)
+
     def __post_init__(self) -> None:
         object.__setattr__(self, "objective", split_objective(self.objective))
         if self.constraints is None:
             object.__setattr__(self, "constraints", Constraints())
+        if self.time_limit is not None:
+            error = time_limit_error(self.time_limit)
+            if error is not None:
+                raise InputError(f"time_limit: {error} (None: no limit)")
 
     @classmethod
     def of(cls, options: Options | None = None, /, **settings: Unpack[Settings]) -> Options:
         """``options`` (default: all defaults) with the keyword ``settings`` of :class:`Settings` applied."""
         base = options if options is not None else cls()
-        unknown = sorted(set(settings) - set(Settings.__annotations__))
-        if unknown:
-            raise TypeError(f"unexpected keyword argument(s): {', '.join(unknown)}")
+        error = unexpected_keywords(settings, Settings.__annotations__)
+        if error is not None:
+            raise error
         own = {f.name for f in fields(cls)}
         changes: dict = {k: v for k, v in settings.items() if k in own}
         spec = {

@@ -1,6 +1,7 @@
 """Checked option types for the command line (click parameter types).
 
-* :data:`SECONDS` -- a finite, non-negative number of seconds (``nan``, ``inf``, ``-1`` refused);
+* :data:`SECONDS` -- a time limit: a finite number of seconds > 0 (``0``, ``nan``, ``inf``, ``-1``
+  refused, in the words the library uses for ``time_limit=``);
 * :func:`int32` -- an integer within what the solver takes (clingo numbers are 32-bit), so an
   overflow can never turn into a wrong answer;
 * :data:`SCHEDULER` -- a Dask scheduler address ``[tcp://|tls://|ucx://|ws://|wss://]HOST:PORT``
@@ -14,13 +15,14 @@ import re
 
 import click
 
+from foon2asp.api.options import NOT_A_TIME_LIMIT
 from foon2asp.errors import escape
 
 INT32_MAX = 2**31 - 1
 
 
 class Seconds(click.ParamType):
-    """A finite number of seconds >= 0."""
+    """A time limit: a finite number of seconds > 0 (no limit: leave the option out)."""
 
     name = "seconds"
 
@@ -32,8 +34,8 @@ class Seconds(click.ParamType):
                 number = float(str(value).strip())
             except ValueError:
                 self.fail(f"{escape(str(value))!r} is not a number of seconds", param, ctx)
-        if not math.isfinite(number) or number < 0:
-            self.fail(f"{escape(str(value))!r} is not a finite number of seconds >= 0", param, ctx)
+        if not math.isfinite(number) or number <= 0:
+            self.fail(f"{escape(str(value))!r} {NOT_A_TIME_LIMIT} (leave the option out for no limit)", param, ctx)
         return number
 
 
