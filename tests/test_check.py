@@ -226,15 +226,20 @@ def test_check_exit_codes_on_json_with_several_trees(tmp_path):
     res = cli("solve", "--data", "demo", "--goals", "all", "--format", "json")
     path = tmp_path / "asp.json"
     path.write_text(res.stdout)
-    # tomato salad and scrambled egg are valid; the two unreachable goals have no tree
+    # tomato salad and scrambled egg are valid; the two unreachable goals have no tree to check
     out = cli("check", path, "--data", DEMO, "--format", "json", "--no-optimum")
-    assert out.exit_code == 1
+    assert out.exit_code == 0
     reports = json.loads(out.stdout)
-    assert [r["valid"] for r in reports] == [True, True, False, False]
-    assert [r["problem"] for r in reports[2:]] == ["goal-not-made", "goal-not-made"]
-    only_valid = json.loads(res.stdout)[:2]
+    assert [r["valid"] for r in reports] == [True, True, None, None]
+    assert [r["problem"] for r in reports[2:]] == ["unreachable", "unreachable"]
+    answers = json.loads(res.stdout)
+    only_valid = answers[:2]
     path.write_text(json.dumps(only_valid))
     assert cli("check", path, "--data", DEMO, "--no-optimum").exit_code == 0
+    # a tree that does not make its goal is invalid: exit 1
+    answers[0]["goal"] = answers[1]["goal"]
+    path.write_text(json.dumps(answers))
+    assert cli("check", path, "--data", DEMO, "--no-optimum").exit_code == 1
 
 
 def test_check_order_as_written(tmp_path, demo_problem):

@@ -14,6 +14,12 @@ valid, the first problem is named: an unknown unit (with how the nearest FOON
 unit differs), else what :func:`foon2asp.tree.diagnose.diagnose` finds walking
 back from the goal -- a missing input or circular support.
 
+A file that gives no units for a goal outside the kitchen (``solve``'s answer
+for an unreachable goal, in JSON or FOON text) has no tree to check: when no
+units of the FOON derive the goal from the kitchen
+(:func:`foon2asp.tree.validate.derivable_objects`) that answer is confirmed
+(finding ``unreachable``, not counted as invalid); else it is wrong (``no-tree``).
+
 Without a FOON, :func:`check_alone` judges each tree of a file on its own
 (:func:`foon2asp.tree.validate.judge_alone`: kitchen = its leaves, goal = the
 products of its last unit): valid means every unit fires in the order written.
@@ -33,7 +39,7 @@ from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.diagnose import Finding, check_units, describe_unit
 from foon2asp.tree.results import AloneReport, Report
 from foon2asp.tree.tasktree import Goals, meal_of, measures
-from foon2asp.tree.validate import check_order, judge_alone, validate
+from foon2asp.tree.validate import check_order, derivable_objects, judge_alone, validate
 
 # ---------------------------------------------------------------- matching
 
@@ -112,12 +118,65 @@ def infer_goal(problem: Problem, tree: TreeFile, goal_objects: list[FoonObject])
 # ---------------------------------------------------------------- checking
 
 
-def check_tree(problem: Problem, tree: TreeFile, goal: Goals, index: dict[tuple, int] | None = None) -> Report:
+class Derivable:
+    """The objects derivable from the kitchen with any units of the FOON, computed once when first asked."""
+
+    def __init__(self, problem: Problem) -> None:
+        self.problem = problem
+        self._objects: set[FoonObject] | None = None
+
+    def __contains__(self, obj: object) -> bool:
+        if self._objects is None:
+            self._objects = derivable_objects(self.problem)
+        return obj in self._objects
+
+
+def no_tree(
+    problem: Problem, tree: TreeFile, goal: int, derivable: Derivable | None = None, what: str = "the goal"
+) -> Report:
+    """The report on a file that gives no units for ``goal`` (not a kitchen item): ``unreachable``
+    when the FOON confirms that no tree exists, else ``no-tree`` (the goal has a tree).
+    ``what`` names the goal in the message."""
+    derivable = derivable if derivable is not None else Derivable(problem)
+    if problem.objects[goal] not in derivable:
+        finding = Finding(
+            "unreachable",
+            f"unreachable: no tree to check (confirmed: {what} is not derivable from the kitchen"
+            " with any units of the FOON)",
+            obj=goal,
+        )
+    else:
+        finding = Finding(
+            "no-tree",
+            f"no tree to check, but {what} is derivable from the kitchen: the file gives no units for it",
+            obj=goal,
+        )
+    return Report(tree, goal, [], False, finding, None, None, {})
+
+
+def check_tree(
+    problem: Problem,
+    tree: TreeFile,
+    goal: Goals,
+    index: dict[tuple, int] | None = None,
+    derivable: Derivable | None = None,
+) -> Report:
     """Match the units of ``tree`` to the FOON and judge them for ``goal`` (for a meal, a
-    tuple of goals: valid when every goal is made; the first goal with a problem is explained)."""
+    tuple of goals: valid when every goal is made; the first goal with a problem is explained).
+    A tree without units for a goal outside the kitchen is judged by :func:`no_tree`."""
     meal = meal_of(goal)
     if len(meal) > 1:
-        reports = [check_tree(problem, tree, g, index) for g in meal]
+        derivable = derivable if derivable is not None else Derivable(problem)
+        if not tree.units:
+            # a meal is unreachable when one of its dishes is
+            empty = [
+                no_tree(problem, tree, g, derivable, str(problem.objects[g])) for g in meal if g not in problem.kitchen
+            ]
+            if empty:
+                first = next((r for r in empty if r.finding and r.finding.kind == "unreachable"), empty[0])
+                first.goals = meal
+                return first
+        reports = [check_tree(problem, tree, g, index, derivable) for g in meal]
         first = next((r for r in reports if not r.valid), reports[0])
         first.goals = meal
         first.valid = all(r.valid for r in reports)
@@ -126,6 +185,8 @@ def check_tree(problem: Problem, tree: TreeFile, goal: Goals, index: dict[tuple,
         first.cost = measures(problem, meal, known)
         return first
     goal = meal[0]
+    if not tree.units and goal not in problem.kitchen:
+        return no_tree(problem, tree, goal, derivable)
     index = index if index is not None else unit_index(problem)
     ids = [index.get(tu.unit.key()) for tu in tree.units]
     unknown = [tu for tu, u in zip(tree.units, ids) if u is None]
@@ -197,10 +258,11 @@ def check_trees(
 ) -> list[Report]:
     """Check each of ``trees`` for its goal (:func:`tree_goal`)."""
     index = unit_index(problem)
+    derivable = Derivable(problem)
     reports = []
     for tree in trees:
         goal, source = tree_goal(data, problem, tree, goal_label, among)
-        report = check_tree(problem, tree, goal, index)
+        report = check_tree(problem, tree, goal, index, derivable)
         report.goal_source = source
         reports.append(report)
     return reports

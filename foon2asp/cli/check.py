@@ -54,8 +54,13 @@ def check(trees, data, goal, goals, fmt, optimum, spec):
     the tree's validity, durations, capabilities, precedence, one unit per agent at a time or resources.
 
     \b
-    Exit codes: 0 every tree (schedule) valid; 1 some tree (schedule) invalid; 2 bad input or usage;
-    130 interrupted.
+    An answer that gives no units for its goal (solve's answer for an unreachable goal) is
+    'unreachable: no tree to check' when the FOON confirms that the goal is not derivable from
+    the kitchen, counted apart from the valid and invalid trees; else it is invalid.
+
+    \b
+    Exit codes: 0 every tree (schedule) valid or confirmed unreachable; 1 some tree (schedule)
+    invalid; 2 bad input or usage; 130 interrupted.
     """
     schedules = [p for p in trees if api.is_schedule_file(p)]
     verdicts: list = []
@@ -99,4 +104,5 @@ def check(trees, data, goal, goals, fmt, optimum, spec):
             reports += [r.raw for r in found]
             warn_kb(kb)
         click.echo(report.render("check", fmt, kb.problem, reports), nl=False)
-    sys.exit(0 if all(r.valid for r in reports) and all(v.valid for v in verdicts) else 1)
+    answered = all(report.check.answered(r) for r in reports)
+    sys.exit(0 if answered and all(v.valid for v in verdicts) else 1)

@@ -14,6 +14,17 @@ from foon2asp.tree.serialize import number
 from foon2asp.tree.validate import AloneVerdict
 
 
+def unreachable(report: Report | AloneReport) -> bool:
+    """The file gives no tree for the goal and the FOON confirms that none exists
+    (:func:`foon2asp.analysis.check.no_tree`): an answer, neither valid nor invalid."""
+    return isinstance(report, Report) and report.finding is not None and report.finding.kind == "unreachable"
+
+
+def answered(report: Report | AloneReport) -> bool:
+    """A valid tree, or a confirmed unreachable goal: what ``check`` exits 0 for."""
+    return report.valid or unreachable(report)
+
+
 def _cost_text(cost: dict) -> str:
     depth = cost.get("depth")
     text = (
@@ -49,9 +60,13 @@ def report_text(problem: Problem, report: Report) -> str:
         lines = [head, f"Goal: {problem.objects[report.goal]}{source}"]
     n_known = sum(u is not None for u in ids)
     lines.append(f"Units: {len(ids)} read, {n_known} found in the FOON, {len(ids) - n_known} unknown")
-    lines.append(f"Verdict: {'VALID' if report.valid else 'INVALID'}")
+    if unreachable(report):
+        assert report.finding is not None
+        lines.append(f"Verdict: {report.finding.message}")
+    else:
+        lines.append(f"Verdict: {'VALID' if report.valid else 'INVALID'}")
     lines += substitution_lines(report.substitutions or [])
-    if report.finding:
+    if report.finding and not unreachable(report):
         f = report.finding
         if f.kind == "cycle":
             lines.append("Problem: circular support -- these units need each other and nothing starts the cycle:")
@@ -70,7 +85,8 @@ def report_text(problem: Problem, report: Report) -> str:
             lines.append(f"Units that can fire (in order, steps): {' '.join(_steps(v.order, ids)) or '-'}")
             if v.stuck:
                 lines.append(f"Units that never fire (steps): {' '.join(_steps(v.stuck, ids))}")
-    lines.append(f"Size: {_cost_text(report.cost)}")
+    if report.cost:
+        lines.append(f"Size: {_cost_text(report.cost)}")
     opt = report.optimum
     if opt is not None:
         if opt.has_tree:
@@ -106,7 +122,8 @@ def report_json(problem: Problem, report: Report) -> dict:
         ),
         "goal_source": report.goal_source,
         "method": report.tree.method,
-        "valid": report.valid,
+        # null: no tree to judge, the goal confirmed unreachable ("problem": "unreachable")
+        "valid": None if unreachable(report) else report.valid,
         "problem": report.finding.kind if report.finding else None,
         "message": report.finding.message if report.finding else None,
         "cycle": [
@@ -215,9 +232,18 @@ def alone_json(report: AloneReport) -> dict:
     }
 
 
-@register("check", "text", "txt", "readable report per tree")
+def summary_line(reports: list[Report | AloneReport]) -> str:
+    """``Checked 25 trees: 23 valid, 0 invalid, 2 unreachable (no tree to check)``."""
+    gone = sum(unreachable(r) for r in reports)
+    valid = sum(r.valid for r in reports)
+    line = f"Checked {len(reports)} trees: {valid} valid, {len(reports) - valid - gone} invalid"
+    return line + (f", {gone} unreachable (no tree to check)" if gone else "")
+
+
+@register("check", "text", "txt", "readable report per tree; with several, a last line counting them")
 def check_text(problem: Problem | None, reports: list[Report | AloneReport]) -> str:
-    return "\n".join(one_text(problem, r) for r in reports)
+    out = "\n".join(one_text(problem, r) for r in reports)
+    return out + (f"\n{summary_line(reports)}\n" if len(reports) > 1 else "")
 
 
 def one_text(problem: Problem | None, report: Report | AloneReport) -> str:

@@ -23,7 +23,9 @@ from foon2asp.tree.validate import Validation, validate
 class Finding:
     """The first problem of an invalid tree."""
 
-    kind: str  # "unknown-unit" | "missing-input" | "cycle" | "goal-not-made"
+    #: "unknown-unit" | "missing-input" | "cycle" | "goal-not-made"; for a file that gives no units
+    #: for its goal: "unreachable" (the FOON confirms there is no tree) or "no-tree" (there is one)
+    kind: str
     message: str
     #: for a cycle: (object, unit) pairs -- the object is made by the unit, which
     #: needs the next pair's object; the last unit needs the first object

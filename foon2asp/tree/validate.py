@@ -78,6 +78,33 @@ def validate(problem: Problem, goal: FoonObject | int, units: list[int]) -> Vali
     return Validation(True, None, order)
 
 
+def derivable_objects(problem: Problem) -> set[FoonObject]:
+    """Every object derivable from the kitchen with any units of the FOON (the least fixpoint,
+    replayed here as :func:`validate` does, on plain objects): a goal outside it has no tree."""
+    have = set(problem.kitchen_items)
+    waiting: dict[FoonObject, list[int]] = {}
+    lacking: list[int] = []
+    ready: list[int] = []
+    for u in range(len(problem.units)):
+        need = {o for o in _required(problem, u) if o not in have}
+        lacking.append(len(need))
+        for o in need:
+            waiting.setdefault(o, []).append(u)
+        if not need:
+            ready.append(u)
+    while ready:
+        u = ready.pop()
+        for o in _products(problem, u):
+            if o in have:
+                continue
+            have.add(o)
+            for v in waiting.pop(o, ()):
+                lacking[v] -= 1
+                if lacking[v] == 0:
+                    ready.append(v)
+    return have
+
+
 def check_order(problem: Problem, goal: FoonObject | int, units: list[int]) -> str | None:
     """None if ``units`` run in the given order make the goal; else the first problem."""
     goal_obj = problem.objects[goal] if isinstance(goal, int) else goal
