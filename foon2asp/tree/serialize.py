@@ -59,7 +59,10 @@ def to_json(problem: Problem, trees: list[TaskTree], indent: int | None = 2) -> 
 
 def number(value: object) -> str:
     """A measure as every text output prints it: integers in full, other numbers to 4
-    significant digits (``0.02187``, ``1.016e-10``); JSON keeps the full values."""
+    significant digits (``0.02187``, ``1.016e-10``), ``-`` for none (the depth of a tree that
+    is not well-founded); JSON keeps the full values."""
+    if value is None:
+        return "-"
     if isinstance(value, float):
         return f"{value:.4g}"
     return str(value)
@@ -87,7 +90,10 @@ def tree_text(problem: Problem, tree: TaskTree) -> str:
         head += f"  Human steps: {len(tree.extra['human_steps'])}"
     if tree.extra.get("reason"):
         head += f"  ({tree.extra['reason']})"
-    lines = [head] + [f"uses {s['used']} for {s['needed']}" for s in tree.extra.get("substitutions", ())]
+    lines = [head]
+    if tree.extra.get("valid") is False:  # judged by the independent validator (search baselines)
+        lines.append(f"INVALID: {tree.extra.get('problem') or 'the tree is not derivable from the kitchen'}")
+    lines += [f"uses {s['used']} for {s['needed']}" for s in tree.extra.get("substitutions", ())]
     human = set(tree.extra.get("human_steps", []))
     for step, u in enumerate(tree.units, 1):
         unit = problem.units[u]
