@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import itertools
 import json
+from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
@@ -18,6 +19,8 @@ from foon2asp.foon.problem import Problem
 from foon2asp.report import queries as report_queries
 from foon2asp.tree.validate import validate
 from helpers import as_obj, brute_force, build, goal_id
+
+REPO = Path(__file__).resolve().parent.parent
 
 # ---------------------------------------------------------------- independent oracles
 
@@ -359,7 +362,24 @@ def test_query_enumerates_and_reports_unsat(tmp_path):
     prog = tmp_path / "no.lp"
     prog.write_text(":- kitchen(O).\n")
     r = CliRunner().invoke(main, ["query", "--data", "demo", str(prog)])
-    assert r.exit_code == 0 and "unsatisfiable" in r.stdout  # proven: an answer (exit 1 is for time-outs)
+    assert r.exit_code == 1 and r.stdout == "Status: unsatisfiable\n"  # no model: exit 1, as documented
+
+
+def test_query_exit_status_is_the_documented_one(tmp_path):
+    """0 with a model, 1 without one (unsatisfiable), the same in both --help texts, the README and docs."""
+    no, yes = tmp_path / "no.lp", tmp_path / "yes.lp"
+    no.write_text(":- kitchen(O).\n")
+    yes.write_text("#show kitchen/1.\n")
+    r = CliRunner().invoke(main, ["query", "--data", "demo", "--format", "json", str(no)])
+    assert r.exit_code == 1 and json.loads(r.stdout)["status"] == "unsatisfiable"
+    r = CliRunner().invoke(main, ["query", "--data", "demo", str(yes)])
+    assert r.exit_code == 0 and r.stdout.startswith("Status: satisfiable\n")
+    flat = " ".join(CliRunner().invoke(main, ["query", "--help"]).output.split())
+    assert "1 no such answer: proven unsatisfiable" in flat
+    assert "query: unsatisfiable" in " ".join(CliRunner().invoke(main, ["--help"]).output.split())
+    readme = " ".join((REPO / "README.md").read_text().split())
+    assert "`query` is unsatisfiable" in readme and "for `query`, a model or proven unsatisfiable" not in readme
+    assert "1 when unsatisfiable" in " ".join((REPO / "docs" / "queries.md").read_text().split())
 
 
 def test_query_errors_are_located(tmp_path):

@@ -9,8 +9,11 @@ import click
 from foon2asp import api, report
 from foon2asp.cli.main import guarded, main
 from foon2asp.cli.options import GOAL_HELP, data_options, format_option, request_options, time_limit_option
-from foon2asp.cli.output import exit_code, warn
+from foon2asp.cli.output import warn
 from foon2asp.cli.params import int32
+
+#: the statuses of a query that exit 0: a model, the proven optimum (unsatisfiable, feasible and unknown exit 1)
+ANSWERED = frozenset({"satisfiable", "optimal"})
 
 
 @main.command()
@@ -46,8 +49,10 @@ def query(program, data, goals, goal, encoding_names, fmt, options):
     no rule or fact defines (a misspelt predicate) are warned about.
 
     \b
-    Exit codes: 0 a model, or proven unsatisfiable; 1 the time limit stopped the
-    search (no model, or the optimum not proven); 2 bad input or usage; 130 interrupted.
+    Exit codes: 0 a model (with an objective, the proven optimum); 1 no such
+    answer: proven unsatisfiable, or the time limit stopped the search (no model
+    yet, or the optimum not proven; the status printed says which); 2 bad input
+    or usage; 130 interrupted.
     """
     text = api.read_program(program)
     kb = data.load(goals)
@@ -58,4 +63,4 @@ def query(program, data, goals, goal, encoding_names, fmt, options):
     for warning in result.warnings:
         warn(warning)
     click.echo(report.render("query", fmt, kb.problem, result), nl=False)
-    sys.exit(exit_code([(result.status, None)]))
+    sys.exit(0 if result.status in ANSWERED else 1)
