@@ -273,6 +273,82 @@ def test_workers_option_takes_a_number_or_auto(shared_foon_dir, tmp_path):
             kb.batch(goals=["#0"], workers=bad)
 
 
+# A batch script as researchers write it: no ``if __name__ == "__main__":`` guard.
+# argv: results file, start method ("" chooses), "thread" (another thread runs meanwhile)
+UNGUARDED = """
+import sys, threading
+from foon2asp.batch import pool
+pool.START_METHOD = sys.argv[2] or None
+if "thread" in sys.argv[3:]:
+    stop = threading.Event()
+    threading.Thread(target=stop.wait).start()
+import foon2asp
+kb = foon2asp.load({data!r})
+try:
+    run = kb.batch(goals="all-objects", output=sys.argv[1], workers=2)
+finally:
+    if "thread" in sys.argv[3:]:
+        stop.set()
+print("done", run.done, "workers", run.workers)
+"""
+
+
+def _run_script(tmp_path, text, *args):
+    script = tmp_path / "script.py"
+    script.write_text(text.format(data=str(REPO / "data")))
+    out = tmp_path / "r.jsonl"
+    env = dict(os.environ, PYTHONPATH=str(REPO))
+    t0 = time.perf_counter()
+    try:
+        done = subprocess.run(
+            [sys.executable, str(script), str(out), *args],
+            cwd=tmp_path,
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=90,
+        )
+    except subprocess.TimeoutExpired:  # the workers ran the script again and the pool replaced them forever
+        pytest.fail("the batch script did not end within 90 s")
+    return done, out, time.perf_counter() - t0
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="workers are forked on Linux only")
+def test_script_without_main_guard_runs_its_pool(tmp_path):
+    done, out, _ = _run_script(tmp_path, UNGUARDED, "")
+    assert done.returncode == 0, done.stderr
+    lines = out.read_text().splitlines()
+    assert done.stdout.split() == ["done", str(len(lines) - 1), "workers", "2"]
+    assert len(lines) > 10 and all(json.loads(line)["status"] for line in lines[1:])
+    assert "RuntimeError" not in done.stderr
+
+
+@pytest.mark.parametrize("how", [("spawn",), ("forkserver",), ("", "thread")])
+def test_script_without_main_guard_stops_at_once_where_workers_run_it_again(tmp_path, how):
+    """Spawned workers (also forkserver's, and any worker while another thread runs) run the script
+    again: the batch stops at once, saying what to add, and writes no result."""
+    done, out, elapsed = _run_script(tmp_path, UNGUARDED, *how)
+    assert done.returncode == 1
+    last = done.stderr.strip().splitlines()[-1]
+    assert last.endswith('put the script\'s code under `if __name__ == "__main__":` (or use workers=1)'), done.stderr
+    assert "RuntimeError" not in done.stderr and "done" not in done.stdout
+    assert len(out.read_text().splitlines()) == 1  # the header alone
+    assert elapsed < 30
+
+
+def test_guarded_script_runs_its_pool_with_spawned_workers(tmp_path):
+    body = UNGUARDED.split("import foon2asp\n")[1]
+    guarded = (
+        "import sys\nfrom foon2asp.batch import pool\npool.START_METHOD = sys.argv[2] or None\n"
+        "import foon2asp\n\ndef main():\n"
+        + "".join(f"    {line}\n" for line in body.splitlines())
+        + "\nif __name__ == '__main__':\n    main()\n"
+    )
+    done, out, _ = _run_script(tmp_path, guarded, "spawn")
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["done", str(len(out.read_text().splitlines()) - 1), "workers", "2"]
+
+
 def test_dask_local_cluster(shared_problem, tmp_path):
     distributed = pytest.importorskip("distributed")
     from foon2asp.batch.cluster import executor

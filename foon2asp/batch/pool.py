@@ -16,6 +16,20 @@ runs on every core (BENCHMARKS.md, "Workers").
 Pool workers ignore SIGINT (the parent stops them) and exit when the
 parent dies, even by SIGKILL (``PR_SET_PDEATHSIG`` on Linux, and a thread
 watching the parent process elsewhere).
+
+How workers start (:func:`start_method`): a ``spawn`` (or ``forkserver``) worker
+runs the main module again before it takes a task, so a script run by its path
+without the ``if __name__ == "__main__":`` guard would start its batch again in
+every worker (and ``multiprocessing.Pool`` would replace the failing workers
+forever).  On Linux such a script's workers are forked, which runs nothing again,
+as long as no other thread runs in this process (a thread's locks would stay
+held in a forked worker; the progress bar's monitor is no matter, the workers
+never use it).  Otherwise, and for ``-m foon2asp`` and Python without a main
+file, workers are spawned: each starts from nothing.  Where a spawned worker would
+run the main script again, one probe process starts first, and if it cannot start
+(the script without the guard reached the batch again) the batch stops at once
+with :data:`NEEDS_GUARD`.  ``forkserver`` is no way round the guard: Python
+prepares its workers as ``spawn`` does, running the main script again in each.
 """
 
 from __future__ import annotations
@@ -33,6 +47,7 @@ from dataclasses import dataclass, field
 
 from foon2asp.analysis.compare import judge
 from foon2asp.asp.options import AspOptions
+from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.proofs import share_cores
 from foon2asp.methods.runner import GoalRunner, Parts
@@ -42,6 +57,15 @@ from foon2asp.tree.serialize import tree_json
 AUTO = 0
 #: seconds in this process before ``AUTO`` hands the remaining tasks to a pool
 SWITCH_S = 5.0
+#: the start method of the pool's workers; None: :func:`start_method` chooses
+START_METHOD: str | None = None
+#: why a pool could not start: its workers ran the main script again and reached the batch
+NEEDS_GUARD = (
+    "the worker processes run this script again and it starts the batch again: put the script's code under "
+    '`if __name__ == "__main__":` (or use workers=1)'
+)
+#: the name of the process that checks that workers can start
+_PROBE = "foon2asp-probe"
 
 
 def usable_cores() -> int:
@@ -50,6 +74,62 @@ def usable_cores() -> int:
         return len(os.sched_getaffinity(0))
     except AttributeError:  # pragma: no cover - not Linux
         return os.cpu_count() or 1
+
+
+def reruns_main() -> bool:
+    """Whether a ``spawn`` or ``forkserver`` worker runs this process's main module again
+    (as Python prepares one: a script run by its path, or a module run with ``-m`` that is
+    not a package's ``__main__``)."""
+    main = sys.modules.get("__main__")
+    name = getattr(getattr(main, "__spec__", None), "name", None)
+    if name is not None:
+        return not (name == "__main__" or name.endswith(".__main__"))
+    return getattr(main, "__file__", None) is not None
+
+
+def _other_threads() -> list[threading.Thread]:
+    """The threads of this process but the current one and tqdm's monitor."""
+    here = threading.current_thread()
+    return [t for t in threading.enumerate() if t is not here and t.name != "tqdm_monitor"]
+
+
+def start_method() -> str:
+    """The start method of a pool's workers: :data:`START_METHOD` if set; ``fork`` on Linux
+    when a spawned worker would run the main script again and no other thread runs here;
+    ``spawn`` otherwise."""
+    if START_METHOD is not None:
+        return START_METHOD
+    if sys.platform.startswith("linux") and reruns_main() and not _other_threads():
+        return "fork"
+    return "spawn"
+
+
+def refuse_while_starting() -> None:
+    """Stop a worker that is being started and has reached a batch while running the main
+    script again (no ``if __name__ == "__main__":`` guard): it exits at once, before it opens
+    any results file; the pool's process says why (:data:`NEEDS_GUARD`)."""
+    process = multiprocessing.current_process()
+    if not getattr(process, "_inheriting", False):  # Python's own mark of a worker being prepared
+        return
+    if process.name != _PROBE:
+        print(f"foon2asp: {NEEDS_GUARD}", file=sys.stderr)
+    raise SystemExit(1)
+
+
+def _probe() -> None:
+    """A worker that only starts (:func:`_check_start`)."""
+
+
+def _check_start(context: multiprocessing.context.BaseContext) -> None:
+    """Raise :data:`NEEDS_GUARD` if a worker of ``context`` cannot start (checked only where it
+    would run the main script again)."""
+    if context.get_start_method() == "fork" or not reruns_main():
+        return
+    probe = context.Process(target=_probe, name=_PROBE)  # type: ignore[attr-defined]
+    probe.start()
+    probe.join()
+    if probe.exitcode != 0:
+        raise InputError(NEEDS_GUARD)
 
 
 @dataclass
@@ -170,7 +250,8 @@ class Execution:
         if not tasks:
             return
         self.workers = workers
-        context = multiprocessing.get_context("spawn")
+        context = multiprocessing.get_context(start_method())
+        _check_start(context)
         pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec, workers))
         try:
             for results in pool.imap_unordered(_run_in_worker, _chunks(tasks, self.chunk)):

@@ -22,7 +22,7 @@ from tqdm import tqdm
 
 from foon2asp import methods as methods_mod
 from foon2asp.batch.grounding import GROUNDING_CHOICES, choose_grounding
-from foon2asp.batch.pool import AUTO, BatchSpec, execute
+from foon2asp.batch.pool import AUTO, BatchSpec, execute, refuse_while_starting
 from foon2asp.batch.results import (
     ResultFile,
     config_differences,
@@ -61,6 +61,7 @@ def run_batch(
     ``workers``: processes, or :data:`foon2asp.batch.pool.AUTO` (this process, then
     a pool on every core once the batch is long; the report says how many ran).
     """
+    refuse_while_starting()  # a worker running the main script again must not start its batch
     for name in spec.methods:
         methods_mod.get(name)  # unknown names fail before any work
     reason = ""
