@@ -10,19 +10,27 @@ unsafe variable is reported as one line naming the file (or rule) and line.
 
 The rules speak the vocabulary of docs/vocabulary.md: ``use(U)`` is a unit of
 the tree, ``motion(U,M)``, ``input(U,O)``, ``output(U,O)``, ``label(O,L)``.
+A predicate a user program uses that nothing defines -- no shipped encoding, no
+fact foon2asp writes, no user program -- is a misspelling that would silently
+match nothing; :func:`rule_warnings` names it, where it is and the closest
+defined predicates.
 """
 
 from __future__ import annotations
 
+import difflib
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass, field
+from functools import cache
 from pathlib import Path
 
 import clingo
+import clingo.ast
 
+from foon2asp.asp import encodings
 from foon2asp.asp.facts import q
-from foon2asp.errors import InputError
+from foon2asp.errors import InputError, escape
 
 #: ``<block>:LINE:COL[-COL]: error: text`` or ``FILE:LINE:...`` as clingo writes them
 _LOCATION = re.compile(r"^(?P<where>.*?):(?P<line>\d+):(?P<col>\d+)(?:-\d+(?::\d+)?)?: (?P<kind>\w+): (?P<text>.*)$")
@@ -186,6 +194,12 @@ def read_file(path: str) -> str:
         raise InputError(f"cannot read constraint file: {exc}", path) from None
 
 
+def user_programs(files: Iterable[str] = (), rules: Iterable[str] = ()) -> list[tuple[str, str]]:
+    """The user's files (named by their path) and rules (``--rule #N``, from 1) as (name, text), unchecked."""
+    out = [(str(path), read_file(path)) for path in files]
+    return out + [(f"--rule #{n}", rule) for n, rule in enumerate(rules, 1)]
+
+
 def programs(
     files: Iterable[str] = (),
     rules: Iterable[str] = (),
@@ -200,15 +214,9 @@ def programs(
     User files are named by their path and rules ``--rule #N`` (from 1), so
     errors point at them; generated programs are named after their flag.
     """
-    out: list[tuple[str, str]] = []
-    for path in files:
-        text = read_file(path)
-        check_syntax(str(path), text)
-        out.append((str(path), text))
-    for n, rule in enumerate(rules, 1):
-        name = f"--rule #{n}"
-        check_syntax(name, rule)
-        out.append((name, rule))
+    out = user_programs(files, rules)
+    for name, text in out:
+        check_syntax(name, text)
     generated = [
         ("--forbid-motion", forbid_motion, forbid_motions),
         ("--forbid-object", forbid_object, forbid_objects),
@@ -261,10 +269,198 @@ def _cap(text: str) -> int | None:
 
 
 def unknown_names(problem, spec: ConstraintSpec) -> list[str]:
-    """Warnings for flag values that match no motion or object label of the FOON."""
+    """Warnings for flag values that match no motion or object label of the FOON, and for
+    predicates the user's files and rules use that are defined nowhere (:func:`rule_warnings`)."""
     motions, labels = spec.names()
     have_m = {u.motion for u in problem.units}
     have_l = problem.foon.labels()
     out = [f"no unit has motion {m!r}" for m in motions if m not in have_m]
     out += [f"no object is labelled {lab!r}" for lab in labels if lab not in have_l]
-    return out
+    return out + rule_warnings(user_programs(spec.files, spec.rules) + list(spec.extra))
+
+
+# --------------------------------------------------------------------------- predicates used and defined
+
+#: a predicate: name and arity
+Signature = tuple[str, int]
+
+#: the facts :func:`foon2asp.asp.facts.facts` writes (docs/vocabulary.md, "Facts")
+FACTS: frozenset[Signature] = frozenset(
+    {
+        ("object", 1),
+        ("label", 2),
+        ("state", 2),
+        ("ingredient", 2),
+        ("container", 2),
+        ("unit", 1),
+        ("motion", 2),
+        ("success", 2),
+        ("neglog", 2),
+        ("input", 2),
+        ("required", 2),
+        ("output", 2),
+        ("product", 2),
+        ("kitchen", 1),
+        ("goal_node", 2),
+        ("goal", 1),
+    }
+)
+
+
+@dataclass
+class Predicates:
+    """What one program defines and uses."""
+
+    #: predicates in a rule head (of a fact, a choice, a disjunction, a head aggregate), ``#external`` or ``#defined``
+    defined: set[Signature] = field(default_factory=set)
+    #: predicates in a body (conditions and aggregate elements too), ``#show``, ``#heuristic``, ``#project``,
+    #: with where each is first used (line, column)
+    used: dict[Signature, tuple[int, int]] = field(default_factory=dict)
+
+
+def _signatures(symbol: clingo.ast.AST) -> list[Signature]:
+    """The predicates of an atom's symbol: ``p(X)``, ``-p(X)`` (as ``p``), ``p(1;2)``."""
+    kind = symbol.ast_type
+    if kind == clingo.ast.ASTType.Function and symbol.name:
+        return [(symbol.name, len(symbol.arguments))]
+    if kind == clingo.ast.ASTType.UnaryOperation:
+        return _signatures(symbol.argument)
+    if kind == clingo.ast.ASTType.Pool:
+        return [s for arg in symbol.arguments for s in _signatures(arg)]
+    if kind == clingo.ast.ASTType.SymbolicTerm and symbol.symbol.type == clingo.SymbolType.Function:
+        return [(symbol.symbol.name, len(symbol.symbol.arguments))]
+    return []
+
+
+class _Walk:
+    """Collects :class:`Predicates` from the statements of one program."""
+
+    def __init__(self) -> None:
+        self.found = Predicates()
+
+    def define(self, sigs: Iterable[Signature]) -> None:
+        self.found.defined.update(sigs)
+
+    def use(self, sigs: Iterable[Signature], location: clingo.ast.Location) -> None:
+        for sig in sigs:
+            self.found.used.setdefault(sig, (location.begin.line, location.begin.column))
+
+    def statement(self, stm: clingo.ast.AST) -> None:
+        kind = stm.ast_type
+        T = clingo.ast.ASTType
+        if kind == T.Rule:
+            self.visit(stm.head, head=True)
+            self.visit(stm.body)
+        elif kind == T.External:
+            self.define(_signatures(stm.atom.symbol))
+            self.visit(stm.body)
+        elif kind == T.Defined:
+            self.define([(stm.name, stm.arity)])
+        elif kind in (T.ShowSignature, T.ProjectSignature):
+            if stm.name:
+                self.use([(stm.name, stm.arity)], stm.location)
+        elif kind in (T.Heuristic, T.ProjectAtom):
+            self.use(_signatures(stm.atom.symbol), stm.location)
+            self.visit(stm.body)
+        elif kind in (T.ShowTerm, T.Minimize, T.Edge):
+            self.visit(stm.body)
+
+    def visit(self, node, head: bool = False) -> None:
+        """Atoms in ``node`` (an AST or a sequence of them): defined in a head position, else used."""
+        if isinstance(node, (list, clingo.ast.ASTSequence)):
+            for item in node:
+                self.visit(item, head)
+            return
+        if not isinstance(node, clingo.ast.AST):
+            return
+        T = clingo.ast.ASTType
+        kind = node.ast_type
+        if kind == T.Literal:
+            if node.atom.ast_type != T.SymbolicAtom:
+                self.visit(node.atom, head)  # an aggregate or a theory atom; a comparison holds no atom
+            elif head and node.sign == clingo.ast.Sign.NoSign:
+                self.define(_signatures(node.atom.symbol))
+            else:
+                self.use(_signatures(node.atom.symbol), node.location)
+        elif kind == T.ConditionalLiteral:
+            self.visit(node.literal, head)
+            self.visit(node.condition)
+        elif kind == T.HeadAggregateElement:
+            self.visit(node.condition, head)  # a conditional literal: the atom is defined, its condition used
+        elif kind in (T.BodyAggregateElement, T.TheoryAtomElement):
+            self.visit(node.condition)
+        elif kind in (T.Aggregate, T.BodyAggregate, T.HeadAggregate, T.Disjunction, T.TheoryAtom):
+            self.visit(node.elements, head)
+
+
+def predicates(text: str) -> Predicates:
+    """The predicates program ``text`` defines and uses (clingo's parser; RuntimeError on a syntax error)."""
+    walk = _Walk()
+    clingo.ast.parse_string(text, walk.statement, logger=lambda code, msg: None)
+    return walk.found
+
+
+def _parsed(text: str) -> Predicates | None:
+    try:
+        return predicates(text)
+    except RuntimeError:
+        return None  # a syntax error, reported as an error where the program is checked
+
+
+@cache
+def shipped_predicates() -> dict[str, Predicates]:
+    """Each shipped encoding's :class:`Predicates`, by name (``tree``, ``units``, ...)."""
+    return {name: predicates(encodings.encoding(name)) for name in encodings.names()}
+
+
+@cache
+def known_predicates() -> frozenset[Signature]:
+    """Every predicate foon2asp defines or writes: the facts, the shipped encodings' heads,
+    and what the encodings read, which foon2asp writes as facts (``objective/2``, ``dom/2``, ...)."""
+    known = set(FACTS)
+    for found in shipped_predicates().values():
+        known |= found.defined | set(found.used)
+    return frozenset(known)
+
+
+def signature_text(sig: Signature) -> str:
+    return f"{sig[0]}/{sig[1]}"
+
+
+def closest(sig: Signature, defined: Iterable[Signature]) -> str:
+    """``; did you mean motion/2?``: the defined predicates whose names are closest to ``sig``'s
+    (difflib; those nearly as close as the closest), of its arity where the name has it; or ""."""
+    arities: dict[str, set[int]] = {}
+    for name, arity in defined:
+        arities.setdefault(name, set()).add(arity)
+    near = difflib.get_close_matches(sig[0], sorted(arities), n=3, cutoff=0.75)
+    if not near:
+        return ""
+    best = difflib.SequenceMatcher(None, sig[0], near[0]).ratio()
+    near = [n for n in near if difflib.SequenceMatcher(None, sig[0], n).ratio() >= best - 0.1]
+    texts = [signature_text((n, a)) for n in near for a in ([sig[1]] if sig[1] in arities[n] else sorted(arities[n]))]
+    texts = texts[:3]
+    return "; did you mean " + (texts[0] if len(texts) == 1 else ", ".join(texts[:-1]) + " or " + texts[-1]) + "?"
+
+
+def undefined(name: str, sig: Signature, where: tuple[int, int], defined: Iterable[Signature]) -> str:
+    """The warning about ``sig``, used in program ``name`` at ``where``, that nothing defines."""
+    line, column = where
+    return f"{escape(name)}:{line}:{column}: {signature_text(sig)} is defined nowhere{closest(sig, defined)}"
+
+
+def rule_warnings(programs: Iterable[tuple[str, str]], defined: Iterable[Signature] = ()) -> list[str]:
+    """One warning for each predicate a user program (name, text) uses that is defined nowhere:
+    not in :func:`known_predicates`, ``defined``, or the heads of any of ``programs``.
+    ``NAME:LINE:COLUMN: motoin/2 is defined nowhere; did you mean motion/2?``, at its first use
+    in each program.  Programs with a syntax error are left to :func:`check_syntax`."""
+    parsed = [(name, found) for name, text in programs if (found := _parsed(text)) is not None]
+    known = set(known_predicates()) | set(defined)
+    for _, found in parsed:
+        known |= found.defined
+    return [
+        undefined(name, sig, where, known)
+        for name, found in parsed
+        for sig, where in found.used.items()
+        if sig not in known
+    ]

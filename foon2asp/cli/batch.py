@@ -21,7 +21,7 @@ from foon2asp.cli.options import (
     strategy_options,
     time_limit_option,
 )
-from foon2asp.cli.output import EXIT_CODES, exit_code
+from foon2asp.cli.output import EXIT_CODES, exit_code, warn_kb
 from foon2asp.cli.params import SCHEDULER, WORKERS
 from foon2asp.cli.schedule_options import schedule_options
 
@@ -130,6 +130,8 @@ def batch(
     """
     kb = data.load(goals)
     goal_ids = kb.select_goals(goal, goals)
+    kb.options(options)  # checks the request: its warnings (unknown names, misspelt predicates) before the run
+    warn_kb(kb)
     run = kb.batch(
         goal_ids,
         output,
