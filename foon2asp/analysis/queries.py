@@ -20,13 +20,21 @@ import clingo
 import clingo.ast
 
 from foon2asp.asp import encodings
-from foon2asp.asp.constraints import check_syntax
+from foon2asp.asp.constraints import (
+    Signature,
+    check_syntax,
+    known_predicates,
+    predicates,
+    shipped_predicates,
+    signature_text,
+    undefined,
+)
 from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import facts
 from foon2asp.asp.objectives import input_node_facts
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.asp.settings import solver_args
-from foon2asp.errors import InputError
+from foon2asp.errors import InputError, escape
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.results import MissingResult, QueryResult
@@ -289,6 +297,44 @@ def _hide_shows(text: str) -> str:
     return "\n".join("" if line.lstrip().startswith("#show") else line for line in text.split("\n"))
 
 
+def _loaded(prog: Program) -> set[Signature]:
+    """The predicates with atoms after grounding ``prog``: the facts, and what was derived."""
+    atoms = prog.ctl.symbolic_atoms
+    return {(n, a) for n, a, _ in atoms.signatures if next(iter(atoms.by_signature(n, a)), None) is not None}
+
+
+def query_warnings(prog: Program, program: tuple[str, str], loaded: Iterable[str]) -> list[str]:
+    """Warnings about the user's ``program`` (name, text) and the shipped encodings ``loaded``
+    (``tree``, ...) that ``prog`` grounded: each predicate one of them uses that no rule head of
+    them and no fact defines, named at its first use in the program it is in (its file, its
+    lines).  A predicate defined nowhere at all is a misspelling: the closest defined ones are
+    named; one a shipped encoding not loaded defines comes with the encoding that does."""
+    name, text = program
+    user = predicates(text)
+    shipped = shipped_predicates()
+    found = [(name, user)] + [(f"encodings/{enc}.lp", shipped[enc]) for enc in loaded]
+    known = known_predicates() | user.defined
+    here = _loaded(prog)
+    for _, pred in found:
+        here |= pred.defined
+    out = []
+    for k, (part, pred) in enumerate(found):
+        for sig, where in pred.used.items():
+            if sig in here:
+                continue
+            if k == 0 and sig not in known:  # the user's program
+                out.append(undefined(part, sig, where, known))
+                continue
+            line, column = where
+            message = f"{escape(part)}:{line}:{column}: {signature_text(sig)} occurs in no rule head and no fact"
+            by = sorted((enc for enc, p in shipped.items() if sig in p.defined), key=lambda enc: (enc != "tree", enc))
+            if by:
+                also = f" (or {', '.join(by[1:])})" if by[1:] else ""
+                message += f"; load the encoding {by[0]}{also}, which defines it"
+            out.append(message)
+    return out
+
+
 def query(
     problem: Problem,
     program: tuple[str, str],
@@ -327,6 +373,6 @@ def query(
         parts.append(("show", "#show.\n"))  # only what the user's #show statements show
     parts.append((name, text))
     prog = Program(parts, ["--opt-mode=opt", "--models=0"])
-    warnings = [m.replace("<block>", name) for m in prog.control.messages if "does not occur in any rule head" in m]
+    warnings = query_warnings(prog, (name, text), names)
     outcome = prog.solve(time_limit, max(models, 0))
     return QueryResult(outcome.status, outcome.answers, outcome.time_s, warnings, names)

@@ -1,0 +1,164 @@
+"""A predicate a user program uses that nothing defines -- no shipped encoding, no fact foon2asp
+writes, no user program -- is warned about on every command that takes rules, with where it is
+and the closest defined predicates; ``query`` names the file each warning is about."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from conftest import DEMO
+from foon2asp.asp import constraints, encodings
+from foon2asp.asp.constraints import FACTS, known_predicates, predicates, rule_warnings
+from foon2asp.asp.facts import facts
+from foon2asp.cli.main import main
+
+SMOOTHIES = sorted((DEMO / "llm").glob("smoothie-*.json"))
+TYPO = ':- use(U), motoin(U,"fry").'
+RIGHT = ':- use(U), motion(U,"fry").'
+WARNED = "foon2asp: warning: --rule #1:1:12: motoin/2 is defined nowhere; did you mean motion/2?"
+
+
+def run(*args):
+    return CliRunner().invoke(main, [str(a) for a in args])
+
+
+def commands(output: Path) -> dict[str, list]:
+    """Each command that takes rules, as arguments before the rules (batch writes ``output``)."""
+    salad = ["--data", "demo", "--goal", "tomato salad"]
+    return {
+        "solve": ["solve", *salad],
+        "compare": ["compare", *salad, "--method", "asp"],
+        "missing": ["missing", *salad],
+        "batch": ["batch", *salad, "--output", output],
+        "consolidate": ["consolidate", *SMOOTHIES],
+    }
+
+
+def rule_lines(stderr: str) -> list[str]:
+    """The warnings about predicates (not those about the input data)."""
+    return [line for line in stderr.splitlines() if "defined nowhere" in line or "no rule head" in line]
+
+
+@pytest.mark.parametrize("command", ["solve", "compare", "missing", "batch", "consolidate"])
+def test_every_command_warns_on_a_misspelt_predicate(command, tmp_path):
+    res = run(*commands(tmp_path / "typo.jsonl")[command], "--rule", TYPO)
+    assert res.exit_code in (0, 1), res.output
+    assert rule_lines(res.stderr) == [WARNED]
+    res = run(*commands(tmp_path / "right.jsonl")[command], "--rule", RIGHT)
+    assert res.exit_code in (0, 1), res.output
+    assert rule_lines(res.stderr) == []
+
+
+def test_query_warns_on_a_misspelt_predicate_and_names_the_closest(tmp_path):
+    prog = tmp_path / "typo.lp"
+    prog.write_text('bad(U) :- use(U), motoin(U,"fry").\n#show bad/1.\n')
+    res = run("query", prog, "--data", "demo", "--encoding", "tree", "--goal", "tomato salad")
+    assert res.exit_code == 0, res.output
+    assert rule_lines(res.stderr) == [
+        f"foon2asp: warning: {prog}:1:19: motoin/2 is defined nowhere; did you mean motion/2?"
+    ]
+    prog.write_text('bad(U) :- use(U), motion(U,"fry").\n#show bad/1.\n')
+    res = run("query", prog, "--data", "demo", "--encoding", "tree", "--goal", "tomato salad")
+    assert res.exit_code == 0 and "warning" not in res.stderr
+
+
+def test_the_solve_of_the_example_warns(shared_foon_dir):
+    res = run("solve", "--data", shared_foon_dir, "--goal", "macaroni", "--rule", ':- use(U), motoin(U,"heat").')
+    assert res.exit_code == 0, res.output
+    assert rule_lines(res.stderr) == [
+        "foon2asp: warning: --rule #1:1:12: motoin/2 is defined nowhere; did you mean motion/2?"
+    ]
+
+
+def test_a_predicate_the_users_own_rules_define_is_no_warning(tmp_path):
+    own = tmp_path / "own.lp"
+    own.write_text('fried(U) :- motion(U,"fry").\n#external extra(U) : unit(U).\n#defined later/1.\n')
+    uses = ":- use(U), fried(U), extra(U), not later(U)."
+    base = ["solve", "--data", "demo", "--goal", "tomato salad"]
+    res = run(*base, "--constraint", own, "--rule", uses)
+    assert res.exit_code == 0, res.output
+    assert rule_lines(res.stderr) == []
+    # one rule defines what another uses
+    res = run(*base, "--rule", ":- use(U), slow(U).", "--rule", 'slow(U) :- motion(U,"mix").')
+    assert res.exit_code == 0 and rule_lines(res.stderr) == []
+    # without the file that defines it, it is a misspelling; the file names where it is
+    wrong = tmp_path / "wrong.lp"
+    wrong.write_text("% nothing charred\n:- use(U),\n   charred(U).\n")
+    res = run(*base, "--constraint", wrong)
+    assert rule_lines(res.stderr) == [f"foon2asp: warning: {wrong}:3:4: charred/1 is defined nowhere"]
+
+
+def test_query_warnings_name_the_file_they_are_about(tmp_path):
+    prog = tmp_path / "mine.lp"
+    prog.write_text("% asks nothing\n\n\n\n\nx.\n")
+    res = run("query", prog, "--data", "demo", "--encoding", "reachable", "--goal", "tomato salad")
+    assert res.exit_code == 0, res.output
+    # reachable.lp reads asked/1 on its line 6: the warning is about that file, not the user's
+    text = encodings.encoding("reachable").splitlines()
+    line = next(n for n, t in enumerate(text, 1) if t.startswith("reachable(O) :- asked(O)"))
+    assert rule_lines(res.stderr) == [
+        f"foon2asp: warning: encodings/reachable.lp:{line}:17: asked/1 occurs in no rule head and no fact"
+    ]
+    assert str(prog) not in res.stderr
+    # a predicate a shipped encoding defines, used without loading it: the encoding that does
+    prog.write_text("bad(U) :- use(U).\n#show bad/1.\n")
+    res = run("query", prog, "--data", "demo")
+    assert rule_lines(res.stderr) == [
+        f"foon2asp: warning: {prog}:1:11: use/1 occurs in no rule head and no fact; load the encoding tree (or missing), which defines it"
+    ]
+
+
+def test_api_query_warnings_are_in_the_result():
+    import foon2asp
+
+    kb = foon2asp.api.load(DEMO)
+    result = kb.query("p(O) :- kitchn(O).\n#show p/1.\n", name="p.lp")
+    assert result.warnings == ["p.lp:1:9: kitchn/1 is defined nowhere; did you mean kitchen/1?"]
+
+
+def test_predicates_walks_conditions_aggregates_and_every_statement():
+    found = predicates(
+        "h(X) :- b1(X), not b2(X), b3(Y) : b4(Y).\n"
+        "{ c1(X) : c2(X) } :- c3.\n"
+        "d1 ; d2(X) : d3(X) :- d4.\n"
+        "1 #sum { X : e1(X) : e2(X) } :- e3.\n"
+        "f1 :- #count { X : f2(X), not f3(X) } > 1, X = #sum { Y : f4(Y) }, X > 0.\n"
+        "g1 :- { g2(X) : g3(X) } > 0.\n"
+        "-n1(X) :- n2(X;Y), n3((1;2)).\n"
+        "#external x1(X) : x2(X). #defined x3/2.\n"
+        "#show s1/1. #show T : s2(T). #minimize { X : m1(X) }.\n"
+    )
+    assert found.defined == {("h", 1), ("c1", 1), ("d1", 0), ("d2", 1), ("e1", 1), ("f1", 0), ("g1", 0)} | {
+        ("n1", 1),
+        ("x1", 1),
+        ("x3", 2),
+    }
+    used = {"b1/1", "b2/1", "b3/1", "b4/1", "c2/1", "c3/0", "d3/1", "d4/0", "e2/1", "e3/0", "f2/1", "f3/1", "f4/1"}
+    used |= {"g2/1", "g3/1", "n2/1", "n3/1", "x2/1", "s1/1", "s2/1", "m1/1"}
+    assert {f"{n}/{a}" for n, a in found.used} == used
+    assert found.used[("b3", 1)] == (1, 27) and found.used[("m1", 1)] == (9, 46)
+
+
+def test_rule_warnings_leave_syntax_errors_to_the_check_and_name_each_program():
+    assert rule_warnings([("--rule #1", ":- use(U) motoin(U).")]) == []  # the syntax check reports it
+    warned = rule_warnings([("a.lp", ":- use(U), lable(U,_)."), ("--rule #2", ":- outptu(U,O), goal(O).")])
+    assert warned == [
+        "a.lp:1:12: lable/2 is defined nowhere; did you mean label/2?",
+        "--rule #2:1:4: outptu/2 is defined nowhere; did you mean output/2?",
+    ]
+    assert rule_warnings([("x", ":- zqx(1).")]) == ["x:1:4: zqx/1 is defined nowhere"]
+
+
+def test_the_known_predicates_cover_the_facts_and_the_vocabulary(demo_problem):
+    _, problem = demo_problem
+    written = predicates(facts(problem, goal_nodes=[0], goal=0)).defined
+    assert written == set(FACTS)
+    table = (Path(constraints.__file__).parents[2] / "docs" / "vocabulary.md").read_text()
+    documented = {
+        (name, len(args.split(","))) for name, args in re.findall(r"^\| `(\w+)\(([^)]*)\)`", table, re.MULTILINE)
+    }
+    assert documented and documented <= known_predicates()
