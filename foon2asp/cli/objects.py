@@ -18,10 +18,21 @@ def _data_options_but_kitchen(func):
     return data_options(func, with_kitchen=False)
 
 
+def _makers(kb, oid: int) -> tuple[int, int]:
+    """How many units make object ``oid``, and how many output it but also take it as an input
+    (which do not make it: the heated stove stays on)."""
+    problem = kb.problem
+    units = problem.producers.get(oid, ())
+    needing = sum(1 for u in units if oid in problem.inputs[u])
+    return len(units) - needing, needing
+
+
 @main.command()
 @click.argument("query", required=False, metavar="[LABEL]")
 @_data_options_but_kitchen
-@click.option("--produced", "only", flag_value="produced", help="Only objects some unit makes.")
+@click.option(
+    "--produced", "only", flag_value="produced", help="Only objects some unit makes (without needing it as an input)."
+)
 @click.option("--kitchen", "only", flag_value="kitchen", help="Only kitchen items.")
 @click.option("--derivable", "only", flag_value="derivable", help="Only objects that can be made from the kitchen.")
 @click.option(
@@ -38,6 +49,9 @@ def objects(query, data, only, kitchen_file, fmt):
     LABEL is a label ('scrambled egg'), an object's text, #ID, or words of labels ('egg').
     Any #ID or text listed can be given as --goal; the JSON list is a goals file
     (--goals FILE).
+
+    'made by N units' counts the units that make the object: a unit that outputs it but also
+    needs it as an input does not make it ('output by N units that need it').
     """
     try:
         kb = replace(data, kitchen=kitchen_file).load()
@@ -50,7 +64,11 @@ def objects(query, data, only, kitchen_file, fmt):
             " --kitchen-file leaves (every object no unit makes) or --data DIR"
         ) from None
     ids = kb.find_objects(query, only, options=data.request())
-    infos = [kb.object_info(i) for i in ids]
+    makers = {i: _makers(kb, i) for i in ids}
+    if only == "produced":  # some unit makes it, not only outputs it again
+        ids = [i for i in ids if makers[i][0]]
+    # "producers": the units that make it
+    infos = [{**kb.object_info(i), "producers": makers[i][0]} for i in ids]
     if fmt == "json":
         click.echo("[\n" + ",\n".join(json.dumps(i, ensure_ascii=False) for i in infos) + "\n]" if infos else "[]")
         return
@@ -59,6 +77,12 @@ def objects(query, data, only, kitchen_file, fmt):
         where = ["kitchen"] if info["in_kitchen"] else []
         if info["producers"]:
             where.append(f"made by {info['producers']} unit{'s' if info['producers'] != 1 else ''}")
+        needing = makers[info["id"]][1]
+        if needing:
+            also = "also " if info["producers"] else "only "
+            where.append(
+                f"{also}output by {needing} unit{'s' if needing != 1 else ''} that need{'s' if needing == 1 else ''} it"
+            )
         if "joined" in info:
             where.append("joins " + " | ".join(info["joined"]))
         click.echo(f"{'#' + str(info['id']):<{width}}  {info['text']}" + (f"   ({', '.join(where)})" if where else ""))

@@ -36,6 +36,11 @@ def safe_name(index: int, label: str) -> str:
     return f"{index:03d}-{keep}"
 
 
+def written(trees: list) -> str:
+    """What a file written by ``solve -o DIR`` holds: ``optimal``, ``found, INVALID``, ..."""
+    return "; ".join(t.status + (", INVALID" if t.has_tree and t.extra.get("valid") is False else "") for t in trees)
+
+
 @main.command(epilog=EXIT_CODES)
 @data_options
 @goal_options
@@ -47,7 +52,7 @@ def safe_name(index: int, label: str) -> str:
     "-o",
     "--output",
     type=click.Path(file_okay=False),
-    help="A FOLDER: also write one file per goal (and method) there.",
+    help="A FOLDER: write one file per goal (and method) there, and print one line per file written.",
 )
 @time_limit_option("Seconds per goal; the best tree so far is reported as 'feasible'.")
 @gap_option
@@ -100,10 +105,16 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
             for t in ranked:
                 if t.note is not None:
                     warn(f"{t.goal.label}: {t.note}")
-            if out_dir:
+            if out_dir:  # the files, and one line per file on stdout
                 suffix = f"-{method}" if len(names) > 1 else ""
                 label = "+".join(g.label for g in tree.goals)
-                api.write_file(out_dir / f"{safe_name(index, label)}{suffix}.{ext}", render_bytes(problem, found, fmt))
+                path = out_dir / f"{safe_name(index, label)}{suffix}.{ext}"
+                api.write_file(path, render_bytes(problem, found, fmt))
+                if status_line is not None:
+                    status_line.close()
+                click.echo(f"wrote {path} ({written(found)})")
+                sys.stdout.flush()
+                continue
             if sep is None:
                 held.extend(found)
                 continue
@@ -115,10 +126,8 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
             printed += 1
     if status_line is not None:
         status_line.close()
-    if binary and out_dir:
-        click.echo(f"wrote {len(jobs) * len(names)} {fmt} file(s) to {out_dir}", err=True)
-    elif binary:
+    if binary and not out_dir:
         sys.stdout.buffer.write(render_bytes(problem, held, fmt))
-    elif sep is None:
+    elif sep is None and not out_dir:
         click.echo(render(problem, held, fmt), nl=False)
     sys.exit(exit_code(answers))

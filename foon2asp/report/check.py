@@ -152,13 +152,29 @@ def _alone_steps(v: AloneVerdict, positions: list[int]) -> str:
     return " ".join(str(v.step(p)) for p in positions) or "-"
 
 
+#: what judging a tree on its own cannot see, said whenever its leaves stand for the kitchen
+LEAVES_CAVEAT = (
+    "a missing step cannot be detected without a kitchen: whatever no unit of the tree makes is"
+    " assumed to be in the kitchen (give --kitchen FILE, or --data or --foon to check against a FOON)"
+)
+
+
+def assumes_leaves(report: AloneReport) -> bool:
+    """Is the kitchen of this verdict the tree's own leaves (no kitchen was given)?"""
+    return report.kitchen_source == "its leaves"
+
+
 def alone_text(report: AloneReport) -> str:
-    """The human-readable verdict on a tree judged on its own."""
+    """The human-readable verdict on a tree judged on its own; when its leaves stand for the
+    kitchen, they are listed and what that cannot detect is said."""
     tree, v = report.tree, report.verdict
     head = f"Tree: {tree.path}" + (f" (line {tree.line})" if tree.line and tree.line > 1 else "")
     if tree.method:
         head += f"  method {tree.method}"
     lines = [head, f"Judged on its own: kitchen = {report.kitchen_source} ({len(v.kitchen)} objects)"]
+    if assumes_leaves(report):
+        lines.append("Assumed in the kitchen (its leaves): " + ("; ".join(map(str, v.kitchen)) or "-"))
+        lines.append(f"Note: {LEAVES_CAVEAT}")
     source = f"  ({report.goal_source})" if report.goal_source else ""
     if len(v.goals) > 1:
         lines.append(f"Meal of {len(v.goals)} goals{source}:")
@@ -195,7 +211,8 @@ def alone_text(report: AloneReport) -> str:
 
 def alone_json(report: AloneReport) -> dict:
     """The verdict as plain data: the keys of :func:`report_json` that apply, and what judging
-    on its own adds (``judged``, ``kitchen``, ``valid_as_set``, ``blocked``, ``stuck``)."""
+    on its own adds (``judged``, ``kitchen``, ``kitchen_assumed``, ``note``, ``valid_as_set``,
+    ``blocked``, ``stuck``)."""
     tree, v = report.tree, report.verdict
     b = v.blocked
     goal = (
@@ -217,6 +234,9 @@ def alone_json(report: AloneReport) -> dict:
         "judged": "on its own",
         "kitchen_source": report.kitchen_source,
         "kitchen": [o.to_json() for o in v.kitchen],
+        # the leaves stood for the kitchen: a missing step cannot be detected
+        "kitchen_assumed": assumes_leaves(report),
+        "note": LEAVES_CAVEAT if assumes_leaves(report) else None,
         "valid_as_set": v.valid,
         "blocked": None
         if b is None
