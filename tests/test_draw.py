@@ -183,7 +183,9 @@ def html_report(shared_foon_dir, tmp_path_factory):
 def test_html_report_has_the_table_and_every_drawing(html_report, shared_foon_dir):
     text = html_report.read_text()
     assert text.count('<tr><td><a href="#goal-') == 25
-    figures = re.findall(r'<figure class="tree (valid|invalid)" data-method="([^"]+)" data-units="(\d+)">', text)
+    figures = re.findall(
+        r'<figure class="tree (valid|invalid)" data-method="([^"]+)" data-units="(\d+)" id="[^"]+">', text
+    )
     csv = cli("compare", "--data", str(shared_foon_dir), "--format", "csv").output.splitlines()[1:]
     with_tree = [
         line

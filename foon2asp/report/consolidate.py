@@ -15,11 +15,12 @@ from __future__ import annotations
 
 import html
 import json
+import time
 
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.unitlist import dumps_trees
 from foon2asp.report import draw
-from foon2asp.report.html import page
+from foon2asp.report.html import figure, page, time_line
 from foon2asp.report.registry import register
 from foon2asp.tree.results import CandidateVerdict, Consolidation
 from foon2asp.tree.serialize import number, tree_text
@@ -171,7 +172,8 @@ def _table(c: Consolidation, fill: dict[str, str]) -> list[str]:
 @register("consolidate", "html", "html", "HTML page: the candidates table and the drawing of the result by source")
 def consolidate_html(problem: Problem, results: list[Consolidation]) -> str:
     fill = colors(results)
-    body = []
+    body = [""]  # the time it took, once the drawings are made
+    started = time.perf_counter()
     for k, c in enumerate(results, 1):
         goal = " + ".join(str(problem.objects[g]) for g in c.goals)
         cost = ", ".join(f"{key} {number(val)}" for key, val in c.tree.cost.items())
@@ -187,7 +189,12 @@ def consolidate_html(problem: Problem, results: list[Consolidation]) -> str:
             body.append(f'<p class="problem">unreachable from this kitchen; to add: {_esc(added)}</p>')
         if c.tree.has_tree and c.tree.units:
             draw.require_dot()
-            svg = draw.inline_svg(draw.svg_text(result_graph(problem, c, fill)), f"c{k}-")
-            body.append(f'<figure class="tree valid">{svg}</figure>')
+            svg = draw.svg_text(result_graph(problem, c, fill))
+            caption = f"<b>{_esc(goal)}</b>: {len(c.tree.units)} units, {_esc(c.tree.status)}"
+            body.append(figure(svg, f"c{k}", "tree valid", caption, back=f"goal-{k}"))
         body.append("</section>")
+    body[0] = time_line(
+        [("solving", sum(c.tree.time_s for c in results)), ("drawing this page", time.perf_counter() - started)],
+        " (solving: the solver's times per goal, summed; reading and merging the candidates are not counted)",
+    )
     return page("foon2asp: candidate trees consolidated", body)

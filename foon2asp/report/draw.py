@@ -53,6 +53,8 @@ class Marks:
 
     title: str = ""
     goal: FoonObject | None = None
+    #: the other goals of a meal (gold like ``goal``)
+    goals: frozenset[FoonObject] = frozenset()
     kitchen: frozenset[FoonObject] = frozenset()
     human: frozenset[int] = frozenset()
     cycle_objects: frozenset[FoonObject] = frozenset()
@@ -138,7 +140,7 @@ def build_graph(
         if obj in marks.kitchen:
             attrs["fillcolor"] = KITCHEN_FILL
             classes.append("kitchen")
-        if obj == marks.goal:
+        if obj == marks.goal or obj in marks.goals:
             attrs.update(fillcolor=GOAL_FILL, peripheries="2", penwidth="2")
             classes.append("goal")
         if obj in marks.cycle_objects:
@@ -208,8 +210,11 @@ def tree_marks(problem: Problem, tree: TaskTree, finding: Finding | None = None,
     position = {u: k for k, u in enumerate(tree.units)}
     valid = True
     if judge and finding is None and tree.units:
-        validation, finding = check_units(problem, tree.goal, tree.units)
-        valid = validation.valid
+        for goal in tree.meal:  # a meal is valid when every dish is made
+            validation, finding = check_units(problem, goal, tree.units)
+            valid = validation.valid
+            if not valid:
+                break
     elif finding is not None:
         valid = False
     human = frozenset(position[u] for u in tree.extra.get("human_steps", []) if u in position)
@@ -221,6 +226,7 @@ def tree_marks(problem: Problem, tree: TaskTree, finding: Finding | None = None,
     return Marks(
         title=title,
         goal=problem.objects[tree.goal],
+        goals=frozenset(problem.objects[g] for g in tree.meal),
         kitchen=kitchen,
         human=human,
         note=finding.message if finding is not None else "",
@@ -248,6 +254,55 @@ def _top_product(units: list[Unit]) -> FoonObject | None:
     needed = {o for u in units for o in u.inputs}
     tops = [o for o in dict.fromkeys(units[-1].outputs) if not o.is_bare() and o not in needed]
     return tops[0] if len(tops) == 1 else None
+
+
+def record_marks(record: dict, units: list[Unit], problem: Problem | None = None) -> Marks:
+    """Marks of a result record (a line of a batch's results: ``goal`` or ``goals``, ``method``,
+    ``status``, ``valid`` and ``problem`` as the independent validator judged it) whose units are
+    ``units``: its goals; with ``problem`` its kitchen items and, for an invalid tree, the cycle
+    that blocks it (the validator's verdict stands; the cycle is looked up in ``problem``)."""
+    goals = [g for g in (record.get("goals") or [record.get("goal")]) if isinstance(g, dict)]
+    objects = [_record_object(g) for g in goals]
+    made = [o for o in objects if o is not None]
+    goal = made[0] if made else _top_product(units)
+    valid = record.get("valid")
+    label = " + ".join(str(g.get("label", "?")) for g in goals) or "?"
+    method = record.get("requested_method", record.get("method", "?"))
+    title = f"{label} -- {method}, {record.get('status')}, {len(units)} units"
+    if valid is False:
+        title += ", INVALID"
+    marks = Marks(title=title, goal=goal, goals=frozenset(made), note=str(record.get("problem") or ""))
+    if problem is None:
+        return marks
+    oid = problem.foon.object_ids
+    marks.kitchen = frozenset(o for u in units for o in u.inputs if oid.get(o) in problem.kitchen)
+    index = {u.key(): i for i, u in enumerate(problem.units)}
+    ids = [index.get(u.key()) for u in units]
+    if valid is False and None not in ids:
+        known = [u for u in ids if u is not None]
+        for g in made:
+            if g not in oid:
+                continue
+            validation, finding = check_units(problem, oid[g], known)
+            if finding is not None and finding.cycle:
+                position = {u: k for k, u in enumerate(known)}
+                for key, value in cycle_marks(problem, finding, position).items():
+                    setattr(marks, key, value)
+                break
+    return marks
+
+
+def _record_object(value: dict) -> FoonObject | None:
+    """The object of a record's ``goal`` (None when it is not one)."""
+    label = value.get("label")
+    if not isinstance(label, str):
+        return None
+    return FoonObject.make(
+        label,
+        [str(s) for s in value.get("states") or []],
+        [str(i) for i in value.get("ingredients") or []],
+        value.get("container") if isinstance(value.get("container"), str) else None,
+    )
 
 
 def tree_file_marks(tree: TreeFile, problem: Problem | None = None, report: Report | None = None) -> Marks:

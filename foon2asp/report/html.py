@@ -8,12 +8,20 @@ flagged with the cycle that blocks it (in words and in red in its drawing).
 every tree in the results (and with ``--schedule`` the Gantt chart of each
 schedule); ``schedule --format html`` the Gantt charts of the schedules.  No
 scripts, no external files.
+
+Every drawing (:func:`figure`) is as wide as the page allows, never so small
+that its text is under 8 px (:data:`MIN_PX_PER_POINT`; a wider one scrolls), and
+its ``full size`` link shows it alone at its natural size (CSS ``:target``).
+The Gantt charts of a page share one time scale: the longest schedule fills the
+page's width.  Each page says how long its parts took (:func:`time_line`).
 """
 
 from __future__ import annotations
 
 import html
 import json
+import re
+import time
 
 from foon2asp.foon.foonjson import parse_json
 from foon2asp.foon.problem import Problem
@@ -32,12 +40,27 @@ td.invalid { color: #cc0000; font-weight: bold; }
 td.optimum { background: #fff2cc; }
 section.goal { border-top: 2px solid #ddd; margin-top: 1.5em; }
 div.trees { display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start; }
-figure.tree { margin: 0; border: 1px solid #ccc; padding: 0.4em; max-width: 100%; overflow: auto; }
+figure.tree { margin: 0; border: 1px solid #ccc; padding: 0.4em; max-width: 100%; min-width: 0;
+  box-sizing: border-box; overflow: auto; background: #fff; }
 figure.tree.invalid { border: 2px solid #cc0000; }
-figure.tree svg { max-width: 48em; height: auto; }
+figure.tree svg { display: block; max-width: 100%; height: auto; }
+figure.tree.schedule { width: 100%; }
+figure.tree.schedule svg { max-width: none; }
 figcaption { font-size: 0.9em; margin-bottom: 0.3em; }
-p.problem { color: #cc0000; font-size: 0.85em; max-width: 48em; }
+figcaption a { margin-left: 0.8em; font-size: 0.9em; }
+figcaption a.close { display: none; }
+figure.tree:target { position: fixed; inset: 0; z-index: 10; max-width: none; width: auto; margin: 0;
+  border: 0; padding: 1em; overflow: auto; }
+figure.tree:target figcaption a.zoom { display: none; }
+figure.tree:target figcaption a.close { display: inline; }
+figure.tree:target svg { max-width: none !important; min-width: 0 !important; width: auto !important; }
+p.problem { color: #cc0000; font-size: 0.85em; max-width: 60em; }
+p.time { color: #555; font-size: 0.9em; }
 """
+
+#: the smallest scale a drawing is shown at, in CSS pixels per point of the drawing: text of
+#: 10 points (the drawings' objects and units) is then at least 8.5 px high
+MIN_PX_PER_POINT = 0.85
 
 
 def _esc(text: object) -> str:
@@ -54,6 +77,58 @@ def page(title: str, body: list[str]) -> str:
 
 def _header(name: str) -> str:
     return "asp optimum" if name == "asp" else name
+
+
+def _svg_width(svg: str) -> float:
+    """The width of an SVG document in its own units (points for Graphviz: the viewBox)."""
+    found = re.search(r'<svg\b[^>]*\bviewBox="\s*[-\d.]+[\s,]+[-\d.]+[\s,]+([\d.]+)', svg)
+    if found:
+        return float(found.group(1))
+    found = re.search(r'<svg\b[^>]*\bwidth="([\d.]+)', svg)
+    return float(found.group(1)) if found else 0.0
+
+
+def figure(
+    svg: str,
+    fig_id: str,
+    classes: str,
+    caption: str,
+    attrs: str = "",
+    note: str = "",
+    width: str = "",
+    back: str = "",
+) -> str:
+    """A drawing (an SVG document) as a figure of a page: inline, ids prefixed with ``fig_id``,
+    as wide as the page allows but never under :data:`MIN_PX_PER_POINT`, with a ``full size``
+    link that shows it alone at its natural size (``close`` goes back to ``#back``).
+    ``caption`` and ``note`` are HTML; ``attrs`` more attributes of the figure; ``width`` a CSS
+    width of the drawing (default: its natural width, at most the page's)."""
+    style = f"min-width: {MIN_PX_PER_POINT * _svg_width(svg):.0f}px" + (f"; width: {width}" if width else "")
+    inline = draw.inline_svg(svg, f"{fig_id}-").replace("<svg", f'<svg style="{style}"', 1)
+    links = f'<a class="zoom" href="#{_esc(fig_id)}">full size</a><a class="close" href="#{_esc(back)}">close</a>'
+    return (
+        f'<figure class="{_esc(classes)}"{attrs} id="{_esc(fig_id)}">'
+        f"<figcaption>{caption}{links}</figcaption>{note}{inline}</figure>"
+    )
+
+
+def time_line(parts: list[tuple[str, float]], note: str = "") -> str:
+    """``Time: 12.3 s in all: solving 8.6 s, drawing this page 3.7 s`` as a paragraph."""
+    total = sum(seconds for _, seconds in parts)
+    listed = ", ".join(f"{what} {seconds:.2f} s" for what, seconds in parts)
+    return f'<p class="time">Time: {total:.2f} s in all: {_esc(listed)}{_esc(note)}.</p>'
+
+
+def _tree_figure(
+    svg: str, fig_id: str, method: str, units: int, valid: bool | None, label: str, problem: str, back: str
+) -> str:
+    """The figure of one task tree: framed in red with its problem in words when it is invalid."""
+    state = "invalid" if valid is False else "valid" if valid else "unjudged"
+    verdict = {"invalid": "<b>INVALID</b>", "valid": "valid", "unjudged": "not judged"}[state]
+    caption = f"{label}<b>{_esc(method)}</b>: {units} units, {verdict}"
+    note = f'<p class="problem">{_esc(problem)}</p>' if problem and valid is False else ""
+    attrs = f' data-method="{_esc(method)}" data-units="{units}"'
+    return figure(svg, fig_id, f"tree {state}", caption, attrs, note, back=back)
 
 
 def compare_html(problem: Problem, rows: list[Row]) -> str:
@@ -81,7 +156,9 @@ def compare_html(problem: Problem, rows: list[Row]) -> str:
         label = problem.objects[r.goal].label
         body.append(f'<tr><td><a href="#goal-{k}">{_esc(label)}</a></td>' + "".join(cells) + "</tr>")
     body += ["</tbody>", "</table>", "<ul>" + "".join(f"<li>{_esc(line)}</li>" for line in summary(rows)) + "</ul>"]
+    timing = len(body)
     body.append("<h2>Task trees</h2>")
+    started = time.perf_counter()
     for k, r in enumerate(rows, 1):
         body.append(f'<section class="goal" id="goal-{k}"><h3>{_esc(problem.objects[r.goal])}</h3>')
         body.append('<div class="trees">')
@@ -92,21 +169,28 @@ def compare_html(problem: Problem, rows: list[Row]) -> str:
                 )
                 continue
             valid = bool(t.extra.get("valid"))
-            caption = f"<b>{_esc(n)}</b>: {len(t.units)} units, " + ("valid" if valid else "<b>INVALID</b>")
-            svg = draw.inline_svg(draw.svg_text(draw.trees_graph(problem, [t])), f"g{k}-{_esc(n)}-")
-            problem_text = f'<p class="problem">{_esc(t.extra["problem"])}</p>' if t.extra.get("problem") else ""
-            state = "valid" if valid else "invalid"
+            svg = draw.svg_text(draw.trees_graph(problem, [t]))
             body.append(
-                f'<figure class="tree {state}" data-method="{_esc(n)}" data-units="{len(t.units)}">'
-                f"<figcaption>{caption}</figcaption>{problem_text}{svg}</figure>"
+                _tree_figure(svg, f"g{k}-{n}", n, len(t.units), valid, "", t.extra.get("problem") or "", f"goal-{k}")
             )
         body.append("</div></section>")
+    solving = {n: sum(r.trees[n].time_s for r in rows) for n in names}
+    each = ", ".join(f"{_header(n)} {seconds:.2f} s" for n, seconds in solving.items())
+    body.insert(
+        timing,
+        time_line(
+            [("solving", sum(solving.values())), ("drawing this page", time.perf_counter() - started)],
+            f" (solving: each method's times per goal, summed: {each}; loading the data is not counted)",
+        ),
+    )
     return page("foon2asp: task trees compared", body)
 
 
-def schedules_body(records: list[dict]) -> list[str]:
-    """A table of the schedules' makespans and the Gantt chart of each (schedule JSON records)."""
+def schedules_body(records: list[dict], timed: bool = True) -> list[str]:
+    """A table of the schedules' makespans and the Gantt chart of each (schedule JSON records), on
+    one time scale that fills the page's width; ``timed``: then how long scheduling and drawing took."""
     draw.require_dot()
+    started = time.perf_counter()
     body = [
         '<table id="schedules"><thead><tr><th>goal</th><th>status</th><th>makespan s</th>'
         "<th>list scheduling s</th><th>lower bound s</th><th>agents</th></tr></thead><tbody>"
@@ -122,10 +206,24 @@ def schedules_body(records: list[dict]) -> list[str]:
         ]
         body.append("<tr>" + "".join(f"<td>{_esc('-' if c is None else c)}</td>" for c in cells) + "</tr>")
     body.append("</tbody></table>")
+    span = max((gantt.schedule_span(r) for r in records), default=0.0)
+    nominal = gantt.chart_width(span, fill=True)
     for k, r in enumerate(records, 1):
         if r.get("schedule"):
-            svg = draw.inline_svg(gantt.gantt_svg(r), f"s{k}-")
-            body.append(f'<figure class="tree schedule" data-goal="{_esc(gantt.goal_text(r))}">{svg}</figure>')
+            svg = gantt.gantt_svg(r, span, fill=True)
+            # as wide as the page for a chart of the nominal width: every chart on the same scale
+            width = f"{100 * _svg_width(svg) / nominal:.3f}%"
+            attrs = f' data-goal="{_esc(gantt.goal_text(r))}"'
+            caption = f"<b>{_esc(gantt.goal_text(r))}</b>"
+            body.append(figure(svg, f"s{k}", "tree schedule", caption, attrs, width=width, back="schedules"))
+    if timed:
+        scheduling = sum(float(r.get("time_s") or 0.0) for r in records)
+        body.append(
+            time_line(
+                [("scheduling", scheduling), ("drawing the charts", time.perf_counter() - started)],
+                " (scheduling: the schedules' own times, summed; loading the data is not counted)",
+            )
+        )
     return body
 
 
@@ -134,25 +232,33 @@ def schedule_html(records: list[dict]) -> str:
     return page("foon2asp: schedules", schedules_body(list(records)))
 
 
-def summary_html(rows: list[dict], report: BatchReport | None = None, schedules: list[dict] | None = None) -> str:
+def summary_html(
+    rows: list[dict],
+    report: BatchReport | None = None,
+    schedules: list[dict] | None = None,
+    problem: Problem | None = None,
+) -> str:
     """The batch summary table, the drawing of every tree in the results and the Gantt chart of
-    each of ``schedules`` (``batch --schedule``)."""
+    each of ``schedules`` (``batch --schedule``).  With ``problem`` (the batch's FOON and kitchen)
+    the drawings show the kitchen items and an invalid tree's cycle; the validator's verdict
+    of each result is shown either way."""
     body = []
     if report is not None:
         body.append(
-            f"<p>{report.done} new result(s), {report.skipped} already done, {report.elapsed_s:.2f} s "
-            f"with {report.workers} worker(s)"
+            f"<p>{report.done} new result(s), {report.skipped} already done, with {report.workers} worker(s)"
             + (f"; results in {_esc(report.output)}" if report.output else "")
             + "</p>"
         )
+    timing = len(body)
     body.append(
         '<table id="summary"><thead><tr>' + "".join(f"<th>{_esc(c)}</th>" for c in _COLUMNS) + "</tr></thead><tbody>"
     )
     for row in rows:
         body.append("<tr>" + "".join(f"<td>{_esc(_cell(row[c]))}</td>" for c in _COLUMNS) + "</tr>")
     body.append("</tbody></table>")
+    started = time.perf_counter()
     records = report.records if report is not None else []
-    trees = [r for r in records if r.get("status") in ("optimal", "feasible", "found") and r.get("units")]
+    trees = [r for r in records if r.get("status") in ("optimal", "ranked", "feasible", "found") and r.get("units")]
     if trees:
         draw.require_dot()
         body.append('<h2>Task trees</h2><div class="trees">')
@@ -160,19 +266,34 @@ def summary_html(rows: list[dict], report: BatchReport | None = None, schedules:
         units = parse_json(json.dumps(r["units"]), "results").units
         goal = r.get("goal") or {}
         method = r.get("requested_method", r.get("method", "?"))
-        top = draw._top_product(units)
-        marks = draw.Marks(
-            title=f"{goal.get('label', '?')} -- {method}, {r.get('status')}, {len(units)} units", goal=top
-        )
-        svg = draw.inline_svg(draw.svg_text(draw.build_graph(units, marks)), f"r{k}-")
+        marks = draw.record_marks(r, units, problem)
+        svg = draw.svg_text(draw.build_graph(units, marks))
+        label = f"<b>{_esc(goal.get('label', '?'))}</b>: "
         body.append(
-            f'<figure class="tree" data-method="{_esc(method)}" data-units="{len(units)}">'
-            f"<figcaption><b>{_esc(goal.get('label', '?'))}</b>: {_esc(method)}, {len(units)} units</figcaption>{svg}</figure>"
+            _tree_figure(
+                svg, f"r{k}", method, len(units), r.get("valid"), label, str(r.get("problem") or ""), "summary"
+            )
         )
     if trees:
         body.append("</div>")
+    drawing = time.perf_counter() - started
+    scheduling = 0.0
     if schedules:
-        body += ["<h2>Schedules</h2>", *schedules_body(schedules)]
+        body += ["<h2>Schedules</h2>", *schedules_body(schedules, timed=False)]
+        scheduling = sum(float(s.get("time_s") or 0.0) for s in schedules)
+        drawing = time.perf_counter() - started
+    if report is not None:
+        parts = [("solving", report.elapsed_s)]
+        parts += [("scheduling", scheduling)] if schedules else []
+        body.insert(
+            timing,
+            time_line(
+                parts + [("drawing this page", drawing)],
+                " (solving: the new results, wall clock"
+                + ("; scheduling: the schedules' own times, summed" if schedules else "")
+                + "; loading the data is not counted)",
+            ),
+        )
     return page("foon2asp: batch summary", body)
 
 
