@@ -61,3 +61,63 @@ def test_every_format(record, tmp_path):
 def test_a_schedule_without_units_still_draws(record):
     empty = dict(record, schedule=[], status="unschedulable", makespan=None, baseline={})
     assert "unschedulable" in gantt.gantt_graph(empty).source
+
+
+@pytest.fixture
+def short_units():
+    """A schedule with units far shorter than the others: too narrow for their labels."""
+    problem = build(
+        [
+            ("cut", ["k"], ["a"]),
+            ("sprinkle", ["a"], ["b"]),
+            ("stir", ["b"], ["c"]),
+            ("pour", ["c"], ["d"]),
+            ("mix", ["d", "k"], ["g"]),
+            ("chop", ["k"], ["e"]),
+            ("fold", ["e", "g"], ["h"]),
+        ],
+        ["k"],
+    )
+    durations = {"cut": 8000, "sprinkle": 200, "stir": 300, "pour": 250, "mix": 6000, "chop": 100, "fold": 5000}
+    spec = ScheduleSpec((("arm", 1), ("human", 1)), Durations(durations))
+    units = executable_order(problem, list(range(7)))
+    tree = TaskTree(goal=goal_id(problem, "h"), method="given", status="optimal", units=units)
+    return schedule(problem, tree, spec).to_dict()
+
+
+def test_every_box_has_a_label_inside_beside_or_under_it(short_units):
+    src = gantt.gantt_graph(short_units).source
+    where = {}
+    for i, e in enumerate(short_units["schedule"]):
+        motion = e["unit"]["motion"]
+        box = re.search(rf"^\s*u{i} \[label=(<[^>]*>|\"\")", src, re.M)
+        assert box, i
+        if box.group(1) == f"<{motion}>":
+            where[motion] = "in"
+            continue
+        side = re.search(rf'^\s*u{i}label \[label=<.*?<TD ALIGN="LEFT">([^<]*)</TD>.*? class="label (\w+)"', src, re.M)
+        assert side, (i, motion)
+        assert side.group(1) in (motion, f"^ {motion}")
+        where[motion] = side.group(2)
+    # chop (0.1 s) has the arm's lane free after it; sprinkle, stir and pour follow each other
+    assert where == {
+        "cut": "in",
+        "mix": "in",
+        "fold": "in",
+        "chop": "beside",
+        "sprinkle": "under",
+        "stir": "under",
+        "pour": "under",
+    }
+
+
+def test_charts_drawn_together_share_one_time_scale(record, short_units):
+    src = gantt.charts([record, short_units]).source
+
+    def x(node):
+        return float(re.search(rf"^\s*{node} \[.*?pos=\"([\d.-]+),", src, re.M).group(1))
+
+    assert x("s0_t1") - x("s0_t0") == x("s1_t1") - x("s1_t0")
+    assert re.search(r"^\s*s0_t1 \[label=<(\S+)>", src, re.M).group(1) == re.search(
+        r"^\s*s1_t1 \[label=<(\S+)>", src, re.M
+    ).group(1)

@@ -6,7 +6,11 @@ Units are coloured as in the tree drawings (:mod:`foon2asp.report.draw`): a
 robot's unit is blue, a person's unit orange.  The chart is a Graphviz graph
 with every node at a fixed position (``neato -n2``): the lanes' names on the
 left, a time axis below, one box per unit as wide as it is long; so the
-graphviz dependency renders SVG, PNG and PDF like the tree drawings.
+graphviz dependency renders SVG, PNG and PDF like the tree drawings.  Every box
+is labelled by its motion: inside it, else beside it on the right when the lane
+is free there, else on a row under the lane (``^ motion``, starting where the box
+starts).  Several charts drawn together (:func:`charts`, an HTML page) share one
+time scale: the longest schedule sets it and every chart is as wide.
 """
 
 from __future__ import annotations
@@ -29,6 +33,12 @@ BOX_HEIGHT = 28.0
 LABEL_WIDTH = 80.0
 #: the narrowest box drawn (a unit of duration 0 still shows)
 MIN_BOX = 3.0
+#: font size of a box's label, and of a label beside or under a short box; the height of a row of such labels
+BOX_FONT = 9.0
+SIDE_FONT = 8.0
+ROW_HEIGHT = 11.0
+#: the margin around a chart (points)
+PAD = 14.4
 
 LEGEND = "blue: robot · orange: person · width: duration"
 
@@ -69,7 +79,7 @@ def _title(record: Mapping) -> str:
 
 def _new_graph(name: str) -> graphviz.Graph:
     g = graphviz.Graph(name, engine="neato")
-    g.attr(fontname="Helvetica", outputorder="nodesfirst", pad="0.2")
+    g.attr(fontname="Helvetica", outputorder="nodesfirst", pad=f"{PAD / 72:g}")
     g.attr("node", fontname="Helvetica", fontsize="9", shape="box", style="filled", fixedsize="true", penwidth="0.8")
     return g
 
@@ -93,60 +103,168 @@ def _text(g: graphviz.Graph, node: str, label: str, x: float, y: float, w: float
     )
 
 
-def add_chart(g: graphviz.Graph, record: Mapping, prefix: str = "", top: float = 0.0) -> float:
-    """Add the chart of one schedule record to ``g``, its title at height ``top``; the height used."""
+def schedule_span(record: Mapping) -> float:
+    """The seconds from 0 to the end of the last unit of a schedule record."""
+    return max((_seconds(e.get("end")) for e in record.get("schedule") or []), default=0.0)
+
+
+def time_scale(span: float, fill: bool = False) -> float:
+    """Points per second of a chart spanning ``span`` seconds: :data:`POINTS_PER_SECOND`, less
+    when that would be wider than :data:`MAX_WIDTH`; ``fill``: as much as makes it that wide."""
+    if fill or span * POINTS_PER_SECOND > MAX_WIDTH:
+        return MAX_WIDTH / span if span > 0 else POINTS_PER_SECOND
+    return POINTS_PER_SECOND
+
+
+def chart_width(span: float, fill: bool = False) -> float:
+    """The width (points) of a chart whose time axis spans ``span`` seconds, lane names and margins
+    included (a title or a label beside the last box may stick out)."""
+    return LABEL_WIDTH + max(span * time_scale(span, fill), 200.0) + 2 * PAD
+
+
+def _unit(entry: Mapping) -> Mapping:
+    """The unit of a schedule entry (empty when the record has none)."""
+    unit = entry.get("unit")
+    return unit if isinstance(unit, Mapping) else {}
+
+
+def _text_width(text: str, size: float) -> float:
+    """A generous estimate of the width (points) of ``text`` in Helvetica of ``size`` points."""
+    return 0.72 * size * len(text) + 4
+
+
+def _label_places(boxes: list[tuple[float, float, str]]) -> tuple[list[tuple[str, float, int]], int]:
+    """Where the label of each box of one lane goes, given (left, right, text) in points:
+    ``("in", 0, 0)`` inside; ``("beside", x, 0)`` right of the box, starting at x, when the lane is
+    free until its end; else ``("under", x, row)`` on row ``row`` (from 0) under the lane,
+    starting where the box starts.  Also the number of rows under the lane."""
+    rows: list[float] = []  # where each row under the lane is free again
+    order = sorted(range(len(boxes)), key=lambda i: boxes[i][0])
+    found: dict[int, tuple[str, float, int]] = {}
+    for n, i in enumerate(order):
+        left, right, text = boxes[i]
+        if right - left >= _text_width(text, BOX_FONT):
+            found[i] = ("in", 0.0, 0)
+            continue
+        need = _text_width(text, SIDE_FONT)
+        following = [boxes[j][0] for j in order[n + 1 :] if boxes[j][0] >= right - 1e-6]
+        if min(following, default=float("inf")) - right >= need + 2:
+            found[i] = ("beside", right + 2, 0)
+            continue
+        need = _text_width("^ " + text, SIDE_FONT)
+        row = next((r for r, free in enumerate(rows) if free <= left), len(rows))
+        if row == len(rows):
+            rows.append(0.0)
+        rows[row] = left + need + 2
+        found[i] = ("under", left, row)
+    places = [found[i] for i in range(len(boxes))]
+    return places, len(rows)
+
+
+def add_chart(
+    g: graphviz.Graph,
+    record: Mapping,
+    prefix: str = "",
+    top: float = 0.0,
+    span: float | None = None,
+    fill: bool = False,
+) -> float:
+    """Add the chart of one schedule record to ``g``, its title at height ``top``; the height used.
+    ``span``: the seconds the time axis covers (charts drawn together share the longest one's);
+    default: this schedule's.  ``fill``: the time axis is :data:`MAX_WIDTH` wide (:func:`time_scale`)."""
     agents = [str(a) for a in record.get("agents", [])]
     entries = list(record.get("schedule") or [])
-    span = max((_seconds(e.get("end")) for e in entries), default=0.0)
-    scale = POINTS_PER_SECOND if span * POINTS_PER_SECOND <= MAX_WIDTH else MAX_WIDTH / max(span, 1e-9)
-    width = LABEL_WIDTH + max(span * scale, 200.0)
+    span = schedule_span(record) if span is None else max(span, schedule_span(record))
+    scale = time_scale(span, fill)
+    width = chart_width(span, fill) - 2 * PAD
     _text(g, f"{prefix}title", html.escape(_title(record)), width / 2, top, width, "12")
     _text(g, f"{prefix}legend", html.escape(LEGEND), width / 2, top - 14, width, "8")
     lane = {a: k for k, a in enumerate(agents)}
 
-    def y(k: int) -> float:
-        return top - 30 - LANE_HEIGHT * k - LANE_HEIGHT / 2
-
-    for k, agent in enumerate(agents):
-        _text(g, f"{prefix}lane{k}", html.escape(agent), LABEL_WIDTH / 2, y(k), LABEL_WIDTH, "11")
+    boxes: list[tuple[int, int, float, float, str, Mapping]] = []  # entry, lane, left, right, motion, entry
     for i, e in enumerate(entries):
         agent = str(e.get("agent"))
         if agent not in lane:
             continue
         start, end = _seconds(e.get("start")), _seconds(e.get("end"))
         w = max(MIN_BOX, (end - start) * scale)
-        unit = e.get("unit") if isinstance(e.get("unit"), Mapping) else {}
-        motion = str(unit.get("motion", "?"))
+        middle = LABEL_WIDTH + (start + end) / 2 * scale
+        boxes.append((i, lane[agent], middle - w / 2, middle + w / 2, str(_unit(e).get("motion", "?")), e))
+    places: dict[int, tuple[str, float, int]] = {}
+    rows = [0] * len(agents)
+    for k in range(len(agents)):
+        mine = [b for b in boxes if b[1] == k]
+        found, rows[k] = _label_places([(b[2], b[3], b[4]) for b in mine])
+        places.update({b[0]: p for b, p in zip(mine, found)})
+    lane_tops = [top - 30.0]
+    for k in range(len(agents)):
+        lane_tops.append(lane_tops[-1] - LANE_HEIGHT - ROW_HEIGHT * rows[k])
+
+    def y(k: int) -> float:
+        return lane_tops[k] - LANE_HEIGHT / 2
+
+    for k, agent in enumerate(agents):
+        _text(g, f"{prefix}lane{k}", html.escape(agent), LABEL_WIDTH / 2, y(k), LABEL_WIDTH, "11")
+    for i, k, left, right, motion, e in boxes:
+        agent = str(e.get("agent"))
+        start, end = _seconds(e.get("start")), _seconds(e.get("end"))
+        unit = _unit(e)
         human = agent.rsplit("-", 1)[0] == "human"
         outs = "; ".join(str(o.get("label", "")) for o in unit.get("outputs", []) if isinstance(o, Mapping))
+        tooltip = f"{motion} ({agent}, {start:g}-{end:g} s) -> {outs}".replace("\\", "\\\\")
+        where, x, row = places[i]
         g.node(
             f"{prefix}u{i}",
-            f"<{html.escape(motion)}>" if w >= 6.5 * len(motion) + 4 else "",
+            f"<{html.escape(motion)}>" if where == "in" else "",
             fillcolor=HUMAN_FILL if human else UNIT_FILL,
-            tooltip=f"{motion} ({agent}, {start:g}-{end:g} s) -> {outs}".replace("\\", "\\\\"),
+            tooltip=tooltip,
+            fontsize=f"{BOX_FONT:g}",
             **{"class": "unit human" if human else "unit"},
-            **_place(LABEL_WIDTH + (start + end) / 2 * scale, y(lane[agent]), w, BOX_HEIGHT),
+            **_place((left + right) / 2, y(k), right - left, BOX_HEIGHT),
         )
-    bottom = y(len(agents) - 1) - LANE_HEIGHT / 2 - 8
+        if where == "in":
+            continue
+        text = motion if where == "beside" else "^ " + motion
+        need = _text_width(text, SIDE_FONT)
+        height = y(k) if where == "beside" else lane_tops[k] - LANE_HEIGHT - ROW_HEIGHT * row - ROW_HEIGHT / 2 + 3
+        # a left-aligned cell exactly as wide as the estimate: the text starts at x
+        cell = (
+            f'<TABLE BORDER="0" CELLBORDER="0" CELLPADDING="0" CELLSPACING="0" FIXEDSIZE="TRUE"'
+            f' WIDTH="{need:.0f}" HEIGHT="10"><TR><TD ALIGN="LEFT">{html.escape(text)}</TD></TR></TABLE>'
+        )
+        _text(
+            g,
+            f"{prefix}u{i}label",
+            cell,
+            x + need / 2,
+            height,
+            need,
+            f"{SIDE_FONT:g}",
+            tooltip=tooltip,
+            **{"class": f"label {where}"},
+        )
+    bottom = lane_tops[len(agents)] - 8 if agents else top - 38
     for j, t in enumerate(_ticks(span)):
         _text(g, f"{prefix}t{j}", f"{t:g}", LABEL_WIDTH + t * scale, bottom, 30, "8")
     _text(g, f"{prefix}axis", "s", LABEL_WIDTH - 20, bottom, 30, "8")
     return top - bottom + 20
 
 
-def gantt_graph(record: Mapping) -> graphviz.Graph:
-    """The chart of one schedule record as a Graphviz graph with fixed node positions."""
+def gantt_graph(record: Mapping, span: float | None = None, fill: bool = False) -> graphviz.Graph:
+    """The chart of one schedule record as a Graphviz graph with fixed node positions
+    (``span``, ``fill``: as :func:`add_chart`)."""
     g = _new_graph("schedule")
-    add_chart(g, record)
+    add_chart(g, record, span=span, fill=fill)
     return g
 
 
 def charts(records: Sequence[Mapping]) -> graphviz.Graph:
-    """The charts of several schedule records, one under the other, in one graph."""
+    """The charts of several schedule records, one under the other, in one graph, on one time scale."""
     g = _new_graph("schedules")
+    span = max((schedule_span(r) for r in records), default=0.0)
     top = 0.0
     for k, record in enumerate(records):
-        top -= add_chart(g, record, f"s{k}_", top) + 20
+        top -= add_chart(g, record, f"s{k}_", top, span) + 20
     return g
 
 
@@ -164,9 +282,9 @@ def render(graph: graphviz.Graph, fmt: str) -> bytes:
         raise InputError(f"Graphviz 'neato' failed: {err[-1] if err else exc}") from None
 
 
-def gantt_svg(record: Mapping) -> str:
-    """The chart of one schedule as an SVG document."""
-    return render(gantt_graph(record), "svg").decode("utf-8")
+def gantt_svg(record: Mapping, span: float | None = None, fill: bool = False) -> str:
+    """The chart of one schedule as an SVG document (``span``, ``fill``: as :func:`add_chart`)."""
+    return render(gantt_graph(record, span, fill), "svg").decode("utf-8")
 
 
 def draw_gantt(record: Mapping, path: str | Path) -> Path:
