@@ -375,5 +375,6 @@ class BatchRun:
 
     def render(self, fmt: str = "text") -> str:
         """The summary ``batch`` prints, in a format of ``batch --summary``."""
-        extra = [[s.to_dict() for s in self.schedules]] if self.schedules and fmt == "html" else []
+        # the HTML page also draws the trees: the schedules, and the FOON for kitchen items and cycles
+        extra = [[s.to_dict() for s in self.schedules], self.kb.problem] if fmt == "html" else []
         return report.render("summary", fmt, self.summary(), self.raw, *extra)
