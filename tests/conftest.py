@@ -63,19 +63,3 @@ def hard():
     return problem, [problem.foon.object_ids[g] for g in syn.goals]
 
 
-@pytest.fixture
-def slow_rc2(monkeypatch):
-    """RC2 that finds nothing: every solve waits until it is told to stop (the solvers beside
-    it, HiGHS and UWrMaxSat, are left to answer)."""
-    import time
-
-    from foon2asp.maxsat import oracle
-
-    def solve(self, deadline=None, stop=None):
-        while not (stop is not None and stop(self.lower)):
-            if deadline is not None and time.perf_counter() >= deadline:
-                break
-            time.sleep(0.01)
-        raise oracle.Stopped
-
-    monkeypatch.setattr(oracle.Oracle, "solve", solve)

@@ -246,9 +246,7 @@ def _strategy(args: list[str]) -> list[str]:
     ],
 )
 def test_every_command_solves_with_the_default(command, tmp_path, recorded, monkeypatch):
-    # the small preset: real choice, so the bounds do not answer every goal without the solver;
-    # MaxSAT off, so the goals the branch and bound leaves go to clingo
-    monkeypatch.setattr(GoalRunner, "maxsat", False)
+    # the small preset: real choice, so the bounds do not answer every goal without the solver
     data = preset("small").write(tmp_path / "small")
     runner = CliRunner()
     if command[0] == "check":
@@ -301,23 +299,3 @@ def test_batch_reports_the_grounding_it_chose(tmp_path, tiny):
     assert [r["units"] for r in fixed.records] == [r["units"] for r in report.records]
 
 
-def test_goals_with_wide_bounds_skip_the_branch_and_bound_for_the_same_trees(small, monkeypatch):
-    """A goal whose bounds are further apart than exact.UNITS_GAP_LIMIT goes to MaxSAT without
-    the branch and bound: with the limit at -1 every open goal does, and the trees are the same."""
-    from foon2asp.methods import exact
-
-    p = small.problem
-    goals = small.goal_ids("all")
-    options = AspOptions(objective=("units",), time_limit=60)
-    usual = GoalRunner("asp", p, options, "whole", shortcuts=True, goals=goals)
-    trees = [usual(g) for g in goals]
-    assert usual.counts["branch-and-bound"] > 0
-    monkeypatch.setattr(exact, "UNITS_GAP_LIMIT", -1)
-    skipping = GoalRunner("asp", p, options, "whole", shortcuts=True, goals=goals)
-    again = [skipping(g) for g in goals]
-    assert skipping.counts["branch-and-bound"] == 0
-    assert skipping.counts["maxsat"] == usual.counts["maxsat"] + usual.counts["branch-and-bound"]
-    for g, a, b in zip(goals, trees, again):
-        assert (a.status, sorted(a.units)) == (b.status, sorted(b.units)), g
-        if a.status == "optimal":
-            assert validate(p, g, list(b.units)).valid

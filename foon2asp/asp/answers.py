@@ -57,24 +57,25 @@ def solve_shot(
     control: Control,
     mode: str = "opt",
     count: int = 1,
-    on_model: Callable[[clingo.Model], None] | None = None,
+    on_model: Callable[[clingo.Model], bool | None] | None = None,
     time_limit: float | None = None,
     on_lower: Callable[[tuple[int, ...]], None] | None = None,
     stop: Callable[[], bool] | None = None,
 ) -> Shot:
     """Solve once in ``mode`` (:meth:`Control.solving`: "opt", "optN" up to ``count`` trees,
     "first") with the externals as they are, for at most ``time_limit`` seconds or until
-    ``stop()`` (:meth:`Control.solve`); ``on_lower`` sees each proven lower bound."""
+    ``stop()`` (:meth:`Control.solve`) or ``on_model`` answers False; ``on_lower`` sees each
+    proven lower bound."""
     optimal: dict[tuple[int, ...], Answer] = {}
     last: list[Answer] = []
 
-    def record(model: clingo.Model) -> None:
+    def record(model: clingo.Model) -> bool:
         answer = read_model(model)
         last[:] = [answer]
         if mode == "optN" and answer.proven:
             optimal.setdefault(answer.units, answer)
-        if on_model is not None:
-            on_model(model)
+        # on_model may end the search by answering False
+        return on_model is None or on_model(model) is not False
 
     with control.solving(mode, count):
         result = control.solve(record, time_limit, on_lower=on_lower, stop=stop)

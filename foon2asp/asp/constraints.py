@@ -464,3 +464,28 @@ def rule_warnings(programs: Iterable[tuple[str, str]], defined: Iterable[Signatu
         for sig, where in found.used.items()
         if sig not in known
     ]
+
+
+def _changes_search(text: str) -> bool:
+    """Does ``text`` hold a statement that changes what is optimal or how it is searched
+    (``#minimize``, ``#heuristic``, ``#external``, ``#edge``, a weak constraint)?"""
+    T = clingo.ast.ASTType
+    kinds = (T.Minimize, T.Heuristic, T.External, T.Edge)
+    found: list[bool] = []
+    clingo.ast.parse_string(text, lambda stm: found.append(stm.ast_type in kinds), logger=lambda code, msg: None)
+    return any(found)
+
+
+def only_constraints(programs: Iterable[tuple[str, str]]) -> bool:
+    """Do the user ``programs`` only remove trees: integrity constraints and rules whose heads
+    are predicates of their own (none that foon2asp defines or writes), nothing that changes
+    the objective or the search?  Then what preparation proves of a goal (it cannot be made,
+    the relevant part, the landmarks, the lower bounds) still holds with them."""
+    known = known_predicates()
+    for _, text in programs:
+        try:
+            if predicates(text).defined & known or _changes_search(text):
+                return False
+        except RuntimeError:
+            return False  # a syntax error: reported where the program is grounded
+    return True

@@ -89,6 +89,7 @@ def facts(
     goal: int | None = None,
     units: Iterable[int] | None = None,
     leave_out: Iterable[str] = (),
+    whole_kitchen: bool = True,
 ) -> str:
     """The facts as ASP text.
 
@@ -96,7 +97,8 @@ def facts(
     ``goal_nodes`` are written as ``goal_node(N,O)``, ``goal`` as ``goal(O)``.
     ``leave_out`` names predicates of :data:`OPTIONAL` not to write: the tree
     encodings read none of the strings, ``input/2`` or ``output/2``, and a
-    solver session grounds faster without facts nobody reads.
+    solver session grounds faster without facts nobody reads.  ``whole_kitchen=False``
+    writes only the kitchen items among the units' objects (a goal's part needs no other).
     """
     leave_out = frozenset(leave_out)
     unknown = leave_out - set(OPTIONAL)
@@ -106,7 +108,10 @@ def facts(
     lines = ["% units"]
     for u in unit_ids:
         lines += unit_facts(problem, u, leave_out)
-    objects = fact_objects(problem, unit_ids)
+    if whole_kitchen:
+        objects = fact_objects(problem, unit_ids)
+    else:
+        objects = {o for u in unit_ids for o in (*problem.inputs[u], *problem.outputs[u])}
     goal_nodes = list(goal_nodes)
     objects.update(goal_nodes)
     if goal is not None:
@@ -118,7 +123,8 @@ def facts(
         for o in sorted(objects):
             lines += object_facts(problem, o, leave_out)
     lines.append("% kitchen")
-    lines += [f"kitchen({o})." for o in sorted(problem.kitchen) if o in objects]
+    kitchen = problem.kitchen
+    lines += [f"kitchen({o})." for o in sorted(objects) if o in kitchen]
     if goal_nodes:
         lines.append("% goals file")
         lines += [f"goal_node({n},{o})." for n, o in enumerate(goal_nodes, 1)]

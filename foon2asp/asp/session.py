@@ -29,6 +29,7 @@ from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import OPTIONAL, fact_objects, facts
 from foon2asp.asp.multishot.driver import Driver
 from foon2asp.asp.options import OBJECTIVES, AspOptions
+from foon2asp.asp.prepared import Preparation
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.gap import first_level, levels, settle
@@ -68,18 +69,29 @@ class Session:
         units: Iterable[int] | None = None,
         require: Iterable[int] = (),
         goal: Goals | None = None,
+        prepared: Preparation | None = None,
     ):
         """``units``: ground only these (default ``options.units``, else the viable units);
         ``require``: units every tree must use (a caller that knows them, e.g. landmarks);
         ``goal``: a session for this goal (or meal) alone, grounded with the goal as a fact
         (the grounder then simplifies what follows from it: core-guided proofs on hard parts
-        take about half the time of a goal switched on as an external)."""
+        take about half the time of a goal switched on as an external); ``prepared``: a session
+        for one goal's prepared part (foon2asp.asp.prepared), grounded over its candidates."""
+        #: what preparation knows of the goal (None: the encoding derives the part itself)
+        self.prepared = prepared
+        if prepared is not None:
+            goal, units = prepared.goal, prepared.candidates
         #: the goal (as a meal) this session was grounded for, None: any goal, switched per solve
         self.goal = None if goal is None else meal_of(goal)
         self.options = options or AspOptions()
         # with substitutes, what they stand in for counts as available (foon2asp.asp.substitutes)
         problem = self.problem = substitutes.prepare(problem, self.options)
-        self.control = Control(self.options.args())
+        args = self.options.args()
+        if prepared is not None and prepared.hint and (self.options.opt_strategy or "").startswith("bb"):
+            # the hint is a domain heuristic (prepared.lp) for a search from above; core-guided
+            # search climbs from below, and a first model it is steered to only slows it down
+            args.append("--heuristic=Domain")
+        self.control = Control(args)
         self.ctl = self.control.ctl
         if units is None:
             units = self.options.units
@@ -103,7 +115,12 @@ class Session:
     def _parts(self) -> list[tuple[str, str]]:
         """The named programs of the grounding: facts, encodings, objective, goal, extras."""
         options, units = self.options, list(self.units)
-        names = ["tree"] + objectives.encoding_names(options, OBJECTIVES) + options.encodings
+        names = objectives.encoding_names(options, OBJECTIVES) + options.encodings
+        if self.prepared is not None:
+            # dominated units are left out of the candidates already
+            names = ["prepared"] + [n for n in names if n != "dominance"]
+        else:
+            names = ["tree"] + names
         rules = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(names)]
         rules.append(("objective", _objective_facts(objectives.ranked(options))))
         rules += objectives.extra_parts(self.problem, options, units)
@@ -111,7 +128,9 @@ class Session:
             rules.append(("goal", "#external goal(O) : object(O).\n"))
         else:
             rules.append(("goal", "".join(f"goal({g}).\n" for g in self.goal)))
-        if options.canonical and not options.heuristic:
+        if self.prepared is not None:
+            rules.append(("preparation", self.prepared.facts()))
+        if options.canonical and not options.heuristic and (self.prepared is None or options.threads > 1):
             rules.append(("encodings/canonical.lp", encodings.encoding("canonical")))
             rules.append(("unit order", chain_facts(units)))
         if self.required:
@@ -121,7 +140,8 @@ class Session:
         read = _read_predicates(rules)
         rules = [(name, text) for name, text in rules if name != "input nodes" or "input_nodes" in read]
         leave_out = [p for p in OPTIONAL if p not in read]
-        return [("facts", facts(self.problem, units=units, leave_out=leave_out))] + rules
+        whole = self.prepared is None
+        return [("facts", facts(self.problem, units=units, leave_out=leave_out, whole_kitchen=whole))] + rules
 
     def _goal_atoms(self) -> set[int]:
         """The objects a solve may switch on as goals."""
@@ -238,6 +258,8 @@ class Session:
         """One plain optimisation for ``meal`` (the driver when the options need more), then
         the canonical tree: here, or in the meal's canonical session.  The shot's lower bound
         is kept (``_lower``): the optimum's cost once the search has proven it."""
+        if self.prepared is not None:
+            return self._solve_prepared(meal, on_model, time_limit)
         if self.options.driven:
             # depth bounds, human steps, alternatives, greedy: see foon2asp.asp.multishot.driver
             if self._driver is None:
@@ -285,6 +307,51 @@ class Session:
             if left is None or left > 0:
                 return self._canonical_session(meal, known, left, t0)
             answer, stats["canonical_search"] = start, "time"
+        return self._tree(meal, answer, status(answer, shot), t0, stats)
+
+    def _solve_prepared(
+        self,
+        meal: tuple[int, ...],
+        on_model: Callable[[clingo.Model], None] | None,
+        time_limit: float | None,
+    ) -> TaskTree:
+        """One optimisation over the prepared part: it stops as soon as a model meets the
+        lower bound of the preparation (that model is optimal).  Among equal optima the
+        answer is the hint when the preparation allows it, else the first optimum clingo
+        finds here (a fresh grounding of the part: the same on every path); with several
+        threads, whose search is not deterministic, the smallest optimal tree
+        (foon2asp.asp.canonical)."""
+        prep = self.prepared
+        assert prep is not None
+        time_limit = self.options.time_limit if time_limit is None else time_limit
+        t0 = time.perf_counter()
+        self._fresh = False
+        watch = Watch(first_level(self.levels), self.options.gap, prep.floor, self.options.progress)
+        met: list[bool] = []
+
+        def seen(model: clingo.Model) -> bool:
+            watch.on_model(model)
+            if on_model is not None:
+                on_model(model)
+            if prep.meets is not None and prep.meets(tuple(model.cost)):
+                met.append(True)
+                return False  # the lower bound is met: nothing better exists
+            return True
+
+        shot = solve_shot(self.control, "opt", 1, seen, time_limit or None, watch.on_lower, watch.stop)
+        answer = shot.last
+        if answer is not None and met:
+            answer = replace(answer, proven=True)
+            shot.finished = True
+        self._lower = answer.cost if answer is not None and answer.proven else shot.lower
+        stats = self.stats()
+        if answer is not None and answer.proven and prep.known is not None and answer.cost == prep.known:
+            answer = Answer(tuple(sorted(prep.hint)), answer.cost, True, answer.human)
+        elif answer is not None and answer.proven and self.options.canonical and self.options.threads > 1:
+            answer = self._canonicalise(answer, t0, time_limit, stats)
+        elif not shot.finished and prep.known is not None and (answer is None or prep.known < answer.cost):
+            answer = Answer(tuple(sorted(prep.hint)), prep.known, False)
+            stats["answer"] = "known"
         return self._tree(meal, answer, status(answer, shot), t0, stats)
 
     def _tree(self, meal: tuple[int, ...], answer: Answer | None, status: str, t0: float, stats: dict) -> TaskTree:

@@ -6,7 +6,8 @@ arguments with :func:`solver_args`; a user who sets nothing gets:
 
 * one thread: ``--opt-strategy=usc,oll,succinct`` (core-guided optimisation,
   OLL, without the redundant symmetry constraints OLL adds over the outputs of
-  its cardinality constraints).  On FOONs with real choice it proves where
+  its cardinality constraints), each core shrunk by binary search
+  (``--opt-usc-shrink=bin``), with clasp's ``--configuration=trendy``.  On FOONs with real choice it proves where
   branch and bound (clingo's own default) stalls, and it is as fast on FOONs
   with little choice; ``succinct`` proves the hardest goals of the hard
   presets several times faster than plain ``usc`` (BENCHMARKS.md);
@@ -26,9 +27,11 @@ import tempfile
 
 #: the optimisation strategy when the user sets none (one thread)
 DEFAULT_OPT_STRATEGY = "usc,oll,succinct"
+#: clasp options that go with it: shrink each core by binary search, clasp's "trendy" configuration
+DEFAULT_TUNING = ("--opt-usc-shrink=bin", "--configuration=trendy")
 
 #: the portfolio for --threads >= 2 without --opt-strategy: one solver per line, ``[name]: <clasp options>``
-PORTFOLIO = f"[bbsign]: --opt-strategy=bb --opt-heuristic=sign,model\n[usc]: --opt-strategy={DEFAULT_OPT_STRATEGY}\n"
+PORTFOLIO = f"[bbsign]: --opt-strategy=bb --opt-heuristic=sign,model\n[usc]: --opt-strategy={DEFAULT_OPT_STRATEGY} {DEFAULT_TUNING[0]}\n"
 
 
 def portfolio_file(text: str = PORTFOLIO) -> str:
@@ -57,7 +60,7 @@ def solver_args(opt_strategy: str | None = None, threads: int = 1, portfolio: st
         return [f"--opt-strategy={opt_strategy}", *parallel]
     if parallel:
         return [*parallel, f"--configuration={portfolio_file(portfolio or PORTFOLIO)}"]
-    return [f"--opt-strategy={DEFAULT_OPT_STRATEGY}"]
+    return [f"--opt-strategy={DEFAULT_OPT_STRATEGY}", *DEFAULT_TUNING]
 
 
 def describe(opt_strategy: str | None = None, threads: int = 1) -> str:

@@ -49,7 +49,6 @@ from foon2asp.analysis.compare import judge
 from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
-from foon2asp.methods.proofs import share_cores
 from foon2asp.methods.runner import GoalRunner, Parts
 from foon2asp.tree.serialize import tree_json
 
@@ -193,7 +192,6 @@ def _init_worker(spec: BatchSpec, processes: int = 1) -> None:
     global _WORKER
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # an interrupt is the parent's to handle
     _exit_with_parent()
-    share_cores(processes)  # the pool's workers share the cores: HiGHS joins RC2 later
     _WORKER = Worker(spec)
 
 

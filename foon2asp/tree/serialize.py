@@ -27,6 +27,7 @@ def tree_json(problem: Problem, tree: TaskTree) -> dict:
         "cost": tree.cost,
         "units": [problem.units[u].to_json() for u in tree.units],
         "time_s": round(tree.time_s, 6),
+        "proven_by": tree.proven_by,
     }
     if tree.bound is not None:
         out["bound"] = tree.bound
@@ -81,6 +82,8 @@ def goal_heading(problem: Problem, tree: TaskTree) -> str:
 
 def tree_text(problem: Problem, tree: TaskTree) -> str:
     status = tree.status + (f" ({gap})" if (gap := gap_text(tree)) else "")
+    if tree.proven_by:
+        status += f" (proven by {tree.proven_by})"
     head = f"{goal_heading(problem, tree)}\nMethod: {tree.method}  Status: {status}"
     if tree.cost:
         head += f"  ({_cost_text(tree.cost)})"

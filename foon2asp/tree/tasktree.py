@@ -42,6 +42,9 @@ class TaskTree:
     bound: dict | None = None
     #: the relative gap between the answer and ``bound`` on the first objective (0: proven)
     gap: float | None = None
+    #: what proved the answer: "clingo", "fixpoint", "only-tree", "bounds" (None: not proven,
+    #: or a search baseline's answer; foon2asp.methods.runner)
+    proven_by: str | None = None
 
     @property
     def has_tree(self) -> bool:

@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+import re
 from functools import cache
 from importlib import resources
+
+#: an include directive of a shipped encoding: ``#include "NAME.lp".`` alone on its line
+INCLUDE = re.compile(r'^#include "(?P<name>[a-z_]+)\.lp"\.[ \t]*$', re.MULTILINE)
 
 
 def names() -> list[str]:
@@ -12,13 +16,30 @@ def names() -> list[str]:
     return sorted(p.name[:-3] for p in root.iterdir() if p.name.endswith(".lp"))
 
 
-@cache
-def encoding(name: str) -> str:
-    """The text of ``NAME.lp``."""
+def source(name: str) -> str:
+    """The text of ``NAME.lp`` as shipped (its ``#include`` directives as written)."""
     path = resources.files(__name__).joinpath(f"{name}.lp")
     if not path.is_file():
         raise KeyError(f"no encoding {name!r}; have {', '.join(names())}")
     return path.read_text(encoding="utf-8")
+
+
+@cache
+def encoding(name: str) -> str:
+    """The text of ``NAME.lp`` with each ``#include`` of a shipped encoding replaced by that
+    encoding's text (each file once, as clingo includes it), so it can be added as a string."""
+    seen: set[str] = set()
+
+    def expand(current: str) -> str:
+        seen.add(current)
+
+        def include(match: re.Match) -> str:
+            other = match.group("name")
+            return "" if other in seen else expand(other)
+
+        return INCLUDE.sub(include, source(current))
+
+    return expand(name)
 
 
 #: the shipped encodings each encoding needs loaded with it (tree.lp defines use/1, reach/1, ...)

@@ -1,0 +1,137 @@
+"""The goal runner's routes (foon2asp.methods.runner): every route against brute force.
+
+Small random FOONs with real choice, cycles and units with several products: for every
+objective the answer of every route (settled by preparation, clingo on the prepared part,
+clingo on the whole grounding) is an optimal, valid tree of the brute-force optimum; the
+answer says what proved it; the tree is the same on every path; user constraints keep the
+optimum exact, and a goal whose every tree they forbid is ``infeasible``.
+"""
+
+from __future__ import annotations
+
+import functools
+import random
+
+import pytest
+
+from foon2asp.asp.options import AspOptions
+from foon2asp.methods.runner import PROVEN_BY, GoalRunner
+from foon2asp.tree.tasktree import measures
+from foon2asp.tree.validate import validate
+from foon2asp.tree.weights import total
+from helpers import brute_force, build
+
+OBJECTIVES = [("units",), ("success",), ("inputs",), ("depth",), ("success", "depth")]
+
+
+@functools.cache
+def random_foon(seed: int):
+    """Up to 12 units over 7 made objects: several producers each, units with two products,
+    inputs made elsewhere (so cycles), and some units that never fire."""
+    rng = random.Random(seed)
+    kitchen = ["k0", "k1", "k2"]
+    made = [f"o{i}" for i in range(7)]
+    units = []
+    for i in range(rng.randint(8, 12)):
+        outs = rng.sample(made, 2 if rng.random() < 0.3 else 1)
+        pool = kitchen + [m for m in made if m not in outs] + ["never"] * (rng.random() < 0.1)
+        ins = rng.sample(pool, rng.randint(1, 3))
+        units.append((f"m{i % 5}", ins, outs))
+    rates = {f"m{i}": r for i, r in enumerate((0.9, 0.5, 0.7, 0.3, 0.95))}
+    return build(units, kitchen, rates)
+
+
+def score(problem, goal, tree, objective):
+    """The cost vector of ``tree`` for ``objective`` with units as the last tie-breaker."""
+    ranked = list(dict.fromkeys((*objective, "units")))
+    depth = measures(problem, goal, list(tree))["depth"]
+    return tuple(depth if name == "depth" else total(problem, name, tree) for name in ranked)
+
+
+def optimum(problem, goal, objective, allowed=lambda tree: True):
+    trees = [t for t in brute_force(problem, goal) if allowed(t)]
+    return min((score(problem, goal, t, objective) for t in trees), default=None)
+
+
+def made_objects(problem):
+    return sorted({o for u in range(len(problem.units)) for o in problem.products[u]})
+
+
+@pytest.mark.parametrize("objective", OBJECTIVES, ids=",".join)
+@pytest.mark.parametrize("seed", range(25))
+def test_every_route_answers_the_brute_force_optimum(seed, objective):
+    problem = random_foon(seed)
+    options = AspOptions(objective=objective)
+    fast = GoalRunner("asp", problem, options)
+    unsettled = GoalRunner("asp", problem, options, shortcuts=False)
+    whole = GoalRunner("asp", problem, options, grounding="per-goal")
+    for goal in made_objects(problem):
+        want = optimum(problem, goal, objective)
+        for run in (fast, unsettled, whole):
+            route = run.route(goal)
+            tree = run(goal)
+            if want is None:
+                assert tree.status == "unreachable", (seed, goal, route)
+                assert tree.proven_by in ("fixpoint", "clingo"), (seed, goal, route)
+                continue
+            assert tree.status == "optimal", (seed, goal, route, tree.status)
+            assert validate(problem, goal, list(tree.units)).valid, (seed, goal, route)
+            assert score(problem, goal, tree.units, objective) == want, (seed, goal, route)
+            assert tree.proven_by == PROVEN_BY[route], (seed, goal, route)
+        assert sorted(fast(goal).units) == sorted(unsettled(goal).units), (seed, goal)
+
+
+def test_the_routes_are_all_taken_and_named():
+    """Over the random FOONs every route of the table answers some goal, and the JSON names it."""
+    seen = set()
+    for seed in range(25):
+        problem = random_foon(seed)
+        run = GoalRunner("asp", problem, AspOptions())
+        for goal in made_objects(problem):
+            seen.add(run.route(goal))
+        run_depth = GoalRunner("asp", problem, AspOptions(objective=("depth",)))
+        seen.update(run_depth.route(g) for g in made_objects(problem))
+    assert seen == {"fixpoint", "only-tree", "bounds", "prepared", "clingo"}
+
+
+@pytest.mark.parametrize("seed", range(25))
+def test_constraints_keep_the_optimum_exact_and_name_an_infeasible_goal(seed):
+    """A rule that forbids a motion: the optimum among the trees without it (brute force), on the
+    prepared route; a goal every tree of which uses it is ``infeasible`` with the rule named."""
+    problem = random_foon(seed)
+    rule = ("--rule #1", ':- use(U), motion(U,"m1").\n')
+    options = AspOptions(programs=[rule])
+    run = GoalRunner("asp", problem, options)
+    plain = GoalRunner("asp", problem, AspOptions())
+    for goal in made_objects(problem):
+        allowed = lambda t: all(problem.units[u].motion != "m1" for u in t)  # noqa: E731
+        want = optimum(problem, goal, ("units",), allowed)
+        tree = run(goal)
+        if want is None and optimum(problem, goal, ("units",)) is not None:
+            assert tree.status == "infeasible" and tree.extra["infeasible_by"] == ["--rule #1"], (seed, goal)
+            assert tree.proven_by == "clingo"
+        elif want is None:
+            assert tree.status == "unreachable" and tree.proven_by == "fixpoint", (seed, goal)
+        else:
+            assert run.route(goal) == "prepared"
+            assert tree.status == "optimal" and tree.proven_by == "clingo"
+            assert allowed(tree.units) and validate(problem, goal, list(tree.units)).valid
+            assert score(problem, goal, tree.units, ("units",)) == want, (seed, goal)
+            if allowed(plain(goal).units):  # the rule changes nothing here: the same optimum
+                assert tree.extra["asp_cost"] == plain(goal).extra["asp_cost"], (seed, goal)
+
+
+def test_a_program_that_defines_what_the_encodings_define_goes_to_clingo_whole():
+    problem = next(p for p in map(random_foon, range(25)) if p.derivable & set(made_objects(p)))
+    options = AspOptions(programs=[("--rule #1", "use(U) :- unit(U), U < 0.\n")])
+    run = GoalRunner("asp", problem, options)
+    goal = next(g for g in made_objects(problem) if g in problem.derivable)
+    assert run.route(goal) == "clingo"
+    assert run(goal).proven_by == "clingo"
+
+
+def test_search_baselines_are_proven_by_nothing():
+    problem = random_foon(1)
+    run = GoalRunner("gbfs-h1", problem, AspOptions())
+    goal = made_objects(problem)[0]
+    assert run.route(goal) == "search" and run(goal).proven_by is None
