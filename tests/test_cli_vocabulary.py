@@ -30,7 +30,9 @@ def test_objects_lists_every_scrambled_egg_and_each_text_solves(shared_foon_dir,
     pick = listed[-1]
     by_text = json.loads(run("solve", "--data", shared_foon_dir, "--goal", pick["text"], "--format", "json").stdout)
     by_id = json.loads(run("solve", "--data", shared_foon_dir, "--goal", f"#{pick['id']}", "--format", "json").stdout)
-    assert by_text == [dict(by_id[0], time_s=by_text[0]["time_s"], stats=by_text[0]["stats"])]
+    assert by_text == [dict(by_id[0], time_s=by_text[0]["time_s"], stats=by_text[0].get("stats"))] or by_text == [
+        dict(by_id[0], time_s=by_text[0]["time_s"])
+    ]
     assert by_text[0]["goal"] == {k: pick[k] for k in ("label", "states", "ingredients", "container")}
     # the JSON listing is a goals file
     goals = tmp_path / "eggs.json"

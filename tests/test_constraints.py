@@ -257,9 +257,14 @@ def test_cli_solve_forbid_motion_demo():
     assert tree["cost"]["units"] == base["cost"]["units"] + 1
 
 
-def test_cli_max_units_makes_unreachable_and_rule_file(tmp_path):
+def test_cli_max_units_makes_infeasible_and_rule_file(tmp_path):
+    """Trees exist, but the constraints rule them all out: infeasible (not unreachable), the
+    constraint named when it alone does it."""
     r = run("solve", "--data", "demo", "--goal", "tomato salad", "--max-units", "3", "--format", "json")
-    assert json.loads(r.stdout)[0]["status"] == "unreachable"
+    (answer,) = json.loads(r.stdout)
+    assert answer["status"] == "infeasible" and answer["proven_by"] == "clingo"
+    assert answer["infeasible_by"] == ["--max-units"], answer
+    assert r.exit_code == 0
     f = tmp_path / "c.lp"
     f.write_text(':- use(U), motion(U,"slice").\n')
     r = run(
@@ -275,7 +280,10 @@ def test_cli_max_units_makes_unreachable_and_rule_file(tmp_path):
         "--format",
         "json",
     )
-    assert json.loads(r.stdout)[0]["status"] == "unreachable"
+    (answer,) = json.loads(r.stdout)
+    assert answer["status"] == "infeasible" and "constraints rule them all out" in answer["reason"]
+    text = run("solve", "--data", "demo", "--goal", "tomato salad", "--max-units", "3").stdout
+    assert "Status: infeasible (proven by clingo)" in text
 
 
 def test_cli_syntax_error_is_one_clean_line(tmp_path):

@@ -21,11 +21,10 @@ from foon2asp.asp import settings
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
-from foon2asp.batch import grounding
 from foon2asp.cli.main import main
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.synth import PRESETS, preset, shape
-from foon2asp.methods.runner import GoalRunner
+from foon2asp.methods import runner as grounding
 from foon2asp.tree.upper import cheapest_tree
 from foon2asp.tree.validate import validate
 from helpers import best, goal_part
@@ -180,19 +179,20 @@ def test_a_time_out_still_reports_a_valid_tree():
     tree = Session(p, AspOptions(time_limit=1, units=p.units_for([g]))).solve(g)
     assert tree.status in ("feasible", "optimal")
     assert validate(p, g, tree.units).valid
-    if tree.status == "feasible":
+    if tree.status == "feasible" and "fallback" in tree.extra:
         assert tree.extra["fallback"] == "cheapest-first" and "note" in tree.extra
-        assert len(tree.units) < 200  # branch and bound's first trees here have ~2,500 units
+        assert len(tree.units) < 200
 
 
 def test_no_fallback_under_user_constraints():
-    """A user program may rule out the cheapest-first tree: then no tree is made up."""
+    """A user program may rule out the cheapest-first tree: then no tree is made up (a tree
+    clingo found is its own, so it satisfies the program)."""
     syn = preset("hard-4k")
     p = syn.problem()
     g = p.foon.object_ids[syn.goals[8]]
     user = ("user", "% a user program (it could forbid anything)\n")
     tree = Session(p, AspOptions(programs=[user], time_limit=1, units=p.units_for([g]))).solve(g)
-    assert tree.status in ("unknown", "optimal")
+    assert tree.status in ("unknown", "optimal", "feasible")
     assert "fallback" not in tree.extra
 
 
@@ -258,7 +258,8 @@ def test_every_command_solves_with_the_default(command, tmp_path, recorded, monk
     assert res.exit_code in (0, 1), res.output
     assert recorded, "no optimising solver call"
     for call in recorded:
-        assert _strategy(call) == [f"--opt-strategy={settings.DEFAULT_OPT_STRATEGY}"], call
+        assert _strategy(call) == [f"--opt-strategy={settings.DEFAULT_OPT_STRATEGY}", "--configuration=trendy"], call
+        assert "--opt-usc-shrink=bin" in call
     if command[0] != "check":  # check's optimum takes no solver options
         recorded.clear()
         again = [a.replace("r.jsonl", "r2.jsonl") for a in args]
@@ -297,5 +298,3 @@ def test_batch_reports_the_grounding_it_chose(tmp_path, tiny):
     fixed = tiny.batch("all", None, grounding="per-goal")
     assert fixed.grounding == "per-goal" and fixed.grounding_reason == ""
     assert [r["units"] for r in fixed.records] == [r["units"] for r in report.records]
-
-

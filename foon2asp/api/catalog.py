@@ -6,11 +6,11 @@ from __future__ import annotations
 from foon2asp import methods as methods_mod
 from foon2asp.analysis.compare import DEFAULT_METHODS
 from foon2asp.asp.options import OBJECTIVES as _OBJECTIVES
-from foon2asp.batch.grounding import GROUNDING_CHOICES
 from foon2asp.foon.goals import OBJECT_FILTERS as _OBJECT_FILTERS
 from foon2asp.foon.motioncost import PRECISION_TEXT
 from foon2asp.foon.problem import UTENSIL_RULES as _UTENSIL_RULES
 from foon2asp.methods.registry import Method
+from foon2asp.methods.runner import GROUNDING_CHOICES
 
 #: objective names, for ``objective=`` (lexicographic lists of them)
 OBJECTIVES: tuple[str, ...] = tuple(_OBJECTIVES)

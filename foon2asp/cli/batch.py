@@ -44,7 +44,8 @@ _batch_settings = request_options(
         "--shortcuts/--no-shortcuts",
         default=True,
         show_default=True,
-        help="Answer without the solver when the answer is forced (underivable goal; no choice in the goal's part).",
+        help="Let preparation answer a goal it proves (one tree in the goal's part; the landmark bound met by"
+        " the bounds tree); --no-shortcuts: clingo answers every goal that can be made.",
     ),
 )
 

@@ -22,7 +22,7 @@ Exit codes: 0 every goal answered as asked (a tree, or proven unreachable);
 
 #: statuses that answer a goal: a proven tree, a proven k-th best tree, a proof that there is none,
 #: or a search method's tree (judged separately by "valid")
-ANSWERED = frozenset({"optimal", "ranked", "unreachable", "found", "satisfiable", "unsatisfiable"})
+ANSWERED = frozenset({"optimal", "ranked", "unreachable", "infeasible", "found", "satisfiable", "unsatisfiable"})
 
 
 #: statuses that come with a tree (whose "valid" counts)

@@ -100,7 +100,7 @@ def settle(
     A proven answer gets its own cost; a search baseline's answer nothing; a ``feasible``
     answer the bound meets on every level becomes ``optimal`` (``stats["proof"]``)."""
     shown = [n for n in names if n != HUMAN]
-    if not shown or tree.status in ("found", "not-found", "unreachable"):
+    if not shown or tree.status in ("found", "not-found", "unreachable", "infeasible"):
         return tree
     first = first_level(names)
     if tree.status in ("optimal", "ranked") and tree.has_tree:

@@ -10,7 +10,7 @@ from decimal import Decimal
 from foon2asp.foon.motioncost import MotionCosts, as_number
 from foon2asp.foon.problem import Problem
 
-STATUSES = ("optimal", "ranked", "feasible", "unreachable", "unknown", "found", "not-found")
+STATUSES = ("optimal", "ranked", "feasible", "unreachable", "infeasible", "unknown", "found", "not-found")
 
 
 @dataclass
@@ -18,8 +18,8 @@ class TaskTree:
     """The answer for one goal (or one meal: several goals at once) by one method.
 
     ``units`` are unit ids in executable order (empty when there is no tree).
-    ``status``: ``optimal`` | ``feasible`` | ``unreachable`` | ``unknown`` for
-    ASP methods, ``found`` | ``not-found`` for the search baselines.
+    ``status``: ``optimal`` | ``feasible`` | ``unreachable`` | ``infeasible`` (trees exist,
+    the user's constraints rule them all out) | ``unknown`` for ASP methods, ``found`` | ``not-found`` for the search baselines.
     For a meal ``goals`` holds every goal (``goal`` is the first); for a
     single goal ``goals`` is empty.  ``alternatives``: the further trees found
     with this one (the K best trees, all optimal trees), best first; they are
