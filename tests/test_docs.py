@@ -208,4 +208,3 @@ def test_every_block_names_its_language():
 def test_pages_are_found():
     assert (REPO / "README.md") in PAGES and len(PAGES) > 5
     assert len(RUN) > 50
-

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import ast
+import re
 import subprocess
 import sys
 import zipfile
@@ -35,14 +37,20 @@ def test_installed_package_finds_its_resources():
     assert (demo_dir() / "FOON.txt").is_file()
 
 
-def test_readme_layout_lists_every_module_and_none_is_too_long():
+def test_layout_page_lists_every_module_and_none_is_too_long():
+    """docs/layout.md names every module, and only those, each with its docstring's first line."""
     root = Path(__file__).resolve().parent.parent
     package = root / "foon2asp"
-    readme = (root / "README.md").read_text(encoding="utf-8")
-    layout = readme[readme.index("## Layout") :]
-    listed = {line.split()[0] for line in layout.splitlines() if line.startswith("  ") and line.split()}
-    modules = {p.relative_to(package).as_posix() for p in package.rglob("*.py")}
-    assert modules - listed == set(), "modules missing from the README's Layout"
-    assert {m for m in listed if m.endswith(".py")} - modules == set(), "the Layout lists modules that do not exist"
-    long = {m: n for m in modules if (n := len((package / m).read_text(encoding="utf-8").splitlines())) > 450}
+    page = (root / "docs" / "layout.md").read_text(encoding="utf-8")
+    listed = {
+        m: text.replace("\\|", "|") for m, text in re.findall(r"^\| `([\w/]+\.py)` \| (.*) \|$", page, re.MULTILINE)
+    }
+    modules = {p.relative_to(package).as_posix(): p for p in package.rglob("*.py")}
+    assert set(modules) - set(listed) == set(), "modules missing from docs/layout.md"
+    assert set(listed) - set(modules) == set(), "docs/layout.md lists modules that do not exist"
+    for name, path in modules.items():
+        doc = (ast.get_docstring(ast.parse(path.read_text(encoding="utf-8"))) or "").strip()
+        first = doc.splitlines()[0] if doc else ""
+        assert listed[name] == first, f"docs/layout.md: {name}: {listed[name]!r} is not its docstring's {first!r}"
+    long = {m: n for m, p in modules.items() if (n := len(p.read_text(encoding="utf-8").splitlines())) > 450}
     assert long == {}
