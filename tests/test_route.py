@@ -113,8 +113,7 @@ def test_constraints_keep_the_optimum_exact_and_name_an_infeasible_goal(seed):
         elif want is None:
             assert tree.status == "unreachable" and tree.proven_by == "fixpoint", (seed, goal)
         else:
-            assert run.route(goal) == "prepared"
-            assert tree.status == "optimal" and tree.proven_by == "clingo"
+            assert tree.status == "optimal" and tree.proven_by == PROVEN_BY[run.route(goal)]
             assert allowed(tree.units) and validate(problem, goal, list(tree.units)).valid
             assert score(problem, goal, tree.units, ("units",)) == want, (seed, goal)
             if allowed(plain(goal).units):  # the rule changes nothing here: the same optimum
@@ -135,3 +134,36 @@ def test_search_baselines_are_proven_by_nothing():
     run = GoalRunner("gbfs-h1", problem, AspOptions())
     goal = made_objects(problem)[0]
     assert run.route(goal) == "search" and run(goal).proven_by is None
+
+
+@pytest.mark.parametrize("seed", range(25))
+def test_a_rule_that_changes_nothing_keeps_every_route_and_tree(seed):
+    """A rule no tree breaks: each goal takes the route it takes without the rule, with the same
+    tree (a settled tree is checked against the rule, not sent to clingo)."""
+    problem = random_foon(seed)
+    plain = GoalRunner("asp", problem, AspOptions())
+    ruled = GoalRunner("asp", problem, AspOptions(programs=[("--rule #1", ':- use(U), motion(U,"teleport").\n')]))
+    for goal in made_objects(problem):
+        assert ruled.route(goal) == plain.route(goal), (seed, goal)
+        a, b = plain(goal), ruled(goal)
+        assert (a.status, a.extra.get("asp_cost")) == (b.status, b.extra.get("asp_cost")), (seed, goal)
+        if plain.route(goal) != "prepared":
+            assert sorted(a.units) == sorted(b.units), (seed, goal)
+
+
+def test_a_settled_tree_that_breaks_a_rule_goes_to_clingo():
+    """The bounds tree (or the only tree) of a goal breaks the rule: clingo decides the goal."""
+    for seed in range(25):
+        problem = random_foon(seed)
+        plain = GoalRunner("asp", problem, AspOptions())
+        for goal in made_objects(problem):
+            if plain.route(goal) not in ("bounds", "only-tree"):
+                continue
+            unit = plain(goal).units[0]
+            rule = f":- use({unit}).\n"
+            ruled = GoalRunner("asp", problem, AspOptions(programs=[("--rule #1", rule)]))
+            assert ruled.route(goal) == "prepared", (seed, goal)
+            tree = ruled(goal)
+            assert unit not in tree.units and tree.proven_by == "clingo", (seed, goal)
+            return
+    raise AssertionError("no settled goal found")

@@ -30,9 +30,11 @@ route          when                                                             
 Preparation settles a goal only by polynomial reasoning (the first four rows);
 every search for an optimum is clingo's.  User programs that only remove trees
 (:func:`foon2asp.asp.constraints.only_constraints`) keep what preparation
-proves of reachability, the relevant part and the lower bounds, so they take
-the ``prepared`` route too, without the pruning, dominance and the bounds tree
-as an answer (it may break them).  Trees exist but the user's programs rule them
+proves of reachability, the relevant part and the lower bounds: a settled tree
+(the only tree, or the bounds tree) is the answer when it satisfies them
+(:class:`foon2asp.asp.check.ConstraintCheck`), else the goal takes the
+``prepared`` route without the pruning and dominance (their proofs assume no
+constraints) and with the bounds tree as a hint only.  Trees exist but the user's programs rule them
 all out: ``infeasible``, naming the program when one alone does it.
 
 *The same tree on every path*: the prepared part of a goal depends on the input
@@ -51,6 +53,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import replace
 from functools import cached_property
 
+from foon2asp.asp.check import ConstraintCheck, checkable
 from foon2asp.asp.constraints import only_constraints
 from foon2asp.asp.dominance import Dominators
 from foon2asp.asp.dominance import applies as dominance_applies
@@ -263,6 +266,9 @@ class GoalRunner:
         self._settle = shortcuts
         #: the user's programs only remove trees (the bounds tree is a hint only, nothing is pruned)
         self._constrained = bool(self._effective.programs)
+        #: a settled tree is the answer under the user's programs when it satisfies them (checked)
+        self._checkable = self._constrained and checkable(self._effective.programs)
+        self._check: ConstraintCheck | None = None
         self._bounded = self._preparable and bounds_supports(self._ranked)
         if self.kind != "asp":
             assert method.factory is not None, f"search method {name!r} has no factory"
@@ -281,12 +287,23 @@ class GoalRunner:
         units, _, choice = self.parts.relevant(goal)
         if self._allowed is not None and not self._allowed.issuperset(units):
             return "clingo"  # the caller's units cut into the part: clingo decides on them
-        if self._settle and not choice and not self._constrained:
+        if self._settle and not choice and self._allows(units):
             return "only-tree"
-        if self._settle and self._bounded and not self._constrained:
-            if self.parts.bounds_for(self._ranked, units).proven(goal):
+        if self._settle and self._bounded and (not self._constrained or self._checkable):
+            bounds = self.parts.bounds_for(self._ranked, units)
+            if bounds.proven(goal) and self._allows(bounds.tree(goal) or ()):
                 return "bounds"
         return "prepared"
+
+    def _allows(self, tree: Iterable[int]) -> bool:
+        """Does ``tree`` satisfy the user's programs (no programs: yes; unchecked: no)?"""
+        if not self._constrained:
+            return True
+        if not self._checkable:
+            return False
+        if self._check is None:
+            self._check = ConstraintCheck(self.problem, self._effective.programs, self.options.units)
+        return self._check.allows(tree)
 
     def __call__(self, goal: Goals) -> TaskTree:
         """The tree for ``goal``: an object id, or a tuple of them (a meal, one tree for all)."""

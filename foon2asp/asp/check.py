@@ -1,0 +1,58 @@
+"""Does a given tree satisfy the user's constraints?  One grounding, one decision per tree.
+
+Preparation may settle a goal with a tree it knows is optimal (the only tree of the
+goal's part, or the bounds tree whose cost meets the landmark bound).  User programs
+that only remove trees (:func:`foon2asp.asp.constraints.only_constraints`) leave such
+a tree optimal whenever it satisfies them.  :class:`ConstraintCheck` grounds the
+programs once over the facts of the whole problem with ``use/1`` as externals and
+decides each tree by one solve with the tree's externals on: no search for an optimum, only the
+check that the tree's own atoms break no constraint.  Programs that read predicates
+the encodings derive (``had/1``, ``fire/1``, ...) cannot be checked this way
+(:func:`checkable`): their goals go to clingo.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+
+import clingo
+
+from foon2asp.asp.constraints import FACTS, predicates
+from foon2asp.asp.control import Control
+from foon2asp.asp.facts import facts
+from foon2asp.foon.problem import Problem
+
+
+def checkable(programs: Iterable[tuple[str, str]]) -> bool:
+    """Do the ``programs`` read only the facts, ``use/1`` and what they define themselves?"""
+    allowed = set(FACTS) | {("use", 1)}
+    for _, text in programs:
+        try:
+            found = predicates(text)
+        except RuntimeError:
+            return False
+        if not set(found.used) <= allowed | found.defined:
+            return False
+    return True
+
+
+class ConstraintCheck:
+    """The user's ``programs`` grounded once over ``problem``'s units (all of them, or
+    ``units``), asked tree by tree."""
+
+    def __init__(self, problem: Problem, programs: Sequence[tuple[str, str]], units: Iterable[int] | None = None):
+        self.control = Control(["--opt-mode=ignore"])
+        ids = sorted(set(units)) if units is not None else None
+        parts = [("facts", facts(problem, units=ids)), ("trees", "#external use(U) : unit(U).\n")]
+        self.control.add_all([*parts, *programs], user=[name for name, _ in programs])
+        self.control.ground()
+
+    def allows(self, tree: Iterable[int]) -> bool:
+        """Does the tree whose units are ``tree`` satisfy every program?"""
+        atoms = [clingo.Function("use", [clingo.Number(u)]) for u in tree]
+        atoms = [a for a in atoms if self.control.has_atom(a)]
+        self.control.assign(dict.fromkeys(atoms, True))
+        try:
+            return self.control.solve().satisfiable is True
+        finally:
+            self.control.assign(dict.fromkeys(atoms, False))
