@@ -167,3 +167,20 @@ def test_a_settled_tree_that_breaks_a_rule_goes_to_clingo():
             assert unit not in tree.units and tree.proven_by == "clingo", (seed, goal)
             return
     raise AssertionError("no settled goal found")
+
+
+def test_compare_with_constraints_draws_no_conclusion_from_the_baselines(shared_foon_dir):
+    """The asp tree obeys --forbid-motion, the baselines do not: no 'smaller than the optimum'
+    warning from an IDS tree that uses the motion, and the summary says why."""
+    from click.testing import CliRunner
+
+    from foon2asp.cli.main import main
+
+    res = CliRunner().invoke(
+        main, ["compare", "--data", str(shared_foon_dir), "--goal", "macaroni", "--forbid-motion", "heat"]
+    )
+    assert res.exit_code in (0, 1), res.output
+    assert "smaller than the asp optimum" not in res.output
+    assert "asp obeys the constraints (--forbid-motion heat); the other methods are unconstrained" in res.output
+    plain = CliRunner().invoke(main, ["compare", "--data", str(shared_foon_dir), "--goal", "macaroni"])
+    assert "asp optimum <= every valid tree: yes" in plain.output

@@ -332,6 +332,8 @@ class GoalRunner:
             self._infeasible(tree)
         if tree.status in PROVEN:
             tree.proven_by = PROVEN_BY[how]
+        if self._effective.programs:  # the answer obeys these; a baseline's tree does not
+            tree.extra["constraints"] = [name for name, _ in self._effective.programs]
         return tree
 
     def _fixpoint(self, goal: int, t0: float) -> TaskTree:
