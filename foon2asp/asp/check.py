@@ -6,7 +6,8 @@ that only remove trees (:func:`foon2asp.asp.constraints.only_constraints`) leave
 a tree optimal whenever it satisfies them.  :class:`ConstraintCheck` grounds the
 programs once over the facts of the whole problem with ``use/1`` as externals and
 decides each tree by one solve with the tree's externals on: no search for an optimum, only the
-check that the tree's own atoms break no constraint.  Programs that read predicates
+check that the tree's own atoms break no constraint; when grounding leaves no
+constraint at all (a rule that nothing in this FOON matches), every tree passes.  Programs that read predicates
 the encodings derive (``had/1``, ``fire/1``, ...) cannot be checked this way
 (:func:`checkable`): their goals go to clingo.
 """
@@ -36,6 +37,19 @@ def checkable(programs: Iterable[tuple[str, str]]) -> bool:
     return True
 
 
+class _Constraints(clingo.Observer):
+    """Sees whether grounding left any integrity constraint (a rule with an empty head)."""
+
+    def __init__(self) -> None:
+        self.found = False
+
+    def rule(self, choice: bool, head: Sequence[int], body: Sequence[int]) -> None:
+        self.found = self.found or (not choice and not head)
+
+    def weight_rule(self, choice: bool, head: Sequence[int], lower_bound: int, body: Sequence[tuple[int, int]]) -> None:
+        self.found = self.found or (not choice and not head)
+
+
 class ConstraintCheck:
     """The user's ``programs`` grounded once over ``problem``'s units (all of them, or
     ``units``), asked tree by tree."""
@@ -45,10 +59,16 @@ class ConstraintCheck:
         ids = sorted(set(units)) if units is not None else None
         parts = [("facts", facts(problem, units=ids)), ("trees", "#external use(U) : unit(U).\n")]
         self.control.add_all([*parts, *programs], user=[name for name, _ in programs])
+        seen = _Constraints()
+        self.control.ctl.register_observer(seen)
         self.control.ground()
+        #: grounding left no constraint: every tree satisfies the programs
+        self.vacuous = not seen.found
 
     def allows(self, tree: Iterable[int]) -> bool:
         """Does the tree whose units are ``tree`` satisfy every program?"""
+        if self.vacuous:
+            return True
         atoms = [clingo.Function("use", [clingo.Number(u)]) for u in tree]
         atoms = [a for a in atoms if self.control.has_atom(a)]
         self.control.assign(dict.fromkeys(atoms, True))

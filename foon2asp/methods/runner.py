@@ -78,6 +78,9 @@ PART_BOUNDS_MIN = 20_000
 #: ... when the part is less than 1/PART_BOUNDS_SHARE of them
 PART_BOUNDS_SHARE = 4
 
+#: how many goals' relevant parts Parts keeps
+RELEVANT_KEPT = 64
+
 #: objectives whose cost is a sum of non-negative weights of the used units
 MONOTONE = frozenset(UNIT_WEIGHTS)
 
@@ -109,6 +112,8 @@ class Parts:
         self._part_bounds_spent: dict[tuple[str, ...], int] = {}
         self._weights: dict[tuple[str, ...], list[int]] = {}
         self._dominators: dict[tuple[str, ...], Dominators] = {}
+        #: the relevant parts of the goals asked lately (a goal's route and answer both need it)
+        self._relevant: dict[tuple[int, ...], tuple[list[int], set[int], bool]] = {}
 
     def dominators(self, ranked_objectives: tuple[str, ...]) -> Dominators:
         """The dominated units' dominators (foon2asp.asp.dominance) for these objectives, kept."""
@@ -148,8 +153,14 @@ class Parts:
         goal and the required inputs reached, ``choice`` whether some object
         has more than one candidate producer.
         """
-        units, seen, choice = walk_back(meal_of(goal), self.problem.kitchen, self.producers, self.problem.required)
-        return sorted(units), seen, choice
+        key = meal_of(goal)
+        if key not in self._relevant:
+            if len(self._relevant) >= RELEVANT_KEPT:
+                self._relevant.clear()
+            units, seen, choice = walk_back(key, self.problem.kitchen, self.producers, self.problem.required)
+            self._relevant[key] = (sorted(units), seen, choice)
+        units, seen, choice = self._relevant[key]
+        return list(units), set(seen), choice
 
 
 #: --grounding: "auto" picks whole or per-goal with :func:`choose_grounding`
@@ -269,6 +280,8 @@ class GoalRunner:
         #: a settled tree is the answer under the user's programs when it satisfies them (checked)
         self._checkable = self._constrained and checkable(self._effective.programs)
         self._check: ConstraintCheck | None = None
+        #: the same method without the user's programs (their optimum, checked against them)
+        self._free: GoalRunner | None = None
         self._bounded = self._preparable and bounds_supports(self._ranked)
         if self.kind != "asp":
             assert method.factory is not None, f"search method {name!r} has no factory"
@@ -389,7 +402,16 @@ class GoalRunner:
         )
 
     def _prepared(self, goal: int, t0: float) -> TaskTree:
-        """clingo on the goal's prepared part."""
+        """clingo on the goal's prepared part.  Under user programs that a tree can be checked
+        against, the optimum without them first: when it satisfies them it is their optimum too
+        (they only remove trees), else clingo searches again with them."""
+        if self._checkable:
+            if self._free is None:
+                free = replace(self._effective, programs=[])
+                self._free = GoalRunner(self.name, self.problem, free, self.grounding, self._settle, self.parts)
+            tree = self._free._prepared(goal, t0)
+            if tree.status == "optimal" and self._allows(tree.units):
+                return tree
         prep = self.preparation(goal)
         session = Session(self.problem, self._effective, prepared=prep)
         tree = session.solve(goal, floor=prep.floor)
