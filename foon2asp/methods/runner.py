@@ -157,10 +157,10 @@ class Parts:
         if key not in self._relevant:
             if len(self._relevant) >= RELEVANT_KEPT:
                 self._relevant.clear()
-            units, seen, choice = walk_back(key, self.problem.kitchen, self.producers, self.problem.required)
-            self._relevant[key] = (sorted(units), seen, choice)
-        units, seen, choice = self._relevant[key]
-        return list(units), set(seen), choice
+            found, reached, choice = walk_back(key, self.problem.kitchen, self.producers, self.problem.required)
+            self._relevant[key] = (sorted(found), reached, choice)
+        units, objects, choice = self._relevant[key]
+        return list(units), set(objects), choice
 
 
 #: --grounding: "auto" picks whole or per-goal with :func:`choose_grounding`
