@@ -174,6 +174,8 @@ class Control:
 
     def __init__(self, args: Sequence[str] = (), message_limit: int = 20, theory=None) -> None:
         self.messages: list[str] = []
+        #: keep the choices, conflicts, models and solve time of each solve (:meth:`stats`)
+        self.statistics = True
         self.user_programs: list[tuple[str, str]] = []
         self.theory = theory
         try:
@@ -289,7 +291,7 @@ class Control:
             with self.ctl.solve(
                 on_model=on_model,
                 on_unsat=on_unsat,
-                on_statistics=self._record_stats,
+                on_statistics=self._record_stats if self.statistics else None,
                 async_=True,
                 assumptions=list(assumptions),
             ) as handle:

@@ -90,6 +90,7 @@ def facts(
     units: Iterable[int] | None = None,
     leave_out: Iterable[str] = (),
     whole_kitchen: bool = True,
+    declare: bool = True,
 ) -> str:
     """The facts as ASP text.
 
@@ -98,7 +99,8 @@ def facts(
     ``leave_out`` names predicates of :data:`OPTIONAL` not to write: the tree
     encodings read none of the strings, ``input/2`` or ``output/2``, and a
     solver session grounds faster without facts nobody reads.  ``whole_kitchen=False``
-    writes only the kitchen items among the units' objects (a goal's part needs no other).
+    writes only the kitchen items among the units' objects (a goal's part needs no other);
+    ``declare=False`` leaves out ``unit/1`` and ``object/1`` (a prepared part reads neither).
     """
     leave_out = frozenset(leave_out)
     unknown = leave_out - set(OPTIONAL)
@@ -107,7 +109,7 @@ def facts(
     unit_ids = range(len(problem.units)) if units is None else sorted(set(units))
     lines = ["% units"]
     for u in unit_ids:
-        lines += unit_facts(problem, u, leave_out)
+        lines += unit_facts(problem, u, leave_out)[0 if declare else 1 :]
     if whole_kitchen:
         objects = fact_objects(problem, unit_ids)
     else:
@@ -118,7 +120,7 @@ def facts(
         objects.add(goal)
     lines.append("% objects")
     if leave_out.issuperset(("label", "state", "ingredient", "container")):
-        lines += [f"object({o})." for o in sorted(objects)]
+        lines += [f"object({o})." for o in sorted(objects)] if declare else []
     else:
         for o in sorted(objects):
             lines += object_facts(problem, o, leave_out)

@@ -132,8 +132,11 @@ def human_order_facts(problem: Problem, units: Iterable[int] | None = None) -> s
     return "".join(f"human_unit({p},{u}).\n" for p, (_, u) in enumerate(order, 1))
 
 
-def extra_parts(problem: Problem, options, units: Iterable[int] | None = None) -> list[tuple[str, str]]:
-    """Facts and directives the encodings of ``options`` read, as (name, text) programs."""
+def extra_parts(
+    problem: Problem, options, units: Iterable[int] | None = None, dominated: bool = True
+) -> list[tuple[str, str]]:
+    """Facts and directives the encodings of ``options`` read, as (name, text) programs
+    (``dominated=False``: not the dominance facts, for units without dominated ones)."""
     parts = [("input nodes", input_node_facts(problem, units))]
     if "cost" in ranked(options):
         parts.append(("motion costs", motion_cost_facts(problem, options, units)))
@@ -143,7 +146,7 @@ def extra_parts(problem: Problem, options, units: Iterable[int] | None = None) -
         parts.append(("human steps", f"human_limit({int(options.human_steps)}).\n"))
         if "success" in ranked(options) and options.human_steps > 0:
             parts.append(("human order", human_order_facts(problem, units)))
-    if dominance.applies(options, ranked(options)):
+    if dominated and dominance.applies(options, ranked(options)):
         ids = range(len(problem.units)) if units is None else units
         parts.append(("dominated units", dominance.dominance_facts(problem, ids, ranked(options))))
     if substitutes.applies(options):

@@ -92,6 +92,8 @@ class Session:
             # search climbs from below, and a first model it is steered to only slows it down
             args.append("--heuristic=Domain")
         self.control = Control(args)
+        # a prepared part is solved once: its statistics would cost more than its search
+        self.control.statistics = prepared is None
         self.ctl = self.control.ctl
         if units is None:
             units = self.options.units
@@ -123,7 +125,8 @@ class Session:
             names = ["tree"] + names
         rules = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(names)]
         rules.append(("objective", _objective_facts(objectives.ranked(options))))
-        rules += objectives.extra_parts(self.problem, options, units)
+        # the candidates of a prepared part hold no dominated unit
+        rules += objectives.extra_parts(self.problem, options, units, dominated=self.prepared is None)
         if self.goal is None:
             rules.append(("goal", "#external goal(O) : object(O).\n"))
         else:
@@ -141,7 +144,9 @@ class Session:
         rules = [(name, text) for name, text in rules if name != "input nodes" or "input_nodes" in read]
         leave_out = [p for p in OPTIONAL if p not in read]
         whole = self.prepared is None
-        return [("facts", facts(self.problem, units=units, leave_out=leave_out, whole_kitchen=whole))] + rules
+        declare = whole or bool(options.programs)  # prepared.lp reads neither unit/1 nor object/1
+        text = facts(self.problem, units=units, leave_out=leave_out, whole_kitchen=whole, declare=declare)
+        return [("facts", text)] + rules
 
     def _goal_atoms(self) -> set[int]:
         """The objects a solve may switch on as goals."""
