@@ -10,7 +10,7 @@ agents, durations, capabilities and resources are one :class:`~foon2asp.schedule
 from __future__ import annotations
 
 import json
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Unpack
@@ -156,11 +156,14 @@ def schedule_raw(
     joint: bool = False,
     encoding: str = DEFAULT_ENCODING,
     time_limit: float | None = None,
+    progress: Callable[[dict], None] | None = None,
 ) -> Schedule:
     """:func:`foon2asp.schedule.schedule` of one tree, as a :class:`Schedule`; with substitutes,
-    on the problem the tree is judged on (what a substitute stands in for is in the kitchen)."""
+    on the problem the tree is judged on (what a substitute stands in for is in the kitchen).
+    ``progress``: as :func:`foon2asp.schedule.schedule` takes it."""
     problem = kb.judging_problem(solver, tree.meal)
-    return Schedule(kb, schedule_tree(problem, tree, spec, solver, joint, time_limit, encoding), spec)
+    found = schedule_tree(problem, tree, spec, solver, joint, time_limit, encoding, progress=progress)
+    return Schedule(kb, found, spec)
 
 
 class Scheduling:
@@ -212,12 +215,23 @@ class Scheduling:
         *,
         joint: bool = False,
         encoding: str = DEFAULT_ENCODING,
+        progress: Callable[[dict], None] | None = None,
     ) -> Iterator[Schedule]:
         """:meth:`schedule` goal after goal (the path ``foon2asp schedule`` takes); an element
-        that is a tuple of ids is a meal: one tree, and its schedule, for all of them."""
+        that is a tuple of ids is a meal: one tree, and its schedule, for all of them.
+        ``progress``: called as each goal's schedules improve, with what
+        :func:`foon2asp.schedule.schedule` reports and ``goal``, the goal's label."""
         solver = options if isinstance(options, AspOptions) else self.options(options)
+        chosen = spec or ScheduleSpec()
         for tree in self.solve_iter(goal_ids, "asp", solver):
-            yield tree.schedule(spec, joint=joint, encoding=encoding, options=solver)
+            report = None
+            if progress is not None:
+                label = " + ".join(g.label for g in tree.goals)
+
+                def report(info: dict, label: str = label) -> None:
+                    progress({**info, "goal": label})
+
+            yield schedule_raw(tree.kb, tree.raw, chosen, solver, joint, encoding, progress=report)
 
     def check_schedules(
         self, path: str | Path, spec: ScheduleSpec | None = None, options: Options | None = None

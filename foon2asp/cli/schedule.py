@@ -3,8 +3,12 @@
 from __future__ import annotations
 
 import sys
+import threading
+import time
+from typing import Any
 
 import click
+from tqdm import tqdm
 
 from foon2asp import api, report
 from foon2asp.cli.main import guarded, main
@@ -20,6 +24,8 @@ from foon2asp.cli.options import (
 from foon2asp.cli.output import progress_bar, warn_kb
 from foon2asp.cli.schedule_options import schedule_options
 from foon2asp.report import draw
+from foon2asp.schedule.result import seconds_text
+from foon2asp.schedule.solve import DEFAULT_TIME_LIMIT
 
 #: formats of the schedules themselves; the others are pictures of them (report kind ``schedule``)
 OWN = ("text", "json")
@@ -31,6 +37,42 @@ Exit codes: 0 every goal answered (makespan proven, or unschedulable or unreacha
 1 some makespan is not proven (time limit); 2 bad input or usage; 130 interrupted."""
 
 
+class ScheduleStatus:
+    """A status line on stderr while a goal is scheduled: the best makespan and its lower bound,
+    then, the makespan proven, the human units and the fewest a person must do; at most five
+    times a second.  Given to the library as ``progress=``."""
+
+    def __init__(self) -> None:
+        self._bar: Any = None
+        self._last = 0.0
+        self._lock = threading.Lock()
+
+    def __call__(self, info: dict) -> None:
+        now = time.monotonic()
+        with self._lock:
+            if now - self._last < 0.2:
+                return
+            self._last = now
+            if self._bar is None:
+                self._bar = tqdm(total=0, bar_format="{desc}", file=sys.stderr, leave=False)
+            self._bar.set_description_str(status_text(info))
+
+    def close(self) -> None:
+        with self._lock:
+            if self._bar is not None:
+                self._bar.close()
+                self._bar = None
+
+
+def status_text(info: dict) -> str:
+    """``schedule greek salad: makespan 65 s, lower bound 62.5 s`` (the makespan phase), or
+    ``...: makespan 40 s (proven), human units 15, at least 11`` (the human units)."""
+    head = f"schedule {info.get('goal', '')}: makespan {seconds_text(info['makespan'])} s"
+    if info.get("phase") == "human":
+        return f"{head} (proven), human units {info['human']}, at least {info['human_lower']}"
+    return f"{head}, lower bound {seconds_text(info['lower'])} s"
+
+
 @main.command(epilog=EXIT)
 @data_options
 @goal_options
@@ -39,7 +81,11 @@ Exit codes: 0 every goal answered (makespan proven, or unschedulable or unreacha
     "The tree's objective(s), comma-separated (units, success, inputs, depth, cost): the tree scheduled,"
     " or with --joint the tie-breaker after makespan and human units."
 )
-@time_limit_option("Seconds per solve (tree, schedule); the best schedule so far is reported as 'feasible'.")
+@time_limit_option(
+    "Seconds per solve (tree, schedule; with --joint also the search over trees); a schedule cut short is"
+    " 'feasible': the best found, with its lower bound. Without it the tree has no limit and each schedule"
+    f" solve {DEFAULT_TIME_LIMIT:g} s."
+)
 @schedule_options
 @click.option(
     "--joint",
@@ -85,10 +131,13 @@ def schedule(data, goal, goals, spec, joint, fmt, output, encoding, together, pr
     if fmt not in OWN and fmt != "dot":
         draw.require_dot()  # before solving, not after
     jobs: list = [tuple(dict.fromkeys(goal_ids))] if together else goal_ids
-    found = kb.schedule_iter(jobs, spec, solver, joint=joint, encoding=encoding)
+    status = ScheduleStatus() if (sys.stderr.isatty() if progress is None else progress) else None
+    found = kb.schedule_iter(jobs, spec, solver, joint=joint, encoding=encoding, progress=status)
     done: list = []
     stream = fmt == "text" and output is None
     for s in progress_bar(found, len(jobs), progress, "schedule"):
+        if status is not None:
+            status.close()
         done.append(s)
         warn_kb(kb)
         if stream:

@@ -5,13 +5,20 @@
   kinds that can do it; a unit waits for the first maker of each object it needs);
 * work: the total minimum work over the number of agents, rounded up;
 * energy: energetic reasoning over time windows (:func:`energy_over`), at least both, also
-  over the pools of units that share fewer servers (:func:`pools`).
+  over the pools of units that share fewer servers (:func:`pools`) and, with several kinds
+  of agents, with each unit on one kind at that kind's duration (:func:`kind_energy`: a
+  fast person and slow arms are not three agents of the person's speed).
 
-The baseline is list scheduling, longest remaining chain first (:func:`list_schedule`).
+The fewest units a person must do in a schedule of a given makespan: :func:`human_lower`.
+
+The baseline is list scheduling, longest remaining chain first (:func:`list_schedule`);
+the schedule a solver starts from is the best of it, of list schedules under perturbed
+priorities and of schedules that put each unit where it ends first (:func:`known_schedule`).
 """
 
 from __future__ import annotations
 
+import bisect
 import itertools
 import math
 import random
@@ -19,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from foon2asp.schedule.model import Entry, Instance, divisor, earliest, makespan, tails
+from foon2asp.schedule.model import Entry, Instance, divisor, earliest, human_units, makespan, tails
 from foon2asp.schedule.spec import HUMAN
 
 
@@ -154,7 +161,8 @@ def _clear(gaps: list[tuple[np.ndarray, np.ndarray]], floor: int, step: int) -> 
 def bounds(inst: Instance) -> Bounds:
     """The chain, work and energy bounds (each unit at its minimum duration over the kinds that
     can do it); the energy bound also counts each pool of units sharing fewer servers
-    (:func:`pools`: the units only some kinds can do, the units using a resource)."""
+    (:func:`pools`: the units only some kinds can do, the units using a resource) and, with
+    several kinds, each unit at the duration of the kind doing it (:func:`kind_energy`)."""
     start = earliest(inst)
     if len(start) < len(inst.units):
         raise ValueError("some unit never becomes ready")
@@ -167,7 +175,206 @@ def bounds(inst: Instance) -> Bounds:
     for units, pd, servers in pools(inst):
         gaps.append(_gaps([[u] for u in units], pd, start, tail, servers))
         floor = max(floor, -(-sum(pd.values()) // servers))
-    return Bounds(chain, work, _clear(gaps, floor, divisor(inst)))
+    step = divisor(inst)
+    energy = _clear(gaps, floor, step)
+    return Bounds(chain, work, kind_energy(inst, start, tail, energy, step))
+
+
+# ---------------------------------------------------------------- kinds of agents
+
+
+def _classes(inst: Instance) -> list[tuple[int, dict[int, int], int, dict[int, int]]]:
+    """Two classes of agents per test of :func:`kind_energy`: one kind, and the other kinds
+    taken as one (their agents together, each unit at its least duration among them);
+    ``(agents, durations, agents, durations)``, a unit missing from a class's durations when
+    no agent of it can do the unit.  None with a single kind (its agents are alike)."""
+    kinds = sorted(inst.kinds)
+    if len(kinds) < 2:
+        return []
+    out = []
+    for kind in kinds if len(kinds) > 2 else kinds[:1]:
+        rest = [k for k in kinds if k != kind]
+        mine = {u: t[kind] for u, t in inst.durations.items() if kind in t}
+        theirs = {u: min(t[k] for k in rest if k in t) for u, t in inst.durations.items() if any(k in t for k in rest)}
+        out.append((inst.kinds[kind], mine, sum(inst.kinds[k] for k in rest), theirs))
+    return out
+
+
+def _mandatory(length, b, a, r, e, p):
+    """The least part of each unit (window ``[r, e]``, duration ``p``) inside ``[a, b]``."""
+    return np.maximum(0, np.minimum(np.minimum(length, p), np.minimum(r + p - a, b - (e - p))))
+
+
+def _kinds_fit(inst: Instance, start: dict[int, int], tail: dict[int, int], horizon: int) -> bool:
+    """Can the units end by ``horizon`` as far as energetic reasoning with kinds tells?  Each
+    unit runs within ``[start, horizon - tail + its least duration]``; on an agent of a class
+    (:func:`_classes`) it takes that class's duration, so within a window ``[a, b]`` it runs
+    at least its mandatory part for that duration.  The window fits only if the parts can be
+    split between the two classes, each within its agents times ``b - a``: the least work
+    left to the second class is a fractional knapsack (units on the first class by the work
+    they take off the second per work they put on the first)."""
+    units = [u for u in inst.units if inst.durations[u]]
+    if not units:
+        return True
+    r = np.array([start[u] for u in units], dtype=np.int64)
+    e = np.array([horizon - tail[u] + inst.min_duration(u) for u in units], dtype=np.int64)
+    if np.any(e - r < np.array([inst.min_duration(u) for u in units])):
+        return False
+    for n_x, dur_x, n_y, dur_y in _classes(inst):
+        big = np.iinfo(np.int64).max // 4
+        px = np.array([dur_x.get(u, big) for u in units], dtype=np.int64)
+        py = np.array([dur_y.get(u, big) for u in units], dtype=np.int64)
+        px = np.where(px > e - r, big, px)  # does not fit its window on that class
+        py = np.where(py > e - r, big, py)
+        if np.any((px == big) & (py == big)):
+            return False
+        on_x, on_y = px < big, py < big
+        # windows from an earliest start or a latest start to a latest end or an earliest end
+        lefts = np.unique(np.concatenate([r, (e - px)[on_x], (e - py)[on_y]]))
+        rights = np.unique(np.concatenate([e, (r + px)[on_x], (r + py)[on_y]]))
+        a_all, b_all = np.meshgrid(lefts, rights, indexing="ij")
+        keep = b_all > a_all
+        a, b = a_all[keep][:, None], b_all[keep][:, None]  # one row per window
+        length = b - a
+        ex = _mandatory(length, b, a, r, e, px)
+        ey = _mandatory(length, b, a, r, e, py)
+        only_x, only_y, both = on_x & ~on_y, on_y & ~on_x, on_x & on_y
+        cap_x = n_x * length[:, 0] - (ex * only_x).sum(axis=1)
+        cap_y = n_y * length[:, 0] - (ey * only_y).sum(axis=1)
+        if np.any((cap_x < 0) | (cap_y < 0)):
+            return False
+        if not both.any():
+            continue
+        wx, wy = ex[:, both].astype(float), ey[:, both].astype(float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(wx > 0, wy / np.where(wx > 0, wx, 1), np.inf)
+        order = np.argsort(-ratio, axis=1, kind="stable")
+        wx = np.take_along_axis(wx, order, axis=1)
+        wy = np.take_along_axis(wy, order, axis=1)
+        before = np.cumsum(wx, axis=1) - wx
+        with np.errstate(divide="ignore", invalid="ignore"):
+            taken = np.where(wx > 0, np.clip((cap_x[:, None] - before) / np.where(wx > 0, wx, 1), 0, 1), 1.0)
+        left = ((1 - taken) * wy).sum(axis=1)
+        if np.any(left > cap_y + 1e-6):
+            return False
+    return True
+
+
+def kind_energy(inst: Instance, start: dict[int, int], tail: dict[int, int], floor: int, step: int) -> int:
+    """The least makespan at least ``floor``, a multiple of ``step``, that :func:`_kinds_fit`
+    allows (``floor`` itself with a single kind).  Allowed makespans are upward closed (a
+    later end only widens the windows), so the search doubles, then halves."""
+    low = -(-floor // step) * step
+    if len(inst.kinds) < 2 or _kinds_fit(inst, start, tail, low):
+        return low
+    jump = step
+    while not _kinds_fit(inst, start, tail, low + jump):
+        low, jump = low + jump, 2 * jump
+    high = low + jump  # low fails, high fits
+    while high - low > step:
+        mid = low + (high - low) // step // 2 * step
+        if _kinds_fit(inst, start, tail, mid):
+            high = mid
+        else:
+            low = mid
+    return high
+
+
+def human_lower(inst: Instance, horizon: int) -> int:
+    """The fewest units a person (an agent of kind ``human``) does in every schedule of
+    makespan at most ``horizon`` (0 without a person): the larger of two counts.
+
+    * Capacity: each unit runs within ``[start, horizon - tail + its least duration]``; the
+      units whose windows lie within ``[a, b]`` run there, the other agents doing at most as
+      many of them as their shortest durations fit in their number times ``b - a`` (units
+      only a person can do, or too long for the window on the others, fit none); the rest
+      are the person's.  Windows that do not overlap add up (the best set of them by
+      weighted interval scheduling).
+    * Chains (:func:`_chain_human`): the fewest units a person must do for every chain of
+      units to end in time, each at the duration of the kind doing it."""
+    if HUMAN not in inst.kinds:
+        return 0
+    return max(_capacity_human(inst, horizon), _chain_human(inst, horizon))
+
+
+def _chain_human(inst: Instance, horizon: int) -> int:
+    """The fewest units done by a person such that each unit, at the duration of the kind
+    doing it, starts no earlier than its earliest start, ends within its window and before
+    the unit after it starts: exact by recursion over a forest of the precedence (each unit
+    keeps the one unit after it with the longest tail; leaving out the others only relaxes),
+    over the latest end each unit may have.  Every unit, if no assignment fits."""
+    start, tail = earliest(inst), tails(inst)
+    preds = inst.preds
+    after: dict[int, list[int]] = {u: [] for u in inst.units}
+    for v in inst.units:
+        for p in preds[v]:
+            after[p].append(v)
+    before: dict[int, list[int]] = {u: [] for u in inst.units}
+    roots = []
+    for u in inst.units:
+        if after[u]:
+            before[max(after[u], key=lambda v: (tail[v], v))].append(u)
+        else:
+            roots.append(u)
+    latest = {u: horizon - tail[u] + inst.min_duration(u) for u in inst.units}
+    memo: dict[tuple[int, int], float] = {}
+
+    def fewest(v: int, end: int) -> float:
+        end = min(end, latest[v])
+        if (v, end) not in memo:
+            best = math.inf
+            for kind, d in inst.durations[v].items():
+                if v not in start or end - d < start[v]:
+                    continue
+                count: float = 1 if kind == HUMAN else 0
+                for p in before[v]:
+                    count += fewest(p, end - d)
+                    if count >= best:
+                        break
+                best = min(best, count)
+            memo[(v, end)] = best
+        return memo[(v, end)]
+
+    total = sum(fewest(r, horizon) for r in roots)
+    return len(inst.units) if math.isinf(total) else int(total)
+
+
+def _capacity_human(inst: Instance, horizon: int) -> int:
+    """The capacity count of :func:`human_lower`."""
+    others = [k for k in inst.kinds if k != HUMAN]
+    servers = sum(inst.kinds[k] for k in others)
+    start, tail = earliest(inst), tails(inst)
+    span = {u: (start[u], horizon - tail[u] + inst.min_duration(u)) for u in inst.units if u in start}
+    robot: dict[int, int] = {}  # each unit's shortest duration on the others, if it fits its window
+    for u, (x, y) in span.items():
+        d = min((inst.durations[u][k] for k in others if k in inst.durations[u]), default=None)
+        if d is not None and d <= y - x:
+            robot[u] = d
+    lefts = sorted({a for a, _ in span.values()})
+    rights = sorted({b for _, b in span.values()})
+    found: list[tuple[int, int, int]] = []
+    for a in lefts:
+        for b in rights:
+            if b <= a:
+                continue
+            inside = [u for u, (x, y) in span.items() if a <= x < b and y <= b]  # a unit in one of two that meet
+            room = servers * (b - a)
+            fit = 0
+            for d in sorted(robot[u] for u in inside if u in robot):
+                if d > room:
+                    break
+                room -= d
+                fit += 1
+            if len(inside) > fit:
+                found.append((b, a, len(inside) - fit))
+    found.sort()
+    ends, best = [-1], [0]
+    for b, a, gain in found:  # the best set of windows that do not overlap, by their ends
+        value = best[bisect.bisect_right(ends, a) - 1] + gain
+        if value > best[-1]:
+            ends.append(b)
+            best.append(value)
+    return best[-1]
 
 
 #: randomised list-scheduling runs tried before the solver (BENCHMARKS.md, "Schedules")
@@ -247,3 +454,104 @@ def list_schedule(inst: Instance, prio: dict[int, float] | None = None) -> list[
             break
         t = min(e.end for e in running)
     return out
+
+
+def _slot(busy: list[tuple[int, int]], using: list[list[tuple[int, int]]], caps: list[int], ready: int, d: int) -> int:
+    """The earliest start at ``ready`` or later of ``d`` on an agent busy over ``busy``, with
+    each resource (its units' spans ``using``, its capacity ``caps``) not full throughout."""
+    if d == 0:
+        return ready
+    for t in sorted(
+        {ready} | {e for _, e in busy if e > ready} | {e for spans in using for _, e in spans if e > ready}
+    ):
+        if any(s < t + d and t < e for s, e in busy):
+            continue
+        if all(
+            sum(1 for s, e in spans if s <= x < e) < cap
+            for spans, cap in zip(using, caps)
+            for x in {t} | {s for s, _ in spans if t < s < t + d}
+        ):
+            return t
+    raise AssertionError("a slot after every end exists")  # pragma: no cover
+
+
+def earliest_finish(inst: Instance, prio: dict[int, float] | None = None) -> list[Entry]:
+    """List scheduling by agent choice: the ready unit with the longest remaining chain
+    (:func:`tails`; or by ``prio``, highest first) goes where it ends first, waiting for a
+    faster agent if that is sooner, into the first gap long enough (shortest end, then not a
+    person, then the first agent), its resources allowing.  A unit is ready once a maker of
+    each object it needs is placed; it starts after the first of them ends."""
+    order: dict[int, float] = dict(tails(inst)) if prio is None else prio
+    placed: dict[int, Entry] = {}
+    busy: dict[str, list[tuple[int, int]]] = {name: [] for name, _ in inst.agents}
+    spans: dict[str, list[tuple[int, int]]] = {r: [] for r in inst.capacity}
+    waiting = {u: {o for o, _ in inst.needs[u]} for u in inst.units}
+    users: dict[int, list[tuple[int, int]]] = {}
+    for v in inst.units:
+        for o, ms in inst.needs[v]:
+            for m in ms:
+                users.setdefault(m, []).append((v, o))
+    ready = {u for u in inst.units if not waiting[u]}
+    while len(placed) < len(inst.units):
+        if not ready:
+            raise ValueError("list scheduling is stuck: a unit never ready")
+        u = max(ready, key=lambda v: (order[v], -v))
+        ready.discard(u)
+        at = max((min(placed[m].end for m in ms if m in placed) for _, ms in inst.needs[u]), default=0)
+        using = [spans[r] for r in inst.uses[u]]
+        caps = [inst.capacity[r] for r in inst.uses[u]]
+        choice = []
+        for k, (name, kind) in enumerate(inst.agents):
+            d = inst.durations[u].get(kind)
+            if d is not None:
+                t = _slot(busy[name], using, caps, at, d)
+                choice.append((t + d, kind == HUMAN, k, name, t))
+        if not choice:
+            raise ValueError("list scheduling is stuck: a unit no agent can do")
+        end, _, _, name, t = min(choice)
+        placed[u] = Entry(u, name, t, end)
+        if end > t:
+            busy[name].append((t, end))
+            for spans_r in using:
+                spans_r.append((t, end))
+        for v, o in users.get(u, ()):
+            if o in waiting[v]:
+                waiting[v].discard(o)
+                if not waiting[v]:
+                    ready.add(v)
+    return list(placed.values())
+
+
+def known_schedule(inst: Instance, target: int, tries: int = TRIES, seed: int = 0) -> tuple[list[Entry], str]:
+    """The best list schedule, by makespan, then human units, and what made it: the baseline
+    (:func:`list_schedule`) and, under ``tries`` seeded random perturbations (up to 30 %) of its
+    priorities, list schedules again and :func:`earliest_finish` ones (with several kinds of
+    agents also an unperturbed one, first).  It stops at one that reaches ``target`` (a lower bound) with no
+    more human units than :func:`human_lower` there.  The same answer every time."""
+    base = tails(inst)
+    rng = random.Random(seed)
+    kinds = len(inst.kinds) > 1
+    low_human: list[int] = []
+
+    def key(found: tuple[list[Entry], str]) -> tuple[int, int]:
+        return makespan(found[0]), human_units(found[0])
+
+    def done(entries: list[Entry]) -> bool:
+        if makespan(entries) > target:
+            return False
+        if not low_human:
+            low_human.append(human_lower(inst, target))
+        return human_units(entries) <= low_human[0]
+
+    best = (list_schedule(inst), "baseline")
+    if kinds and not done(best[0]):
+        best = min(best, (earliest_finish(inst), "earliest-finish list scheduling"), key=key)
+    for _ in range(tries):
+        if done(best[0]):
+            break
+        noisy = {u: base[u] * (1 + rng.uniform(-0.3, 0.3)) for u in inst.units}
+        best = min(best, (list_schedule(inst, noisy), "a list schedule with perturbed priorities"), key=key)
+        if not done(best[0]):
+            found = (earliest_finish(inst, noisy), "earliest-finish list scheduling with perturbed priorities")
+            best = min(best, found, key=key)
+    return best

@@ -6,7 +6,13 @@ a kind of agent, and clasp minimises the number of late steps, then the human
 units (and, for joint scheduling, the tree objective) in one lexicographic
 optimisation.  Agents of a kind are not told apart (at most N of N agents busy
 per step), so there is no symmetry among them; they are dealt afterwards by
-:func:`foon2asp.schedule.model.assign_agents`.
+:func:`foon2asp.schedule.model.assign_agents`.  A fixed tree with a person is
+solved in two phases instead (:func:`_steps_in_phases`): the makespan alone, down to
+its lower bound, then, grounded again within the makespan found, the human units
+down to :func:`foon2asp.schedule.bounds.human_lower`.  In one optimisation clasp
+had to refute every schedule with fewer human units, a counting argument it finds
+only by search: three goals of ../shared/foon on two arms and a person, every unit
+1 s, were not proven in an hour, and are within 0.1 s this way (BENCHMARKS.md).
 
 ``dl`` (``asp/encodings/schedule_dl.lp``): start times are clingo-dl integer
 variables in milliseconds, each unit chooses an agent (symmetry broken by unit
@@ -24,7 +30,7 @@ escaped strings (:func:`foon2asp.asp.facts.q`), so they never change the program
 from __future__ import annotations
 
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -34,7 +40,8 @@ from foon2asp.asp import encodings
 from foon2asp.asp.control import Control
 from foon2asp.asp.facts import q
 from foon2asp.errors import InputError
-from foon2asp.schedule.model import Entry, Instance, assign_agents, compact, divisor, makespan
+from foon2asp.schedule.bounds import human_lower
+from foon2asp.schedule.model import Entry, Instance, assign_agents, compact, divisor, human_units, makespan
 from foon2asp.schedule.spec import HUMAN
 
 ENCODINGS = ("steps", "dl")
@@ -73,6 +80,10 @@ class Job:
     user: Sequence[str] = ()
     #: optimise the tie-breakers even when the known schedule stays the best
     ties: bool = True
+    #: the schedule of makespan ``horizon`` known beforehand (fixed trees; None: none given)
+    known: list[Entry] | None = None
+    #: called with ``{"makespan", "lower", "human", "human_lower", "phase"}`` (ms) as schedules improve
+    progress: Callable[[dict], None] | None = None
 
     @property
     def fixed(self) -> bool:
@@ -127,9 +138,11 @@ def schedule_facts(
     return "\n".join(lines) + "\n"
 
 
-def _priorities(levels: int) -> str:
-    """The makespan above the human units above ``levels`` tree objectives (priorities 1..levels)."""
-    return f"priority(makespan,{levels + 2}).\npriority(human,{levels + 1}).\n"
+def _priorities(levels: int, only: str | None = None) -> str:
+    """The makespan above the human units above ``levels`` tree objectives (priorities 1..levels);
+    ``only``: that one objective alone (``makespan`` or ``human``)."""
+    both = {"makespan": f"priority(makespan,{levels + 2}).\n", "human": f"priority(human,{levels + 1}).\n"}
+    return both[only] if only else "".join(both.values())
 
 
 def _entries_of_steps(
@@ -146,16 +159,26 @@ def _entries_of_steps(
     return assign_agents(inst.restrict(units), kind, start)
 
 
-def _steps_once(job: Job, windows: dict, horizon: int, floor: int, optimise: bool, time_limit: float | None):
+def _steps_once(
+    job: Job,
+    windows: dict,
+    horizon: int,
+    floor: int,
+    optimise: bool,
+    time_limit: float | None,
+    only: str | None = None,
+    enough: Callable[[list[Entry]], bool] | None = None,
+):
     """One grounding and solve of the time-step encoding with makespan at most ``horizon``
-    (``optimise``: the lexicographic objective, else any schedule); (solution, finished)."""
+    (``optimise``: the lexicographic objective, else any schedule; ``only``: that objective
+    alone, :func:`_priorities`; ``enough``: stop at a schedule it accepts); (solution, finished)."""
     inst = job.inst
     scale = divisor(inst)
     steps = horizon // scale
     parts = [
         ("encodings/schedule_steps.lp", encodings.encoding("schedule_steps")),
         ("schedule facts", schedule_facts(inst, scale, windows, job.fixed, False, job.tail if job.fixed else None)),
-        ("horizon", f"horizon({steps}).\nfloor({-(-floor // scale)}).\n" + _priorities(job.levels)),
+        ("horizon", f"horizon({steps}).\nfloor({-(-floor // scale)}).\n" + _priorities(job.levels, only)),
         *job.tree_parts,
     ]
     control = Control(["--opt-mode=opt" if optimise else "--opt-mode=ignore", *job.args])
@@ -174,6 +197,13 @@ def _steps_once(job: Job, windows: dict, horizon: int, floor: int, optimise: boo
             if makespan(compact(inst, entries)) <= floor:
                 best["met"] = True
                 return False
+        if enough is not None and enough(_entries_of_steps(inst, best["atoms"], scale, inst.units)):
+            best["met"] = True
+            return False
+        if enough is None and job.fixed and job.progress is not None:
+            _report(
+                job, compact(inst, _entries_of_steps(inst, best["atoms"], scale, inst.units)), floor, None, "makespan"
+            )
         return True
 
     if not optimise:
@@ -193,8 +223,11 @@ def _steps_once(job: Job, windows: dict, horizon: int, floor: int, optimise: boo
 def solve_steps(job: Job, time_limit: float | None = None) -> Solution:
     """Solve with the time-step encoding: one lexicographic optimisation (makespan, then the
     tie-breakers) within the known makespan ``job.horizon``, no makespan below ``job.floor``.
-    The makespan is proven when the search ends, or when a schedule meets the floor."""
+    The makespan is proven when the search ends, or when a schedule meets the floor.  A fixed
+    tree with a person: :func:`_steps_in_phases`."""
     assert job.horizon is not None
+    if job.fixed and job.breakers and not job.levels:
+        return _steps_in_phases(job, time_limit)
     stats: dict[str, Any] = {"encoding": "steps"}
     windows = job.windows(job.horizon)
     if windows is None:  # a unit cannot start and still end in time: no schedule within the horizon
@@ -207,6 +240,86 @@ def solve_steps(job: Job, time_limit: float | None = None) -> Solution:
     if not finished:
         stats["tie_breakers"] = "time"
     return Solution(sol.entries, proven, False, sol.units, stats)
+
+
+def _report(job: Job, entries: list[Entry], lower: int, human_low: int | None, phase: str) -> None:
+    if job.progress is not None:
+        job.progress(
+            {
+                "makespan": makespan(entries),
+                "lower": lower,
+                "human": human_units(entries),
+                "human_lower": human_low,
+                "phase": phase,
+            }
+        )
+
+
+def _steps_in_phases(job: Job, time_limit: float | None) -> Solution:
+    """A fixed tree with a person, in two solves: the makespan alone, from the known schedule
+    (``job.known``, of makespan ``job.horizon``) down to ``job.floor``, then, within the
+    makespan found, the human units down to :func:`foon2asp.schedule.bounds.human_lower`
+    (``stats["tie_breakers"]``: ``proven`` or ``time``).  Each solve stops at its bound; the
+    makespan is proven when the first ends or meets the floor."""
+    assert job.horizon is not None
+    inst, floor = job.inst, job.floor
+    deadline = None if time_limit is None else time.perf_counter() + time_limit
+    stats: dict[str, Any] = {"encoding": "steps", "phases": 1}
+
+    def left() -> float | None:
+        return None if deadline is None else max(0.0, deadline - time.perf_counter())
+
+    windows = job.windows(job.horizon)
+    if windows is None:  # a unit cannot start and still end in time: no schedule within the horizon
+        return Solution(None, True, True, (), stats)
+    best = job.known
+    horizon = job.horizon if best is None else min(job.horizon, makespan(best))
+    proven = horizon <= floor
+    if not proven:
+        if best is not None:
+            _report(job, best, floor, None, "makespan")
+
+        def short(entries: list[Entry]) -> bool:
+            entries = compact(inst, entries)
+            _report(job, entries, floor, None, "makespan")
+            return makespan(entries) <= floor
+
+        sol, finished = _steps_once(job, windows, horizon, floor, True, left(), "makespan", short)
+        stats.update(sol.stats)
+        if sol.entries is not None:
+            entries = compact(inst, sol.entries)
+            if best is None or makespan(entries) < makespan(best):
+                best = entries
+        if best is None:
+            return Solution(None, finished, finished and bool(sol.unsatisfiable), (), stats)
+        horizon = makespan(best)
+        proven = finished or horizon <= floor
+        if not proven:
+            stats["tie_breakers"] = "time"
+            return Solution(best, False, False, inst.units, stats)
+    low = human_lower(inst, horizon)
+    stats["human_lower"] = low
+    if best is not None and human_units(best) <= low:
+        stats["tie_breakers"] = "proven"
+        return Solution(best, True, False, inst.units, stats)
+    within = job.windows(horizon)
+    if within is None or left() == 0.0:
+        stats["tie_breakers"] = "time"
+        return Solution(best, True, False, inst.units, stats)
+
+    def few(entries: list[Entry]) -> bool:
+        _report(job, entries, horizon, low, "human")
+        return human_units(entries) <= low
+
+    sol, finished = _steps_once(job, within, horizon, horizon, True, left(), "human", few)
+    stats["phases"] = 2
+    stats.update({f"human_{k}": v for k, v in sol.stats.items() if k in ("ground_s", "solve_s", "horizon_steps")})
+    if sol.entries is not None and (best is None or human_units(sol.entries) < human_units(best)):
+        best = sol.entries
+    if best is None:  # nothing within the horizon: it was the floor, and the floor no schedule meets
+        return Solution(None, finished, finished, (), stats)
+    stats["tie_breakers"] = "proven" if finished or human_units(best) <= low else "time"
+    return Solution(best, True, False, inst.units, stats)
 
 
 def _used(atoms: Sequence[clingo.Symbol]) -> tuple[int, ...]:
@@ -246,7 +359,9 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
     names = {(kind, int(name.rsplit("-", 1)[1])): name for name, kind in inst.agents}
     best: dict[str, Any] = {}
 
-    def on_model(model: clingo.Model) -> None:
+    enough: list[Callable[[list[Entry]], bool]] = []  # the tie-breakers' stop, once set
+
+    def on_model(model: clingo.Model) -> bool:
         values = {str(sym): int(val) for sym, val in theory.assignment(model.thread_id)}
         zero = values.get("0", 0)
         atoms = model.symbols(shown=True)
@@ -257,6 +372,7 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
                 s = values.get(f"s({u})", zero) - zero
                 entries.append(Entry(u, names[(kind, i)], s, s + inst.durations[u][kind]))
         best["entries"], best["atoms"] = entries, atoms
+        return not (enough and enough[0](entries))
 
     def left() -> float | None:
         return None if deadline is None else max(0.0, deadline - time.perf_counter())
@@ -293,12 +409,28 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
         if job.fixed:  # compacted, a schedule may be shorter still: the next bound is below that
             best["entries"] = compact(inst, best["entries"])
         opt = makespan(best["entries"])
+        _report(job, best["entries"], floor, None, "makespan")
     if proven and opt is not None and job.breakers and (job.ties or best.get("entries") is not None):
-        # the tie-breakers under the proven makespan
-        switch(opt)
-        conf.opt_mode, conf.models = "opt", "0"
-        result = control.solve(on_model, left())
-        stats["tie_breakers"] = "proven" if result.finished else "time"
+        # the tie-breakers under the proven makespan; a fixed tree stops at the fewest human units
+        # a person must do (a joint one has the tree objective after them)
+        low = human_lower(inst, opt) if job.fixed and not job.levels else None
+        if low is not None:
+            stats["human_lower"] = low
+
+            def few(entries: list[Entry]) -> bool:
+                _report(job, entries, opt, low, "human")
+                return human_units(entries) <= low
+
+            enough.append(few)
+        met = low is not None and best.get("entries") is not None and human_units(best["entries"]) <= low
+        if met:
+            stats["tie_breakers"] = "proven"
+        else:
+            switch(opt)
+            conf.opt_mode, conf.models = "opt", "0"
+            result = control.solve(on_model, left())
+            done = low is not None and best.get("entries") is not None and human_units(best["entries"]) <= low
+            stats["tie_breakers"] = "proven" if result.finished or done else "time"
     stats.update(control.stats())
     if best.get("entries") is None:
         # unsatisfiable, or the known schedule (of makespan horizon) is optimal, or no time

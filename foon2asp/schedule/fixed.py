@@ -7,13 +7,17 @@ tree no agent can do), ``unreachable`` (no tree makes the goal), ``unknown`` (no
 found in time).  Every answer carries the list-scheduling baseline and the lower bounds
 (:mod:`foon2asp.schedule.bounds`).
 
-A shortcut: when the baseline meets the lower bound and uses no more human units than the
-units only a person can do, it is optimal and no solver runs.
+A shortcut: when a list schedule (:func:`foon2asp.schedule.bounds.known_schedule`) meets
+the lower bound and uses no more human units than a person must do at that makespan
+(:func:`foon2asp.schedule.bounds.human_lower`), it is optimal and no solver runs.  Otherwise
+the solver starts from that schedule: the time-step encoding within its makespan,
+clingo-dl below the baseline's (a tighter start left it stuck above the optimum).
 """
 
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 
 from foon2asp.asp import objectives
 from foon2asp.asp.options import AspOptions
@@ -21,8 +25,9 @@ from foon2asp.asp.settings import solver_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule import encode
-from foon2asp.schedule.bounds import bounds, list_schedule, perturbed_schedule
+from foon2asp.schedule.bounds import TRIES, bounds, human_lower, known_schedule, list_schedule
 from foon2asp.schedule.model import (
+    Entry,
     Instance,
     compact,
     divisor,
@@ -41,6 +46,9 @@ DEFAULT_ENCODING = "steps"
 
 #: clasp's optimisation strategy for schedules when the options set none (BENCHMARKS.md)
 OPT_STRATEGY = "bb"
+
+#: perturbed list-scheduling runs for each tree a joint search schedules (a fixed tree: TRIES)
+JOINT_TRIES = 4
 
 
 def solver_arguments(options: AspOptions) -> list[str]:
@@ -63,6 +71,8 @@ def solve_encoded(
     time_limit: float | None,
     tree_parts: list[tuple[str, str]] | None = None,
     ties: bool = True,
+    known: list[Entry] | None = None,
+    progress: Callable[[dict], None] | None = None,
 ) -> encode.Solution:
     """Solve with ``encoding`` (:class:`foon2asp.schedule.encode.Job` says what the values are)."""
     job = encode.Job(
@@ -76,6 +86,8 @@ def solve_encoded(
         len(objectives.ranked(options)) if tree_parts else 0,
         [name for name, _ in options.programs] if tree_parts else [],
         ties,
+        known,
+        progress,
     )
     if encoding == "steps":
         return encode.solve_steps(job, time_limit)
@@ -98,10 +110,12 @@ def schedule_fixed(
     time_limit: float | None = None,
     shortcut: bool = True,
     within: int | None = None,
+    progress: Callable[[dict], None] | None = None,
 ) -> ScheduleResult:
     """The optimal schedule of ``tree``'s units.  ``within`` (ms; joint scheduling): only a
     schedule of at most that makespan matters; when there is none the status is
-    ``unschedulable`` (reason: not within), found faster than the optimum of a longer one."""
+    ``unschedulable`` (reason: not within), found faster than the optimum of a longer one.
+    ``progress``: called as schedules improve (:class:`foon2asp.schedule.encode.Job`)."""
     t0 = time.perf_counter()
     if not tree.has_tree:
         status = "unreachable" if tree.status in ("unreachable", "not-found") else "unknown"
@@ -120,16 +134,16 @@ def schedule_fixed(
     stats: dict = {"encoding": encoding}
     if within is not None and b.lower > within:
         return _within(problem, tree, spec, options, encoding, time_limit, inst, b, within, t0)
-    # the baseline, or a shorter list schedule under perturbed priorities (the solver keeps the
-    # baseline's makespan as its horizon: a tighter one left clingo-dl stuck above the optimum)
-    # With a person the shortcut also needs the fewest human units, which the perturbed runs do
-    # not aim at: on ../shared/foon (arm=2,human=1) they met it for no tree, so they are skipped.
-    perturb = ub > b.lower and not spec.has_human()
-    known = perturbed_schedule(inst, b.lower) if perturb else base
+    # the baseline, or a shorter list schedule (perturbed priorities, each unit where it ends
+    # first), or one with fewer human units; a tree of a joint search tries a few only (most
+    # of them are ruled out by ``within`` or solved below it anyway)
+    least = max(forced_human(inst), human_lower(inst, b.lower)) if spec.has_human() else 0
+    done = ub <= b.lower and human_units(base) <= least
+    tries = TRIES if within is None else JOINT_TRIES
+    known, which = (base, "baseline") if done else known_schedule(inst, b.lower, tries)
     if within is not None and makespan(known) > within:
         return _within(problem, tree, spec, options, encoding, time_limit, inst, b, within, t0)
-    if shortcut and makespan(known) == b.lower and human_units(known) == forced_human(inst):
-        which = "baseline" if known is base else "a list schedule with perturbed priorities"
+    if shortcut and makespan(known) == b.lower and human_units(known) <= least:
         stats["shortcut"] = f"{which} meets the lower bound"
         return ScheduleResult(
             problem, tree, "optimal", agents, known, b, ub, time_s=time.perf_counter() - t0, stats=stats
@@ -138,12 +152,14 @@ def schedule_fixed(
         inst,
         earliest(inst),
         tails(inst),
-        ub,
+        makespan(known) if encoding == "steps" else ub,
         b.lower,
         options,
         encoding,
         time_limit,
         ties=spec.has_human(),
+        known=known if encoding == "steps" else None,
+        progress=progress,
     )
     stats.update(sol.stats)
     entries = known

@@ -10,6 +10,7 @@ JSON (one object per goal; times in seconds, exact to 0.001 s)::
      "schedule": [{"unit": {"motion", "inputs", "outputs"}, "agent": "arm-1", "start": 0.0, "end": 1.0}, ...],
      "tree": {...},                       # foon2asp.tree.serialize.tree_json of the scheduled tree
      "success": 0.012, "human_units": 1, "joint": false, "encoding": "steps", "time_s": 0.01,
+     "human_units_proven": true,          # with a person among the agents: the fewest at this makespan
      "fixed_tree": {"status", "makespan", "units"},   # joint scheduling only: the given tree's
      "joint_bound": 7.0}   # joint, when the search over trees was cut short: no tree is shorter
 
@@ -91,6 +92,14 @@ class ScheduleResult:
         """The units done by a person."""
         return [e.unit for e in self.entries if kind_of(e.agent) == HUMAN]
 
+    @property
+    def human_units_proven(self) -> bool | None:
+        """Are the human units proven the fewest at this makespan (the makespan proven, and the
+        tie-breaker's search ended or met its bound)?  None without a person or a schedule."""
+        if not self.has_schedule or not any(kind_of(a) == HUMAN for a in self.agents):
+            return None
+        return self.status == "optimal" and self.stats.get("tie_breakers") != "time"
+
     def success(self) -> float | None:
         """The product of the motion success rates of the units done by robots (a person's step succeeds)."""
         if not self.has_schedule:
@@ -132,6 +141,8 @@ class ScheduleResult:
             "encoding": self.stats.get("encoding"),
             "time_s": round(self.time_s, 6),
         }
+        if self.human_units_proven is not None:
+            out["human_units_proven"] = self.human_units_proven
         if self.reason:
             out["reason"] = self.reason
         if self.fixed is not None:
@@ -152,6 +163,8 @@ class ScheduleResult:
                     f"  (list scheduling {seconds_text(self.baseline)} s; lower bound {seconds_text(b.lower)} s:"
                     f" chain {seconds_text(b.chain)} s, work {seconds_text(b.work)} s, energy {seconds_text(b.energy)} s)"
                 )
+        if self.status == "optimal" and self.human_units_proven is False:
+            line += "  (the fewest human units at this makespan not proven in time)"
         if self.fixed is not None:
             line += f"  Given tree: {seconds_text(self.fixed.makespan)} s ({self.fixed.status})"
         if self.joint_bound is not None:

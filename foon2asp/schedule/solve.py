@@ -18,6 +18,7 @@ and schedule in one encoding (tree.lp beside the schedule encoding).
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
@@ -35,10 +36,14 @@ from foon2asp.schedule.result import ScheduleResult
 from foon2asp.schedule.spec import ScheduleSpec
 from foon2asp.tree.tasktree import TaskTree, executable_order, goal_fields, measures
 
-__all__ = ["DEFAULT_ENCODING", "schedule", "schedule_fixed", "schedule_joint"]
+__all__ = ["DEFAULT_ENCODING", "DEFAULT_TIME_LIMIT", "schedule", "schedule_fixed", "schedule_joint"]
 
 #: tree objectives joint scheduling supports (depth needs the multi-shot driver)
 JOINT_OBJECTIVES = ("units", "success", "inputs")
+
+#: seconds per solve (the fixed tree's schedule, the joint search) when no time limit is given:
+#: a goal never runs unbounded, and one cut short answers with its best schedule and bound
+DEFAULT_TIME_LIMIT = 60.0
 
 
 def _check_joint(options: AspOptions) -> tuple[str, ...]:
@@ -380,14 +385,19 @@ def schedule(
     time_limit: float | None = None,
     encoding: str = DEFAULT_ENCODING,
     shortcut: bool = True,
+    progress: Callable[[dict], None] | None = None,
 ) -> ScheduleResult:
     """Schedule ``tree`` (a goal's task tree, e.g. the optimal one for ``options``) on the agents
     of ``spec`` (default: one robot, every unit 1 s).
 
     ``joint``: choose the tree with the schedule (the tree objective of ``options`` breaks
     ties), the result's ``fixed`` holding ``tree``'s own schedule.  ``time_limit`` (seconds;
-    default ``options.time_limit``) bounds each of the two solves.  ``encoding``: ``steps``
-    or ``dl`` (:mod:`foon2asp.schedule.encode`).  ``shortcut=False`` always runs the solver.
+    default ``options.time_limit``, else :data:`DEFAULT_TIME_LIMIT`; ``math.inf``: none)
+    bounds each of the two solves; a solve it stops answers with its best schedule
+    (``feasible``) and the lower bound.  ``encoding``: ``steps`` or ``dl``
+    (:mod:`foon2asp.schedule.encode`).  ``shortcut=False`` always runs the solver.
+    ``progress``: called with ``{"makespan", "lower", "human", "human_lower", "phase"}``
+    (milliseconds; ``phase`` ``makespan`` or ``human``) as the fixed tree's schedules improve.
     """
     spec = spec or ScheduleSpec()
     options = options or AspOptions()
@@ -396,7 +406,11 @@ def schedule(
     if joint:
         _check_joint(options)
     limit = options.time_limit if time_limit is None else time_limit
-    fixed = schedule_fixed(problem, tree, spec, options, encoding, limit, shortcut)
+    if limit is None:
+        limit = DEFAULT_TIME_LIMIT
+    elif math.isinf(limit):
+        limit = None
+    fixed = schedule_fixed(problem, tree, spec, options, encoding, limit, shortcut, progress=progress)
     if not joint or not tree.has_tree:
         return replace(fixed, joint=joint) if joint else fixed
     return schedule_joint(problem, tree, spec, options, fixed, encoding, limit, shortcut)
