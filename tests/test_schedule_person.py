@@ -101,7 +101,7 @@ def shared_kb(shared_foon_dir):
 def test_shared_goals_on_two_arms_and_a_person_are_proven_at_once(shared_kb, label):
     """Every unit 1 s: the makespan meets its bound and the human units the fewest a person
     must do there, so the answer is proven in well under a second (one lexicographic
-    optimisation did not prove it in an hour)."""
+    optimisation did not prove it within a minute)."""
     kb = shared_kb
     tree = kb.solve(label).raw
     spec = ScheduleSpec((("arm", 2), ("human", 1)))

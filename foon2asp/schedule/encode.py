@@ -12,7 +12,7 @@ its lower bound, then, grounded again within the makespan found, the human units
 down to :func:`foon2asp.schedule.bounds.human_lower`.  In one optimisation clasp
 had to refute every schedule with fewer human units, a counting argument it finds
 only by search: three goals of ../shared/foon on two arms and a person, every unit
-1 s, were not proven in an hour, and are within 0.1 s this way (BENCHMARKS.md).
+1 s, were not proven within a minute, and are within 0.2 s this way (BENCHMARKS.md).
 
 ``dl`` (``asp/encodings/schedule_dl.lp``): start times are clingo-dl integer
 variables in milliseconds, each unit chooses an agent (symmetry broken by unit
