@@ -28,12 +28,14 @@ demo: install-demo
 test: install lint
 	cd tests && ../$(BIN)/python -m pytest
 
-# lint, format check, types and the import-layer contract (pyproject.toml)
+# lint, format check, types, the import-layer contract (pyproject.toml) and the docs site
 lint: install
 	$(BIN)/ruff check foon2asp tests bench
 	$(BIN)/ruff format --check foon2asp tests bench
 	$(BIN)/mypy
 	$(BIN)/lint-imports
+	@# the documentation site (mkdocs.yml, docs/): a broken link or anchor fails (not -q: it hides the warnings --strict counts)
+	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict -d build/site
 
 # a shell with the environment active
 shell: install-demo

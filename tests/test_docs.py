@@ -1,16 +1,18 @@
 """Every example in README.md and docs/*.md, run and compared with the output it shows (Sybil).
 
-* ```console blocks: each ``$ command`` line (``\\`` continues it) runs in bash from a
-  working folder that looks like the repository root (``data``, ``docs``, ``foon2asp`` and
-  ``bench`` linked in, ``../shared`` beside it), with ``.venv/bin`` first on PATH; stdout and
-  stderr together must match the lines that follow, ``...`` standing for any text (times,
-  paths, long lists). One folder per page, so a later example sees the files an earlier one
-  wrote.
+* ```console blocks: each ``$ command`` line (a trailing ``\\`` continues it) runs in bash from
+  a working folder that looks like the repository root (``data``, ``docs``, ``foon2asp`` and
+  ``bench`` linked in, ``../shared`` beside it), with this Python's ``bin`` first on PATH;
+  stdout and stderr together must match the lines that follow, ``...`` standing for any text
+  (times, paths). One folder per page, so a later example sees the files an earlier one wrote.
 * ```python blocks: run in the page's namespace from that folder; ``>>>`` blocks are doctests
   (ELLIPSIS, NORMALIZE_WHITESPACE), others plain code whose assertions must hold.
 * ``<!-- skip: next if(not SLOW, reason="...") -->`` before an example that takes minutes:
-  skipped unless FOON2ASP_DOCS_SLOW=1.  An example that reads ``../shared`` is skipped when
+  skipped unless FOON2ASP_DOCS_SLOW=1. An example that reads ``../shared`` is skipped when
   ../shared/foon is not beside the checkout, and so are the Python examples after it on its page.
+
+The console commands of all pages are run once, the pages side by side (each page's commands
+in order), before the first one is compared; a test run alone runs its page's commands itself.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ import subprocess
 import sys
 import tempfile
 import unittest
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
@@ -40,7 +43,7 @@ SLOW = os.environ.get("FOON2ASP_DOCS_SLOW") == "1"
 PAGES = [REPO / "README.md", *sorted((REPO / "docs").glob("*.md"))]
 #: what the working folder of a page links in from the repository
 LINKED = ("data", "docs", "foon2asp", "bench")
-COMMAND_TIMEOUT_S = 300
+COMMAND_TIMEOUT_S = 600
 CHECKER = doctest.OutputChecker()
 NO_SHARED = "../shared/foon is not beside the checkout"
 
@@ -82,25 +85,43 @@ def tidy(text: str) -> str:
     return "\n".join(line.rstrip() for line in text.rstrip().splitlines()) + "\n"
 
 
-def run_console(example: Example) -> str | None:
-    cwd = example.namespace["WORKDIR"]
-    env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}")
-    env.update(COLUMNS="200", NO_COLOR="1", PYTHONHASHSEED="0")
-    for command, expected in commands(str(example.parsed)):
+ENV = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}")
+ENV.update(COLUMNS="200", NO_COLOR="1", PYTHONHASHSEED="0")
+
+
+def execute(block: str, cwd: Path) -> list[tuple[str, str, str, int]]:
+    """Run a console block's commands in order: ``(command, expected, output, exit status)``."""
+    runs = []
+    for command, expected in commands(block):
         proc = subprocess.run(
-            ["bash", "-c", command + " 2>&1"],
+            ["bash", "-c", "exec 2>&1\n" + command],  # stderr where it is written, as on a terminal
             cwd=cwd,
-            env=env,
+            env=ENV,
             stdin=subprocess.DEVNULL,
             stdout=subprocess.PIPE,
             stderr=subprocess.STDOUT,
             text=True,
             timeout=COMMAND_TIMEOUT_S,
         )
-        want, got = tidy(expected), tidy(proc.stdout)
+        runs.append((command, expected, proc.stdout, proc.returncode))
+    return runs
+
+
+#: (page, start of the example) -> the runs of its commands, filled by prefetch()
+RAN: dict[tuple[str, int], list[tuple[str, str, str, int]]] = {}
+#: page -> its working folder
+FOLDERS: dict[str, Path] = {}
+
+
+def run_console(example: Example) -> str | None:
+    runs = RAN.pop((example.path, example.start), None)
+    if runs is None:
+        runs = execute(str(example.parsed), example.namespace["WORKDIR"])
+    for command, expected, output, status in runs:
+        want, got = tidy(expected), tidy(output)
         if not CHECKER.check_output(want, got, doctest.ELLIPSIS):
             diff = CHECKER.output_difference(doctest.Example(command, want), got, doctest.ELLIPSIS)
-            return f"$ {command}\n(exit status {proc.returncode})\n{diff}"
+            return f"$ {command}\n(exit status {status})\n{diff}"
     return None
 
 
@@ -152,12 +173,43 @@ RUN = [(page, index, example) for page, index, example in EXAMPLES if example.re
 PROGRESS: dict[Path, int] = {}
 #: pages one of whose Python examples was skipped (the later ones may depend on it)
 SKIPPED_PYTHON: set[Path] = set()
+PREFETCHED = False
+
+
+def folder(page: Path) -> Path:
+    if str(page) not in FOLDERS:
+        FOLDERS[str(page)] = workdir()
+    return FOLDERS[str(page)]
+
+
+def prefetch() -> None:
+    """Run the console blocks of every page, pages side by side, each page's blocks in order
+    (not those after a skip directive, nor those that need an absent ../shared)."""
+    global PREFETCHED
+    PREFETCHED = True
+
+    def page_runs(page: Path) -> None:
+        previous = None
+        for p, _, example in EXAMPLES:
+            if p != page:
+                continue
+            after_skip = previous is not None and previous.region.evaluator not in RUNNERS
+            previous = example
+            block = str(example.parsed)
+            if example.region.evaluator is not run_console or after_skip:
+                continue
+            if "../shared" in block and not HAS_SHARED:
+                continue
+            RAN[(example.path, example.start)] = execute(block, folder(page))
+
+    with ThreadPoolExecutor(max_workers=os.cpu_count() or 2) as pool:
+        list(pool.map(page_runs, PAGES))
 
 
 def evaluate(page: Path, example: Example) -> None:
     namespace = example.namespace
     if "WORKDIR" not in namespace:
-        namespace.update(WORKDIR=workdir(), SLOW=SLOW, SHARED=HAS_SHARED)
+        namespace.update(WORKDIR=folder(page), SLOW=SLOW, SHARED=HAS_SHARED)
     python = example.region.evaluator in (run_python, run_doctest)
     source = example.parsed.source if isinstance(example.parsed, doctest.Example) else str(example.parsed)
     if python and page in SKIPPED_PYTHON:
@@ -177,7 +229,9 @@ def evaluate(page: Path, example: Example) -> None:
     [(page, index) for page, index, _ in RUN],
     ids=[f"{page.relative_to(REPO)}:{example.line}" for page, _, example in RUN],
 )
-def test_example(page: Path, index: int):
+def test_example(page: Path, index: int, request):
+    if not PREFETCHED and len(request.session.items) > 20:  # a whole run: every page at once
+        prefetch()
     examples = [example for p, _, example in EXAMPLES if p == page]
     for earlier in range(PROGRESS.get(page, 0), index):  # a page's examples run in order
         try:
