@@ -24,7 +24,7 @@ from foon2asp.asp.session import Session
 from foon2asp.cli.main import main
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.synth import PRESETS, preset, shape
-from foon2asp.methods import runner as grounding
+from foon2asp.methods import parts as grounding
 from foon2asp.tree.upper import cheapest_tree
 from foon2asp.tree.validate import validate
 from helpers import best, goal_part

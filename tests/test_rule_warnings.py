@@ -12,8 +12,8 @@ from click.testing import CliRunner
 
 from conftest import DEMO
 from foon2asp.asp import constraints, encodings
-from foon2asp.asp.constraints import FACTS, known_predicates, predicates, rule_warnings
 from foon2asp.asp.facts import facts
+from foon2asp.asp.predicates import FACTS, known_predicates, predicates, rule_warnings
 from foon2asp.cli.main import main
 
 SMOOTHIES = sorted((DEMO / "llm").glob("smoothie-*.json"))

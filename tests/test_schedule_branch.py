@@ -11,7 +11,8 @@ import pytest
 import foon2asp
 from conftest import REPO
 from foon2asp.schedule import ScheduleSpec, schedule
-from foon2asp.schedule.bounds import bounds, energy_bound, list_schedule, perturbed_schedule, window_lengths
+from foon2asp.schedule.baseline import list_schedule, perturbed_schedule
+from foon2asp.schedule.bounds import bounds, energy_bound, window_lengths
 from foon2asp.schedule.branch import designate, energy, landmarks
 from foon2asp.schedule.check import check_schedule
 from foon2asp.schedule.model import divisor, earliest, instance, makespan, tails

@@ -14,7 +14,8 @@ from conftest import REPO
 from foon2asp.cli.schedule import status_text
 from foon2asp.schedule import ScheduleSpec, schedule
 from foon2asp.schedule import solve as solve_mod
-from foon2asp.schedule.bounds import bounds, earliest_finish, human_lower, known_schedule, list_schedule
+from foon2asp.schedule.baseline import earliest_finish, known_schedule, list_schedule
+from foon2asp.schedule.bounds import bounds, human_lower
 from foon2asp.schedule.check import check_schedule
 from foon2asp.schedule.model import instance, makespan
 from foon2asp.schedule.result import ScheduleResult

@@ -20,19 +20,19 @@ import clingo
 import clingo.ast
 
 from foon2asp.asp import encodings
-from foon2asp.asp.constraints import (
+from foon2asp.asp.constraints import check_syntax
+from foon2asp.asp.control import Answer, Control
+from foon2asp.asp.facts import facts
+from foon2asp.asp.objectives import input_node_facts
+from foon2asp.asp.options import OBJECTIVES, AspOptions
+from foon2asp.asp.predicates import (
     Signature,
-    check_syntax,
     known_predicates,
     predicates,
     shipped_predicates,
     signature_text,
     undefined,
 )
-from foon2asp.asp.control import Answer, Control
-from foon2asp.asp.facts import facts
-from foon2asp.asp.objectives import input_node_facts
-from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.asp.settings import solver_args
 from foon2asp.errors import InputError, escape
 from foon2asp.foon.problem import Problem

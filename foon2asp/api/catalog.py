@@ -9,8 +9,8 @@ from foon2asp.asp.options import OBJECTIVES as _OBJECTIVES
 from foon2asp.foon.goals import OBJECT_FILTERS as _OBJECT_FILTERS
 from foon2asp.foon.motioncost import PRECISION_TEXT
 from foon2asp.foon.problem import UTENSIL_RULES as _UTENSIL_RULES
+from foon2asp.methods.parts import GROUNDING_CHOICES
 from foon2asp.methods.registry import Method
-from foon2asp.methods.runner import GROUNDING_CHOICES
 
 #: objective names, for ``objective=`` (lexicographic lists of them)
 OBJECTIVES: tuple[str, ...] = tuple(_OBJECTIVES)

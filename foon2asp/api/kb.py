@@ -425,7 +425,7 @@ class KnowledgeBase(Matching, Scheduling):
         """Many goals x methods into a resumable JSON-lines file (``output``; None keeps results in memory).
 
         ``grounding``: ``"whole"``, ``"per-goal"`` or ``"auto"`` (chosen from the FOON and the goals by
-        :func:`foon2asp.methods.runner.choose_grounding`; the run's ``grounding`` and ``grounding_reason`` say which).
+        :func:`foon2asp.methods.parts.choose_grounding`; the run's ``grounding`` and ``grounding_reason`` say which).
         ``workers``: processes, or ``"auto"`` (this process, then a pool on every usable core once the batch has
         run 5 s; the run's ``workers`` says how many ran; a script using a pool needs the usual
         ``if __name__ == "__main__":`` guard).

@@ -148,7 +148,7 @@ class Options:
     opt_strategy: str | None = None
     #: clingo solver threads; None: one
     threads: int | None = None
-    #: batch: ``whole``, ``per-goal`` or ``auto`` (foon2asp.methods.runner.choose_grounding)
+    #: batch: ``whole``, ``per-goal`` or ``auto`` (foon2asp.methods.parts.choose_grounding)
     grounding: str = "auto"
     #: batch: answer without the solver when the answer is forced
     shortcuts: bool = True

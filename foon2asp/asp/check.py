@@ -18,9 +18,9 @@ from collections.abc import Iterable, Sequence
 
 import clingo
 
-from foon2asp.asp.constraints import FACTS, predicates
 from foon2asp.asp.control import Control
 from foon2asp.asp.facts import facts
+from foon2asp.asp.predicates import FACTS, predicates
 from foon2asp.foon.problem import Problem
 
 

@@ -1,7 +1,7 @@
 """Batch solving: goals x methods, one JSON line per result, resumable.
 
 :func:`run_batch` checks the methods and the grounding (``auto``:
-:func:`foon2asp.methods.runner.choose_grounding`), opens and locks the
+:func:`foon2asp.methods.parts.choose_grounding`), opens and locks the
 results file (:mod:`foon2asp.batch.results`; ``--resume`` skips every
 (goal, method) pair already in it and refuses another configuration), runs
 the pending pairs in the worker pool (:mod:`foon2asp.batch.pool`, or an
@@ -33,7 +33,7 @@ from foon2asp.batch.results import (
     read_results,
 )
 from foon2asp.errors import InputError
-from foon2asp.methods.runner import GROUNDING_CHOICES, GROUNDINGS, choose_grounding
+from foon2asp.methods.parts import GROUNDING_CHOICES, GROUNDINGS, choose_grounding
 from foon2asp.tree.results import BatchReport
 
 

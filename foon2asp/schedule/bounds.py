@@ -1,5 +1,4 @@
-"""Lower bounds on the makespan and the list-scheduling baseline of an instance
-(:class:`foon2asp.schedule.model.Instance`; times in milliseconds).
+"""Lower bounds on the makespan of an instance (:class:`foon2asp.schedule.model.Instance`; ms).
 
 * chain: the longest chain of minimum durations (each unit at its least duration over the
   kinds that can do it; a unit waits for the first maker of each object it needs);
@@ -11,9 +10,7 @@
 
 The fewest units a person must do in a schedule of a given makespan: :func:`human_lower`.
 
-The baseline is list scheduling, longest remaining chain first (:func:`list_schedule`);
-the schedule a solver starts from is the best of it, of list schedules under perturbed
-priorities and of schedules that put each unit where it ends first (:func:`known_schedule`).
+The baseline schedules are in :mod:`foon2asp.schedule.baseline`.
 """
 
 from __future__ import annotations
@@ -21,12 +18,11 @@ from __future__ import annotations
 import bisect
 import itertools
 import math
-import random
 from dataclasses import dataclass
 
 import numpy as np
 
-from foon2asp.schedule.model import Entry, Instance, divisor, earliest, human_units, makespan, tails
+from foon2asp.schedule.model import Instance, divisor, earliest, tails
 from foon2asp.schedule.spec import HUMAN
 
 
@@ -375,183 +371,3 @@ def _capacity_human(inst: Instance, horizon: int) -> int:
             ends.append(b)
             best.append(value)
     return best[-1]
-
-
-#: randomised list-scheduling runs tried before the solver (BENCHMARKS.md, "Schedules")
-TRIES = 48
-
-
-def perturbed_schedule(inst: Instance, target: int, tries: int = TRIES, seed: int = 0) -> list[Entry]:
-    """The shortest of :func:`list_schedule` under ``tries`` seeded random perturbations (up to
-    30 %) of its longest-remaining-chain priorities, stopping at one that reaches ``target``
-    (a lower bound); the first run is the unperturbed baseline.  The same answer every time."""
-    base = tails(inst)
-    rng = random.Random(seed)
-    best = list_schedule(inst)
-    for _ in range(tries):
-        if makespan(best) <= target:
-            break
-        noisy = {u: base[u] * (1 + rng.uniform(-0.3, 0.3)) for u in inst.units}
-        run = list_schedule(inst, noisy)
-        if makespan(run) < makespan(best):
-            best = run
-    return best
-
-
-def list_schedule(inst: Instance, prio: dict[int, float] | None = None) -> list[Entry]:
-    """List scheduling, longest remaining chain first (:func:`tails`; or by ``prio``, highest
-    first): whenever an agent is free, the ready unit with the longest chain starts on the
-    free agent that can do it soonest (shortest duration, then not a person, then the first
-    agent), if its resources allow; nobody waits while a unit it could do is ready (a
-    non-delay schedule)."""
-    order: dict[int, float] = dict(tails(inst)) if prio is None else prio
-    waiting = {u: {o for o, _ in inst.needs[u]} for u in inst.units}
-    users: dict[int, list[tuple[int, int]]] = {}
-    for v in inst.units:
-        for o, ms in inst.needs[v]:
-            for m in ms:
-                users.setdefault(m, []).append((v, o))
-    ready = {u for u in inst.units if not waiting[u]}
-    free = {name: True for name, _ in inst.agents}
-    in_use = dict.fromkeys(inst.capacity, 0)
-    running: list[Entry] = []
-    out: list[Entry] = []
-    t = 0
-    while len(out) < len(inst.units) or running:
-        for e in [e for e in running if e.end <= t]:
-            running.remove(e)
-            free[e.agent] = True
-            for r in inst.uses[e.unit]:
-                in_use[r] -= 1
-            for v, o in users.get(e.unit, ()):
-                if o in waiting[v]:
-                    waiting[v].discard(o)
-                    if not waiting[v]:
-                        ready.add(v)
-        for u in sorted(ready, key=lambda u: (-order[u], u)):
-            if any(in_use[r] >= inst.capacity[r] for r in inst.uses[u]):
-                continue
-            choice = [
-                (d, kind == HUMAN, k, name)
-                for k, (name, kind) in enumerate(inst.agents)
-                if free[name] and (d := inst.durations[u].get(kind)) is not None
-            ]
-            if not choice:
-                continue
-            d, _, _, name = min(choice)
-            free[name] = False
-            for r in inst.uses[u]:
-                in_use[r] += 1
-            ready.discard(u)
-            entry = Entry(u, name, t, t + d)
-            running.append(entry)
-            out.append(entry)
-        if any(e.end <= t for e in running):
-            continue  # units of duration 0 end at once
-        if not running:
-            if len(out) < len(inst.units):
-                raise ValueError("list scheduling is stuck: a unit no agent can do, or one never ready")
-            break
-        t = min(e.end for e in running)
-    return out
-
-
-def _slot(busy: list[tuple[int, int]], using: list[list[tuple[int, int]]], caps: list[int], ready: int, d: int) -> int:
-    """The earliest start at ``ready`` or later of ``d`` on an agent busy over ``busy``, with
-    each resource (its units' spans ``using``, its capacity ``caps``) not full throughout."""
-    if d == 0:
-        return ready
-    for t in sorted(
-        {ready} | {e for _, e in busy if e > ready} | {e for spans in using for _, e in spans if e > ready}
-    ):
-        if any(s < t + d and t < e for s, e in busy):
-            continue
-        if all(
-            sum(1 for s, e in spans if s <= x < e) < cap
-            for spans, cap in zip(using, caps)
-            for x in {t} | {s for s, _ in spans if t < s < t + d}
-        ):
-            return t
-    raise AssertionError("a slot after every end exists")  # pragma: no cover
-
-
-def earliest_finish(inst: Instance, prio: dict[int, float] | None = None) -> list[Entry]:
-    """List scheduling by agent choice: the ready unit with the longest remaining chain
-    (:func:`tails`; or by ``prio``, highest first) goes where it ends first, waiting for a
-    faster agent if that is sooner, into the first gap long enough (shortest end, then not a
-    person, then the first agent), its resources allowing.  A unit is ready once a maker of
-    each object it needs is placed; it starts after the first of them ends."""
-    order: dict[int, float] = dict(tails(inst)) if prio is None else prio
-    placed: dict[int, Entry] = {}
-    busy: dict[str, list[tuple[int, int]]] = {name: [] for name, _ in inst.agents}
-    spans: dict[str, list[tuple[int, int]]] = {r: [] for r in inst.capacity}
-    waiting = {u: {o for o, _ in inst.needs[u]} for u in inst.units}
-    users: dict[int, list[tuple[int, int]]] = {}
-    for v in inst.units:
-        for o, ms in inst.needs[v]:
-            for m in ms:
-                users.setdefault(m, []).append((v, o))
-    ready = {u for u in inst.units if not waiting[u]}
-    while len(placed) < len(inst.units):
-        if not ready:
-            raise ValueError("list scheduling is stuck: a unit never ready")
-        u = max(ready, key=lambda v: (order[v], -v))
-        ready.discard(u)
-        at = max((min(placed[m].end for m in ms if m in placed) for _, ms in inst.needs[u]), default=0)
-        using = [spans[r] for r in inst.uses[u]]
-        caps = [inst.capacity[r] for r in inst.uses[u]]
-        choice = []
-        for k, (name, kind) in enumerate(inst.agents):
-            d = inst.durations[u].get(kind)
-            if d is not None:
-                t = _slot(busy[name], using, caps, at, d)
-                choice.append((t + d, kind == HUMAN, k, name, t))
-        if not choice:
-            raise ValueError("list scheduling is stuck: a unit no agent can do")
-        end, _, _, name, t = min(choice)
-        placed[u] = Entry(u, name, t, end)
-        if end > t:
-            busy[name].append((t, end))
-            for spans_r in using:
-                spans_r.append((t, end))
-        for v, o in users.get(u, ()):
-            if o in waiting[v]:
-                waiting[v].discard(o)
-                if not waiting[v]:
-                    ready.add(v)
-    return list(placed.values())
-
-
-def known_schedule(inst: Instance, target: int, tries: int = TRIES, seed: int = 0) -> tuple[list[Entry], str]:
-    """The best list schedule, by makespan, then human units, and what made it: the baseline
-    (:func:`list_schedule`) and, under ``tries`` seeded random perturbations (up to 30 %) of its
-    priorities, list schedules again and :func:`earliest_finish` ones (with several kinds of
-    agents also an unperturbed one, first).  It stops at one that reaches ``target`` (a lower bound) with no
-    more human units than :func:`human_lower` there.  The same answer every time."""
-    base = tails(inst)
-    rng = random.Random(seed)
-    kinds = len(inst.kinds) > 1
-    low_human: list[int] = []
-
-    def key(found: tuple[list[Entry], str]) -> tuple[int, int]:
-        return makespan(found[0]), human_units(found[0])
-
-    def done(entries: list[Entry]) -> bool:
-        if makespan(entries) > target:
-            return False
-        if not low_human:
-            low_human.append(human_lower(inst, target))
-        return human_units(entries) <= low_human[0]
-
-    best = (list_schedule(inst), "baseline")
-    if kinds and not done(best[0]):
-        best = min(best, (earliest_finish(inst), "earliest-finish list scheduling"), key=key)
-    for _ in range(tries):
-        if done(best[0]):
-            break
-        noisy = {u: base[u] * (1 + rng.uniform(-0.3, 0.3)) for u in inst.units}
-        best = min(best, (list_schedule(inst, noisy), "a list schedule with perturbed priorities"), key=key)
-        if not done(best[0]):
-            found = (earliest_finish(inst, noisy), "earliest-finish list scheduling with perturbed priorities")
-            best = min(best, found, key=key)
-    return best

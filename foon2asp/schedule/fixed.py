@@ -7,7 +7,7 @@ tree no agent can do), ``unreachable`` (no tree makes the goal), ``unknown`` (no
 found in time).  Every answer carries the list-scheduling baseline and the lower bounds
 (:mod:`foon2asp.schedule.bounds`).
 
-A shortcut: when a list schedule (:func:`foon2asp.schedule.bounds.known_schedule`) meets
+A shortcut: when a list schedule (:func:`foon2asp.schedule.baseline.known_schedule`) meets
 the lower bound and uses no more human units than a person must do at that makespan
 (:func:`foon2asp.schedule.bounds.human_lower`), it is optimal and no solver runs.  Otherwise
 the solver starts from that schedule: the time-step encoding within its makespan,
@@ -25,7 +25,8 @@ from foon2asp.asp.settings import solver_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule import encode
-from foon2asp.schedule.bounds import TRIES, bounds, human_lower, known_schedule, list_schedule
+from foon2asp.schedule.baseline import TRIES, known_schedule, list_schedule
+from foon2asp.schedule.bounds import bounds, human_lower
 from foon2asp.schedule.model import (
     Entry,
     Instance,

@@ -29,7 +29,8 @@ from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule import branch, encode, joint
-from foon2asp.schedule.bounds import bounds, list_schedule
+from foon2asp.schedule.baseline import list_schedule
+from foon2asp.schedule.bounds import bounds
 from foon2asp.schedule.fixed import DEFAULT_ENCODING, forced_human, schedule_fixed, solve_encoded, solver_arguments
 from foon2asp.schedule.model import Entry, Instance, compact, divisor, earliest, instance, joint_tails, makespan
 from foon2asp.schedule.result import ScheduleResult

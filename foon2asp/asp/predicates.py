@@ -1,0 +1,228 @@
+"""What a program defines and uses: the predicates of user rules, the shipped encodings and the facts.
+
+Read with clingo's parser (:func:`predicates`); :func:`rule_warnings` names a predicate
+a user program uses that nothing defines, with the closest defined ones, and
+:func:`only_constraints` says whether user programs only remove trees.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from functools import cache
+
+import clingo
+import clingo.ast
+
+from foon2asp.asp import encodings
+from foon2asp.errors import escape
+
+#: a predicate: name and arity
+Signature = tuple[str, int]
+
+#: the facts :func:`foon2asp.asp.facts.facts` writes (docs/vocabulary.md, "Facts")
+FACTS: frozenset[Signature] = frozenset(
+    {
+        ("object", 1),
+        ("label", 2),
+        ("state", 2),
+        ("ingredient", 2),
+        ("container", 2),
+        ("unit", 1),
+        ("motion", 2),
+        ("success", 2),
+        ("neglog", 2),
+        ("input", 2),
+        ("required", 2),
+        ("output", 2),
+        ("product", 2),
+        ("kitchen", 1),
+        ("goal_node", 2),
+        ("goal", 1),
+    }
+)
+
+
+@dataclass
+class Predicates:
+    """What one program defines and uses."""
+
+    #: predicates in a rule head (of a fact, a choice, a disjunction, a head aggregate), ``#external`` or ``#defined``
+    defined: set[Signature] = field(default_factory=set)
+    #: predicates in a body (conditions and aggregate elements too), ``#show``, ``#heuristic``, ``#project``,
+    #: with where each is first used (line, column)
+    used: dict[Signature, tuple[int, int]] = field(default_factory=dict)
+
+
+def _signatures(symbol: clingo.ast.AST) -> list[Signature]:
+    """The predicates of an atom's symbol: ``p(X)``, ``-p(X)`` (as ``p``), ``p(1;2)``."""
+    kind = symbol.ast_type
+    if kind == clingo.ast.ASTType.Function and symbol.name:
+        return [(symbol.name, len(symbol.arguments))]
+    if kind == clingo.ast.ASTType.UnaryOperation:
+        return _signatures(symbol.argument)
+    if kind == clingo.ast.ASTType.Pool:
+        return [s for arg in symbol.arguments for s in _signatures(arg)]
+    if kind == clingo.ast.ASTType.SymbolicTerm and symbol.symbol.type == clingo.SymbolType.Function:
+        return [(symbol.symbol.name, len(symbol.symbol.arguments))]
+    return []
+
+
+class _Walk:
+    """Collects :class:`Predicates` from the statements of one program."""
+
+    def __init__(self) -> None:
+        self.found = Predicates()
+
+    def define(self, sigs: Iterable[Signature]) -> None:
+        self.found.defined.update(sigs)
+
+    def use(self, sigs: Iterable[Signature], location: clingo.ast.Location) -> None:
+        for sig in sigs:
+            self.found.used.setdefault(sig, (location.begin.line, location.begin.column))
+
+    def statement(self, stm: clingo.ast.AST) -> None:
+        kind = stm.ast_type
+        T = clingo.ast.ASTType
+        if kind == T.Rule:
+            self.visit(stm.head, head=True)
+            self.visit(stm.body)
+        elif kind == T.External:
+            self.define(_signatures(stm.atom.symbol))
+            self.visit(stm.body)
+        elif kind == T.Defined:
+            self.define([(stm.name, stm.arity)])
+        elif kind in (T.ShowSignature, T.ProjectSignature):
+            if stm.name:
+                self.use([(stm.name, stm.arity)], stm.location)
+        elif kind in (T.Heuristic, T.ProjectAtom):
+            self.use(_signatures(stm.atom.symbol), stm.location)
+            self.visit(stm.body)
+        elif kind in (T.ShowTerm, T.Minimize, T.Edge):
+            self.visit(stm.body)
+
+    def visit(self, node, head: bool = False) -> None:
+        """Atoms in ``node`` (an AST or a sequence of them): defined in a head position, else used."""
+        if isinstance(node, (list, clingo.ast.ASTSequence)):
+            for item in node:
+                self.visit(item, head)
+            return
+        if not isinstance(node, clingo.ast.AST):
+            return
+        T = clingo.ast.ASTType
+        kind = node.ast_type
+        if kind == T.Literal:
+            if node.atom.ast_type != T.SymbolicAtom:
+                self.visit(node.atom, head)  # an aggregate or a theory atom; a comparison holds no atom
+            elif head and node.sign == clingo.ast.Sign.NoSign:
+                self.define(_signatures(node.atom.symbol))
+            else:
+                self.use(_signatures(node.atom.symbol), node.location)
+        elif kind == T.ConditionalLiteral:
+            self.visit(node.literal, head)
+            self.visit(node.condition)
+        elif kind == T.HeadAggregateElement:
+            self.visit(node.condition, head)  # a conditional literal: the atom is defined, its condition used
+        elif kind in (T.BodyAggregateElement, T.TheoryAtomElement):
+            self.visit(node.condition)
+        elif kind in (T.Aggregate, T.BodyAggregate, T.HeadAggregate, T.Disjunction, T.TheoryAtom):
+            self.visit(node.elements, head)
+
+
+def predicates(text: str) -> Predicates:
+    """The predicates program ``text`` defines and uses (clingo's parser; RuntimeError on a syntax error)."""
+    walk = _Walk()
+    clingo.ast.parse_string(text, walk.statement, logger=lambda code, msg: None)
+    return walk.found
+
+
+def _parsed(text: str) -> Predicates | None:
+    try:
+        return predicates(text)
+    except RuntimeError:
+        return None  # a syntax error, reported as an error where the program is checked
+
+
+@cache
+def shipped_predicates() -> dict[str, Predicates]:
+    """Each shipped encoding's :class:`Predicates`, by name (``tree``, ``units``, ...)."""
+    return {name: predicates(encodings.encoding(name)) for name in encodings.names()}
+
+
+@cache
+def known_predicates() -> frozenset[Signature]:
+    """Every predicate foon2asp defines or writes: the facts, the shipped encodings' heads,
+    and what the encodings read, which foon2asp writes as facts (``objective/2``, ``dom/2``, ...)."""
+    known = set(FACTS)
+    for found in shipped_predicates().values():
+        known |= found.defined | set(found.used)
+    return frozenset(known)
+
+
+def signature_text(sig: Signature) -> str:
+    return f"{sig[0]}/{sig[1]}"
+
+
+def closest(sig: Signature, defined: Iterable[Signature]) -> str:
+    """``; did you mean motion/2?``: the defined predicates whose names are closest to ``sig``'s
+    (difflib; those nearly as close as the closest), of its arity where the name has it; or ""."""
+    arities: dict[str, set[int]] = {}
+    for name, arity in defined:
+        arities.setdefault(name, set()).add(arity)
+    near = difflib.get_close_matches(sig[0], sorted(arities), n=3, cutoff=0.75)
+    if not near:
+        return ""
+    best = difflib.SequenceMatcher(None, sig[0], near[0]).ratio()
+    near = [n for n in near if difflib.SequenceMatcher(None, sig[0], n).ratio() >= best - 0.1]
+    texts = [signature_text((n, a)) for n in near for a in ([sig[1]] if sig[1] in arities[n] else sorted(arities[n]))]
+    texts = texts[:3]
+    return "; did you mean " + (texts[0] if len(texts) == 1 else ", ".join(texts[:-1]) + " or " + texts[-1]) + "?"
+
+
+def undefined(name: str, sig: Signature, where: tuple[int, int], defined: Iterable[Signature]) -> str:
+    """The warning about ``sig``, used in program ``name`` at ``where``, that nothing defines."""
+    line, column = where
+    return f"{escape(name)}:{line}:{column}: {signature_text(sig)} is defined nowhere{closest(sig, defined)}"
+
+
+def rule_warnings(programs: Iterable[tuple[str, str]], defined: Iterable[Signature] = ()) -> list[str]:
+    """One warning for each predicate a user program (name, text) uses that is defined nowhere:
+    not in :func:`known_predicates`, ``defined``, or the heads of any of ``programs``.
+    ``NAME:LINE:COLUMN: motoin/2 is defined nowhere; did you mean motion/2?``, at its first use
+    in each program.  Programs with a syntax error are left to :func:`check_syntax`."""
+    parsed = [(name, found) for name, text in programs if (found := _parsed(text)) is not None]
+    known = set(known_predicates()) | set(defined)
+    for _, found in parsed:
+        known |= found.defined
+    return [
+        undefined(name, sig, where, known)
+        for name, found in parsed
+        for sig, where in found.used.items()
+        if sig not in known
+    ]
+
+
+def _changes_search(text: str) -> bool:
+    """Does ``text`` hold a statement that changes what is optimal or how it is searched
+    (``#minimize``, ``#heuristic``, ``#external``, ``#edge``, a weak constraint)?"""
+    T = clingo.ast.ASTType
+    kinds = (T.Minimize, T.Heuristic, T.External, T.Edge)
+    found: list[bool] = []
+    clingo.ast.parse_string(text, lambda stm: found.append(stm.ast_type in kinds), logger=lambda code, msg: None)
+    return any(found)
+
+
+def only_constraints(programs: Iterable[tuple[str, str]]) -> bool:
+    """Do the user ``programs`` only remove trees: integrity constraints and rules whose heads
+    are predicates of their own (none that foon2asp defines or writes), nothing that changes
+    the objective or the search?  Then what preparation proves of a goal (it cannot be made,
+    the relevant part, the landmarks, the lower bounds) still holds with them."""
+    known = known_predicates()
+    for _, text in programs:
+        try:
+            if predicates(text).defined & known or _changes_search(text):
+                return False
+        except RuntimeError:
+            return False  # a syntax error: reported where the program is grounded
+    return True
