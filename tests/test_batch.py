@@ -462,3 +462,16 @@ def test_synthetic_copy_solves_like_base(shared_problem, tmp_path):
     assert tree.status == base_tree.status == "optimal"
     assert len(tree.units) <= len(base_tree.units)
     assert validate(q, copy_goal, tree.units).valid
+
+
+def test_a_pool_ends_without_a_traceback(shared_foon_dir, tmp_path):
+    """The pool ends its workers with SIGTERM: nothing but the summary reaches stderr."""
+    import subprocess
+    import sys
+
+    out = tmp_path / "r.jsonl"
+    cmd = [sys.executable, "-m", "foon2asp", "batch", "--data", str(shared_foon_dir), "--goals", "all"]
+    done = subprocess.run([*cmd, "--workers", "2", "-o", str(out), "--no-progress"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "Traceback" not in done.stderr and "Terminated" not in done.stderr, done.stderr
+    assert len(out.read_text().splitlines()) > 25

@@ -191,6 +191,8 @@ def _exit_with_parent() -> None:
 def _init_worker(spec: BatchSpec, processes: int = 1) -> None:
     global _WORKER
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # an interrupt is the parent's to handle
+    # the pool ends its workers with SIGTERM: a forked worker must not run the parent's handler
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
     _exit_with_parent()
     _WORKER = Worker(spec)
 
