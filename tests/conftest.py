@@ -61,5 +61,3 @@ def hard():
     syn = preset("hard-4k")
     problem = syn.problem()
     return problem, [problem.foon.object_ids[g] for g in syn.goals]
-
-
