@@ -82,7 +82,7 @@ PROVEN_BY: dict[str, str | None] = {
 }
 
 #: statuses that are proven answers
-PROVEN = ("optimal", "unreachable", "infeasible")
+PROVEN = ("optimal", "ranked", "unreachable", "infeasible")
 
 
 def plain(options: AspOptions) -> bool:
@@ -229,8 +229,9 @@ class GoalRunner:
             tree = self._prepared(meal[0], t0)
         if self._effective.programs and tree.status == "unreachable" and all(g in self.parts.derivable for g in meal):
             self._infeasible(tree)
-        if tree.status in PROVEN:
-            tree.proven_by = PROVEN_BY[how]
+        for answer in (tree, *tree.alternatives):
+            if answer.status in PROVEN:
+                answer.proven_by = PROVEN_BY[how]
         if self._effective.programs:  # the answer obeys these; a baseline's tree does not
             tree.extra["constraints"] = [name for name, _ in self._effective.programs]
         return tree
