@@ -397,3 +397,14 @@ def test_labels_in_facts_stay_data_for_queries():
     res = queries.query(p, ("q", "#show label/2."))
     labels = [s.arguments[1].string for s in res.answers[0].symbols]
     assert evil.label in labels and not any(s.name == "hacked" for s in res.answers[0].symbols)
+
+
+def test_a_missing_query_program_is_named_as_a_program():
+    """`query nope.lp` is about the program, not a constraint file."""
+    from click.testing import CliRunner
+
+    from foon2asp.cli.main import main
+
+    res = CliRunner().invoke(main, ["query", "nope.lp", "--data", "demo"])
+    assert res.exit_code == 2
+    assert "nope.lp: ASP program file not found" in res.output and "constraint" not in res.output

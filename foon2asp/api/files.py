@@ -94,7 +94,7 @@ def write_foon(foon: Foon, path: str | Path, fmt: str = "foon", header: str | No
 
 def read_program(path: str | Path) -> str:
     """The text of an ASP program file (for :meth:`KnowledgeBase.query`)."""
-    return read_file(str(path))
+    return read_file(str(path), "ASP program file")
 
 
 def draw_file(

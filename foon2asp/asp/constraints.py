@@ -182,14 +182,17 @@ class ConstraintSpec:
         return motions, labels
 
 
-def read_file(path: str) -> str:
+def read_file(path: str, what: str = "constraint file") -> str:
+    """The text of an ASP file; ``what`` names it in errors (a constraint file, a program)."""
     p = Path(path)
+    if p.is_dir():
+        raise InputError(f"{what} is a directory, not a file", path)
     if not p.is_file():
-        raise InputError("constraint file not found", path)
+        raise InputError(f"{what} not found", path)
     try:
         return p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read constraint file: {exc}", path) from None
+        raise InputError(f"cannot read {what}: {exc}", path) from None
 
 
 def user_programs(files: Iterable[str] = (), rules: Iterable[str] = ()) -> list[tuple[str, str]]:
