@@ -237,7 +237,7 @@ def test_missing_respects_constraints():
     assert sorted(p.objects[o].label for o in r.missing) == ["w", "y", "z"]
     assert validate(extended(p, r.missing), g, r.units).valid
     r = queries.missing(p, g, AspOptions(programs=[("f", constraints.forbid_motion("m"))]))
-    assert r.status == "unreachable" and r.reason == "the constraints rule out every tree"
+    assert r.status == "infeasible" and r.reason == "the constraints rule out every tree"
 
 
 # ---------------------------------------------------------------- missing: ../shared/foon

@@ -219,10 +219,13 @@ def missing(problem: Problem, goal: Goals, options: AspOptions | None = None) ->
         result.reason = (
             f"no set of objects helps these goal(s): {names}" if blocked else "the constraints rule out every tree"
         )
+        if not blocked:
+            result.status = "infeasible"
         return result
     goal = meal[0]
     reach = {s.arguments[0].number for s in prog.facts_of("reach", 1)}
     if goal in reach:
+        result.status = "infeasible"
         result.reason = "the constraints rule out every tree"
     elif goal not in problem.producers:
         result.reason = "no unit of the FOON makes it and it is not in the kitchen"
