@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 import threading
 import time
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from typing import Any
 
 import click
@@ -54,12 +54,21 @@ def progress_bar(items: Iterable, total: int, enabled: bool | None, what: str) -
     return tqdm(items, total=total, desc=what, unit="goal", file=sys.stderr, disable=not show, leave=False)
 
 
+def solving_text(info: dict) -> str:
+    """``solving: best 12, lower bound 10, gap 16.7%`` (the solver's weights per level)."""
+    best = "/".join(map(str, info.get("cost") or ())) or "-"
+    lower = "/".join(map(str, info.get("lower") or ())) or "-"
+    gap = info.get("gap")
+    return f"solving: best {best}, lower bound {lower}" + (f", gap {100 * gap:.1f}%" if gap is not None else "")
+
+
 class GoalProgress:
-    """A status line on stderr while one goal is solved: the best tree's cost, the proven lower
-    bound and the gap (the solver's weights per objective level), at most five times a second.
+    """A status line on stderr while one goal is solved: ``text(info)`` (default: the best
+    tree's cost, the proven lower bound and the gap), at most five times a second.
     Given to the library as ``progress=`` (:attr:`foon2asp.api.Options.progress`)."""
 
-    def __init__(self) -> None:
+    def __init__(self, text: Callable[[dict], str] = solving_text) -> None:
+        self._text = text
         self._bar: Any = None
         self._last = 0.0
         self._lock = threading.Lock()
@@ -72,12 +81,7 @@ class GoalProgress:
             self._last = now
             if self._bar is None:
                 self._bar = tqdm(total=0, bar_format="{desc}", file=sys.stderr, leave=False)
-            best = "/".join(map(str, info.get("cost") or ())) or "-"
-            lower = "/".join(map(str, info.get("lower") or ())) or "-"
-            gap = info.get("gap")
-            self._bar.set_description_str(
-                f"solving: best {best}, lower bound {lower}" + (f", gap {100 * gap:.1f}%" if gap is not None else "")
-            )
+            self._bar.set_description_str(self._text(info))
 
     def close(self) -> None:
         with self._lock:

@@ -3,12 +3,8 @@
 from __future__ import annotations
 
 import sys
-import threading
-import time
-from typing import Any
 
 import click
-from tqdm import tqdm
 
 from foon2asp import api, report
 from foon2asp.cli.main import guarded, main
@@ -21,7 +17,7 @@ from foon2asp.cli.options import (
     strategy_options,
     time_limit_option,
 )
-from foon2asp.cli.output import progress_bar, warn_kb
+from foon2asp.cli.output import GoalProgress, progress_bar, warn_kb
 from foon2asp.cli.schedule_options import schedule_options
 from foon2asp.report import draw
 from foon2asp.schedule.result import seconds_text
@@ -35,33 +31,6 @@ ANSWERED = ("optimal", "unschedulable", "unreachable")
 EXIT = """\b
 Exit codes: 0 every goal answered (makespan proven, or unschedulable or unreachable);
 1 some makespan is not proven (time limit); 2 bad input or usage; 130 interrupted."""
-
-
-class ScheduleStatus:
-    """A status line on stderr while a goal is scheduled: the best makespan and its lower bound,
-    then, the makespan proven, the human units and the fewest a person must do; at most five
-    times a second.  Given to the library as ``progress=``."""
-
-    def __init__(self) -> None:
-        self._bar: Any = None
-        self._last = 0.0
-        self._lock = threading.Lock()
-
-    def __call__(self, info: dict) -> None:
-        now = time.monotonic()
-        with self._lock:
-            if now - self._last < 0.2:
-                return
-            self._last = now
-            if self._bar is None:
-                self._bar = tqdm(total=0, bar_format="{desc}", file=sys.stderr, leave=False)
-            self._bar.set_description_str(status_text(info))
-
-    def close(self) -> None:
-        with self._lock:
-            if self._bar is not None:
-                self._bar.close()
-                self._bar = None
 
 
 def status_text(info: dict) -> str:
@@ -131,7 +100,8 @@ def schedule(data, goal, goals, spec, joint, fmt, output, encoding, together, pr
     if fmt not in OWN and fmt != "dot":
         draw.require_dot()  # before solving, not after
     jobs: list = [tuple(dict.fromkeys(goal_ids))] if together else goal_ids
-    status = ScheduleStatus() if (sys.stderr.isatty() if progress is None else progress) else None
+    # a status line on stderr: the best makespan and its bound, then the human units
+    status = GoalProgress(status_text) if (sys.stderr.isatty() if progress is None else progress) else None
     found = kb.schedule_iter(jobs, spec, solver, joint=joint, encoding=encoding, progress=status)
     done: list = []
     stream = fmt == "text" and output is None
