@@ -34,6 +34,18 @@ def perturbed_schedule(inst: Instance, target: int, tries: int = TRIES, seed: in
     return best
 
 
+def _waiting(inst: Instance) -> tuple[dict[int, set[int]], dict[int, list[tuple[int, int]]], set[int]]:
+    """``(waiting, users, ready)``: the objects each unit waits for, the (unit, object) pairs
+    each maker supplies, and the units that wait for nothing."""
+    waiting = {u: {o for o, _ in inst.needs[u]} for u in inst.units}
+    users: dict[int, list[tuple[int, int]]] = {}
+    for v in inst.units:
+        for o, ms in inst.needs[v]:
+            for m in ms:
+                users.setdefault(m, []).append((v, o))
+    return waiting, users, {u for u in inst.units if not waiting[u]}
+
+
 def list_schedule(inst: Instance, prio: dict[int, float] | None = None) -> list[Entry]:
     """List scheduling, longest remaining chain first (:func:`tails`; or by ``prio``, highest
     first): whenever an agent is free, the ready unit with the longest chain starts on the
@@ -41,13 +53,7 @@ def list_schedule(inst: Instance, prio: dict[int, float] | None = None) -> list[
     agent), if its resources allow; nobody waits while a unit it could do is ready (a
     non-delay schedule)."""
     order: dict[int, float] = dict(tails(inst)) if prio is None else prio
-    waiting = {u: {o for o, _ in inst.needs[u]} for u in inst.units}
-    users: dict[int, list[tuple[int, int]]] = {}
-    for v in inst.units:
-        for o, ms in inst.needs[v]:
-            for m in ms:
-                users.setdefault(m, []).append((v, o))
-    ready = {u for u in inst.units if not waiting[u]}
+    waiting, users, ready = _waiting(inst)
     free = {name: True for name, _ in inst.agents}
     in_use = dict.fromkeys(inst.capacity, 0)
     running: list[Entry] = []
@@ -121,13 +127,7 @@ def earliest_finish(inst: Instance, prio: dict[int, float] | None = None) -> lis
     placed: dict[int, Entry] = {}
     busy: dict[str, list[tuple[int, int]]] = {name: [] for name, _ in inst.agents}
     spans: dict[str, list[tuple[int, int]]] = {r: [] for r in inst.capacity}
-    waiting = {u: {o for o, _ in inst.needs[u]} for u in inst.units}
-    users: dict[int, list[tuple[int, int]]] = {}
-    for v in inst.units:
-        for o, ms in inst.needs[v]:
-            for m in ms:
-                users.setdefault(m, []).append((v, o))
-    ready = {u for u in inst.units if not waiting[u]}
+    waiting, users, ready = _waiting(inst)
     while len(placed) < len(inst.units):
         if not ready:
             raise ValueError("list scheduling is stuck: a unit never ready")
