@@ -159,6 +159,12 @@ class GoalRunner:
         self._label = self._effective.method if self.kind == "asp" else name
         #: goals may be prepared: plain optimisation, perhaps with programs that only remove trees
         self._preparable = self.kind == "asp" and preparable(self._effective)
+        #: the depth objective with nothing else asked: clingo's rounds, but a goal that cannot be
+        #: made, or whose part is its only tree, is settled first
+        depthless = replace(self._effective, objective=tuple(o for o in self._effective.objective if o != "depth"))
+        self._depth_settles = (
+            self.kind == "asp" and "depth" in self._ranked and plain(depthless) and self._effective.max_depth is None
+        )
         #: preparation may answer a goal that has one tree, or whose bounds meet
         self._settle = shortcuts
         #: the user's programs only remove trees (the bounds tree is a hint only, nothing is pruned)
@@ -178,7 +184,7 @@ class GoalRunner:
         meal = meal_of(goal)
         if self.kind != "asp":
             return "search"
-        if len(meal) > 1 or not self._preparable:
+        if len(meal) > 1 or not (self._preparable or self._depth_settles):
             return "clingo"
         goal = meal[0]
         if goal not in self.parts.derivable or goal in self.problem.kitchen:
@@ -186,6 +192,8 @@ class GoalRunner:
         units, _, choice = self.parts.relevant(goal)
         if self._allowed is not None and not self._allowed.issuperset(units):
             return "clingo"  # the caller's units cut into the part: clingo decides on them
+        if self._depth_settles:
+            return "only-tree" if self._settle and not choice else "clingo"
         if self._settle and not choice and self._allows(units):
             return "only-tree"
         if self._settle and self._bounded and (not self._constrained or self._checkable):
@@ -245,7 +253,8 @@ class GoalRunner:
     def _answer(self, goal: int, units: list[int], t0: float) -> TaskTree:
         """An optimal tree that preparation proved."""
         order = executable_order(self.problem, units)
-        asp_cost = [total(self.problem, name, order) for name in self._ranked]
+        depth = measures(self.problem, goal, order)["depth"] or 0
+        asp_cost = [depth if name == "depth" else total(self.problem, name, order) for name in self._ranked]
         tree = TaskTree(
             goal,
             self._label,
