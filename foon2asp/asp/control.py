@@ -375,7 +375,10 @@ class Control:
             self._last_stats = {}
 
     def stats(self) -> dict:
-        """Choices, conflicts, models and solve time of the last solve call."""
+        """Choices, conflicts, models and solve time of the last solve call (none when
+        :attr:`statistics` is off)."""
+        if not self.statistics:
+            return {}
         if getattr(self, "_last_stats", None):
             return dict(self._last_stats)
         try:
