@@ -49,9 +49,9 @@ def foon(units: Units, kitchen: Iterable[int], goals: Iterable[int] = ()) -> str
 
 
 def program(names: Sequence[str], *facts: str) -> str:
-    """The shipped encodings ``names`` (includes expanded) and the facts, as one program (the facts
-    in the base part: an encoding may end inside a ``#program`` part of its own)."""
-    return "\n".join([*(encoding(n) for n in names), *(f"#program base.\n{f}" for f in facts)])
+    """The shipped encodings ``names`` (includes expanded) and the facts, as one program (each
+    encoding and the facts in the base part: an encoding may end inside a ``#program`` part of its own)."""
+    return "\n".join(f"#program base.\n{text}" for text in [*(encoding(n) for n in names), *facts])
 
 
 def solver(names: Sequence[str], *facts: str, args: Sequence[str] = OPT) -> Clingo:
@@ -308,6 +308,61 @@ def test_prepared_hint_units_are_tried_first():
 
 def test_prepared_goal_in_the_kitchen_needs_no_unit():
     check(solver(["prepared"], prepared({}, [1, 9], 9, []), args=ALL), models(1, atoms()))
+
+
+# --- closed.lp: closed sets, and loop cuts as part cut(k) --------------------------------------
+
+# 0 and 1 make 4 and 5 from each other; the chain 2, 3, 4 makes 4 from the kitchen
+LOOP = {0: ([5], [4]), 1: ([4], [5]), 2: ([1], [2]), 3: ([2], [3]), 4: ([3], [4])}
+
+
+def closed(units: Units, kitchen, goal, candidates, extra: str = "", cuts: int = 0) -> Shots:
+    """closed.lp with the units objective over a prepared part, grounded with ``cuts`` loop cuts."""
+    text = program(["closed", "units"], prepared(units, kitchen, goal, candidates, extra), "objective(units,1).\n")
+    return Shots(OPT, text, [[("base", ()), *(("cut", (k,)) for k in range(1, cuts + 1))]])
+
+
+def test_closed_admits_a_cycle_that_is_no_tree():
+    facts = prepared({0: ([5], [9]), 1: ([9], [5])}, [1], 9, [0, 1])
+    check(solver(["closed"], facts, args=ALL), models(1, atoms(*use(0, 1))))
+
+
+def test_closed_cut_without_outside_producers_leaves_no_set():
+    cut = "cut(1,9). cut(1,5).\n"
+    check(closed({0: ([5], [9]), 1: ([9], [5])}, [1], 9, [0, 1], cut, cuts=1), unsat())
+
+
+def test_closed_optimum_rests_on_the_cheaper_cycle():
+    check(closed(LOOP, [1], 4, range(5)), optimum(use(0, 1), 2))
+
+
+def test_closed_loop_cut_leaves_the_tree():
+    # the cycle's objects 4 and 5 are made from outside them only by 4 (from 3)
+    cut = "cut(1,4). cut(1,5). outside(1,4).\n"
+    check(closed(LOOP, [1], 4, range(5), cut, cuts=1), optimum(use(2, 3, 4), 3))
+
+
+def test_closed_a_cut_not_grounded_is_not_applied():
+    cut = "cut(1,4). cut(1,5). outside(1,4).\n"
+    check(closed(LOOP, [1], 4, range(5), cut, cuts=0), optimum(use(0, 1), 2))
+
+
+def test_closed_every_needed_input_is_made():
+    # 1 would need 6, which nothing makes and the kitchen lacks
+    check(closed(JOIN, [1], 9, [0, 1, 2, 3]), optimum(use(0, 2, 3), 3))
+
+
+def test_closed_landmark_forces_its_unit():
+    check(closed(ALTERNATIVES, [1], 9, [0, 2, 3], "landmark(3).\n"), optimum(use(2, 3), 2))
+
+
+def test_closed_hint_units_are_tried_first():
+    facts = prepared(ALTERNATIVES, [1], 9, [0, 1, 2, 3], "hint(1).\nhint(2).\nhint(3).\n")
+    check(solver(["closed"], facts, args=DOMAIN), first(use(1, 2, 3)))
+
+
+def test_closed_goal_in_the_kitchen_needs_no_unit():
+    check(solver(["closed"], prepared({}, [1, 9], 9, []), args=ALL), models(1, atoms()))
 
 
 # --- core.lp, through tree.lp and prepared.lp ------------------------------------------------

@@ -210,3 +210,22 @@ def test_every_reference_goal_is_settled_only_by_polynomial_reasoning_else_by_cl
             assert proof.proven_by == "clingo" and proof.cost == tree.cost, goal
         seen[tree.proven_by] = seen.get(tree.proven_by, 0) + 1
     assert seen.get("clingo", 0) >= 5 and seen.get("bounds", 0) >= 5, seen
+
+
+def test_loop_cuts_end_at_the_brute_force_optimum():
+    """Goals whose optimal closed set rests on a cycle: clingo searches again after each loop
+    cut, and the last round's tree is the brute-force optimum."""
+    cut = 0
+    for seed in range(25):
+        problem = random_foon(seed)
+        for objective in OBJECTIVES[:3]:
+            run = GoalRunner("asp", problem, AspOptions(objective=objective), shortcuts=False)
+            for goal in made_objects(problem):
+                tree = run(goal)
+                if not tree.stats.get("loop_cuts"):
+                    continue
+                cut += 1
+                assert tree.status == "optimal" and tree.proven_by == "clingo", (seed, goal)
+                assert validate(problem, goal, list(tree.units)).valid, (seed, goal)
+                assert score(problem, goal, tree.units, objective) == optimum(problem, goal, objective), (seed, goal)
+    assert cut >= 5

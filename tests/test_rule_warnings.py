@@ -108,7 +108,7 @@ def test_query_warnings_name_the_file_they_are_about(tmp_path):
     prog.write_text("bad(U) :- use(U).\n#show bad/1.\n")
     res = run("query", prog, "--data", "demo")
     assert rule_lines(res.stderr) == [
-        f"foon2asp: warning: {prog}:1:11: use/1 occurs in no rule head and no fact; load the encoding tree (or core, missing, prepared), which defines it"
+        f"foon2asp: warning: {prog}:1:11: use/1 occurs in no rule head and no fact; load the encoding tree (or closed, core, missing, prepared, use), which defines it"
     ]
 
 

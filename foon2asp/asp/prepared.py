@@ -4,16 +4,39 @@ Python prepares a goal in polynomial time (:mod:`foon2asp.methods.bounds`,
 :mod:`foon2asp.asp.dominance`): the goal's relevant part without the units no
 optimal tree needs, the landmark units every tree uses, a valid tree (the
 bounds tree) and lower bounds.  A :class:`Preparation` carries them to a
-:class:`~foon2asp.asp.session.Session`, which grounds ``encodings/prepared.lp``
+:class:`~foon2asp.asp.session.Session`, which grounds an encoding of its own
 over the candidates instead of ``tree.lp`` and writes the rest as facts:
 ``landmark/1`` and ``hint/1`` (the tree clingo tries first under
 ``--heuristic=Domain``).  The search for the optimum stays clingo's.
+
+The session grounds ``encodings/closed.lp``: the *closed* sets of candidates, in which
+every needed object is made by a used unit but units may support each other around a
+cycle.  Every tree is closed, so an optimal closed set that derives the goal (the least
+fixpoint over its units) is an optimal tree.  One that does not is cut off by a *loop
+cut* (:meth:`Preparation.cut`), grounded as part ``cut(k)`` of the encoding, and clingo
+searches again: let ``L`` be the needed objects the set does not derive; a tree that
+needs an object of ``L`` has a first one, made by a unit whose required inputs lie
+outside ``L`` (an *outside* producer), so every tree satisfies "an object of ``L``
+needed implies an outside producer used", and the set does not (an outside producer
+it used would fire and derive an object of ``L``).  Each cut removes the last optimum
+and only finitely many sets exist, so the rounds end with an optimal tree or with no
+tree at all.  With user programs, which may read ``had/1`` or ``fire/1``, and with
+several threads (the smallest optimal tree, :mod:`foon2asp.asp.canonical`), the session
+grounds ``encodings/prepared.lp`` instead, which derives the goal by positive recursion.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import dataclass
+import time
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, replace
+
+import clingo
+
+from foon2asp.asp.answers import Shot, Watch, solve_shot
+from foon2asp.asp.control import Answer, Control, read_model
+from foon2asp.foon.derive import least_fixpoint
+from foon2asp.foon.problem import Problem
 
 
 @dataclass(frozen=True)
@@ -41,3 +64,73 @@ class Preparation:
         lines += [f"landmark({u})." for u in self.landmarks]
         lines += [f"hint({u})." for u in self.hint]
         return "\n".join(lines) + "\n"
+
+    def cut(self, problem: Problem, units: Iterable[int]) -> tuple[list[int], list[int]] | None:
+        """The loop cut of a closed set of ``units`` (see the module docstring): the needed
+        objects it does not derive, and the candidates or landmarks that make one of them
+        from inputs outside them; None when ``units`` derive every needed object (a tree)."""
+        units = list(units)
+        kitchen = problem.kitchen
+        derived, _ = least_fixpoint(kitchen, problem.required, problem.products, units)
+        need = {self.goal}.union(*(problem.required[u] for u in units))
+        missing = sorted(o for o in need if o not in kitchen and o not in derived)
+        if not missing:
+            return None
+        cut = set(missing)
+        outside = [
+            p
+            for p in sorted({*self.candidates, *self.landmarks})
+            if not cut.isdisjoint(problem.products[p]) and cut.isdisjoint(problem.required[p])
+        ]
+        return missing, outside
+
+
+def search(
+    control: Control,
+    prep: Preparation,
+    problem: Problem,
+    closed: bool,
+    on_tree: Callable[[clingo.Model], bool],
+    deadline: float | None,
+    watch: Watch,
+) -> tuple[Shot, Answer | None, tuple[int, ...] | None, int]:
+    """clingo's optimisation over the prepared part grounded on ``control``: with ``closed``
+    (encodings/closed.lp) in rounds, each closed set that is no tree answered by a loop cut
+    (:meth:`Preparation.cut`), until the optimum is a tree, there is none, or ``deadline``
+    passes; else (encodings/prepared.lp) in one round.  ``on_tree`` sees each model that is a
+    tree and may end the search by answering False; ``watch`` sees the lower bounds and may
+    stop the search.  Returns the last round's shot, the answer (the optimum; when cut
+    short, the best tree found, unproven), the best lower bound proven, and the number of cuts."""
+    best: list[Answer] = []
+
+    def seen(model: clingo.Model) -> bool:
+        if closed:
+            answer = read_model(model)
+            if prep.cut(problem, answer.units) is not None:
+                return True  # a closed set that is no tree: the search goes on
+            best[:] = [answer]
+        return on_tree(model)
+
+    cuts = 0
+    lower: tuple[int, ...] | None = None
+    while True:
+        left = None if deadline is None else max(deadline - time.perf_counter(), 1e-3)
+        shot = solve_shot(control, "opt", 1, seen, left, watch.on_lower, watch.stop)
+        if shot.lower is not None and (lower is None or shot.lower > lower):
+            lower = shot.lower
+        answer = shot.last
+        if not closed or answer is None or (best and best[0].units == answer.units):
+            return shot, answer, lower, cuts
+        cut = prep.cut(problem, answer.units)
+        if cut is None:
+            return shot, answer, lower, cuts
+        # the last model is a closed set but no tree: its cost bounds every tree from below
+        if shot.finished and (lower is None or answer.cost > lower):
+            lower = answer.cost
+        if not shot.finished or (deadline is not None and time.perf_counter() >= deadline):
+            shot.finished = False
+            return shot, (replace(best[0], proven=False) if best else None), lower, cuts
+        cuts += 1
+        missing, outside = cut
+        text = "".join(f"cut({cuts},{o}).\n" for o in missing) + "".join(f"outside({cuts},{u}).\n" for u in outside)
+        control.extend(f"cut {cuts}", text, [("cut", [cuts])], what="a loop cut")

@@ -29,7 +29,7 @@ from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import OPTIONAL, fact_objects, facts
 from foon2asp.asp.multishot.driver import Driver
 from foon2asp.asp.options import OBJECTIVES, AspOptions
-from foon2asp.asp.prepared import Preparation
+from foon2asp.asp.prepared import Preparation, search
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.gap import first_level, levels, settle
@@ -79,6 +79,8 @@ class Session:
         for one goal's prepared part (foon2asp.asp.prepared), grounded over its candidates."""
         #: what preparation knows of the goal (None: the encoding derives the part itself)
         self.prepared = prepared
+        #: the prepared part is searched as closed sets with loop cuts (foon2asp.asp.prepared)
+        self._closed = prepared is not None and not (options and (options.programs or options.threads > 1))
         if prepared is not None:
             goal, units = prepared.goal, prepared.candidates
         #: the goal (as a meal) this session was grounded for, None: any goal, switched per solve
@@ -120,7 +122,7 @@ class Session:
         names = objectives.encoding_names(options, OBJECTIVES) + options.encodings
         if self.prepared is not None:
             # dominated units are left out of the candidates already
-            names = ["prepared"] + [n for n in names if n != "dominance"]
+            names = ["closed" if self._closed else "prepared"] + [n for n in names if n != "dominance"]
         else:
             names = ["tree"] + names
         rules = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(names)]
@@ -320,16 +322,18 @@ class Session:
         on_model: Callable[[clingo.Model], None] | None,
         time_limit: float | None,
     ) -> TaskTree:
-        """One optimisation over the prepared part: it stops as soon as a model meets the
-        lower bound of the preparation (that model is optimal).  Among equal optima the
-        answer is the hint when the preparation allows it, else the first optimum clingo
-        finds here (a fresh grounding of the part: the same on every path); with several
-        threads, whose search is not deterministic, the smallest optimal tree
-        (foon2asp.asp.canonical)."""
+        """The optimisation over the prepared part: closed sets and loop cuts in rounds
+        (foon2asp.asp.prepared) until the optimum is a tree, or prepared.lp in one round.
+        The search stops as soon as a tree meets the lower bound of the preparation (that
+        tree is optimal).  Among equal optima the answer is the hint when the preparation
+        allows it, else the first optimum clingo finds here (a fresh grounding of the part:
+        the same on every path); with several threads, whose search is not deterministic,
+        the smallest optimal tree (foon2asp.asp.canonical)."""
         prep = self.prepared
         assert prep is not None
         time_limit = self.options.time_limit if time_limit is None else time_limit
         t0 = time.perf_counter()
+        deadline = None if not time_limit else t0 + time_limit
         self._fresh = False
         watch = Watch(first_level(self.levels), self.options.gap, prep.floor, self.options.progress)
         met: list[bool] = []
@@ -343,13 +347,14 @@ class Session:
                 return False  # the lower bound is met: nothing better exists
             return True
 
-        shot = solve_shot(self.control, "opt", 1, seen, time_limit or None, watch.on_lower, watch.stop)
-        answer = shot.last
+        shot, answer, lower, cuts = search(self.control, prep, self.problem, self._closed, seen, deadline, watch)
         if answer is not None and met:
             answer = replace(answer, proven=True)
             shot.finished = True
-        self._lower = answer.cost if answer is not None and answer.proven else shot.lower
+        self._lower = answer.cost if answer is not None and answer.proven else lower
         stats = self.stats()
+        if cuts:
+            stats["loop_cuts"] = cuts
         if answer is not None and answer.proven and prep.known is not None and answer.cost == prep.known:
             answer = Answer(tuple(sorted(prep.hint)), answer.cost, True, answer.human)
         elif answer is not None and answer.proven and self.options.canonical and self.options.threads > 1:
