@@ -360,3 +360,29 @@ def test_projected_trees_are_valid_at_every_level(demo_problem):
         for tree in solve_goals(problem, goals):
             if tree.has_tree:
                 assert validate(problem, tree.goal, tree.units).valid, (level, tree.goal)
+
+
+def test_normalize_without_inflect_is_one_clear_error(monkeypatch, tmp_path):
+    """inflect is the optional dependency of --normalize: without it the command says what to
+    install in one line, and nothing else needs it."""
+    import sys
+
+    from click.testing import CliRunner
+
+    from foon2asp.cli.main import main
+    from foon2asp.foon import matching
+
+    monkeypatch.setitem(sys.modules, "inflect", None)  # an import of inflect fails
+    matching._engine.cache_clear()
+    matching.noun_key.cache_clear()
+    try:
+        res = CliRunner().invoke(main, ["objects", "--data", "demo", "--normalize"])
+        assert res.exit_code == 2, res.output
+        assert res.output.strip().splitlines() == [
+            "foon2asp: error: --normalize needs the inflect package: pip install 'foon2asp[normalize]' (or inflect)"
+        ]
+        plain = CliRunner().invoke(main, ["objects", "--data", "demo"])
+        assert plain.exit_code == 0 and "tomato" in plain.output
+    finally:
+        matching._engine.cache_clear()
+        matching.noun_key.cache_clear()

@@ -66,19 +66,29 @@ def _engine() -> Any:
     only test that the arguments are non-empty strings, which :func:`noun_key` ensures,
     so while inflect's module runs the decorator is the identity (0.2 s in all).
     """
-    if "inflect" not in sys.modules:
+    if sys.modules.get("inflect") is None:
         try:
             import typeguard
         except ImportError:  # pragma: no cover - an inflect without typeguard
-            import inflect  # noqa: F401
+            _import_inflect()
         else:
             saved = typeguard.typechecked
             setattr(typeguard, "typechecked", _no_check)  # noqa: B010
             try:
-                import inflect  # noqa: F401
+                _import_inflect()
             finally:
                 setattr(typeguard, "typechecked", saved)  # noqa: B010
     return sys.modules["inflect"].engine()
+
+
+def _import_inflect() -> None:
+    """Import inflect, the optional dependency of ``--normalize`` (the ``normalize`` extra)."""
+    try:
+        import inflect  # noqa: F401
+    except ImportError:
+        raise InputError(
+            "--normalize needs the inflect package: pip install 'foon2asp[normalize]' (or inflect)"
+        ) from None
 
 
 def _no_check(target: Any = None, **_: Any) -> Any:
