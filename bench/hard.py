@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The hard benchmark: objectives x solver settings on FOONs with real choice.
 
-For each preset (foon2asp.foon.synth.PRESETS, and ``foon`` = the 25 goals of
+For each preset (bench/synth.py.PRESETS, and ``foon`` = the 25 goals of
 ../shared/foon), objective and solver setting, every goal is solved as
 ``foon2asp solve`` does it: one Session grounded on the goal's units
 (``problem.units_for([goal])``), then ``solve(goal)`` with a time limit.  The
@@ -41,7 +41,7 @@ from foon2asp.asp.session import AspOptions, Session  # noqa: E402
 from foon2asp.foon import goals as goals_mod  # noqa: E402
 from foon2asp.foon.loaders import Dataset  # noqa: E402
 from foon2asp.foon.problem import Problem  # noqa: E402
-from foon2asp.foon.synth import PRESETS, preset, shape  # noqa: E402
+from synth import PRESETS, preset, shape  # noqa: E402
 
 #: a redundant constraint: a used unit must make something needed (the goal, or an input of a used unit)
 NEED = (

@@ -2,7 +2,7 @@
 """How many fixed trees randomised list scheduling proves optimal, by number of tries.
 
 For the minimum-unit trees of the reachable goals of ../shared/foon and of the hard presets
-(foon2asp.foon.synth, 10 goals each), on 2 and 3 arms with unit durations and with
+(bench/synth.py, 10 goals each), on 2 and 3 arms with unit durations and with
 bench/durations.json: the trees whose plain list schedule misses the lower bound, and how many
 of them a list schedule with perturbed priorities (foon2asp.schedule.baseline.perturbed_schedule)
 brings to the lower bound within N tries, with the time it takes (BENCHMARKS.md, "Schedules").
@@ -25,12 +25,12 @@ sys.path.insert(0, str(ROOT))
 
 import foon2asp  # noqa: E402
 from foon2asp.asp.options import AspOptions  # noqa: E402
-from foon2asp.foon.synth import preset  # noqa: E402
 from foon2asp.methods.runner import GoalRunner  # noqa: E402
 from foon2asp.schedule import ScheduleSpec  # noqa: E402
 from foon2asp.schedule.baseline import list_schedule, perturbed_schedule  # noqa: E402
 from foon2asp.schedule.bounds import bounds  # noqa: E402
 from foon2asp.schedule.model import instance, makespan  # noqa: E402
+from synth import preset  # noqa: E402
 
 TABLE = ROOT / "bench" / "durations.json"
 

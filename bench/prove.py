@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """How many goals of the hard presets are proven, and how far the rest are from it.
 
-Every goal of each preset (foon2asp.foon.synth.PRESETS) for each objective, solved as
+Every goal of each preset (bench/synth.py.PRESETS) for each objective, solved as
 ``foon2asp solve --data PRESET --goals all --time-limit LIMIT`` solves it (the goal runner
 with the defaults: shortcuts, bounds, pruning, the solver), one goal after another in one
 process.  Per preset and objective: proven within 10 s and within LIMIT, median and max
@@ -26,8 +26,8 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from foon2asp.asp.options import AspOptions  # noqa: E402
-from foon2asp.foon.synth import preset  # noqa: E402
 from foon2asp.methods.runner import GoalRunner  # noqa: E402
+from synth import preset  # noqa: E402
 
 OBJECTIVES = ("units", "success", "inputs", "depth", "depth,success")
 

@@ -5,7 +5,7 @@ P1  the 25 goals of goal_nodes.json with ids, gbfs-h1, gbfs-h2 and asp, every
     tree checked by the validator, end to end (load, build, solve, check).
 P2  every derivable object that some unit makes (not in the kitchen) with a
     proven-optimal min-unit tree, against gbfs-h1 over the same goals, in one run.
-P3  synthetic FOONs 10x and 100x the size (foon2asp.synth, seed 1): parse,
+P3  synthetic FOONs 10x and 100x the size (bench/synth.py, seed 1): parse,
     facts, ground, per-goal queries (median, max) and peak memory, each
     factor in its own process.
 
@@ -125,7 +125,7 @@ def p2(foon_dir: Path) -> dict:
 
 def p3_one(foon_dir: Path, factor: int, sample: int, seed: int) -> dict:
     """One factor, in this process (run by p3 in a subprocess for a clean peak RSS)."""
-    from foon2asp.foon.synth import synthesize
+    from synth import synthesize
 
     data = Dataset.load(foon_dir)
     t = time.perf_counter()

@@ -14,7 +14,7 @@ data/schedule on ``arm=2,human=1`` and ``arm=1,human=1``.  Every
 schedule is checked by foon2asp.schedule.check.
 
 With ``--presets small,hard-4k,hard-10k`` it measures the hard presets of
-foon2asp.foon.synth instead (bench/hard.py): each preset's goals (at most
+bench/synth.py instead (bench/hard.py): each preset's goals (at most
 ``--preset-goals``) get their minimum-unit tree (``--tree-limit`` s each), and
 the table gives the share of schedules proven within 10 s.
 
@@ -103,7 +103,7 @@ def row(label: str, rs: list[dict], mode: str) -> str:
 
 def presets(args) -> None:
     """The share of the hard presets' schedules proven within 10 s (fixed tree and joint)."""
-    from foon2asp.foon.synth import preset
+    from synth import preset
 
     print(
         "| preset, agents, durations, mode, encoding | trees | proven | proven within 10 s | median s | max s |"
@@ -167,7 +167,7 @@ def main() -> None:
         help="durations, capabilities, resources files ('': none)",
     )
     ap.add_argument("--spec-agents", default="arm=2,human=1;arm=1,human=1", help="agent sets for --spec-dir")
-    ap.add_argument("--presets", help="synthetic presets (foon2asp.foon.synth), e.g. small,hard-4k,hard-10k")
+    ap.add_argument("--presets", help="synthetic presets (bench/synth.py), e.g. small,hard-4k,hard-10k")
     ap.add_argument("--preset-goals", type=int, default=10, help="goals per preset, spread over the list (0: all)")
     ap.add_argument("--tree-limit", type=float, default=10.0, help="time limit per tree on a preset (s)")
     args = ap.parse_args()

@@ -15,6 +15,7 @@ signal.signal(signal.SIGINT, signal.default_int_handler)
 sys.path.insert(0, str(HERE))  # for `import helpers`
 
 REPO = HERE.parent
+sys.path.insert(0, str(REPO / "bench"))  # for `import synth`: the seeded synthetic FOONs
 SHARED = REPO.parent / "shared"
 DEMO = REPO / "data"
 
@@ -56,7 +57,7 @@ def demo_problem():
 @pytest.fixture(scope="session")
 def hard():
     """The hard-4k preset's problem and its goals' ids (generated once per test run)."""
-    from foon2asp.foon.synth import preset
+    from synth import preset
 
     syn = preset("hard-4k")
     problem = syn.problem()

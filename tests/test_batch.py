@@ -22,12 +22,12 @@ from foon2asp.batch.results import read_results, summarize
 from foon2asp.batch.run import run_batch
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
-from foon2asp.foon.synth import shape, synthesize
 from foon2asp.methods.runner import GoalRunner
 from foon2asp.report.summary import render_summary
 from foon2asp.tree.serialize import tree_json
 from foon2asp.tree.validate import validate
 from helpers import best, build, goal_id
+from synth import shape, synthesize
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -453,7 +453,7 @@ def test_synthetic_copy_solves_like_base(shared_problem, tmp_path):
     assert len(q.units) == len(syn.foon.units)
     base_goal = goals_mod.resolve(data, p, ("greek salad",), None)[0]
     obj = p.objects[base_goal]
-    from foon2asp.foon.synth import _rename
+    from synth import _rename
 
     copy_goal = q.foon.object_ids[_rename(obj, 2)]
     base_tree = Session(p).solve(base_goal)

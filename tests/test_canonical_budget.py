@@ -16,10 +16,10 @@ from foon2asp.asp import canonical
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
-from foon2asp.foon.synth import preset
 from foon2asp.methods.bounds import Bounds
 from foon2asp.methods.runner import GoalRunner, solve_goals
 from foon2asp.tree.validate import validate
+from synth import preset
 from test_hard import reference
 
 

@@ -17,10 +17,10 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
-from foon2asp.foon.synth import preset
 from foon2asp.tree.serialize import tree_json
 from foon2asp.tree.tasktree import TaskTree, measures
 from foon2asp.tree.validate import validate
+from synth import preset
 from test_hard import reference
 
 

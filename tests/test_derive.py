@@ -11,8 +11,8 @@ import pytest
 from foon2asp.asp.multishot.depth import Levels
 from foon2asp.foon.derive import least_fixpoint
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.synth import preset
 from foon2asp.tree.weights import UNIT_WEIGHTS, lexicographic, neglog_weight, total
+from synth import preset
 
 
 @pytest.fixture(scope="module")

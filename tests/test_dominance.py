@@ -11,9 +11,9 @@ from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.synth import preset
 from foon2asp.tree.tasktree import measures
 from helpers import brute_force, goal_part
+from synth import preset
 
 #: a user program that changes nothing but switches dominance off (a program may forbid anything)
 NOOP = ("noop", "% nothing\n")

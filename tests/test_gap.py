@@ -16,7 +16,6 @@ from click.testing import CliRunner
 import foon2asp
 from foon2asp.asp.session import AspOptions, Session
 from foon2asp.cli.main import main
-from foon2asp.foon.synth import preset
 from foon2asp.methods.bounds import Bounds
 from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.gap import gap_of, gap_text, levels, settle, value
@@ -24,6 +23,7 @@ from foon2asp.tree.tasktree import TaskTree, measures
 from foon2asp.tree.validate import validate
 from foon2asp.tree.weights import neglog_weight
 from helpers import brute_force
+from synth import preset
 from test_objectives import made_goals, random_foon
 
 

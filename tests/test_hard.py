@@ -1,4 +1,4 @@
-"""Hard FOONs with real choice (foon2asp.foon.synth presets), the default solver settings and
+"""Hard FOONs with real choice (bench/synth.py presets), the default solver settings and
 batch's automatic grounding.
 
 The optima are checked against references written without the solver: a depth-first search over
@@ -23,11 +23,11 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
 from foon2asp.cli.main import main
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.synth import PRESETS, preset, shape
 from foon2asp.methods import parts as grounding
 from foon2asp.tree.upper import cheapest_tree
 from foon2asp.tree.validate import validate
 from helpers import best, goal_part
+from synth import PRESETS, preset, shape
 
 WEIGHT = {"units": lambda problem, u: 1, "success": lambda problem, u: neglog_weight(problem.rates[u])}
 

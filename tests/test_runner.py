@@ -17,11 +17,11 @@ from foon2asp.batch.pool import BatchSpec, Worker
 from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.synth import preset
 from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.tasktree import TaskTree, measures
 from foon2asp.tree.validate import validate
 from foon2asp.tree.weights import total
+from synth import preset
 
 CASES = ("demo", "tiny", "small")
 

@@ -3,7 +3,7 @@
 One function, :func:`least_fixpoint`, over integer ids: the derivation levels of
 :class:`foon2asp.foon.problem.Problem`, its viable units, the trees the bounds trim
 (:mod:`foon2asp.methods.bounds`), the goals the generator picks
-(:mod:`foon2asp.foon.synth`) and the depth windows of the round-by-round driver
+(the synthetic FOONs of bench/synth.py) and the depth windows of the round-by-round driver
 (:mod:`foon2asp.asp.multishot.depth`) all come from it.
 """
 
