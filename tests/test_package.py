@@ -54,3 +54,31 @@ def test_layout_page_lists_every_module_and_none_is_too_long():
         assert listed[name] == first, f"docs/layout.md: {name}: {listed[name]!r} is not its docstring's {first!r}"
     long = {m: n for m, p in modules.items() if (n := len(p.read_text(encoding="utf-8").splitlines())) > 450}
     assert long == {}
+
+
+def test_api_modules_import_one_way():
+    """The modules of foon2asp.api import each other one way only: every import counts, also one
+    inside a function or under ``TYPE_CHECKING``, so no cycle hides there."""
+    api = Path(__file__).resolve().parent.parent / "foon2asp" / "api"
+    names = {p.stem for p in api.glob("*.py")}
+    graph = {}
+    for path in api.glob("*.py"):
+        imported = set()
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom) and node.module == "foon2asp.api":
+                imported |= {a.name if a.name in names else "__init__" for a in node.names}
+            elif isinstance(node, ast.ImportFrom) and (node.module or "").startswith("foon2asp.api."):
+                imported.add(node.module.split(".")[2])
+            elif isinstance(node, ast.Import):
+                imported |= {
+                    a.name.split(".")[2] if a.name.count(".") >= 2 else "__init__"
+                    for a in node.names
+                    if a.name.startswith("foon2asp.api")
+                }
+        graph[path.stem] = imported - {path.stem}
+    order: list[str] = []  # each module after every module it imports
+    while len(order) < len(graph):
+        ready = sorted(m for m, deps in graph.items() if m not in order and deps <= set(order))
+        assert ready, f"an import cycle among foon2asp.api modules: {sorted(set(graph) - set(order))}"
+        order += ready
+    assert order[-1] == "__init__"

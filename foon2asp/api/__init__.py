@@ -17,15 +17,17 @@ format of :mod:`foon2asp.report`.  Tree files without a FOON: :func:`check_tree`
 judges one on its own, :func:`consolidate` merges candidate trees of one recipe
 into one proven-best tree per goal.
 
-The modules: :mod:`~foon2asp.api.options` (the request), :mod:`~foon2asp.api.kb`
-(the knowledge base), :mod:`~foon2asp.api.results` (the answers),
-:mod:`~foon2asp.api.load` (reading data), :mod:`~foon2asp.api.files` (FOON files,
-programs, drawings of tree files, output files), :mod:`~foon2asp.api.catalog`
-(methods, objectives and the other names a front end offers), :mod:`~foon2asp.api.trees`
-(tree files judged on their own, candidates consolidated), :mod:`~foon2asp.api.schedules`
-(schedules of trees on robot arms and people, schedule files checked).
+The modules, each importing only those before it: :mod:`~foon2asp.api.options` (the request),
+:mod:`~foon2asp.api.catalog` (methods, objectives and the other names a front end offers),
+:mod:`~foon2asp.api.matching` (goals, tree files and substitutes as the comparison sees them),
+:mod:`~foon2asp.api.files` (FOON files, programs, output files), :mod:`~foon2asp.api.schedules`
+(the agents of a schedule, schedule files checked), :mod:`~foon2asp.api.results` (the answers),
+:mod:`~foon2asp.api.batches` (batch runs), :mod:`~foon2asp.api.kb` (the knowledge base),
+:mod:`~foon2asp.api.load` (reading data) and :mod:`~foon2asp.api.trees` (tree files judged on
+their own or drawn, candidates consolidated).
 """
 
+from foon2asp.api.batches import BatchRun
 from foon2asp.api.catalog import (
     COMPARE_METHODS,
     GROUNDINGS,
@@ -38,7 +40,6 @@ from foon2asp.api.catalog import (
 )
 from foon2asp.api.files import (
     FOON_FORMATS,
-    draw_file,
     match_foon,
     read_foons,
     read_program,
@@ -49,18 +50,13 @@ from foon2asp.api.files import (
 from foon2asp.api.kb import GoalLike, KnowledgeBase
 from foon2asp.api.load import load
 from foon2asp.api.options import Constraints, Options, Settings
-from foon2asp.api.results import BatchRun, CheckReport, Comparison, Missing, Reachability, Tree
+from foon2asp.api.results import CheckReport, Comparison, Missing, Reachability, Schedule, Tree, schedules_json
 from foon2asp.api.schedules import (
     DEFAULT_SCHEDULE_ENCODING,
     SCHEDULE_ENCODINGS,
     SCHEDULE_STATUSES,
-    Schedule,
-    ScheduleSpec,
     ScheduleVerdict,
     is_schedule_file,
-    parse_agents,
-    schedules_json,
-    schedules_path,
     verdicts_json,
 )
 from foon2asp.api.trees import (
@@ -70,7 +66,10 @@ from foon2asp.api.trees import (
     TreeVerdict,
     check_tree,
     consolidate,
+    draw_file,
 )
+from foon2asp.batch.schedules import schedules_path
+from foon2asp.schedule import ScheduleSpec, parse_agents
 
 __all__ = [
     "load",

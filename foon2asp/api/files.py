@@ -1,21 +1,16 @@
 """Files the library reads and writes besides a data folder: FOON files (read and merged, written
-in a FOON dialect or FOON JSON), ASP programs, drawings of tree files, and output files."""
+in a FOON dialect or FOON JSON), ASP programs and output files."""
 
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 
-from foon2asp.analysis.check import check_trees, read_and_check
-from foon2asp.api.kb import KnowledgeBase
-from foon2asp.api.load import projection
-from foon2asp.api.options import Options
+from foon2asp.api.matching import joined, projection
 from foon2asp.asp.constraints import read_file
 from foon2asp.errors import InputError
 from foon2asp.foon import foonjson, parser, unitlist
 from foon2asp.foon.model import Foon
-from foon2asp.foon.treefiles import read_trees
-from foon2asp.report import draw
 
 #: the formats :func:`write_foon` writes: the official dialect with ids, the dialect without ids, FOON JSON,
 #: the unit-list JSON of generated trees (:mod:`foon2asp.foon.unitlist`)
@@ -71,7 +66,7 @@ def match_foon(
     if found.identity:
         return foon, {}
     out = found.foon(foon)
-    return out, {first: list(all_) for first, all_ in found.texts_joined.items()}
+    return out, joined(found)
 
 
 def write_foon(foon: Foon, path: str | Path, fmt: str = "foon", header: str | None = None) -> None:
@@ -95,36 +90,3 @@ def write_foon(foon: Foon, path: str | Path, fmt: str = "foon", header: str | No
 def read_program(path: str | Path) -> str:
     """The text of an ASP program file (for :meth:`KnowledgeBase.query`)."""
     return read_file(str(path), "ASP program file")
-
-
-def draw_file(
-    tree: str | Path,
-    output: str | Path,
-    *,
-    fmt: str | None = None,
-    kb: KnowledgeBase | None = None,
-    goal: str | None = None,
-    strict: bool = False,
-    warnings: list[str] | None = None,
-    options: Options | None = None,
-) -> int:
-    """Draw every tree of a tree file (any format :meth:`KnowledgeBase.check` reads) into ``output``;
-    the format follows the extension unless ``fmt`` names one.  With ``kb`` the trees are checked:
-    the goal (``goal``, else as :meth:`KnowledgeBase.check` finds it) is gold, kitchen items green,
-    a blocking cycle red (``options.substitutes``: objects a substitute stands in for count as
-    kitchen items).  Units of a unit list that are skipped or merged are added to
-    ``warnings`` (an error with ``strict``).  Returns how many trees were drawn."""
-    fmt = fmt or draw.format_of(output)
-    if fmt != "dot":
-        draw.require_dot()
-    if kb is None:
-        trees, reports = read_and_check(tree, None, None, goal, strict)
-        problem = None
-    else:  # the trees as the knowledge base sees them; with substitutes, what they stand in for is had
-        trees = [kb.project_tree(t) for t in read_trees(tree, kb.problem, strict)]
-        problem = kb.judging_problem(options)
-        reports = check_trees(kb.data, problem, trees, goal)
-    if warnings is not None:
-        warnings.extend(dict.fromkeys(w for t in trees for w in t.warnings))
-    Path(output).write_bytes(draw.render(draw.file_graph(trees, reports, problem), fmt))
-    return len(trees)

@@ -6,8 +6,9 @@ as keywords (:class:`foon2asp.api.options.Settings`); goals are named as :data:`
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
+from functools import partial
 from pathlib import Path
 from typing import Unpack
 
@@ -15,17 +16,19 @@ from foon2asp import methods
 from foon2asp.analysis import check as check_mod
 from foon2asp.analysis import compare as compare_mod
 from foon2asp.analysis import queries
-from foon2asp.api.matching import Matching
+from foon2asp.api import matching
+from foon2asp.api.batches import BatchRun, workers_count
+from foon2asp.api.matching import GoalLike
 from foon2asp.api.options import Options, Settings
-from foon2asp.api.results import BatchRun, CheckReport, Comparison, Missing, Reachability, Tree
-from foon2asp.api.schedules import Scheduling
+from foon2asp.api.results import CheckReport, Comparison, Missing, Reachability, Schedule, Tree, schedule_trees
+from foon2asp.api.schedules import ScheduleVerdict, check_schedule_file, make_spec
 from foon2asp.asp.constraints import unknown_names
 from foon2asp.asp.facts import facts as facts_text
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.substitutes import report as report_substitutions
 from foon2asp.batch import cluster
 from foon2asp.batch import run as batch_run
-from foon2asp.batch.pool import AUTO, BatchSpec
+from foon2asp.batch.pool import BatchSpec
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.loaders import Dataset
@@ -33,18 +36,15 @@ from foon2asp.foon.matching import Projection
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.motioncost import unit_weights
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.substitutes import substituted_kitchen, with_substitutes
-from foon2asp.foon.treefiles import TreeFile, TreeUnit, read_trees
+from foon2asp.foon.substitutes import Substitute
+from foon2asp.foon.treefiles import TreeFile, TreeUnit
 from foon2asp.methods.runner import solve_goals
+from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec
 from foon2asp.tree.results import MealRow, QueryResult
-from foon2asp.tree.tasktree import meal_of
-
-#: a goal as the API takes it: a label, an object's text, ``"#ID"``, an object id or a FoonObject
-GoalLike = str | int | FoonObject
 
 
 @dataclass
-class KnowledgeBase(Matching, Scheduling):
+class KnowledgeBase:
     """A FOON with its kitchen, goals, motion success rates and utensils, ready to answer."""
 
     data: Dataset
@@ -75,56 +75,28 @@ class KnowledgeBase(Matching, Scheduling):
         """Ids of the objects ``query`` names (``#ID``, an object's text, a label, else labels
         containing it as words; all when None); ``only``: ``produced``, ``kitchen`` or ``derivable``
         (with ``options.substitutes``: derivable when substitutes may stand in for kitchen items)."""
-        problem = self.problem
-        if only == "derivable" and self.substitutes(options):
-            problem = with_substitutes(problem, self.substitutes(options))
-        return goals_mod.find_objects(problem, query, only)
+        return matching.find_objects(self.problem, self.projection, query, only, options)
 
     def object_info(self, goal: GoalLike) -> dict:
         """``{"id", "text", "label", "states", "ingredients", "container", "in_kitchen", "producers"}``
         (``producers``: how many units make it); a list of these is a goals file.  With ``"joined"``
         the texts of the objects it stands for when the comparison (level, normalize, synonyms)
         joined several."""
-        oid = self.object_id(goal)
-        info = goals_mod.object_info(self.problem, oid)
-        texts = self.projection.sources.get(self.problem.objects[oid], [])
-        if len(texts) > 1:
-            info["joined"] = list(texts)
-        return info
+        return matching.object_info(self.problem, self.projection, self.object_id(goal))
 
     def object_id(self, goal: GoalLike) -> int:
         """The object id of a goal given as a label, an object's text, ``#ID``, an id or an object."""
-        if isinstance(goal, FoonObject):
-            return goals_mod.goal_id(self.problem, self.projection.object(goal))
-        if isinstance(goal, int):
-            if not 0 <= goal < len(self.problem.objects):
-                raise InputError(f"no object #{goal}")
-            return goal
-        if not self.projection.identity:
-            found, goal = self._projected_id(goal)
-            if found is not None:
-                return found
-        return goals_mod.resolve_goal(self.data, self.problem, goal)
+        return matching.object_id(self.data, self.problem, self.projection, goal)
 
     def goal_ids(self, goals: GoalLike | Iterable[GoalLike] | None) -> list[int]:
         """Object ids for ``goals``: one goal, several, ``"all"`` (the goals file) or ``"all-objects"``."""
-        if goals is None:
-            return goals_mod.default_goals(self.data, self.problem)
-        if goals == "all":
-            return goals_mod.resolve(self.data, self.problem, (), "all")
-        if goals == "all-objects":
-            return goals_mod.all_objects(self.problem)
-        if isinstance(goals, str | int | FoonObject):
-            return [self.object_id(goals)]
-        return [self.object_id(g) for g in goals]
+        return matching.goal_ids(self.data, self.problem, self.projection, goals)
 
     def select_goals(self, goal: Sequence[str] = (), goals: str | Path | None = None) -> list[int]:
         """The goals a request names: each of ``goal`` (labels, texts or ``#ID``) in order, then
         ``goals``: a goals file, ``"all"`` (the goals file's entries) or ``"all-objects"``; neither:
         the goals file's entries.  Naming nothing at all is an error."""
-        if self.projection.identity:
-            return goals_mod.resolve(self.data, self.problem, tuple(goal), None if goals is None else str(goals))
-        return self._projected_goals(goal, goals)
+        return matching.select_goals(self.data, self.problem, self.projection, goal, goals)
 
     def file_goals(self) -> list[int]:
         """The ids of the goals file's entries (none without a goals file)."""
@@ -139,9 +111,27 @@ class KnowledgeBase(Matching, Scheduling):
         ``options.substitutes`` also ``substitute(N,K,C)`` (docs/vocabulary.md)."""
         nodes = self.file_goals() if goal_nodes is None else list(goal_nodes)
         text = facts_text(self.problem, goal_nodes=nodes) + "".join(f"goal({g}).\n" for g in goals)
-        return text + self._substitute_facts(options)
+        return text + matching.substitute_facts(self.problem, self.projection, options)
 
-    # -- options ------------------------------------------------------------
+    @property
+    def joined(self) -> dict[str, list[str]]:
+        """The spellings joined by ``normalize``/``synonyms``: first spelling -> every spelling
+        (first first); only texts spelled more than one way."""
+        return matching.joined(self.projection)
+
+    def substitutes(self, options: Options | None) -> tuple[Substitute, ...]:
+        """The substitutes of a request, spelled as this knowledge base spells labels."""
+        return matching.substitutes(self.projection, options)
+
+    def judging_problem(self, solver: AspOptions | Options | None, goals: Iterable[int] = ()) -> Problem:
+        """The problem a tree is judged on: with substitutes, every object one can stand in
+        for (but ``goals``) is a kitchen item (foon2asp.asp.substitutes.validate_with)."""
+        table = solver.substitutes if isinstance(solver, AspOptions) else self.substitutes(solver)
+        return matching.judging_problem(self.problem, self._views, table, goals)
+
+    def project_tree(self, tree: TreeFile) -> TreeFile:
+        """A tree read from a file, its units and goal as this knowledge base's level sees them."""
+        return matching.project_tree(self.projection, tree)
 
     def options(self, options: Options | None = None, **settings: Unpack[Settings]) -> AspOptions:
         """The solver options an answer uses (defaults: see :mod:`foon2asp.asp.options`): names
@@ -245,34 +235,12 @@ class KnowledgeBase(Matching, Scheduling):
             raw.goal_source = "the tree's goal" if goal is None else "given"
             reports = [raw]
         else:
-
-            def name(g: GoalLike) -> str:
-                if isinstance(g, str) and self.projection.identity:
-                    return g
-                return f"#{self.object_id(g)}"
-
-            goal_list = [] if goal is None else [goal] if isinstance(goal, str | int | FoonObject) else list(goal)
-            labels = tuple(name(g) for g in goal_list) or None
-            among = None
-            if isinstance(goals, str | Path):
-                among = self.select_goals((), goals)
-            elif goals is not None:
-                among = [self.object_id(g) for g in goals]
-            files = [self.project_tree(t) for t in read_trees(tree, self.problem, strict)]
-            reports = check_mod.check_trees(self.data, self.judging_problem(solver), files, labels, among)
-            if solver.substitutes:  # a goal a substitute stands in for is judged without it
-                for i, r in enumerate(reports):
-                    view = self.judging_problem(solver, r.meal)
-                    if view is not self.judging_problem(solver):
-                        reports[i] = check_mod.check_tree(view, r.tree, r.goals or r.goal)
-                        reports[i].goal_source = r.goal_source
+            view = partial(self.judging_problem, solver)
+            reports = matching.check_file(self.data, self.problem, self.projection, view, tree, goal, goals, strict)
             self.warnings.extend(dict.fromkeys(w for r in reports for w in r.tree.warnings))
-        if solver.substitutes:
-            for r in reports:
-                used = [u for u in dict.fromkeys(r.ids) if u is not None]
-                r.substitutions = (
-                    report_substitutions(self.problem, r.meal, used, solver.substitutes) if r.valid else []
-                )
+        for r in reports if solver.substitutes else []:
+            used = [u for u in dict.fromkeys(r.ids) if u is not None]
+            r.substitutions = report_substitutions(self.problem, r.meal, used, solver.substitutes) if r.valid else []
         if optimum and reports:
             # a Tree's own goal, a file's trees by meal (one goal: a meal of one)
             key = (lambda r: r.goal) if isinstance(tree, Tree) else (lambda r: r.meal)
@@ -339,14 +307,7 @@ class KnowledgeBase(Matching, Scheduling):
     ) -> Reachability:
         """For each goal: can it be made from the kitchen at all (one solve for all)?  With
         ``options.substitutes``: when substitutes may stand in for missing kitchen items."""
-        ids = self.goal_ids(goals)
-        base = self.judging_problem(options)
-        answers = queries.reachable(base, ids)
-        for goal in ids:  # a goal a substitute stands in for is not had by substituting it
-            view = self.judging_problem(options, (goal,))
-            if view is not base:
-                answers[goal] = queries.reachable(view, [goal])[goal]
-        return Reachability(self, answers)
+        return Reachability(self, matching.reachable(partial(self.judging_problem, options), self.goal_ids(goals)))
 
     def reachable(
         self, goals: GoalLike | Sequence[GoalLike] | None = "all", *, options: Options | None = None
@@ -372,15 +333,7 @@ class KnowledgeBase(Matching, Scheduling):
             target = self.object_id(goal)
         else:
             target = tuple(dict.fromkeys(self.object_id(g) for g in goal))
-        meal, problem = meal_of(target), self.problem
-        if solver.substitutes:  # substitutes may stand in: the fewest of them when nothing need be added
-            lenient = with_substitutes(problem, solver.substitutes)
-            problem = lenient if all(g in lenient.derivable for g in meal) else self.judging_problem(solver, meal)
-        answer = queries.missing(problem, target, solver)
-        if solver.substitutes:
-            bought = substituted_kitchen(self.problem, answer.missing)  # the kitchen with what is added
-            answer.substitutions = report_substitutions(bought, meal, answer.units, solver.substitutes)
-        return Missing(self, answer)
+        return Missing(self, matching.missing(self.problem, partial(self.judging_problem, solver), target, solver))
 
     def query(
         self,
@@ -405,7 +358,8 @@ class KnowledgeBase(Matching, Scheduling):
         request = Options.of(options, **settings)
         nodes = self.file_goals() if goal_nodes is None else self.goal_ids(goal_nodes)
         gid = None if goal is None else self.object_id(goal)
-        program += self._substitute_facts(request)  # substitute/3 with substitutes (encodings: "substitutes")
+        # substitute/3 with substitutes (encodings: "substitutes")
+        program += matching.substitute_facts(self.problem, self.projection, request)
         return queries.query(self.problem, (name, program), nodes, gid, encodings, request.models, request.time_limit)
 
     def batch(
@@ -436,15 +390,61 @@ class KnowledgeBase(Matching, Scheduling):
         executor = None
         if scheduler:
             executor = cluster.executor(scheduler)
-        count = _workers(workers)
+        count = workers_count(workers)
         outcome = batch_run.run_batch(spec, self.goal_ids(goals), output, resume, count, progress, fsync, executor)
         return BatchRun(self, outcome)
 
+    def schedule(
+        self,
+        goals: GoalLike | Sequence[GoalLike] | None = None,
+        spec: ScheduleSpec | None = None,
+        *,
+        agents: str | dict[str, int] | None = None,
+        durations: str | Path | None = None,
+        capabilities: str | Path | None = None,
+        resources: str | Path | None = None,
+        joint: bool = False,
+        together: bool = False,
+        encoding: str = DEFAULT_ENCODING,
+        options: Options | None = None,
+        **settings: Unpack[Settings],
+    ) -> Schedule | list[Schedule]:
+        """The schedule with the proven-minimal makespan of each goal's best tree (by ``objective``;
+        ``joint``: tree and schedule chosen together) on ``spec``'s agents, or on ``agents``
+        (``"arm=2,human=1"``, default one robot) with the ``durations``, ``capabilities`` and
+        ``resources`` files.  One goal gives a :class:`Schedule`, several a list (as :meth:`solve`);
+        ``together=True``: one schedule of one tree that makes every goal (a meal)."""
+        solver = self.options(options, **settings)
+        chosen = make_spec(spec, agents, durations, capabilities, resources)
+        ids = self.goal_ids(goals)
+        jobs: list[int | tuple[int, ...]] = [tuple(dict.fromkeys(ids))] if together else list(ids)
+        found = list(self.schedule_iter(jobs, chosen, solver, joint=joint, encoding=encoding))
+        single = together or (isinstance(goals, str | int | FoonObject) and goals not in ("all", "all-objects"))
+        return found[0] if single else found
 
-def _workers(workers: int | str) -> int:
-    """``workers`` of :meth:`KnowledgeBase.batch` as the pool takes it (``"auto"``: :data:`AUTO`)."""
-    if isinstance(workers, str) and workers.strip().lower() == "auto":
-        return AUTO
-    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= 1024:
-        raise InputError(f"workers must be 1..1024 or 'auto', not {workers!r}")
-    return workers
+    def schedule_iter(
+        self,
+        goal_ids: Sequence[int | tuple[int, ...]],
+        spec: ScheduleSpec | None = None,
+        options: Options | AspOptions | None = None,
+        *,
+        joint: bool = False,
+        encoding: str = DEFAULT_ENCODING,
+        progress: Callable[[dict], None] | None = None,
+    ) -> Iterator[Schedule]:
+        """:meth:`schedule` goal after goal (the path ``foon2asp schedule`` takes); an element
+        that is a tuple of ids is a meal: one tree, and its schedule, for all of them.
+        ``progress``: called as each goal's schedules improve, with what
+        :func:`foon2asp.schedule.schedule` reports and ``goal``, the goal's label."""
+        solver = options if isinstance(options, AspOptions) else self.options(options)
+        trees = self.solve_iter(goal_ids, "asp", solver)
+        yield from schedule_trees(trees, spec or ScheduleSpec(), solver, joint, encoding, progress)
+
+    def check_schedules(
+        self, path: str | Path, spec: ScheduleSpec | None = None, options: Options | None = None
+    ) -> list[ScheduleVerdict]:
+        """Judge each schedule of a ``schedule --format json`` file on ``spec``'s agents (default one
+        robot, every unit 1 s): the first violation of precedence, one unit per agent at a time,
+        capabilities, durations, resources or the tree's validity, per schedule; with the
+        substitutes of ``options`` what they stand in for is in the kitchen."""
+        return check_schedule_file(self.problem, partial(self.judging_problem, options), path, spec or ScheduleSpec())

@@ -6,13 +6,13 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from foon2asp.api.kb import KnowledgeBase
+from foon2asp.api.matching import projection
 from foon2asp.errors import InputError
 from foon2asp.foon.demo import demo_dir
 from foon2asp.foon.leaves import LEAVES
 from foon2asp.foon.loaders import FILE_NAMES, Dataset, check_foon_file
-from foon2asp.foon.matching import Projection, Texts, parse_synonyms, project_dataset, read_synonyms
+from foon2asp.foon.matching import Projection, project_dataset
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.substitutes import LINE_BREAKS
 
 #: what is lost when a file is not beside the FOON
 _WITHOUT = {
@@ -93,24 +93,6 @@ def load(
         path, foon=foon_paths, kitchen=kitchen, goals=goals, motion=motion, utensils=utensils, strict=strict
     )
     return knowledge_base(data, utensil_rule, beside, seen_as)
-
-
-def projection(level: int, normalize: bool, synonyms: str | Path | Mapping[str, str] | None) -> Projection:
-    """How objects are compared for ``load``'s ``level``, ``normalize`` and ``synonyms`` (checked
-    before any FOON is read; :class:`foon2asp.foon.matching.Projection`)."""
-    if isinstance(level, bool) or level not in (1, 2, 3):
-        raise InputError(f"--level must be 1, 2 or 3, not {level!r}")
-    if synonyms is None:
-        table: dict[str, str] = {}
-    elif isinstance(synonyms, Mapping):
-        for text in (t for pair in synonyms.items() for t in pair):
-            if not isinstance(text, str) or any(c in LINE_BREAKS for c in text):
-                raise InputError(f"synonyms: a name must be a string without line breaks, not {text!r}")
-        text = "".join(f"{name} = {canonical}\n" for name, canonical in synonyms.items())
-        table = parse_synonyms(text, "synonyms", normalize)
-    else:
-        table = read_synonyms(synonyms, normalize)
-    return Projection(level, Texts(normalize, table))
 
 
 def knowledge_base(

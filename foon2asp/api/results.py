@@ -1,29 +1,40 @@
-"""The answers of :class:`foon2asp.api.KnowledgeBase`: trees, check reports, comparisons, missing items,
-reachability and batch runs; each renders itself in the formats of :mod:`foon2asp.report`."""
+"""The answers of :class:`foon2asp.api.KnowledgeBase`: trees and their schedules, check reports,
+comparisons, missing items and reachability; each renders itself in the formats of :mod:`foon2asp.report`."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import json
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Unpack
+from typing import Protocol, Unpack
 
 from foon2asp import report
 from foon2asp.analysis import compare as compare_mod
 from foon2asp.api.options import Options, Settings
-from foon2asp.api.schedules import Schedule, ScheduleSpec, make_spec, schedule_raw, schedules_json
+from foon2asp.api.schedules import make_spec
 from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.options import AspOptions
-from foon2asp.batch import schedules as batch_schedules
-from foon2asp.batch.results import summarize
 from foon2asp.foon.model import FoonObject, Unit
-from foon2asp.report import draw
-from foon2asp.schedule import DEFAULT_ENCODING
-from foon2asp.tree.results import BatchReport, MissingResult, Report, Row
+from foon2asp.foon.problem import Problem
+from foon2asp.report import draw, gantt
+from foon2asp.schedule import DEFAULT_ENCODING, ScheduleResult, ScheduleSpec
+from foon2asp.schedule import check as schedule_check
+from foon2asp.schedule import schedule as schedule_tree
+from foon2asp.schedule.result import seconds, seconds_text
+from foon2asp.tree.results import MissingResult, Report, Row
 from foon2asp.tree.serialize import tree_foon, tree_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
 
-if TYPE_CHECKING:
-    from foon2asp.api.kb import KnowledgeBase
+
+class Source(Protocol):
+    """What an answer asks of the knowledge base that gave it (:class:`foon2asp.api.KnowledgeBase`)."""
+
+    problem: Problem
+
+    def options(self, options: Options | None = None, **settings: Unpack[Settings]) -> AspOptions: ...
+
+    def judging_problem(self, solver: AspOptions | Options | None, goals: Iterable[int] = ()) -> Problem: ...
 
 
 class Tree:
@@ -33,7 +44,7 @@ class Tree:
     required input is a kitchen item or made by an earlier unit).
     """
 
-    def __init__(self, kb: KnowledgeBase, raw: TaskTree) -> None:
+    def __init__(self, kb: Source, raw: TaskTree) -> None:
         self.kb = kb
         #: the internal record (object and unit ids)
         self.raw = raw
@@ -138,7 +149,7 @@ class Tree:
         schedule kept as the result's ``fixed``.  ``time_limit`` (a setting): seconds per solve."""
         solver = options if isinstance(options, AspOptions) else self.kb.options(options, **settings)
         chosen = make_spec(spec, agents, durations, capabilities, resources)
-        return schedule_raw(self.kb, self.raw, chosen, solver, joint, encoding)
+        return next(schedule_trees([self], chosen, solver, joint, encoding))
 
     def judge(self) -> Tree:
         """Judge the tree with the independent validator (sets :attr:`valid`); returns the tree."""
@@ -172,11 +183,111 @@ class Tree:
         return f"<Tree {self.goal} {self.method} {self.status} {self.cost}>"
 
 
+class Schedule:
+    """The schedule of one goal's tree: who does which unit when, the makespan, its bounds and baseline."""
+
+    def __init__(self, kb: Source, raw: ScheduleResult, spec: ScheduleSpec) -> None:
+        self.kb = kb
+        #: the internal record (unit ids, times in milliseconds)
+        self.raw = raw
+        self.spec = spec
+
+    @property
+    def status(self) -> str:
+        """``optimal`` | ``feasible`` | ``unschedulable`` | ``unreachable`` | ``unknown`` (no tree in time)."""
+        return self.raw.status
+
+    @property
+    def makespan(self) -> float | None:
+        """Seconds (None without a schedule)."""
+        return seconds(self.raw.makespan)
+
+    @property
+    def agents(self) -> list[str]:
+        return list(self.raw.agents)
+
+    @property
+    def entries(self) -> list[dict]:
+        """``{"unit", "agent", "start", "end"}`` per unit, by start time (the JSON's ``schedule``)."""
+        return self.to_dict()["schedule"]
+
+    @property
+    def tree(self) -> Tree:
+        """The scheduled tree (``joint``: the one chosen with the schedule)."""
+        return Tree(self.kb, self.raw.tree)
+
+    @property
+    def fixed(self) -> Schedule | None:
+        """Joint scheduling: the schedule of the given tree alone (None otherwise)."""
+        return None if self.raw.fixed is None else Schedule(self.kb, self.raw.fixed, self.spec)
+
+    def check(self) -> str | None:
+        """The first violation the independent checker finds (None: a valid schedule)."""
+        return schedule_check.check_schedule(self.raw.problem, self.to_dict(), self.spec)
+
+    def to_dict(self) -> dict:
+        """Exactly one element of ``schedule --format json``."""
+        return self.raw.to_dict()
+
+    def to_text(self) -> str:
+        """The headline (status, makespan, baseline, bounds) and one timeline per agent."""
+        return self.raw.to_text()
+
+    def render(self, fmt: str) -> str | bytes:
+        """The Gantt chart in a format of :mod:`foon2asp.report` kind ``schedule`` (svg, png, pdf, dot, html)."""
+        if report.get("schedule", fmt).binary:
+            return report.render_bytes("schedule", fmt, [self.to_dict()])
+        return report.render("schedule", fmt, [self.to_dict()])
+
+    def draw(self, path: str | Path) -> Path:
+        """Draw the Gantt chart into ``path``; the format follows the extension (.svg, .png, .pdf, .dot)."""
+        return gantt.draw_gantt(self.to_dict(), path)
+
+    def _repr_svg_(self) -> str:
+        """The Gantt chart, for Jupyter."""
+        return gantt.gantt_svg(self.to_dict())
+
+    def __repr__(self) -> str:
+        return f"<Schedule {self.tree.goal} {self.status} makespan={seconds_text(self.raw.makespan)} s>"
+
+
+def schedules_json(schedules: list[Schedule]) -> str:
+    """``schedule --format json``: a JSON list, one schedule per line."""
+    if not schedules:
+        return "[]\n"
+    return "[\n" + ",\n".join(json.dumps(s.to_dict()) for s in schedules) + "\n]\n"
+
+
+def schedule_trees(
+    trees: Iterable[Tree],
+    spec: ScheduleSpec,
+    solver: AspOptions,
+    joint: bool = False,
+    encoding: str = DEFAULT_ENCODING,
+    progress: Callable[[dict], None] | None = None,
+) -> Iterator[Schedule]:
+    """:func:`foon2asp.schedule.schedule` of each tree in turn, as a :class:`Schedule`; with substitutes,
+    on the problem the tree is judged on (what a substitute stands in for is in the kitchen).
+    ``progress``: called with what :func:`foon2asp.schedule.schedule` reports and ``goal``, the
+    tree's goals' labels."""
+    for tree in trees:
+        told = None
+        if progress is not None:
+            label = " + ".join(g.label for g in tree.goals)
+
+            def told(info: dict, label: str = label) -> None:
+                progress({**info, "goal": label})
+
+        problem = tree.kb.judging_problem(solver, tree.raw.meal)
+        found = schedule_tree(problem, tree.raw, spec, solver, joint, None, encoding, progress=told)
+        yield Schedule(tree.kb, found, spec)
+
+
 @dataclass
 class CheckReport:
     """What ``check`` says about one tree: valid or not, the first problem, the optimum."""
 
-    kb: KnowledgeBase
+    kb: Source
     raw: Report
 
     @property
@@ -230,7 +341,7 @@ class CheckReport:
 class Comparison:
     """One row per goal: the tree of every method, each judged by the validator."""
 
-    kb: KnowledgeBase
+    kb: Source
     raw: list[Row]
 
     @property
@@ -249,7 +360,7 @@ class Comparison:
 class Missing:
     """The fewest objects to add to the kitchen so a goal can be made, and the tree then."""
 
-    kb: KnowledgeBase
+    kb: Source
     raw: MissingResult
 
     @property
@@ -278,7 +389,7 @@ class Missing:
 class Reachability:
     """For each goal: can it be made from the kitchen at all."""
 
-    kb: KnowledgeBase
+    kb: Source
     #: object id -> reachable, in the order asked
     raw: dict[int, bool]
 
@@ -289,92 +400,3 @@ class Reachability:
     def render(self, fmt: str = "text") -> str:
         """The answers in a format of ``reachable --format``."""
         return report.render("reachable", fmt, self.kb.problem, self.raw)
-
-
-@dataclass
-class BatchRun:
-    """What a batch did: counts, times, the grounding and every record of the requested pairs."""
-
-    kb: KnowledgeBase
-    raw: BatchReport
-    #: :meth:`schedule`'s schedules, one per goal (empty until it runs)
-    schedules: list[Schedule] = field(default_factory=list)
-
-    def schedule(
-        self,
-        spec: ScheduleSpec | None = None,
-        *,
-        agents: str | dict[str, int] | None = None,
-        durations: str | Path | None = None,
-        capabilities: str | Path | None = None,
-        resources: str | Path | None = None,
-        method: str | None = None,
-        joint: bool = False,
-        encoding: str = DEFAULT_ENCODING,
-        output: str | Path | None = None,
-        options: Options | None = None,
-        **settings: Unpack[Settings],
-    ) -> list[Schedule]:
-        """Schedule the tree of every goal of the run (of ``method``; default the first asked for),
-        as :meth:`Tree.schedule` does; ``output``: also write them there as one JSON list (the
-        shape of ``schedule --format json``; ``batch --schedule`` writes
-        :func:`foon2asp.batch.schedules.schedules_path` of the results file)."""
-        solver = self.kb.options(options, **settings)
-        chosen = make_spec(spec, agents, durations, capabilities, resources)
-        view = lambda goals: self.kb.judging_problem(solver, goals)  # noqa: E731  (with substitutes)
-        found = batch_schedules.schedule_records(
-            self.kb.problem, self.raw.records, chosen, solver, method, joint, encoding, view
-        )
-        self.schedules = [Schedule(self.kb, r, chosen) for r in found]
-        if output is not None:
-            from foon2asp.api.files import write_file  # files imports the knowledge base, which imports this
-
-            write_file(Path(output), schedules_json(self.schedules).encode("utf-8"))
-        return self.schedules
-
-    @property
-    def done(self) -> int:
-        """Results computed now."""
-        return self.raw.done
-
-    @property
-    def skipped(self) -> int:
-        """Results already in the file (``resume``)."""
-        return self.raw.skipped
-
-    @property
-    def elapsed_s(self) -> float:
-        return self.raw.elapsed_s
-
-    @property
-    def records(self) -> list[dict]:
-        """The JSON lines of the requested (goal, method) pairs, old and new."""
-        return self.raw.records
-
-    @property
-    def workers(self) -> int:
-        return self.raw.workers
-
-    @property
-    def output(self) -> str | None:
-        return self.raw.output
-
-    @property
-    def grounding(self) -> str:
-        """``whole`` or ``per-goal``: the grounding used."""
-        return self.raw.grounding
-
-    @property
-    def grounding_reason(self) -> str:
-        """Why ``grounding="auto"`` chose it (empty otherwise)."""
-        return self.raw.grounding_reason
-
-    def summary(self) -> list[dict]:
-        """One row per method: results per status, trees, valid trees, tree sizes and times."""
-        return summarize(self.raw.records)
-
-    def render(self, fmt: str = "text") -> str:
-        """The summary ``batch`` prints, in a format of ``batch --summary``."""
-        # the HTML page also draws the trees: the schedules, and the FOON for kitchen items and cycles
-        extra = [[s.to_dict() for s in self.schedules], self.kb.problem] if fmt == "html" else []
-        return report.render("summary", fmt, self.summary(), self.raw, *extra)

@@ -1,5 +1,5 @@
-"""Tree files without a FOON: judged on their own (:func:`check_tree`), and candidate trees of one
-recipe consolidated into one proven-best tree (:func:`consolidate`).
+"""Tree files: judged on their own without a FOON (:func:`check_tree`), drawn (:func:`draw_file`),
+and candidate trees of one recipe consolidated into one proven-best tree (:func:`consolidate`).
 
 >>> import foon2asp
 >>> [v.valid for v in foon2asp.check_tree("data/llm/smoothie-1.json")]
@@ -16,15 +16,18 @@ from typing import Unpack
 from foon2asp import report
 from foon2asp.analysis import check as check_mod
 from foon2asp.analysis import consolidate as consolidate_mod
+from foon2asp.analysis.check import check_trees, read_and_check
 from foon2asp.api.kb import GoalLike, KnowledgeBase
-from foon2asp.api.load import knowledge_base, projection
+from foon2asp.api.load import knowledge_base
+from foon2asp.api.matching import projection
 from foon2asp.api.options import Options, Settings
 from foon2asp.api.results import Tree
 from foon2asp.errors import InputError
 from foon2asp.foon.leaves import LEAVES, leaves
 from foon2asp.foon.loaders import Dataset, read_goals, read_kitchen, read_motion, read_utensils
 from foon2asp.foon.model import FoonObject, Unit
-from foon2asp.foon.treefiles import TreeUnit
+from foon2asp.foon.treefiles import TreeUnit, read_trees
+from foon2asp.report import draw
 from foon2asp.tree.results import AloneReport, CandidateVerdict
 from foon2asp.tree.results import Consolidation as RawConsolidation
 
@@ -96,6 +99,39 @@ def check_tree(
     tools = read_utensils(str(utensils)) if utensils is not None else frozenset()
     found = check_mod.check_alone(path, texts, items, tools, utensil_rule, strict, source)
     return [TreeVerdict(r) for r in found]
+
+
+def draw_file(
+    tree: str | Path,
+    output: str | Path,
+    *,
+    fmt: str | None = None,
+    kb: KnowledgeBase | None = None,
+    goal: str | None = None,
+    strict: bool = False,
+    warnings: list[str] | None = None,
+    options: Options | None = None,
+) -> int:
+    """Draw every tree of a tree file (any format :meth:`KnowledgeBase.check` reads) into ``output``;
+    the format follows the extension unless ``fmt`` names one.  With ``kb`` the trees are checked:
+    the goal (``goal``, else as :meth:`KnowledgeBase.check` finds it) is gold, kitchen items green,
+    a blocking cycle red (``options.substitutes``: objects a substitute stands in for count as
+    kitchen items).  Units of a unit list that are skipped or merged are added to
+    ``warnings`` (an error with ``strict``).  Returns how many trees were drawn."""
+    fmt = fmt or draw.format_of(output)
+    if fmt != "dot":
+        draw.require_dot()
+    if kb is None:
+        trees, reports = read_and_check(tree, None, None, goal, strict)
+        problem = None
+    else:  # the trees as the knowledge base sees them; with substitutes, what they stand in for is had
+        trees = [kb.project_tree(t) for t in read_trees(tree, kb.problem, strict)]
+        problem = kb.judging_problem(options)
+        reports = check_trees(kb.data, problem, trees, goal)
+    if warnings is not None:
+        warnings.extend(dict.fromkeys(w for t in trees for w in t.warnings))
+    Path(output).write_bytes(draw.render(draw.file_graph(trees, reports, problem), fmt))
+    return len(trees)
 
 
 # ---------------------------------------------------------------- consolidating candidates
