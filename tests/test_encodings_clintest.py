@@ -1044,6 +1044,20 @@ def test_schedule_trees_too_late_unit_never_used():
     check(trees("too_late(1).\n"), models(1, atoms(*use(0))))
 
 
+def first_trees(extra: str = "", args=ALL) -> Clingo:
+    return solver(["tree", "schedule_first"], TREES, extra, args=args)
+
+
+def test_schedule_first_one_maker_per_needed_object():
+    # {0,1,2} makes 9 twice: whichever makes it first, the other is not needed
+    each = a.Or(*(a.Equals(set(s)) for s in (use(0), use(1, 2))))
+    check(first_trees(), models(2, each))
+
+
+def test_schedule_first_designates_the_goal_maker():
+    check(first_trees(":- not first(9,2).\n"), models(1, atoms(*use(1, 2))))
+
+
 def test_schedule_trees_answers_are_distinct_trees():
     # a choice beside the tree doubles the answers; the projection on use/1 keeps one per tree
     check(trees("{ aside }.\n", ["0", "--project=project", "--warn=none"]), models(3))

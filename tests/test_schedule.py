@@ -254,22 +254,12 @@ def longer_tree_shorter_chain():
     )
 
 
-def _trees_only(mp) -> None:
-    """Joint scheduling as with user programs: tree by tree, not by branch and bound."""
-    mp.setattr(solve_mod, "by_branch", lambda options, inst: False)
-
-
 JOINT_WAYS = {
-    "branch and bound": None,
-    "tree by tree": _trees_only,
-    "tree by tree, least work first": lambda mp: (
-        _trees_only(mp),
-        mp.setattr(joint, "candidate_trees", lambda *a, **k: joint.Trees([], False)),
+    "tree by tree": None,
+    "tree by tree, least work first": lambda mp: mp.setattr(
+        joint, "candidate_trees", lambda *a, **k: joint.Trees([], False)
     ),
-    "one encoding": lambda mp: (
-        _trees_only(mp),
-        mp.setattr(solve_mod, "_by_trees", lambda *a, **k: (None, False)),
-    ),
+    "one encoding": lambda mp: mp.setattr(solve_mod, "_by_trees", lambda *a, **k: (None, False, None)),
 }
 
 
@@ -305,7 +295,7 @@ def random_choice_foon(rng: random.Random):
     return build(units, ["k0", "k1"])
 
 
-@pytest.mark.parametrize("seed, way", [(s, list(JOINT_WAYS)[s % 4]) for s in range(12)])
+@pytest.mark.parametrize("seed, way", [(s, list(JOINT_WAYS)[s % 3]) for s in range(12)])
 def test_joint_equals_brute_force_over_every_tree(seed, way, monkeypatch):
     """Tree by tree (foon2asp.schedule.joint): the trees listed, or asked for least work
     first; and tree and schedule in one encoding."""
@@ -355,7 +345,7 @@ def tangled_foon(rng: random.Random):
 @pytest.mark.parametrize("seed", range(16))
 def test_joint_over_tangled_foons_equals_brute_force(seed, monkeypatch):
     """Every valid tree scheduled by brute force: the joint answer has the least makespan,
-    then the fewest human units, then the fewest units; branch and bound and tree by tree agree."""
+    then the fewest human units, then the fewest units; tree by tree and the one encoding agree."""
     rng = random.Random(500 + seed)
     problem, g, trees = tangled_foon(rng)
     kinds = AGENT_SETS[seed % 3]
@@ -366,7 +356,7 @@ def test_joint_over_tangled_foons_equals_brute_force(seed, monkeypatch):
     smallest = min(trees, key=len)
     tree = given(problem, g, list(smallest))
     answers = []
-    for way in ("branch and bound", "tree by tree"):
+    for way in ("tree by tree", "one encoding"):
         with monkeypatch.context() as mp:
             if JOINT_WAYS[way]:
                 JOINT_WAYS[way](mp)
@@ -410,13 +400,13 @@ def forbidding_case(seed: int):
 
 @pytest.mark.parametrize("seed", range(16))
 def test_joint_under_forbidding_constraints_equals_brute_force(seed, monkeypatch):
-    """--forbid-motion and --max-units: the branch and bound (on the allowed units) and tree by
-    tree (the constraints as programs) agree with brute force over the allowed trees."""
+    """--forbid-motion and --max-units: tree by tree and the one encoding (the constraints as
+    programs) agree with brute force over the allowed trees."""
     problem, g, spec, motion, most, allowed, want, _ = forbidding_case(seed)
     options = AspOptions(programs=constraints.programs(forbid_motions=[motion.upper()], max_unit_count=most))
     assert constraints.shrinking(options.programs) is not None
     tree = given(problem, g, list(min(allowed, key=len)))
-    for way in ("branch and bound", "tree by tree"):
+    for way in ("tree by tree", "one encoding"):
         with monkeypatch.context() as mp:
             if JOINT_WAYS[way]:
                 JOINT_WAYS[way](mp)
@@ -429,8 +419,8 @@ def test_joint_under_forbidding_constraints_equals_brute_force(seed, monkeypatch
 
 
 def test_joint_with_a_forbidden_object_or_a_required_motion():
-    """Forbidding b2 leaves only the chain (branch and bound); requiring a motion is not a
-    forbidding program, so the trees are listed tree by tree."""
+    """Forbidding b2 leaves only the chain; requiring a motion keeps the larger tree; both tree
+    by tree."""
     problem = longer_tree_shorter_chain()
     g = goal_id(problem, "g")
     tree = given(problem, g, [0, 1, 2])
@@ -440,7 +430,7 @@ def test_joint_with_a_forbidden_object_or_a_required_motion():
     no_b2 = AspOptions(programs=constraints.programs(forbid_objects=["B2"]))
     r = schedule(problem, tree, spec, joint=True, shortcut=False, options=no_b2)
     assert r.status == "optimal" and r.makespan == 3000 and sorted(r.tree.units) == [0, 1, 2]
-    assert r.stats["joint"] == "branch and bound"
+    assert r.stats["joint"] == "tree by tree"
     need_m = AspOptions(programs=constraints.programs(require_motions=["m"]))
     assert constraints.shrinking(need_m.programs) is None
     r = schedule(problem, tree, spec, joint=True, shortcut=False, options=need_m)

@@ -6,8 +6,7 @@
 * :mod:`foon2asp.schedule.encode` -- the time-step and clingo-dl encodings
 * :mod:`foon2asp.schedule.fixed` -- a fixed tree's optimal schedule
 * :mod:`foon2asp.schedule.solve` -- :func:`schedule`, the entry point (fixed tree or joint)
-* :mod:`foon2asp.schedule.branch` -- joint scheduling by branch and bound over first makers
-* :mod:`foon2asp.schedule.joint` -- joint scheduling tree by tree (when user programs constrain the tree)
+* :mod:`foon2asp.schedule.joint` -- joint scheduling tree by tree (designated trees listed by clingo)
 * :mod:`foon2asp.schedule.result` -- :class:`ScheduleResult`: JSON shape and text timeline
 * :mod:`foon2asp.schedule.check` -- an independent checker of schedule JSON
 """

@@ -18,9 +18,8 @@ from __future__ import annotations
 import bisect
 import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-
-import numpy as np
 
 from foon2asp.schedule.model import Instance, divisor, earliest, tails
 from foon2asp.schedule.spec import HUMAN
@@ -92,23 +91,31 @@ def pools(inst: Instance) -> list[tuple[list[int], dict[int, int], int]]:
     return out
 
 
-def window_lengths(c: np.ndarray, m: int) -> np.ndarray:
-    """Per row of ``c`` (parts of length c_i), the least L > 0 with sum(min(c_i, L)) <= m L:
-    the shortest window that holds the parts on m servers (0 when they need no window).  With
-    the c_i sorted, L lies in [c_(j-1), c_j) for the first j where prefix_j / (m - (n - j))
-    does (prefix_j: the sum of the j shortest)."""
-    rows, n = c.shape
-    c = np.sort(c, axis=1)
-    prefix = np.concatenate([np.zeros((rows, 1)), np.cumsum(c, axis=1)], axis=1)
-    j = np.arange(n + 1)
-    slope = m - (n - j)
-    low = np.concatenate([np.zeros((rows, 1)), c], axis=1)
-    high = np.concatenate([c, np.full((rows, 1), np.inf)], axis=1)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        root = np.where(slope > 0, np.maximum(low, prefix / np.where(slope > 0, slope, 1)), np.inf)
-    valid = (slope > 0) & ((root < high) | (j == n))
-    first = np.argmax(valid, axis=1)
-    return root[np.arange(rows), first]
+def window_length(c: Sequence[float], m: int) -> float:
+    """The least L > 0 with sum(min(c_i, L)) <= m L for parts of lengths ``c``: the shortest
+    window that holds them on m servers (0 when they need no window).  With the c_i sorted, L
+    lies in [c_(j-1), c_j) for the first j where prefix_j / (m - (n - j)) does (prefix_j: the
+    sum of the j shortest)."""
+    c = sorted(c)
+    n = len(c)
+    prefix = 0.0
+    for j in range(n + 1):
+        slope = m - (n - j)
+        if slope > 0:
+            root = max(c[j - 1] if j else 0, prefix / slope)
+            if j == n or root < c[j]:
+                return root
+        if j < n:
+            prefix += c[j]
+    return math.inf
+
+
+def window_lengths(rows: Sequence[Sequence[float]], m: int) -> list[float]:
+    """:func:`window_length` of each row of parts."""
+    return [window_length(row, m) for row in rows]
+
+
+Gaps = list[tuple[float, float]]
 
 
 def _gaps(
@@ -118,40 +125,37 @@ def _gaps(
     tail: dict[int, int],
     servers: int,
     limit: int | None = None,
-) -> tuple[np.ndarray, np.ndarray]:
-    """The makespans :func:`energy_over` rules out: open intervals (lows, highs)."""
-    order = [u for g in parts for u in g]
-    if not order:
-        return np.zeros(0), np.zeros(0)
-    dur = np.array([d[u] for u in order], dtype=np.int64)
-    s = np.array([start[u] for u in order], dtype=np.int64)
-    t = np.array([tail[u] for u in order], dtype=np.int64)
-    cuts = np.cumsum([0] + [len(g) for g in parts[:-1]])
-    after = np.unique(t - dur)
-    lows: list[np.ndarray] = [np.zeros(0)]
-    highs: list[np.ndarray] = [np.zeros(0)]
-    for a in np.unique(s):
-        b = after if limit is None else after[a + after < limit]
-        if not len(b):
-            continue
-        part = np.maximum(np.minimum(np.minimum(dur, s + dur - a)[None, :], t[None, :] - b[:, None]), 0)
-        length = window_lengths(np.minimum.reduceat(part, cuts, axis=1).astype(float), servers)
-        keep = length > 0
-        lows.append(a + b[keep])
-        highs.append(a + b[keep] + length[keep])
-    return np.concatenate(lows), np.concatenate(highs)
+) -> Gaps:
+    """The makespans :func:`energy_over` rules out: open intervals (low, high)."""
+    units = [u for g in parts for u in g]
+    if not units:
+        return []
+    after = sorted({tail[u] - d[u] for u in units})
+    out: Gaps = []
+    for a in sorted({start[u] for u in units}):
+        # each unit's part within [a, ...) before the tail cuts it
+        head = [[min(d[u], start[u] + d[u] - a) for u in g] for g in parts]
+        for b in after:
+            if limit is not None and a + b >= limit:
+                break
+            c = [x for x in (min(min(x, tail[u] - b) for x, u in zip(h, g)) for h, g in zip(head, parts)) if x > 0]
+            if len(c) < servers:
+                continue  # fewer parts than servers: no window needed
+            length = window_length(c, servers)
+            if length > 0:
+                out.append((a + b, a + b + length))
+    return out
 
 
-def _clear(gaps: list[tuple[np.ndarray, np.ndarray]], floor: int, step: int) -> int:
+def _clear(gaps: list[Gaps], floor: int, step: int) -> int:
     """The least multiple of ``step`` at least ``floor`` in none of the open intervals ``gaps``."""
-    low = np.concatenate([g[0] for g in gaps])
-    high = np.concatenate([g[1] for g in gaps])
+    every = [g for gs in gaps for g in gs]
     best = -(-floor // step) * step
     while True:
-        inside = (low < best) & (best < high)
-        if not inside.any():
+        inside = [high for low, high in every if low < best < high]
+        if not inside:
             return best
-        best = math.ceil(float(high[inside].max()) / step) * step
+        best = math.ceil(max(inside) / step) * step
 
 
 def bounds(inst: Instance) -> Bounds:
@@ -196,9 +200,9 @@ def _classes(inst: Instance) -> list[tuple[int, dict[int, int], int, dict[int, i
     return out
 
 
-def _mandatory(length, b, a, r, e, p):
-    """The least part of each unit (window ``[r, e]``, duration ``p``) inside ``[a, b]``."""
-    return np.maximum(0, np.minimum(np.minimum(length, p), np.minimum(r + p - a, b - (e - p))))
+def _mandatory(length: int, b: int, a: int, r: int, e: int, p: int) -> int:
+    """The least part of a unit (window ``[r, e]``, duration ``p``) inside ``[a, b]``."""
+    return max(0, min(length, p, r + p - a, b - (e - p)))
 
 
 def _kinds_fit(inst: Instance, start: dict[int, int], tail: dict[int, int], horizon: int) -> bool:
@@ -212,47 +216,46 @@ def _kinds_fit(inst: Instance, start: dict[int, int], tail: dict[int, int], hori
     units = [u for u in inst.units if inst.durations[u]]
     if not units:
         return True
-    r = np.array([start[u] for u in units], dtype=np.int64)
-    e = np.array([horizon - tail[u] + inst.min_duration(u) for u in units], dtype=np.int64)
-    if np.any(e - r < np.array([inst.min_duration(u) for u in units])):
+    r = {u: start[u] for u in units}
+    e = {u: horizon - tail[u] + inst.min_duration(u) for u in units}
+    if any(e[u] - r[u] < inst.min_duration(u) for u in units):
         return False
     for n_x, dur_x, n_y, dur_y in _classes(inst):
-        big = np.iinfo(np.int64).max // 4
-        px = np.array([dur_x.get(u, big) for u in units], dtype=np.int64)
-        py = np.array([dur_y.get(u, big) for u in units], dtype=np.int64)
-        px = np.where(px > e - r, big, px)  # does not fit its window on that class
-        py = np.where(py > e - r, big, py)
-        if np.any((px == big) & (py == big)):
+        # each unit's duration on a class, if it fits its window there
+        px = {u: dur_x[u] for u in units if u in dur_x and dur_x[u] <= e[u] - r[u]}
+        py = {u: dur_y[u] for u in units if u in dur_y and dur_y[u] <= e[u] - r[u]}
+        if any(u not in px and u not in py for u in units):
             return False
-        on_x, on_y = px < big, py < big
+        only_x = [u for u in units if u in px and u not in py]
+        only_y = [u for u in units if u in py and u not in px]
+        both = [u for u in units if u in px and u in py]
         # windows from an earliest start or a latest start to a latest end or an earliest end
-        lefts = np.unique(np.concatenate([r, (e - px)[on_x], (e - py)[on_y]]))
-        rights = np.unique(np.concatenate([e, (r + px)[on_x], (r + py)[on_y]]))
-        a_all, b_all = np.meshgrid(lefts, rights, indexing="ij")
-        keep = b_all > a_all
-        a, b = a_all[keep][:, None], b_all[keep][:, None]  # one row per window
-        length = b - a
-        ex = _mandatory(length, b, a, r, e, px)
-        ey = _mandatory(length, b, a, r, e, py)
-        only_x, only_y, both = on_x & ~on_y, on_y & ~on_x, on_x & on_y
-        cap_x = n_x * length[:, 0] - (ex * only_x).sum(axis=1)
-        cap_y = n_y * length[:, 0] - (ey * only_y).sum(axis=1)
-        if np.any((cap_x < 0) | (cap_y < 0)):
-            return False
-        if not both.any():
-            continue
-        wx, wy = ex[:, both].astype(float), ey[:, both].astype(float)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ratio = np.where(wx > 0, wy / np.where(wx > 0, wx, 1), np.inf)
-        order = np.argsort(-ratio, axis=1, kind="stable")
-        wx = np.take_along_axis(wx, order, axis=1)
-        wy = np.take_along_axis(wy, order, axis=1)
-        before = np.cumsum(wx, axis=1) - wx
-        with np.errstate(divide="ignore", invalid="ignore"):
-            taken = np.where(wx > 0, np.clip((cap_x[:, None] - before) / np.where(wx > 0, wx, 1), 0, 1), 1.0)
-        left = ((1 - taken) * wy).sum(axis=1)
-        if np.any(left > cap_y + 1e-6):
-            return False
+        lefts = sorted({*r.values(), *(e[u] - p for u, p in px.items()), *(e[u] - p for u, p in py.items())})
+        rights = sorted({*e.values(), *(r[u] + p for u, p in px.items()), *(r[u] + p for u, p in py.items())})
+        for a in lefts:
+            for b in rights:
+                if b <= a:
+                    continue
+                length = b - a
+                cap_x = n_x * length - sum(_mandatory(length, b, a, r[u], e[u], px[u]) for u in only_x)
+                cap_y = n_y * length - sum(_mandatory(length, b, a, r[u], e[u], py[u]) for u in only_y)
+                if cap_x < 0 or cap_y < 0:
+                    return False
+                if not both:
+                    continue
+                work = [
+                    (_mandatory(length, b, a, r[u], e[u], px[u]), _mandatory(length, b, a, r[u], e[u], py[u]))
+                    for u in both
+                ]
+                # the first class takes the units saving the second class most per its own work
+                work.sort(key=lambda w: -(w[1] / w[0]) if w[0] > 0 else -math.inf)
+                room, left = float(cap_x), 0.0
+                for wx, wy in work:
+                    taken = 1.0 if wx == 0 else min(max(room / wx, 0.0), 1.0)
+                    room -= wx
+                    left += (1 - taken) * wy
+                if left > cap_y + 1e-6:
+                    return False
     return True
 
 

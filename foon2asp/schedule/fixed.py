@@ -17,7 +17,7 @@ clingo-dl below the baseline's (a tighter start left it stuck above the optimum)
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
 from foon2asp.asp import objectives
 from foon2asp.asp.options import AspOptions
@@ -31,6 +31,7 @@ from foon2asp.schedule.model import (
     Entry,
     Instance,
     compact,
+    designate,
     divisor,
     earliest,
     human_units,
@@ -112,16 +113,19 @@ def schedule_fixed(
     shortcut: bool = True,
     within: int | None = None,
     progress: Callable[[dict], None] | None = None,
+    first: Sequence[tuple[int, int]] = (),
 ) -> ScheduleResult:
     """The optimal schedule of ``tree``'s units.  ``within`` (ms; joint scheduling): only a
     schedule of at most that makespan matters; when there is none the status is
     ``unschedulable`` (reason: not within), found faster than the optimum of a longer one.
-    ``progress``: called as schedules improve (:class:`foon2asp.schedule.encode.Job`)."""
+    ``progress``: called as schedules improve (:class:`foon2asp.schedule.encode.Job`).
+    ``first`` (joint scheduling): (object, maker) pairs; a unit needing the object waits for
+    that maker (:func:`foon2asp.schedule.model.designate`)."""
     t0 = time.perf_counter()
     if not tree.has_tree:
         status = "unreachable" if tree.status in ("unreachable", "not-found") else "unknown"
         return _none(problem, tree, spec, status, tree.extra.get("reason"), t0)
-    inst = instance(problem, tree.units, spec)
+    inst = designate(instance(problem, tree.units, spec), first)
     agents = [name for name, _ in inst.agents]
     bad = inst.incapable()
     if bad:

@@ -1,12 +1,16 @@
 """Joint scheduling by trees: every tree that could beat a known makespan, each scheduled alone.
 
 A schedule's first makers of what is needed form a tree of their own that is
-as short, in which every unit makes the goal or something another unit needs.
-So the joint optimum is the best fixed-tree optimum over such trees whose
-work (each unit at its least duration) fits the agents within the known
-makespan and whose units can each end within it (``asp/encodings/schedule_trees.lp``
-enumerates them).  They are scheduled one by one (:func:`foon2asp.schedule.solve.schedule_fixed`),
-lowest lower bound first, stopping when the next lower bound reaches the best
+as short, in which every unit is the first maker of the goal or of something
+another unit needs, and waits only for the first makers of what it needs.
+So the joint optimum is the best fixed-tree optimum over such *designated*
+trees (each needed object with one maker,
+:func:`foon2asp.schedule.model.designate`) whose work (each
+unit at its least duration) fits the agents within the known makespan and whose
+units can each end within it; clingo enumerates them
+(``asp/encodings/schedule_first.lp``, over ``schedule_trees.lp``).  They are
+scheduled one by one (:func:`foon2asp.schedule.solve.schedule_fixed`), lowest
+lower bound first, stopping when the next lower bound reaches the best
 makespan found: the best is then proven.  Ties go to the fewest human units,
 then the tree objective (equal trees: the given one, then the first found).  When there are more than :data:`MAX_TREES` such trees,
 :func:`best_by_work` asks for them one at a time, least work first (each tree
@@ -30,17 +34,21 @@ from foon2asp.asp.objectives import neglog_sum
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule.model import Instance, divisor
 
-#: the most trees listed at once
-MAX_TREES = 200
+#: the most designated trees listed at once
+MAX_TREES = 2000
 
 _TREES = ("encodings/schedule_trees.lp", encodings.encoding("schedule_trees"))
+
+#: a tree (sorted unit ids) and its designation: (object, its first maker) pairs, sorted
+#: (empty: each unit waits for the first maker of what it needs, whichever it is)
+Candidate = tuple[tuple[int, ...], tuple[tuple[int, int], ...]]
 
 
 @dataclass
 class Trees:
-    """The trees found (sorted unit ids), complete unless the cap or the time limit ended it."""
+    """The designated trees found, complete unless the cap or the time limit ended it."""
 
-    trees: list[tuple[int, ...]]
+    trees: list[Candidate]
     complete: bool
 
 
@@ -64,26 +72,26 @@ def candidate_trees(
     time_limit: float | None,
     cap: int | None = None,
 ) -> Trees:
-    """The trees (over ``inst``'s candidate units; ``tree_parts``: tree.lp and its facts) whose
-    work fits the agents within ``horizon`` and whose units can each end within it."""
+    """The designated trees (over ``inst``'s candidate units; ``tree_parts``: tree.lp and its
+    facts) whose work fits the agents within ``horizon`` and whose units can each end within it."""
     cap = MAX_TREES if cap is None else cap
-    g = divisor(inst)
-    late = [u for u in inst.units if u not in head or u not in tail or head[u] + tail[u] > horizon]
-    lines = [f"work({u},{inst.min_duration(u) // g})." for u in inst.units if inst.durations[u]]
-    lines += [f"too_late({u})." for u in late]
-    lines.append(f"capacity({len(inst.agents) * (horizon // g)}).")
     parts = [
         *tree_parts,
-        ("encodings/schedule_trees.lp", encodings.encoding("schedule_trees")),
-        ("bounds", "\n".join(lines) + "\n"),
+        ("encodings/schedule_first.lp", encodings.encoding("schedule_first")),
+        ("bounds", _bound_facts(inst, head, tail, horizon)),
     ]
     control = Control(["--opt-mode=ignore", "--models=0", *args])
     control.add_all(parts)
     control.ground()
-    found: list[tuple[int, ...]] = []
+    found: list[Candidate] = []
 
     def on_model(model: clingo.Model) -> bool:
-        found.append(tuple(sorted(s.arguments[0].number for s in model.symbols(shown=True) if s.name == "use")))
+        atoms = model.symbols(atoms=True)
+        units = tuple(sorted(s.arguments[0].number for s in atoms if s.name == "use" and len(s.arguments) == 1))
+        first = sorted(
+            (s.arguments[0].number, s.arguments[1].number) for s in atoms if s.name == "first" and len(s.arguments) == 2
+        )
+        found.append((units, tuple(first)))
         return len(found) <= cap
 
     result = control.solve(on_model, time_limit)
@@ -104,13 +112,13 @@ def tree_cost(problem: Problem, units: Sequence[int], human: Sequence[int], rank
 
 
 def best_tree(
-    trees: list[tuple[int, ...]],
-    bound: Callable[[tuple[int, ...]], tuple],
-    solve: Callable[[tuple[int, ...], float | None, int | None], Any],
+    trees: list[Candidate],
+    bound: Callable[[Candidate], tuple],
+    solve: Callable[[Candidate, float | None, int | None], Any],
     key: Callable[[Any], tuple],
     time_limit: float | None,
 ) -> tuple[Any, bool]:
-    """The best result of ``solve`` (a tree, the time left, the best makespan so far: only a
+    """The best result of ``solve`` (a designated tree, the time left, the best makespan so far: only a
     schedule as short matters) over ``trees`` by ``key`` (makespan, human units, tree
     objective; equal keys keep the one found first), lowest ``bound`` first (a lower bound on
     a tree's key, known before solving): a tree whose bound is no better than the best key is
@@ -144,13 +152,14 @@ def best_by_work(
     tree_parts: Sequence[tuple[str, str]],
     args: Sequence[str],
     levels: int,
-    bound: Callable[[tuple[int, ...]], tuple],
-    solve: Callable[[tuple[int, ...], float | None, int | None], Any],
+    bound: Callable[[Candidate], tuple],
+    solve: Callable[[Candidate, float | None, int | None], Any],
     key: Callable[[Any], tuple],
     time_limit: float | None,
     first: bool = False,
 ) -> tuple[Any, bool]:
-    """Like :func:`best_tree` over the same trees, asked for one at a time, least work first
+    """Like :func:`best_tree` over the trees of ``schedule_trees.lp`` (undesignated: each unit
+    waits for the first maker of what it needs), asked for one at a time, least work first
     (a fresh grounding each time, the trees seen excluded): no tree after one whose work over
     the agents exceeds the best makespan can reach it.  ``first``: the first tree is the best
     (one agent: a makespan is the work; ties go to the tree objective, the second order).
@@ -182,9 +191,9 @@ def best_by_work(
         work = sum(inst.min_duration(u) for u in t)
         if best is not None and -(-work // m) > best.makespan:
             return best, proven
-        if best is None or bound(t) < key(best):
+        if best is None or bound((t, ())) < key(best):
             left = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
-            r = solve(t, left, None if best is None else best.makespan)
+            r = solve((t, ()), left, None if best is None else best.makespan)
             proven = proven and r.status in ("optimal", "unschedulable")
             if r.has_schedule and (best is None or key(r) < key(best)):
                 best = r

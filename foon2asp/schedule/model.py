@@ -26,7 +26,7 @@ from __future__ import annotations
 import heapq
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule.spec import HUMAN, ScheduleSpec, kind_of
@@ -107,6 +107,16 @@ class Instance:
     def incapable(self) -> list[int]:
         """The units no agent can do."""
         return [u for u in self.units if not self.durations[u]]
+
+
+def designate(inst: Instance, first: Iterable[tuple[int, int]]) -> Instance:
+    """``inst`` with each object of ``first`` ((object, maker) pairs) made, for every unit
+    needing it, by that maker only (a unit waits for it whichever other maker ends first)."""
+    chosen = dict(first)
+    if not chosen:
+        return inst
+    needs = {u: tuple((o, (chosen[o],) if chosen.get(o) in ms else ms) for o, ms in inst.needs[u]) for u in inst.units}
+    return replace(inst, needs=needs)
 
 
 def _reach(succs: dict[int, set[int]], start: int) -> set[int]:

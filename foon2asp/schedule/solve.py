@@ -8,12 +8,12 @@ of the goal (never longer than the given tree's, which is reported beside it).
 
 The fixed tree is scheduled by :mod:`foon2asp.schedule.fixed` (its statuses; joint:
 ``unschedulable`` when no valid tree can be scheduled).  Joint scheduling first schedules
-the given tree, then searches the trees that could be shorter: by branch and bound over
-the first makers of what a tree needs (:mod:`foon2asp.schedule.branch`; user programs that
-only forbid are applied to its units), or tree by tree through the tree encoding
-(:mod:`foon2asp.schedule.joint`) on one agent and when other user programs constrain the
-tree; only when even asking for them least work first runs out of time does it solve tree
-and schedule in one encoding (tree.lp beside the schedule encoding).
+the given tree, then searches the trees that could be shorter, every search clingo's: tree
+by tree (:mod:`foon2asp.schedule.joint`: clingo lists the designated trees whose work fits
+within the given tree's makespan, each is scheduled by clingo, lowest lower bound first,
+until the next bound reaches the best), and when they are too many to list, tree and
+schedule in one encoding (tree.lp beside the schedule encoding, the given tree's makespan
+its horizon).  An answer not proven carries a lower bound over every tree.
 """
 
 from __future__ import annotations
@@ -23,16 +23,26 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
-from foon2asp.asp import constraints, dominance, encodings, objectives
+from foon2asp.asp import dominance, encodings, objectives
 from foon2asp.asp.facts import OPTIONAL, facts
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
-from foon2asp.schedule import branch, encode, joint
+from foon2asp.schedule import encode, joint
 from foon2asp.schedule.baseline import list_schedule
 from foon2asp.schedule.bounds import bounds
 from foon2asp.schedule.fixed import DEFAULT_ENCODING, forced_human, schedule_fixed, solve_encoded, solver_arguments
-from foon2asp.schedule.model import Entry, Instance, compact, divisor, earliest, instance, joint_tails, makespan
+from foon2asp.schedule.model import (
+    Entry,
+    Instance,
+    compact,
+    designate,
+    divisor,
+    earliest,
+    instance,
+    joint_tails,
+    makespan,
+)
 from foon2asp.schedule.result import ScheduleResult
 from foon2asp.schedule.spec import ScheduleSpec
 from foon2asp.tree.tasktree import TaskTree, executable_order, goal_fields, measures
@@ -117,9 +127,11 @@ class _Joint:
     encoding: str
     shortcut: bool
 
-    def solve(self, units: tuple[int, ...], limit: float | None, within: int | None) -> ScheduleResult:
-        """The schedule of a tree chosen among the candidates (time left ``limit``; only one of
-        at most ``within`` matters); the given tree's own when it is that tree and proven."""
+    def solve(self, cand: joint.Candidate, limit: float | None, within: int | None) -> ScheduleResult:
+        """The schedule of a designated tree chosen among the candidates (time left ``limit``;
+        only one of at most ``within`` matters); the given tree's own when it is that tree and
+        proven (as short as any designation of it)."""
+        units, first = cand
         if units == tuple(sorted(self.tree.units)) and self.fixed.status == "optimal":
             return self.fixed
         meal = self.tree.meal
@@ -130,7 +142,9 @@ class _Joint:
             cost=measures(self.problem, meal, list(units)),
             **goal_fields(meal),
         )
-        return schedule_fixed(self.problem, given, self.spec, self.options, self.encoding, limit, self.shortcut, within)
+        return schedule_fixed(
+            self.problem, given, self.spec, self.options, self.encoding, limit, self.shortcut, within, first=first
+        )
 
     def finish(
         self, found: tuple[ScheduleResult | None, bool], key: Callable[[ScheduleResult], tuple], ties: bool, stats: dict
@@ -166,60 +180,6 @@ def _rank(problem: Problem, ranked: tuple[str, ...]) -> Callable[[ScheduleResult
     return rank
 
 
-def _allowed(problem: Problem, u: int, cut: constraints.Shrinking) -> bool:
-    """May unit ``u`` be in a tree under the forbidding programs ``cut``?"""
-    unit = problem.units[u]
-    return unit.motion not in cut.motions and not any(o.label in cut.labels for o in (*unit.inputs, *unit.outputs))
-
-
-def by_branch(options: AspOptions, inst: Instance) -> bool:
-    """Does joint scheduling search by branch and bound?  Yes on two agents or more when the
-    user programs only forbid motions or objects or cap the units
-    (:func:`foon2asp.asp.constraints.shrinking`: a schedule's first-maker tree keeps to them);
-    otherwise tree by tree (on one agent least work first is exact at once)."""
-    return len(inst.agents) > 1 and constraints.shrinking(options.programs) is not None
-
-
-def _by_branch(job: _Joint, inst: Instance, deadline: float | None) -> tuple[ScheduleResult | None, bool]:
-    """Joint scheduling by branch and bound (:mod:`foon2asp.schedule.branch`): (result, proven).
-    Trees equal in makespan, human units and tree objective keep the given one, then the
-    first found.  Units a no worse unit can replace in any schedule (:func:`_replaceable`,
-    when none of their other products is needed) are left out first."""
-    problem, spec, options = job.problem, job.spec, job.options
-    ranked = objectives.ranked(options)
-    rank = _rank(problem, ranked)
-
-    def low_key(sub: Instance, units: tuple[int, ...], low: int, groups: list[list[int]] | None) -> tuple:
-        """A lower bound on ``rank`` of every tree of makespan at least ``low`` holding ``units``
-        (``sub``: their instance) and a unit of each of ``groups`` (None: the tree is ``units``)."""
-        if spec.has_human():
-            return (low, forced_human(sub), ())
-        cost = joint.tree_cost(problem, units, (), ranked)
-        if groups is None:
-            return (low, 0, cost)
-        least = [[min(c) for c in zip(*(joint.tree_cost(problem, (u,), (), ranked) for u in g))] for g in groups]
-        return (low, 0, tuple(c + sum(x[k] for x in least) for k, c in enumerate(cost)))
-
-    cut = constraints.shrinking(options.programs)
-    assert cut is not None  # by_branch
-    inst = inst.restrict(u for u in inst.units if _allowed(problem, u, cut))
-    meal = job.tree.meal
-    relevant = set(meal) | {i for u in inst.units for i in problem.required[u]}
-    gone = {u for _, u, extra in _replaceable(problem, inst, ranked) if relevant.isdisjoint(extra)}
-    products = {u: problem.products[u] for u in inst.units}
-    search = branch.Search(
-        inst.restrict(set(inst.units) - gone), meal, products, job.solve, rank, low_key, cut.max_units
-    )
-    left = None if deadline is None else max(0.0, deadline - time.perf_counter())
-    out = search.run(job.fixed if job.fixed.has_schedule else None, left)
-    stats: dict = {"joint": "branch and bound", "nodes": out.nodes}
-    result, proven = job.finish((out.best, out.proven), rank, False, stats)
-    if result is not None and not proven and out.open_bound is not None and result.makespan is not None:
-        # the trees cut were no shorter than the answer, the ones left at least their nodes' bound
-        result.joint_bound = min(out.open_bound, result.makespan)
-    return result, proven
-
-
 def _by_trees(
     job: _Joint,
     inst: Instance,
@@ -229,30 +189,35 @@ def _by_trees(
     parts: list,
     ties: bool,
     deadline: float | None,
-) -> tuple[ScheduleResult | None, bool]:
-    """Joint scheduling tree by tree (:mod:`foon2asp.schedule.joint`): (result, proven), the
-    result None when there are too many trees to look at (or no time to list them), or when no
-    tree beats the given one and ``ties`` asks for the tie-breakers over every tree of its
-    makespan (then ``proven`` says its makespan is the optimum)."""
+) -> tuple[ScheduleResult | None, bool, ScheduleResult | None]:
+    """Joint scheduling tree by tree (:mod:`foon2asp.schedule.joint`): (result, proven, partial),
+    the result None when there are too many trees to look at (or no time to list them), or when
+    no tree beats the given one and ``ties`` asks for the tie-breakers over every tree of its
+    makespan (then ``proven`` says its makespan is the optimum).  On several agents the listing
+    has a third of the time left; when the designated trees are too many to list in it, the
+    trees are asked for least work first for a quarter of the time left; unproven, that answer
+    is ``partial`` and the result None (the one encoding goes on)."""
     problem, spec, options = job.problem, job.spec, job.options
     single = len(inst.agents) == 1
     if single:  # the makespan is the tree's work: least work first, the first tree is the best
         within, found = horizon, joint.Trees([], False)
     else:
         within = horizon - divisor(inst) if job.fixed.has_schedule else horizon
-        left = None if deadline is None else max(0.0, deadline - time.perf_counter())
+        left = None if deadline is None else max(0.0, deadline - time.perf_counter()) / 3
         found = joint.candidate_trees(inst, start, tail, within, parts, solver_arguments(options), left)
         if not found.complete and (deadline is not None and time.perf_counter() >= deadline):
-            return None, False
+            return None, False, None
     ranked = objectives.ranked(options)
 
-    def bound(units: tuple[int, ...]) -> tuple:
-        """A lower bound on the key of the tree's schedule: chain and work bounds, the units
-        only a person can do, and (no person among the agents) the tree objective."""
-        sub = inst.restrict(units)
-        head = earliest(sub)
-        chain = max((head[u] + sub.min_duration(u) for u in units), default=0)
-        low = max(chain, -(-sum(sub.min_duration(u) for u in units) // len(sub.agents)))
+    def bound(cand: joint.Candidate) -> tuple:
+        """A lower bound on the key of the designated tree's schedule: its makespan bounds
+        (:func:`foon2asp.schedule.bounds.bounds`), the units only a person can do, and (no
+        person among the agents) the tree objective."""
+        units, first = cand
+        sub = designate(inst.restrict(units), first)
+        if len(earliest(sub)) < len(units):  # the designated makers wait for one another
+            return (math.inf, 0, ())
+        low = bounds(sub).lower
         if spec.has_human():
             return (low, forced_human(sub), ())
         return (low, 0, joint.tree_cost(problem, units, (), ranked))
@@ -265,11 +230,15 @@ def _by_trees(
     else:  # too many to list: one at a time, least work first
         levels = len(ranked)
         first = single and not spec.has_human()  # a person alone: fewest units among equal work
+        share = left if single or left is None else left / 4
         best, proven = joint.best_by_work(
-            inst, start, tail, within, parts, solver_arguments(options), levels, bound, job.solve, key, left, first
+            inst, start, tail, within, parts, solver_arguments(options), levels, bound, job.solve, key, share, first
         )
     stats = {"joint": "tree by tree" if found.complete else "tree by tree, least work first"}
-    return job.finish((best, proven), key, ties, stats)
+    result, proven = job.finish((best, proven), key, ties, stats)
+    if not single and not found.complete and not proven:
+        return None, False, result
+    return result, proven, None
 
 
 def schedule_joint(
@@ -282,18 +251,44 @@ def schedule_joint(
     time_limit: float | None = None,
     shortcut: bool = True,
 ) -> ScheduleResult:
-    """The tree and schedule chosen together; ``fixed`` is ``tree``'s own schedule."""
+    """The tree and schedule chosen together; ``fixed`` is ``tree``'s own schedule.  An answer
+    not proven optimal carries ``joint_bound``: no tree is shorter (the earliest a goal can be
+    made over every candidate unit, at most the answer's makespan)."""
+    result = _schedule_joint(problem, tree, spec, options, fixed, encoding, time_limit, shortcut)
+    if result.status == "feasible" and result.makespan is not None:
+        inst = instance(problem, problem.units_for(tree.meal), spec)
+        result.joint_bound = min(_floor(problem, inst, tree.meal, earliest(inst)), result.makespan)
+    return result
+
+
+def _floor(problem: Problem, inst: Instance, meal: tuple[int, ...], start: dict[int, int]) -> int:
+    """The earliest every goal can be made by the candidate units of ``inst`` (``start``: their
+    earliest starts): a lower bound on the makespan of every tree."""
+    made = [
+        min((start[u] + inst.min_duration(u) for u in start if g in problem.products[u]), default=None)
+        for g in meal
+        if g not in problem.kitchen
+    ]
+    return max((t for t in made if t is not None), default=0)
+
+
+def _schedule_joint(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    fixed: ScheduleResult,
+    encoding: str,
+    time_limit: float | None,
+    shortcut: bool,
+) -> ScheduleResult:
+    """:func:`schedule_joint` but the bound over every tree."""
     t0 = time.perf_counter()
     meal = tree.meal
     cands = list(problem.units_for(meal))
     inst = instance(problem, cands, spec)
     start = earliest(inst)
-    made = {
-        g: min((start[u] + inst.min_duration(u) for u in start if g in problem.products[u]), default=None)
-        for g in meal
-        if g not in problem.kitchen
-    }
-    floor = max((t for t in made.values() if t is not None), default=0)
+    floor = _floor(problem, inst, meal, start)
     if fixed.has_schedule:
         horizon = fixed.makespan
         assert horizon is not None
@@ -313,12 +308,8 @@ def schedule_joint(
     deadline = None if time_limit is None else t0 + time_limit
     ties = spec.has_human() or tree.status != "optimal"
     job = _Joint(problem, tree, spec, options, fixed, encoding, shortcut)
-    parts: list | None = None  # the tree encoding's programs, only when they are needed
-    if by_branch(options, inst):
-        by_trees, proven = _by_branch(job, inst, deadline)
-    else:
-        parts = tree_parts(problem, meal, inst, options)
-        by_trees, proven = _by_trees(job, inst, start, tail, horizon, parts, ties, deadline)
+    parts = tree_parts(problem, meal, inst, options)
+    by_trees, proven, partial = _by_trees(job, inst, start, tail, horizon, parts, ties, deadline)
     if by_trees is not None:
         by_trees.stats = {**stats, **by_trees.stats}
         by_trees.time_s = time.perf_counter() - t0
@@ -328,10 +319,10 @@ def schedule_joint(
     left = None if deadline is None else max(0.0, deadline - time.perf_counter())
     if left == 0.0:  # no time for the one encoding (its grounding alone can take minutes): the given tree's
         stats["joint"] = "time"
+        if partial is not None:
+            return replace(partial, stats={**stats, **partial.stats}, time_s=time.perf_counter() - t0)
         status = "feasible" if fixed.has_schedule else "unknown"
         return replace(fixed, status=status, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
-    if parts is None:
-        parts = tree_parts(problem, meal, inst, options)
     sol = solve_encoded(inst, start, tail, horizon, floor, options, encoding, left, parts, ties)
     stats.update(sol.stats, joint="tie-breakers in one encoding" if proven else "one encoding")
     elapsed = time.perf_counter() - t0
@@ -348,6 +339,10 @@ def schedule_joint(
             time_s=elapsed,
             stats=stats,
         )
+    if not sol.proven and partial is not None:
+        key = _rank(problem, objectives.ranked(options))
+        if sol.entries is None or key(partial) <= (makespan(sol.entries), 0, ()):
+            return replace(partial, stats={**stats, **partial.stats}, time_s=elapsed)
     if sol.entries is None:  # the given tree's schedule is the best found (proven: optimal)
         status = "optimal" if sol.proven and fixed.status == "optimal" else "feasible"
         return replace(fixed, status=status, joint=True, fixed=fixed, time_s=elapsed, stats=stats)

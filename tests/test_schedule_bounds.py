@@ -1,23 +1,23 @@
-"""The pieces of joint branch and bound and of the fixed-tree shortcut, against their plain versions."""
+"""The lower bounds and the fixed-tree shortcut against their plain versions, and a joint search cut short."""
 
 from __future__ import annotations
 
 import math
 import random
 
-import numpy as np
 import pytest
+from hypothesis import given as hgiven
+from hypothesis import settings
+from hypothesis import strategies as st
 
 import foon2asp
 from conftest import REPO
 from foon2asp.schedule import ScheduleSpec, schedule
 from foon2asp.schedule.baseline import list_schedule, perturbed_schedule
-from foon2asp.schedule.bounds import bounds, energy_bound, window_lengths
-from foon2asp.schedule.branch import designate, energy, landmarks
+from foon2asp.schedule.bounds import bounds, energy_bound, energy_over, kind_energy, window_length, window_lengths
 from foon2asp.schedule.check import check_schedule
 from foon2asp.schedule.model import divisor, earliest, instance, makespan, tails
 from foon2asp.schedule.spec import Durations
-from helpers import build, goal_id
 from test_schedule import AGENT_SETS, brute_schedule, given, random_spec, random_tree
 
 
@@ -66,14 +66,44 @@ def test_window_lengths_equal_the_plain_formula(m):
     rng = random.Random(m)
     rows = [[rng.choice([0, 0.5, 1, 2, 3, 5]) for _ in range(rng.randint(1, 7))] for _ in range(200)]
     for row in rows:
-        got = window_lengths(np.array([row], dtype=float), m)[0]
+        got = window_lengths([row], m)[0]
         assert got == pytest.approx(_window_length(row, m)), row
+
+
+@settings(max_examples=200, deadline=None)
+@hgiven(st.lists(st.integers(0, 12), max_size=8), st.integers(1, 4))
+def test_window_length_is_the_least_window_that_holds_the_parts(c, m):
+    """The formula against the plain scan, and the window it gives holds the parts."""
+    got = window_length(c, m)
+    assert got == pytest.approx(_window_length(c, m))
+    if 0 < got < math.inf:
+        assert sum(min(x, got) for x in c) <= m * got + 1e-9
+
+
+@settings(max_examples=40, deadline=None)
+@hgiven(st.integers(0, 10**6))
+def test_energy_bound_equals_the_loops(seed):
+    """The energetic bound of random trees equals the one written out loop by loop; with
+    several kinds, the bound with kinds is at least it and at most brute force."""
+    rng = random.Random(seed)
+    problem, _, units = random_tree(rng, rng.randint(2, 5), knife=0.0)
+    spec = random_spec(rng, AGENT_SETS[seed % 4])
+    spec = ScheduleSpec(spec.agents, spec.durations, {}, {})
+    inst = instance(problem, units, spec)
+    if inst.incapable():
+        return
+    start, tail = earliest(inst), tails(inst)
+    b = bounds(inst)
+    floor = max(b.chain, b.work)
+    plain = _plain_energy(inst, start, tail, floor, divisor(inst))
+    assert energy_bound(inst, start, tail, floor, divisor(inst)) == plain
+    assert plain <= kind_energy(inst, start, tail, plain, divisor(inst)) <= brute_schedule(problem, units, spec)[0]
 
 
 @pytest.mark.parametrize("seed", range(12))
 def test_energy_over_single_units_equals_the_tree_bound(seed):
-    """With every unit a part of its own and the tree's own tails, the energetic bound of the
-    branch and bound is the fixed tree's, and equals the one written out loop by loop."""
+    """With every unit a part of its own and the tree's own tails, the energetic bound over
+    parts is the fixed tree's, and equals the one written out loop by loop."""
     rng = random.Random(seed)
     problem, _, units = random_tree(rng, rng.randint(3, 9), knife=0.0)
     spec = random_spec(rng, AGENT_SETS[seed % 2])
@@ -83,29 +113,10 @@ def test_energy_over_single_units_equals_the_tree_bound(seed):
     b = bounds(inst)
     floor = max(b.chain, b.work)
     want = energy_bound(inst, start, tail, floor, divisor(inst))
-    assert energy(inst, start, tail, [[u] for u in inst.units], floor, divisor(inst)) == want == b.energy
+    d = {u: inst.min_duration(u) for u in inst.units}
+    got = energy_over([[u] for u in inst.units], d, start, tail, len(inst.agents), floor, divisor(inst))
+    assert got == want == b.energy
     assert want == _plain_energy(inst, start, tail, floor, divisor(inst))
-
-
-def test_landmarks_of_a_designated_instance():
-    """x is made by a (also making y, which g needs) or by b: a is in every tree, b only once
-    x is designated to it."""
-    problem = build(
-        [("m", ["k"], ["x", "y"]), ("m", ["k"], ["x"]), ("m", ["x"], ["z"]), ("m", ["y", "z"], ["g"])],
-        ["k"],
-    )
-    g = goal_id(problem, "g")
-    inst = instance(problem, range(4), ScheduleSpec())
-    x = next(o for o, ms in inst.needs[2] if len(ms) == 2)
-
-    def makers(node):
-        out = {o: list(ms) for u in node.units for o, ms in node.needs[u]}
-        out[g] = [3]
-        return out
-
-    assert landmarks(inst, [g], makers(inst), earliest(inst)) == frozenset({0, 2, 3})
-    node = designate(inst, {x: 1})
-    assert landmarks(node, [g], makers(node), earliest(node)) == frozenset({0, 1, 2, 3})
 
 
 def test_perturbed_list_schedules_are_never_longer_and_the_same_every_time():
@@ -149,12 +160,12 @@ def test_a_perturbed_list_schedule_at_the_lower_bound_is_the_optimum():
 
 
 def test_a_joint_search_cut_short_bounds_every_tree(shared_foon_dir):
-    """Beef stroganoff on two arms with the duration table: the branch and bound takes seconds;
+    """Chocolate chip muffin on two arms with the duration table: the joint search takes seconds;
     cut at 0.1 s its answer says how short any tree could be, no more than the proven optimum."""
     kb = foon2asp.load(shared_foon_dir)
     table = REPO / "bench" / "durations.json"
-    full = kb.schedule("beef stroganoff", agents="arm=2", durations=table, joint=True)
-    cut = kb.schedule("beef stroganoff", agents="arm=2", durations=table, joint=True, time_limit=0.1)
+    full = kb.schedule("chocolate chip muffin", agents="arm=2", durations=table, joint=True)
+    cut = kb.schedule("chocolate chip muffin", agents="arm=2", durations=table, joint=True, time_limit=0.1)
     assert full.status == "optimal" and full.raw.joint_bound is None and "joint_bound" not in full.to_dict()
     assert cut.status == "feasible" and cut.makespan >= full.makespan
     d = cut.to_dict()
