@@ -200,15 +200,15 @@ def test_no_fallback_under_user_constraints():
 
 
 def test_default_settings():
-    assert settings.DEFAULT_OPT_STRATEGY == "usc,oll,succinct"
-    assert "--opt-strategy=usc,oll,succinct" in AspOptions().args()
+    assert settings.DEFAULT_OPT_STRATEGY == "usc,oll,succinct,stratify"
+    assert "--opt-strategy=usc,oll,succinct,stratify" in AspOptions().args()
     two = AspOptions(threads=2).args()
     assert "--parallel-mode=2" in two and not any(a.startswith("--opt-strategy") for a in two)
     config = next(a for a in two if a.startswith("--configuration="))
     with open(config.split("=", 1)[1], encoding="utf-8") as fh:
         assert fh.read() == settings.PORTFOLIO
     assert "[bbsign]: --opt-strategy=bb --opt-heuristic=sign,model" in settings.PORTFOLIO
-    assert "[usc]: --opt-strategy=usc,oll,succinct" in settings.PORTFOLIO
+    assert "[usc]: --opt-strategy=usc,oll,succinct,stratify" in settings.PORTFOLIO
     mine = AspOptions(opt_strategy="bb", threads=2).args()
     assert "--opt-strategy=bb" in mine and not any(a.startswith("--configuration") for a in mine)
     kb = foon2asp.load("demo")

@@ -4,9 +4,10 @@ Every answer that comes from clingo (``solve``, ``compare``, the optimum of
 ``check``, ``missing``, ``batch``, the Python API) builds its clingo
 arguments with :func:`solver_args`; a user who sets nothing gets:
 
-* one thread: ``--opt-strategy=usc,oll,succinct`` (core-guided optimisation,
+* one thread: ``--opt-strategy=usc,oll,succinct,stratify`` (core-guided optimisation,
   OLL, without the redundant symmetry constraints OLL adds over the outputs of
-  its cardinality constraints), each core shrunk by binary search
+  its cardinality constraints, weights taken in strata from the heaviest: the
+  success objective's weights differ widely), each core shrunk by binary search
   (``--opt-usc-shrink=bin``), with clasp's ``--configuration=trendy``.  On FOONs with real choice it proves where
   branch and bound (clingo's own default) stalls, and it is as fast on FOONs
   with little choice; ``succinct`` proves the hardest goals of the hard
@@ -26,7 +27,7 @@ import os
 import tempfile
 
 #: the optimisation strategy when the user sets none (one thread)
-DEFAULT_OPT_STRATEGY = "usc,oll,succinct"
+DEFAULT_OPT_STRATEGY = "usc,oll,succinct,stratify"
 #: clasp options that go with it: shrink each core by binary search, clasp's "trendy" configuration
 DEFAULT_TUNING = ("--opt-usc-shrink=bin", "--configuration=trendy")
 
@@ -64,7 +65,7 @@ def solver_args(opt_strategy: str | None = None, threads: int = 1, portfolio: st
 
 
 def describe(opt_strategy: str | None = None, threads: int = 1) -> str:
-    """The setting in words, e.g. ``usc,oll,succinct`` or ``portfolio bb(sign,model)|usc x2``."""
+    """The setting in words, e.g. ``usc,oll,succinct,stratify`` or ``portfolio bb(sign,model)|usc x2``."""
     if opt_strategy:
         return opt_strategy + (f" x{threads}" if threads > 1 else "")
     if threads > 1:

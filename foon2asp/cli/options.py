@@ -397,7 +397,7 @@ def strategy_options(func):
             "--opt-strategy",
             callback=_opt_strategy,
             help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll;"
-            " default usc,oll,succinct, or with --threads 2+ a portfolio of one bb and one usc solver.",
+            " default usc,oll,succinct,stratify, or with --threads 2+ a portfolio of one bb and one usc solver.",
         ),
         click.option(
             "--threads",
