@@ -578,3 +578,24 @@ def test_objects_made_twice_keep_bounds_and_optimum_exact(seed):
         r = schedule(problem, given(problem, goal, units), spec, encoding=encoding, shortcut=False)
         assert r.status == "optimal" and (r.makespan, len(r.human)) == want, encoding
         assert check_schedule(problem, r.to_dict(), spec) is None
+
+
+def test_every_tree_bound_is_at_most_every_trees_optimal_makespan():
+    """The joint search's floor (landmarks and energetic reasoning over every candidate unit)
+    never exceeds the least makespan of any tree, each scheduled by brute force."""
+    from foon2asp.schedule.joint import every_tree_bound
+    from foon2asp.schedule.model import earliest, instance
+
+    positive = 0
+    for seed in range(16):
+        rng = random.Random(500 + seed)
+        problem, g, trees = tangled_foon(rng)
+        spec = random_spec(rng, AGENT_SETS[seed % 3])
+        spec = ScheduleSpec(spec.agents, spec.durations, spec.capabilities, {})
+        made = [k[0] for k in (brute_schedule(problem, t, spec) for t in trees) if k is not None]
+        inst = instance(problem, problem.units_for((g,)), spec)
+        products = {u: problem.products[u] for u in inst.units}
+        bound = every_tree_bound(inst, (g,), products, earliest(inst), 0)
+        assert made and bound <= min(made), (seed, bound, made)
+        positive += bound > 0
+    assert positive >= 10

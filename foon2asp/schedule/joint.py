@@ -32,7 +32,8 @@ from foon2asp.asp import encodings
 from foon2asp.asp.control import Control
 from foon2asp.asp.objectives import neglog_sum
 from foon2asp.foon.problem import Problem
-from foon2asp.schedule.model import Instance, divisor
+from foon2asp.schedule.bounds import energy_over
+from foon2asp.schedule.model import Instance, divisor, joint_tails
 
 #: the most designated trees listed at once
 MAX_TREES = 2000
@@ -199,3 +200,89 @@ def best_by_work(
                 best = r
         if first:
             return best, proven
+
+
+def every_tree_bound(
+    inst: Instance, goals: Sequence[int], products: dict[int, tuple[int, ...]], start: dict[int, int], floor: int
+) -> int:
+    """A lower bound on the makespan of every tree of ``inst`` for ``goals`` (``start``: the
+    units' earliest starts; at least ``floor``): energetic reasoning
+    (:func:`foon2asp.schedule.bounds.energy_over`) over the units every tree holds -- the
+    landmarks, a greatest fixpoint: an object's are those all its makers share, a unit's are
+    itself and those of what it needs -- and one part per object they or the goals need that
+    no landmark makes (the least of its makers; parts with disjoint makers), with each
+    landmark's tail raised by the longest chain of landmarks that waits for it."""
+    makers: dict[int, list[int]] = {}
+    for u in inst.units:
+        for o, ms in inst.needs[u]:
+            makers.setdefault(o, list(ms))
+    for g in goals:
+        makers.setdefault(g, [u for u in inst.units if g in products[u]])
+    lm = _landmarks(inst, goals, makers, start)
+    if lm is None:
+        return floor
+    made = {o for u in lm for o in products[u]}
+    wanted = [g for g in goals if g not in made] + sorted({o for u in lm for o, _ in inst.needs[u] if o not in made})
+    parts: list[list[int]] = [[u] for u in sorted(lm)]
+    taken = set(lm)
+    for o in wanted:
+        choice = [m for m in makers.get(o, ()) if m in start]
+        if choice and taken.isdisjoint(choice):
+            taken.update(choice)
+            parts.append(choice)
+    d = {u: inst.min_duration(u) for part in parts for u in part}
+    work = -(-sum(min(d[u] for u in part) for part in parts) // len(inst.agents))
+    tail = _chain_tails(inst, lm, joint_tails(inst, goals, products))
+    return energy_over(parts, d, start, tail, len(inst.agents), max(floor, work), divisor(inst))
+
+
+def _landmarks(
+    inst: Instance, goals: Sequence[int], makers: dict[int, list[int]], start: dict[int, int]
+) -> frozenset[int] | None:
+    """The units every tree of ``inst`` for ``goals`` holds (None: some goal has no tree)."""
+    makes: dict[int, list[int]] = {}
+    for o, ms in makers.items():
+        for m in ms:
+            makes.setdefault(m, []).append(o)
+    ulm: dict[int, frozenset[int]] = {}
+    lm: dict[int, frozenset[int]] = {}
+    order = sorted(start, key=lambda u: (start[u], u))  # a unit's needs are made by units before it
+    changed = True
+    while changed:
+        changed = False
+        for u in order:
+            parts = [lm.get(o) for o, _ in inst.needs[u]]
+            if any(p is None for p in parts):
+                continue
+            new = frozenset().union(*(p for p in parts if p is not None)) | {u}
+            if ulm.get(u) != new:
+                ulm[u] = new
+                changed = True
+                for o in makes.get(u, ()):
+                    lm[o] = frozenset.intersection(*(ulm[m] for m in makers.get(o, ()) if m in ulm))
+    out: set[int] = set()
+    for g in goals:
+        known = [ulm[m] for m in makers.get(g, ()) if m in ulm]
+        if not known:
+            return None
+        out |= frozenset.intersection(*known)
+    return frozenset(out)
+
+
+def _chain_tails(inst: Instance, units: frozenset[int], tail: dict[int, int]) -> dict[int, int]:
+    """``tail`` raised, for ``units`` (in every tree), by the longest chain of them that must
+    wait one for another (a unit waits for the sole maker of what it needs)."""
+    succs: dict[int, list[int]] = {u: [] for u in units}
+    for v in units:
+        for _, ms in inst.needs[v]:
+            if len(ms) == 1 and ms[0] in units:
+                succs[ms[0]].append(v)
+    done: dict[int, int] = {}
+
+    def longest(u: int) -> int:
+        if u not in done:
+            done[u] = tail.get(u, 0)  # a guard against cycles among the sole makers
+            done[u] = max(tail.get(u, 0), inst.min_duration(u) + max((longest(v) for v in succs[u]), default=0))
+        return done[u]
+
+    return {**tail, **{u: longest(u) for u in units}}

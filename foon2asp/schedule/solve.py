@@ -252,12 +252,15 @@ def schedule_joint(
     shortcut: bool = True,
 ) -> ScheduleResult:
     """The tree and schedule chosen together; ``fixed`` is ``tree``'s own schedule.  An answer
-    not proven optimal carries ``joint_bound``: no tree is shorter (the earliest a goal can be
-    made over every candidate unit, at most the answer's makespan)."""
+    not proven optimal carries ``joint_bound``: no tree is shorter
+    (:func:`foon2asp.schedule.joint.every_tree_bound`, at most the answer's makespan)."""
     result = _schedule_joint(problem, tree, spec, options, fixed, encoding, time_limit, shortcut)
     if result.status == "feasible" and result.makespan is not None:
         inst = instance(problem, problem.units_for(tree.meal), spec)
-        result.joint_bound = min(_floor(problem, inst, tree.meal, earliest(inst)), result.makespan)
+        start = earliest(inst)
+        floor = _floor(problem, inst, tree.meal, start)
+        products = {u: problem.products[u] for u in inst.units}
+        result.joint_bound = min(joint.every_tree_bound(inst, tree.meal, products, start, floor), result.makespan)
     return result
 
 
@@ -288,7 +291,8 @@ def _schedule_joint(
     cands = list(problem.units_for(meal))
     inst = instance(problem, cands, spec)
     start = earliest(inst)
-    floor = _floor(problem, inst, meal, start)
+    products = {u: problem.products[u] for u in inst.units}
+    floor = joint.every_tree_bound(inst, meal, products, start, _floor(problem, inst, meal, start))
     if fixed.has_schedule:
         horizon = fixed.makespan
         assert horizon is not None
@@ -304,7 +308,7 @@ def _schedule_joint(
     ):
         stats["shortcut"] = "the given tree's makespan meets the lower bound over every tree"
         return replace(fixed, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
-    tail = joint_tails(inst, meal, {u: problem.products[u] for u in inst.units})
+    tail = joint_tails(inst, meal, products)
     deadline = None if time_limit is None else t0 + time_limit
     ties = spec.has_human() or tree.status != "optimal"
     job = _Joint(problem, tree, spec, options, fixed, encoding, shortcut)
