@@ -253,6 +253,12 @@ def test_tree_reads_required_inputs_only():
     check(solver(["tree"], facts, args=ALL), models(1, atoms(*use(0))))
 
 
+def test_tree_shared_intermediate_is_made_and_counted_once():
+    # 9 needs 3 and 4, both made from 2; 2 is made once (by 0) and counted once
+    facts = foon({0: ([1], [2]), 1: ([2], [3]), 2: ([2], [4]), 3: ([3, 4], [9])}, [1], [9])
+    check(solver(["tree", "units"], facts, "objective(units,1).\n"), optimum(use(0, 1, 2, 3), 4))
+
+
 def test_tree_without_a_producer_of_the_goal_has_no_tree():
     check(solver(["tree"], foon({0: ([1], [2])}, [1], [9]), args=ALL), unsat())
 
