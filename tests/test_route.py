@@ -229,3 +229,23 @@ def test_loop_cuts_end_at_the_brute_force_optimum():
                 assert validate(problem, goal, list(tree.units)).valid, (seed, goal)
                 assert score(problem, goal, tree.units, objective) == optimum(problem, goal, objective), (seed, goal)
     assert cut >= 5
+
+
+def test_an_infeasible_goal_names_each_program_that_alone_rules_out_every_tree():
+    """Two rules, each forbidding one motion: a goal with trees but none that obeys both is
+    ``infeasible``, naming exactly the rules that alone leave no tree (brute force)."""
+    rules = [("--rule #1", ':- use(U), motion(U,"m1").\n'), ("--rule #2", ':- use(U), motion(U,"m3").\n')]
+    seen = {0: 0, 1: 0}
+    for seed in range(25):
+        problem = random_foon(seed)
+        run = GoalRunner("asp", problem, AspOptions(programs=rules))
+        for goal in made_objects(problem):
+            trees = brute_force(problem, goal)
+            avoids = [lambda t, m=m: all(problem.units[u].motion != m for u in t) for m in ("m1", "m3")]
+            if not trees or any(all(ok(t) for ok in avoids) for t in trees):
+                continue
+            tree = run(goal)
+            want = [name for (name, _), ok in zip(rules, avoids, strict=True) if not any(ok(t) for t in trees)]
+            assert tree.status == "infeasible" and tree.extra.get("infeasible_by", []) == want, (seed, goal, want)
+            seen[min(len(want), 1)] += 1
+    assert seen[0] > 0 and seen[1] > 0, seen

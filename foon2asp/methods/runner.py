@@ -348,11 +348,19 @@ class GoalRunner:
         if len(programs) == 1:
             alone = [programs[0][0]]
         else:
+            units, objects, _ = self.parts.relevant(tree.meal)
+            limit = self._effective.time_limit  # the caller's; none: each question runs to its end
             for name, text in programs:
-                one = replace(self._effective, programs=[(name, text)])
-                units, objects, _ = self.parts.relevant(tree.meal)
-                session = Session(_view(self.problem, objects), replace(one, units=tuple(units), time_limit=5.0))
-                if session.solve(tree.meal if tree.is_meal else tree.goal).status == "unreachable":
+                # does this program alone leave a tree?  A decision, unless depth rounds decide it
+                one = replace(self._effective, programs=[(name, text)], units=tuple(units))
+                session = Session(_view(self.problem, objects), one, goal=tree.meal)
+                if one.driven:
+                    left = session.solve(tree.meal if tree.is_meal else tree.goal, time_limit=limit).status
+                    none = left == "unreachable"
+                else:
+                    with session.control.solving("first"):
+                        none = bool(session.control.solve(time_limit=limit).unsatisfiable)
+                if none:
                     alone.append(name)
         why = "trees exist, but the constraints rule them all out"
         if alone:
