@@ -1,0 +1,83 @@
+"""The prepared part (foon2asp.asp.prepared): closed sets with loop cuts (encodings/closed.lp)
+against positive recursion (encodings/prepared.lp), two differently written encodings of the
+same trees, on FOONs with choice and cycles; and the loop cut itself."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import pytest
+
+from foon2asp.asp.options import AspOptions
+from foon2asp.asp.session import Session
+from foon2asp.foon.derive import least_fixpoint
+from foon2asp.foon.loaders import Dataset
+from foon2asp.foon.problem import Problem
+from foon2asp.methods.runner import GoalRunner
+from foon2asp.tree.validate import validate
+from synth import preset
+
+#: a user program that changes nothing: the prepared part is then grounded with prepared.lp
+NOOP = ("noop", ':- use(U), motion(U,"teleport").\n')
+
+
+def both_encodings(problem: Problem, objective: tuple[str, ...], step: int) -> tuple[int, int]:
+    """Every ``step``-th goal that needs a search, solved on its prepared part by closed.lp and
+    by prepared.lp: the same optimum, a valid tree; returns (goals, goals that needed a cut)."""
+    made = sorted({o for u in range(len(problem.units)) for o in problem.products[u]})
+    run = GoalRunner("asp", problem, AspOptions(objective=objective), shortcuts=False)
+    goals = [g for g in made if run.route(g) == "prepared"][::step]
+    cut = 0
+    for g in goals:
+        prep = run.preparation(g)
+        closed = Session(problem, run._effective, prepared=prep).solve(g)
+        recursive = Session(problem, replace(run._effective, programs=[NOOP]), prepared=prep).solve(g)
+        assert closed.status == recursive.status == "optimal", g
+        assert closed.extra["asp_cost"] == recursive.extra["asp_cost"], g
+        assert validate(problem, g, list(closed.units)).valid, g
+        cut += bool(closed.stats.get("loop_cuts"))
+    return len(goals), cut
+
+
+@pytest.mark.parametrize("objective", [("units",), ("success",), ("inputs",)], ids=",".join)
+def test_closed_sets_and_positive_recursion_agree_on_the_small_preset(objective):
+    goals, _ = both_encodings(preset("small").problem(), objective, 4)
+    assert goals > 50
+
+
+def test_closed_sets_and_positive_recursion_agree_on_the_shared_foon(shared_foon_dir):
+    data = Dataset.load(shared_foon_dir)
+    problem = Problem(data.foon, data.kitchen, data.motion, data.utensils)
+    goals, cut = both_encodings(problem, ("units",), 5)
+    assert goals > 100 and cut > 5  # the universal FOON's cycles need cuts
+
+
+def test_a_loop_cut_holds_for_every_tree_and_not_for_the_set_it_cuts(shared_foon_dir):
+    """For closed sets that are no trees: the cut's objects are needed and not derived, its
+    outside units make one of them from inputs outside the cut, and the set uses none of them."""
+    data = Dataset.load(shared_foon_dir)
+    problem = Problem(data.foon, data.kitchen, data.motion, data.utensils)
+    run = GoalRunner("asp", problem, AspOptions(), shortcuts=False)
+    made = sorted({o for u in range(len(problem.units)) for o in problem.products[u]})
+    checked = 0
+    for g in [g for g in made if run.route(g) == "prepared"][::8]:
+        prep = run.preparation(g)
+        tree = run(g)
+        assert prep.cut(problem, tree.units) is None  # the answer is a tree
+        if not tree.stats.get("loop_cuts"):
+            continue
+        # a closed set that is no tree: the tree plus a unit that needs what only it makes
+        for u in prep.candidates:
+            bigger = sorted({*tree.units, u})
+            cut = prep.cut(problem, bigger)
+            if cut is None:
+                continue
+            missing, outside = cut
+            derived, _ = least_fixpoint(problem.kitchen, problem.required, problem.products, bigger)
+            assert missing and not any(o in derived or o in problem.kitchen for o in missing)
+            assert all(set(missing) & set(problem.products[p]) for p in outside)
+            assert not any(set(missing) & set(problem.required[p]) for p in outside)
+            assert not set(outside) & set(bigger)
+            checked += 1
+            break
+    assert checked > 0
