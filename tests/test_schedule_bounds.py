@@ -171,19 +171,3 @@ def test_a_joint_search_cut_short_bounds_every_tree(shared_foon_dir):
     d = cut.to_dict()
     assert d["joint_bound"] <= full.makespan and d["joint_bound"] <= d["makespan"]
     assert f"Every tree: at least {d['joint_bound']:g} s" in cut.to_text()
-
-
-@pytest.mark.parametrize("seed", range(40))
-def test_the_lower_bound_with_pools_is_at_most_brute_force(seed):
-    """The energetic bound over the units only some kinds can do and the units sharing a
-    resource (bounds.pools) never exceeds the optimum brute force finds."""
-    rng = random.Random(900 + seed)
-    kinds = AGENT_SETS[2 + seed % 2]  # an arm or two and a person
-    problem, _, units = random_tree(rng, 4 if seed % 2 else 5, knife=0.6)
-    spec = random_spec(rng, kinds)
-    want = brute_schedule(problem, units, spec)
-    inst = instance(problem, units, spec)
-    if want is None:
-        assert inst.incapable()
-        return
-    assert bounds(inst).lower <= want[0]

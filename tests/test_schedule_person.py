@@ -39,13 +39,14 @@ def test_a_fast_person_and_a_slow_arm_are_not_two_agents_of_the_person_speed():
     assert (r.status, r.makespan, len(r.human), r.human_units_proven) == ("optimal", 3000, 3, True)
 
 
-@pytest.mark.parametrize("seed", range(40))
-def test_the_bounds_with_a_person_are_at_most_brute_force(seed):
-    """The energetic bound with each unit on one kind, and the fewest human units at the
+@pytest.mark.parametrize("seed, knife", [(4000 + s, 0.5) for s in range(40)] + [(900 + s, 0.6) for s in range(40)])
+def test_the_bounds_with_a_person_are_at_most_brute_force(seed, knife):
+    """The energetic bound with each unit on one kind (and over the pools of units only some
+    kinds can do or that share a resource, bounds.pools), and the fewest human units at the
     optimal makespan (bounds.human_lower), never exceed what brute force finds."""
-    rng = random.Random(4000 + seed)
+    rng = random.Random(seed)
     kinds = AGENT_SETS[2 + seed % 2]  # an arm or two and a person
-    problem, _, units = random_tree(rng, 4 if seed % 2 else 5, knife=0.5)
+    problem, _, units = random_tree(rng, 4 if seed % 2 else 5, knife=knife)
     spec = random_spec(rng, kinds)
     want = brute_schedule(problem, units, spec)
     inst = instance(problem, units, spec)
