@@ -1064,6 +1064,22 @@ def test_schedule_first_designates_the_goal_maker():
     check(first_trees(":- not first(9,2).\n"), models(1, atoms(*use(1, 2))))
 
 
+# 0 and 5 make a, d and b, e from the kitchen; 1 makes b from a, 2 makes a from b; 3 makes 9
+CROSS = foon({0: ([1], [4, 6]), 5: ([1], [5, 7]), 1: ([4], [5]), 2: ([5], [4]), 3: ([4, 5, 6, 7], [9])}, [1], [9])
+
+
+def test_schedule_first_never_designates_in_a_circle():
+    # with 1 and 2 both used, 2 must first make 4 (=a) and 1 first make 5 (=b): each waits for the other
+    cross = solver(["tree", "schedule_first"], CROSS, ":- not use(1).\n:- not use(2).\n", args=ALL)
+    check(cross, unsat())
+
+
+def test_schedule_first_designates_one_of_the_crossing_makers():
+    # 1 alone beside 0 and 5: it may first make 5 (=b) from 4 (=a), which 0 makes first
+    one = solver(["tree", "schedule_first"], CROSS, ":- not use(1).\n:- use(2).\n", args=ALL)
+    check(one, models(1, a.And(a.Equals(set(use(0, 1, 3, 5))), a.Contains("first(5,1)"))))
+
+
 def test_schedule_trees_answers_are_distinct_trees():
     # a choice beside the tree doubles the answers; the projection on use/1 keeps one per tree
     check(trees("{ aside }.\n", ["0", "--project=project", "--warn=none"]), models(3))
