@@ -15,25 +15,23 @@ route          when                                                             
                or it is a kitchen item
 ``only-tree``  every object of the goal's relevant part has one viable producer:    only-tree
                the whole part is the only tree
-``bounds``     the landmark lower bound equals the cost of the bounds tree          bounds
-               (:mod:`foon2asp.methods.bounds`)
 ``prepared``   clingo on the goal's prepared part (:mod:`foon2asp.asp.prepared`):    clingo
-               relevant, undominated units without those no optimal tree uses,
-               landmarks as facts, the bounds tree as the answer among equal
-               optima and a domain heuristic, the lower bound as the point where
-               the search stops
+               every goal with real choice: relevant, undominated units without
+               those no optimal tree uses, landmarks as facts, the bounds tree
+               (:mod:`foon2asp.methods.bounds`) as the answer among equal optima
+               and a domain heuristic, the lower bound as the point where the
+               search stops
 ``clingo``     clingo on the whole grounding (or the goal's part, ``per-goal``):     clingo
                meals, depth rounds, human steps, alternatives, greedy heuristics,
                substitutes, extra encodings, user programs that define what the
                encodings define
 ============== ==================================================================== ============
 
-Preparation settles a goal only by polynomial reasoning (the first four rows);
-every search for an optimum is clingo's.  User programs that only remove trees
+Preparation settles only goals without real choice (the first three rows): every
+goal with more than one tree is clingo's, even when the bounds already meet.  User programs that only remove trees
 (:func:`foon2asp.asp.constraints.only_constraints`) keep what preparation
-proves of reachability, the relevant part and the lower bounds: a settled tree
-(the only tree, or the bounds tree), or the optimum without them, is the answer
-when it satisfies them
+proves of reachability, the relevant part and the lower bounds: the only tree, or
+the optimum without them, is the answer when it satisfies them
 (:class:`foon2asp.asp.check.ConstraintCheck`), else the goal takes the
 ``prepared`` route without the pruning and dominance (their proofs assume no
 constraints) and with the bounds tree as a hint only.  Trees exist but the user's programs rule them
@@ -78,7 +76,6 @@ PROVEN_BY: dict[str, str | None] = {
     "search": None,
     "fixpoint": "fixpoint",
     "only-tree": "only-tree",
-    "bounds": "bounds",
     "prepared": "clingo",
     "clingo": "clingo",
 }
@@ -120,8 +117,8 @@ class GoalRunner:
     grounds only the units a tree for one of them can use (:meth:`Problem.units_for`),
     unless ``options.units`` says otherwise.  ``parts``: the viable units and relevant
     parts of ``problem`` when the caller has them (several runners share them).
-    ``shortcuts=False``: preparation settles no goal that can be made (no ``only-tree`` or
-    ``bounds`` route): clingo answers every such goal (a check of those routes).
+    ``shortcuts=False``: preparation settles no goal that can be made (no ``only-tree``
+    route): clingo answers every such goal (a check of that route).
     """
 
     def __init__(
@@ -167,7 +164,7 @@ class GoalRunner:
         self._depth_settles = (
             self.kind == "asp" and "depth" in self._ranked and plain(depthless) and self._effective.max_depth is None
         )
-        #: preparation may answer a goal that has one tree, or whose bounds meet
+        #: preparation may answer a goal whose part is its only tree
         self._settle = shortcuts
         #: the user's programs only remove trees (the bounds tree is a hint only, nothing is pruned)
         self._constrained = bool(self._effective.programs)
@@ -198,10 +195,6 @@ class GoalRunner:
             return "only-tree" if self._settle and not choice else "clingo"
         if self._settle and not choice and self._allows(units):
             return "only-tree"
-        if self._settle and self._bounded and (not self._constrained or self._checkable):
-            bounds = self.parts.bounds_for(self._ranked, units)
-            if bounds.proven(goal) and self._allows(bounds.tree(goal) or ()):
-                return "bounds"
         return "prepared"
 
     def _allows(self, tree: Iterable[int]) -> bool:
@@ -231,10 +224,6 @@ class GoalRunner:
         elif how == "only-tree":
             units, _, _ = self.parts.relevant(meal[0])
             tree = self._answer(meal[0], units, t0)
-        elif how == "bounds":
-            units, _, _ = self.parts.relevant(meal[0])
-            found = self.parts.bounds_for(self._ranked, units).tree(meal[0]) or ()
-            tree = self._answer(meal[0], list(found), t0)
         else:
             tree = self._prepared(meal[0], t0)
         if self._effective.programs and tree.status == "unreachable" and all(g in self.parts.derivable for g in meal):
