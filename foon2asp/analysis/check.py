@@ -1,28 +1,9 @@
 """Checking a task tree from a file: does it exist in the FOON, is it well-founded?
 
-The tree is read by :func:`foon2asp.foon.treefiles.read_trees` (FOON text, FOON
-JSON, foon2asp JSON or a plan) and each unit is matched to a FOON unit by
-:meth:`Unit.key` (motion, set of inputs, set of outputs).  Its goal is the one
-named (:func:`foon2asp.foon.goals.resolve_goal`), else the one of a goals list
-it makes, else the one the file names, else inferred from the units
-(:func:`tree_goal`).
-
-The verdict comes from the independent validator (:mod:`foon2asp.tree.validate`):
-the tree is valid iff every unit is in the FOON, every unit fires from the
-kitchen using only units of the tree, and the goal is made.  When it is not
-valid, the first problem is named: an unknown unit (with how the nearest FOON
-unit differs), else what :func:`foon2asp.tree.diagnose.diagnose` finds walking
-back from the goal -- a missing input or circular support.
-
-A file that gives no units for a goal outside the kitchen (``solve``'s answer
-for an unreachable goal, in JSON or FOON text) has no tree to check: when no
-units of the FOON derive the goal from the kitchen
-(:func:`foon2asp.tree.validate.derivable_objects`) that answer is confirmed
-(finding ``unreachable``, not counted as invalid); else it is wrong (``no-tree``).
-
-Without a FOON, :func:`check_alone` judges each tree of a file on its own
-(:func:`foon2asp.tree.validate.judge_alone`: kitchen = its leaves, goal = the
-products of its last unit): valid means every unit fires in the order written.
+Each unit of a tree file is matched to a FOON unit by :meth:`Unit.key`; the independent
+validator (:mod:`foon2asp.tree.validate`) gives the verdict and the first problem is named.
+A file with no units for a goal is an answer when the FOON confirms the goal unreachable.
+Without a FOON, :func:`check_alone` judges each tree on its own.
 """
 
 from __future__ import annotations
@@ -78,13 +59,8 @@ def nearest_hint(problem: Problem, unit: Unit) -> str:
 
 
 def infer_goal(problem: Problem, tree: TreeFile, goal_objects: list[FoonObject]) -> int:
-    """The goal of a tree file that does not name it, from the units as written.
-
-    The tree's only sink (the one product no unit of the tree needs) wins;
-    else a goals-file entry that the tree makes (preferring one no unit of the
-    tree needs); else the single product of the last unit that no unit needs
-    (the earlier programs write the goal's unit last); else its single product.
-    """
+    """The goal of a tree file that does not name it: the tree's only sink, else an entry of
+    ``goal_objects`` it makes, else the single product of its last unit; raises InputError."""
     units = [tu.unit for tu in tree.units]
     made = list(dict.fromkeys(o for u in units for o in u.outputs if not o.is_bare()))
     needed = {
@@ -119,7 +95,7 @@ def infer_goal(problem: Problem, tree: TreeFile, goal_objects: list[FoonObject])
 
 
 class Derivable:
-    """The objects derivable from the kitchen with any units of the FOON, computed once when first asked."""
+    """The objects derivable from the kitchen with any units of the FOON, computed when first asked."""
 
     def __init__(self, problem: Problem) -> None:
         self.problem = problem
@@ -134,9 +110,8 @@ class Derivable:
 def no_tree(
     problem: Problem, tree: TreeFile, goal: int, derivable: Derivable | None = None, what: str = "the goal"
 ) -> Report:
-    """The report on a file that gives no units for ``goal`` (not a kitchen item): ``unreachable``
-    when the FOON confirms that no tree exists, else ``no-tree`` (the goal has a tree).
-    ``what`` names the goal in the message."""
+    """The report on a file with no units for ``goal``: finding ``unreachable`` when the FOON
+    confirms no tree exists, else ``no-tree``; ``what`` names the goal in the message."""
     derivable = derivable if derivable is not None else Derivable(problem)
     if problem.objects[goal] not in derivable:
         finding = Finding(
@@ -161,9 +136,8 @@ def check_tree(
     index: dict[tuple, int] | None = None,
     derivable: Derivable | None = None,
 ) -> Report:
-    """Match the units of ``tree`` to the FOON and judge them for ``goal`` (for a meal, a
-    tuple of goals: valid when every goal is made; the first goal with a problem is explained).
-    A tree without units for a goal outside the kitchen is judged by :func:`no_tree`."""
+    """Match the units of ``tree`` to the FOON and judge them for ``goal`` (a meal: valid when
+    every goal is made; the first goal with a problem is explained)."""
     meal = meal_of(goal)
     if len(meal) > 1:
         derivable = derivable if derivable is not None else Derivable(problem)
@@ -216,10 +190,8 @@ def tree_goal(
     goal_label: str | tuple[str, ...] | None,
     among: list[int] | None = None,
 ) -> tuple[Goals, str]:
-    """The goal of ``tree`` (several labels: a meal) and where it came from: ``goal_label``
-    (each resolved by :func:`foon2asp.foon.goals.resolve_goal`; ``--goal``), the one of
-    ``among`` (``--goals``) the tree makes, the file (JSON result or FOON header), or
-    inferred from the units (:func:`infer_goal`)."""
+    """The goal of ``tree`` (several labels: a meal) and where it came from: ``goal_label``,
+    else the one of ``among`` the tree makes, else the one the file names, else :func:`infer_goal`."""
     if isinstance(goal_label, str):
         goal_label = (goal_label,)
     if goal_label:
@@ -278,12 +250,8 @@ def check_file(
     strict: bool = False,
     options: AspOptions | None = None,
 ) -> list[Report]:
-    """Check every tree (or plan) in ``path``; with ``optimum`` the ASP optimum is solved for
-    each goal (for several ``goal_label``: the meal's optimum) with the caller's ``options``.
-
-    ``among`` (``--goals``): each tree's goal is the one of these it makes.  ``strict``: a unit
-    a unit list would skip with a warning (:attr:`TreeFile.warnings`) is an error.
-    """
+    """Check every tree (or plan) in ``path`` for its goal (:func:`tree_goal`); with ``optimum``
+    also solve each goal's (or meal's) ASP optimum.  ``strict``: a unit a unit list would skip is an error."""
     reports = check_trees(data, problem, read_trees(path, problem, strict), goal_label, among)
     if optimum and reports:
         meals = list(dict.fromkeys(r.meal for r in reports))
@@ -296,9 +264,7 @@ def check_file(
 def read_and_check(
     path: str | Path, data=None, problem: Problem | None = None, goal: str | None = None, strict: bool = False
 ) -> tuple[list[TreeFile], list[Report] | None]:
-    """The trees of a tree file as ``draw`` shows them: read (FOON text, JSON or a unit list;
-    ``strict``: a unit a unit list would skip is an error) and, with ``problem``, each checked
-    for its goal (:func:`tree_goal`; no optimum); else no reports."""
+    """The trees of a tree file and, with ``problem``, their reports (no optimum); else None."""
     trees = read_trees(path, strict=strict)
     return trees, check_trees(data, problem, trees, goal) if problem is not None else None
 
@@ -307,8 +273,8 @@ def read_and_check(
 
 
 def alone_goal(tree: TreeFile, text: str) -> FoonObject:
-    """The object ``text`` names among the objects of ``tree`` (no FOON): an object's text as
-    foon2asp prints it, else the one object some unit of the tree makes with that label."""
+    """The object ``text`` names in ``tree``: an object's full text, else the one object of the tree
+    made with that label."""
     units = [tu.unit for tu in tree.units]
     parsed = goals_mod.parse_object_text(text.strip())
     if parsed is not None:
@@ -334,9 +300,8 @@ def check_alone(
     strict: bool = False,
     kitchen_source: str = "its leaves",
 ) -> list[AloneReport]:
-    """Judge every tree of the file ``path`` on its own (:func:`foon2asp.tree.validate.judge_alone`):
-    the kitchen is its leaves (or ``kitchen``), the goal the one of ``goal_texts`` (several: a
-    meal), else the one the file names, else the products of its last unit."""
+    """Judge every tree of the file ``path`` on its own: the kitchen is its leaves (or ``kitchen``),
+    the goal ``goal_texts`` (several: a meal), else the file's, else the products of its last unit."""
     reports = []
     for tree in read_trees(path, strict=strict):
         units = [tu.unit for tu in tree.units]

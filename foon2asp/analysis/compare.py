@@ -1,11 +1,7 @@
 """Comparing methods goal by goal: tree size, validity, success product, depth.
 
-:func:`compare` runs every method (looked up in :mod:`foon2asp.methods`, so
-any registered method works) on every goal and marks each tree valid or not
-with the independent validator.  The renderers print the earlier work's
-"Table I" layout (goals x methods, units per tree, with the ASP optimum
-column) as text or Markdown, one row per goal and method as CSV, or a flat
-list of ``solve``-shaped JSON results, each with ``"valid"``.
+:func:`compare` runs every registered method on every goal and marks each tree valid or
+not with the independent validator; :mod:`foon2asp.report.compare` prints the table.
 """
 
 from __future__ import annotations
@@ -21,11 +17,12 @@ from foon2asp.tree.results import MealRow, Row
 from foon2asp.tree.tasktree import TaskTree
 
 DEFAULT_METHODS = ("ids", "gbfs-h1", "gbfs-h2", "asp")
+Methods = tuple[str, ...] | list[str]
 
 
 def judge(problem: Problem, tree: TaskTree, substitutes: Iterable[Substitute] = ()) -> TaskTree:
     """Mark ``tree`` valid or invalid (``extra["valid"]``, ``extra["problem"]``); with
-    ``substitutes``, what they may stand in for counts as had (:func:`judged_on`)."""
+    ``substitutes``, what they may stand in for counts as had."""
     if not tree.has_tree:
         tree.extra["valid"] = False
         return tree
@@ -38,28 +35,17 @@ def judge(problem: Problem, tree: TaskTree, substitutes: Iterable[Substitute] = 
 
 
 def compare(
-    problem: Problem,
-    goals: list[int],
-    method_names: tuple[str, ...] | list[str] = DEFAULT_METHODS,
-    options: AspOptions | None = None,
+    problem: Problem, goals: list[int], method_names: Methods = DEFAULT_METHODS, options: AspOptions | None = None
 ) -> list[Row]:
-    """Run each method on each goal; every tree is judged by the validator.
-
-    ASP methods ground only the units relevant to these goals (no tree for
-    any of them can use another unit), unless ``options.units`` says otherwise.
-    """
+    """Run each method on each goal; every tree is judged by the validator."""
     return list(compare_iter(problem, goals, method_names, options))
 
 
 def compare_iter(
-    problem: Problem,
-    goals: list[int],
-    method_names: tuple[str, ...] | list[str] = DEFAULT_METHODS,
-    options: AspOptions | None = None,
+    problem: Problem, goals: list[int], method_names: Methods = DEFAULT_METHODS, options: AspOptions | None = None
 ) -> Iterator[Row]:
-    """:func:`compare` one goal at a time: each row as soon as its goal is done."""
+    """:func:`compare` one goal at a time: each row as soon as every method has its goal's tree."""
     options = options or AspOptions()
-    # each method's trees, one goal after another: a row as soon as every method has its goal's
     answers = {name: solve_goals(problem, goals, name, options) for name in dict.fromkeys(method_names)}
     for g in goals:
         trees = {name: judge(problem, next(trees_of), options.substitutes) for name, trees_of in answers.items()}
@@ -72,7 +58,6 @@ def compare_meal(problem: Problem, goals: list[int], method: str = "asp", option
     """The meal's optimum (one tree for all ``goals``) and each goal's own optimum, all judged."""
     meal = tuple(dict.fromkeys(goals))
     options = options or AspOptions()
-    # the meal's tree, then each goal's on the same runner
     trees = solve_goals(problem, [meal, *meal], method, options)
     tree = next(trees)
     if tree.has_tree:

@@ -1,27 +1,10 @@
 """Consolidating candidate trees of one recipe into one proven-best tree.
 
-A language model writes several candidate task trees for one recipe; each is a
-file in any form :func:`foon2asp.foon.treefiles.read_trees` reads (the unit-list
-JSON of :mod:`foon2asp.foon.unitlist` above all).  :func:`read_candidates` reads
-them, :func:`merge` puts their units into one FOON (exact duplicates once, each
-unit remembering the files it came from), and :func:`consolidate` answers, for
-each goal, with
-
-* the proven-best tree of the merged FOON for the request's objectives,
-  constraints and limits (:func:`foon2asp.methods.runner.solve_goals`, the path
-  ``solve`` takes), from the consolidation's kitchen (by default the merged
-  FOON's leaves, :mod:`foon2asp.foon.leaves`);
-* every candidate's verdict: is it executable on its own -- its own units, in
-  the order its file lists them, from the same kitchen, for the same goal
-  (:func:`foon2asp.tree.validate.judge_alone`) -- and if not, why; its measures
-  in the merged FOON (to set against the optimum) and which of its units the
-  tree uses.  A candidate executable on its own is a tree of the merged FOON, so
-  the optimum is never worse than it;
-* when the goal is unreachable, the fewest objects to add to the kitchen
-  (:func:`foon2asp.analysis.queries.missing`).
-
-The default goal (:func:`shared_goal`) is the product of the candidates' last
-units that most of them share (generated trees end with the dish).
+:func:`read_candidates` reads the candidate files, :func:`merge` puts their units into one
+FOON (each unit remembering its files), and :func:`consolidate` gives, per goal, the best tree
+of the merged FOON, every candidate's verdict on its own units, and, when the goal is
+unreachable, the fewest objects to add to the kitchen.  A candidate executable on its own is
+a tree of the merged FOON, so the optimum is never worse than it.
 """
 
 from __future__ import annotations
@@ -45,8 +28,8 @@ from foon2asp.tree.validate import judge_alone, last_products
 
 
 def read_candidates(paths: Iterable[str | Path], strict: bool = False) -> list[Candidate]:
-    """Each file's units, distinct, in file order (a file holding several trees is one
-    candidate: the units of its trees in turn); ``strict``: a unit a unit list would skip is an error."""
+    """Each file as one candidate: its units, distinct, in file order; ``strict``: a unit a unit
+    list would skip is an error."""
     out = []
     for path in paths:
         trees = read_trees(path, strict=strict)
@@ -79,25 +62,16 @@ def merge(candidates: Sequence[Candidate]) -> tuple[Foon, list[list[str]]]:
     return foon, sources
 
 
-def goal_counts(candidates: Sequence[Candidate]) -> Counter[FoonObject]:
-    """How many candidates' last units make each object (the products of the last unit that makes any)."""
-    counts: Counter[FoonObject] = Counter()
-    for cand in candidates:
-        counts.update(set(last_products([tu.unit for tu in cand.units])))
-    return counts
-
-
 def candidate_goals(candidates: Sequence[Candidate]) -> list[tuple[FoonObject, int]]:
-    """Every product of a candidate's last unit with how many candidates share it, most shared
-    first (ties in the order the candidates name them)."""
-    counts = goal_counts(candidates)
-    order = list(dict.fromkeys(o for c in candidates for o in last_products([tu.unit for tu in c.units])))
+    """Every product of a candidate's last unit with how many candidates share it, most shared first."""
+    made = [last_products([tu.unit for tu in c.units]) for c in candidates]
+    counts = Counter(o for products in made for o in set(products))
+    order = list(dict.fromkeys(o for products in made for o in products))
     return sorted(((o, counts[o]) for o in order), key=lambda pair: -pair[1])
 
 
 def shared_goal(candidates: Sequence[Candidate]) -> tuple[FoonObject, str]:
-    """The default goal: the product of the candidates' last units that most of them share,
-    and where it came from in words."""
+    """The product of the candidates' last units that most of them share, and where it came from in words."""
     ranked = candidate_goals(candidates)
     if not ranked:
         raise InputError("no candidate's last unit makes an object: name the goal", hint="no-goal")
@@ -127,8 +101,8 @@ def consolidate(
     goal_source: str = "",
     kitchen_source: str = "leaves",
 ) -> list[Consolidation]:
-    """For each of ``goals`` (an object id, or a tuple of them: a meal) of the merged FOON
-    ``problem``: the best tree, every candidate's verdict and, when unreachable, what to add."""
+    """For each of ``goals`` (a meal: a tuple) of the merged FOON ``problem``: the best tree,
+    every candidate's verdict and, when unreachable, what to add."""
     options = options or AspOptions()
     out = []
     for goal, tree in zip(goals, solve_goals(problem, goals, "asp", options)):

@@ -1,13 +1,7 @@
 """Declarative queries over a FOON: reachability, missing items, user programs.
 
-* :func:`reachable` -- which objects can be made from the kitchen at all, for
-  many objects in one solve (``encodings/tree.lp`` + ``reachable.lp``);
-* :func:`missing` -- the fewest objects to add to the kitchen so a goal can be
-  made, then the fewest units (``encodings/missing.lp``), proven minimal; when
-  no set helps, :func:`blocking_cycle` names a cycle that blocks the goal;
-* :func:`query` -- a user's program run with the facts, its shown atoms
-  returned (:mod:`foon2asp.report.queries` prints them with object and unit
-  ids decoded).
+:func:`reachable` answers which objects can be made from the kitchen, :func:`missing` the
+fewest objects to add so a goal can be made, :func:`query` runs a user's program with the facts.
 """
 
 from __future__ import annotations
@@ -48,8 +42,7 @@ from foon2asp.tree.weights import unit_weight
 class Outcome:
     """The result of one solve call."""
 
-    #: ``optimal`` (optimum proven), ``satisfiable`` (models, no objective),
-    #: ``feasible`` (stopped early), ``unsatisfiable`` or ``unknown``
+    #: optimal, satisfiable (no objective), feasible (stopped early), unsatisfiable or unknown
     status: str
     answers: list[Answer]
     time_s: float
@@ -72,11 +65,8 @@ class Program:
         return self.control.facts_of(name, arity)
 
     def solve(self, time_limit: float | None = None, limit: int = 1) -> Outcome:
-        """Solve.  When optimising, keep the best model; else stop after ``limit`` models (0 = all).
-
-        The control must run with ``--models=0`` (and ``--opt-mode=opt``) so
-        optimisation is not cut short; plain enumeration stops here instead.
-        """
+        """Solve: when optimising keep the best model, else stop after ``limit`` models (0 = all).
+        The control must run with ``--models=0``."""
         answers: list[Answer] = []
         proven = [False]
 
@@ -140,8 +130,7 @@ MISSING_OBJECTIVES = ("units", "success", "inputs", "cost")
 def objective_parts(
     problem: Problem, objective: tuple[str, ...], units: list[int], first: int
 ) -> list[tuple[str, str]]:
-    """The objective encodings with ``objective(Name,P)`` facts, most important first,
-    and ``add_priority(first)``, a priority above them all."""
+    """The objective encodings with ``objective(Name,P)`` facts and ``add_priority(first)``."""
     parts = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(objective)]
     parts += [(f"objective {n}", f"objective({n},{len(objective) - k}).\n") for k, n in enumerate(objective)]
     if "inputs" in objective:
@@ -154,17 +143,9 @@ def objective_parts(
 
 
 def missing(problem: Problem, goal: Goals, options: AspOptions | None = None) -> MissingResult:
-    """The fewest objects to add to the kitchen so ``goal`` can be made, then the best tree
-    by ``options.objective`` (``units``, ``success``, ``inputs``, ``cost`` with the problem's
-    motion-cost table; lexicographic; default fewest units), under the options' constraints,
-    time limit and solver settings.
-
-    A goal that can be made as the kitchen is needs nothing added: its tree is the goal
-    runner's (:func:`foon2asp.methods.runner.solve_goals`), the same tree ``solve`` gives.
-    Otherwise ``encodings/missing.lp`` chooses the objects and the tree together.
-
-    ``goal`` may be a meal (a tuple of goals): the fewest objects so that one tree makes them all.
-    """
+    """The fewest objects to add to the kitchen so ``goal`` (a meal: a tuple) can be made, then
+    the best tree by ``options.objective`` (any of :data:`MISSING_OBJECTIVES`).  A goal that can
+    be made as the kitchen is gets the tree ``solve`` gives."""
     options = options or AspOptions()
     objective = tuple(dict.fromkeys(options.objective))
     for name in objective:
@@ -236,14 +217,9 @@ def missing(problem: Problem, goal: Goals, options: AspOptions | None = None) ->
 
 
 def blocking_cycle(problem: Problem, goal: int, reach: set[int]) -> tuple[list[tuple[int, int]], list[tuple[int, int]]]:
-    """A cycle of unreachable objects that blocks ``goal``, and the path to it.
-
-    Edges go from an unreachable object O to an unreachable required input I
-    of a unit U making O.  Every unreachable object that some unit makes has
-    such an edge (its producers cannot fire), so a walk from the goal meets a
-    cycle.  The shortest cycle through the goal is preferred, else the
-    shortest through the object nearest the goal.
-    """
+    """A cycle of unreachable objects that blocks ``goal``, and the path to it: the shortest
+    cycle through the goal, else the shortest through the object nearest the goal.  Every
+    unreachable object a unit makes needs an unreachable input, so a walk from the goal meets a cycle."""
 
     def succ(o: int) -> Iterable[tuple[int, int]]:
         for u in problem.producers.get(o, ()):
@@ -308,10 +284,8 @@ def _loaded(prog: Program) -> set[Signature]:
 
 def query_warnings(prog: Program, program: tuple[str, str], loaded: Iterable[str]) -> list[str]:
     """Warnings about the user's ``program`` (name, text) and the shipped encodings ``loaded``
-    (``tree``, ...) that ``prog`` grounded: each predicate one of them uses that no rule head of
-    them and no fact defines, named at its first use in the program it is in (its file, its
-    lines).  A predicate defined nowhere at all is a misspelling: the closest defined ones are
-    named; one a shipped encoding not loaded defines comes with the encoding that does."""
+    that ``prog`` grounded: each predicate used but defined by no rule head and no fact, at its
+    first use, with the closest defined names or the encoding that defines it."""
     name, text = program
     user = predicates(text)
     shipped = shipped_predicates()
@@ -347,14 +321,9 @@ def query(
     models: int = 1,
     time_limit: float | None = None,
 ) -> QueryResult:
-    """Run the user's ``program`` (name, text) with the facts of ``problem``.
-
-    ``with_encodings`` loads shipped encodings (``tree``, ``units``, ...);
-    objective encodings also get ``objective(Name,P)`` facts, the first
-    listed with the highest priority P.  With an
-    objective, the best model is returned; else up to ``models`` models
-    (0 = all).
-    """
+    """Run the user's ``program`` (name, text) with the facts of ``problem`` and the shipped
+    ``with_encodings`` (objectives: the first listed weighs most).  With an objective the best
+    model is returned, else up to ``models`` models (0 = all)."""
     name, text = program
     check_syntax(name, text)
     own_show = shows(name, text)
