@@ -17,7 +17,3 @@ def h1(problem: Problem, u: int) -> float:
 def h2(problem: Problem, u: int) -> float:
     """Greedy score by input nodes: fewer is better."""
     return -len(problem.inputs[u])
-
-
-#: heuristic name -> score
-HEURISTICS: dict[str, Score] = {"h1": h1, "h2": h2}
