@@ -191,3 +191,18 @@ def test_batch_run_summarises_its_records(demo):
         assert row["trees"] == sum(1 for r in mine if r["units"])
     assert run_.render("csv").splitlines()[0].startswith("method,results,statuses")
     assert run_.records[0]["method"] == "asp-success"
+
+
+def test_a_request_changes_nothing_shared_and_its_warnings_are_told_once(demo, tmp_path):
+    table = tmp_path / "costs.tsv"
+    table.write_text("chop\t0.25\nmix\t1.5\n")
+    solver, warnings = demo.options_and_warnings(motion_cost=table, forbid_motions=["fly"])
+    assert solver.motion_costs["chop"] == 25 and solver.motion_costs["mix"] == 150
+    assert warnings[0] == "no unit has motion 'fly'"
+    assert warnings[1].startswith(f"{table}: 11 motions are not in the motion-cost table and cost 1 each: beat,")
+    assert demo.warnings == foon2asp.load("demo").warnings and demo.problem.motion_costs is None
+    assert demo.solve("tomato salad", motion_cost=table).cost["cost"] == 3.75  # chop, 2 x 1, mix
+    assert "cost" not in demo.solve("tomato salad").cost  # the next request has no table
+    res = run("solve", "--data", "demo", "--goal", "tomato salad", "--forbid-motion", "fly", "--motion-cost", table)
+    assert res.exit_code == 0
+    assert [line.split(": ", 2)[2] for line in res.stderr.splitlines() if "warning" in line] == warnings

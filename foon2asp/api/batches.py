@@ -51,7 +51,7 @@ class BatchRun:
         chosen = make_spec(spec, agents, durations, capabilities, resources)
         view = lambda goals: self.kb.judging_problem(solver, goals)  # noqa: E731  (with substitutes)
         found = batch_schedules.schedule_records(
-            self.kb.problem, self.raw.records, chosen, solver, method, joint, encoding, view
+            self.kb.solving_problem(solver), self.raw.records, chosen, solver, method, joint, encoding, view
         )
         self.schedules = [Schedule(self.kb, r, chosen) for r in found]
         if output is not None:

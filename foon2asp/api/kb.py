@@ -10,7 +10,7 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
 from functools import partial
 from pathlib import Path
-from typing import Unpack
+from typing import Any, Unpack
 
 from foon2asp import methods
 from foon2asp.analysis import check as check_mod
@@ -49,11 +49,11 @@ class KnowledgeBase:
 
     data: Dataset
     problem: Problem
-    #: one-line warnings about the input (skipped units, motions without a rate, unknown names, ...)
-    warnings: list[str] = field(default_factory=list)
+    #: one-line warnings about the input (skipped units, motions without a rate, files not found, ...)
+    warnings: tuple[str, ...] = ()
     #: how objects are compared (``load``'s ``level``, ``normalize``, ``synonyms``; foon2asp.foon.matching)
     projection: Projection = field(default_factory=Projection)
-    #: substitutes -> (the objects they stand in for, the problems trees are judged on)
+    #: motion-cost weights -> (the problem with them, substitutes -> the problems trees are judged on)
     _views: dict = field(default_factory=dict, init=False, repr=False)
 
     # -- what is there ------------------------------------------------------
@@ -79,9 +79,8 @@ class KnowledgeBase:
 
     def object_info(self, goal: GoalLike) -> dict:
         """``{"id", "text", "label", "states", "ingredients", "container", "in_kitchen", "producers"}``
-        (``producers``: how many units make it); a list of these is a goals file.  With ``"joined"``
-        the texts of the objects it stands for when the comparison (level, normalize, synonyms)
-        joined several."""
+        (a list of these is a goals file); ``"joined"``: the texts of the objects it stands for
+        when the comparison joined several."""
         return matching.object_info(self.problem, self.projection, self.object_id(goal))
 
     def object_id(self, goal: GoalLike) -> int:
@@ -93,9 +92,8 @@ class KnowledgeBase:
         return matching.goal_ids(self.data, self.problem, self.projection, goals)
 
     def select_goals(self, goal: Sequence[str] = (), goals: str | Path | None = None) -> list[int]:
-        """The goals a request names: each of ``goal`` (labels, texts or ``#ID``) in order, then
-        ``goals``: a goals file, ``"all"`` (the goals file's entries) or ``"all-objects"``; neither:
-        the goals file's entries.  Naming nothing at all is an error."""
+        """The goals a request names: each of ``goal`` in order, then ``goals`` (a goals file,
+        ``"all"`` or ``"all-objects"``); neither: the goals file's entries, else an error."""
         return matching.select_goals(self.data, self.problem, self.projection, goal, goals)
 
     def file_goals(self) -> list[int]:
@@ -107,52 +105,69 @@ class KnowledgeBase:
         self, goal_nodes: Iterable[int] | None = None, goals: Iterable[int] = (), options: Options | None = None
     ) -> str:
         """The FOON, kitchen and goals as ASP facts: ``goal_node/2`` for ``goal_nodes`` (default:
-        the goals file's entries), ``goal/1`` for each of ``goals`` (docs/vocabulary.md); with
-        ``options.substitutes`` also ``substitute(N,K,C)`` (docs/vocabulary.md)."""
+        the goals file's entries), ``goal/1`` for each of ``goals``, and with ``options.substitutes``
+        ``substitute(N,K,C)`` (docs/vocabulary.md)."""
         nodes = self.file_goals() if goal_nodes is None else list(goal_nodes)
         text = facts_text(self.problem, goal_nodes=nodes) + "".join(f"goal({g}).\n" for g in goals)
         return text + matching.substitute_facts(self.problem, self.projection, options)
 
     @property
     def joined(self) -> dict[str, list[str]]:
-        """The spellings joined by ``normalize``/``synonyms``: first spelling -> every spelling
-        (first first); only texts spelled more than one way."""
+        """The spellings joined by ``normalize``/``synonyms``: first spelling -> every spelling."""
         return matching.joined(self.projection)
 
     def substitutes(self, options: Options | None) -> tuple[Substitute, ...]:
         """The substitutes of a request, spelled as this knowledge base spells labels."""
         return matching.substitutes(self.projection, options)
 
+    def solving_problem(self, solver: AspOptions) -> Problem:
+        """The problem answers with ``solver`` are found on: with its motion costs, every tree's
+        measures include ``cost``."""
+        return self._costed(solver.motion_costs)[0]
+
     def judging_problem(self, solver: AspOptions | Options | None, goals: Iterable[int] = ()) -> Problem:
-        """The problem a tree is judged on: with substitutes, every object one can stand in
-        for (but ``goals``) is a kitchen item (foon2asp.asp.substitutes.validate_with)."""
-        table = solver.substitutes if isinstance(solver, AspOptions) else self.substitutes(solver)
-        return matching.judging_problem(self.problem, self._views, table, goals)
+        """The problem a tree is judged on: :meth:`solving_problem`, where with substitutes every
+        object one can stand in for (but ``goals``) is a kitchen item."""
+        if isinstance(solver, AspOptions):
+            problem, views = self._costed(solver.motion_costs)
+            return matching.judging_problem(problem, views, solver.substitutes, goals)
+        problem, views = self._costed(None)
+        return matching.judging_problem(problem, views, self.substitutes(solver), goals)
+
+    def _costed(self, weights: dict[str, int] | None) -> tuple[Problem, dict]:
+        """The problem with the motion costs ``weights``, and the problems judged on made of it so far."""
+        key = None if weights is None else frozenset(weights.items())
+        if key not in self._views:
+            self._views[key] = (self.problem if weights is None else matching.costed(self.problem, weights), {})
+        return self._views[key]
 
     def project_tree(self, tree: TreeFile) -> TreeFile:
         """A tree read from a file, its units and goal as this knowledge base's level sees them."""
         return matching.project_tree(self.projection, tree)
 
-    def options(self, options: Options | None = None, **settings: Unpack[Settings]) -> AspOptions:
-        """The solver options an answer uses (defaults: see :mod:`foon2asp.asp.options`): names
-        checked, constraint programs read; constraint names no motion or label matches are warned about.
-
-        The request's motion-cost table becomes the solver's integer weights (hundredths) and the
-        problem's table (:attr:`Problem.motion_costs`: every tree's measures then include ``cost``);
-        the motions of the FOON the table lacks (each costs 1) are named in one warning."""
+    def options_and_warnings(
+        self, options: Options | None = None, **settings: Unpack[Settings]
+    ) -> tuple[AspOptions, list[str]]:
+        """The solver options of a request (:meth:`options`) and the warnings about it: constraint
+        names no motion or label matches, the motions the motion-cost table lacks (each costs 1)."""
         request = Options.of(options, **settings)
-        self.warnings.extend(unknown_names(self.problem, request.constraints))
+        warnings = unknown_names(self.problem, request.constraints)
         solver = request.solver()
         if solver.substitutes:  # spelled as the FOON's labels are at this level
             solver = replace(solver, substitutes=self.projection.substitutes(solver.substitutes))
         table = request.motion_table()
-        self.problem.motion_costs = table
         if table is None:
-            return solver
+            return solver, warnings
         weights, warning = unit_weights(table, [u.motion for u in self.problem.units])
-        if warning is not None:
-            self.warnings.append(warning)
-        return replace(solver, motion_costs=weights)
+        return replace(solver, motion_costs=weights), warnings + ([] if warning is None else [warning])
+
+    def options(self, options: Options | None = None, **settings: Unpack[Settings]) -> AspOptions:
+        """The solver options of a request (defaults: :mod:`foon2asp.asp.options`): names checked,
+        constraint programs read, the motion-cost table as integer weights (hundredths)."""
+        return self.options_and_warnings(options, **settings)[0]
+
+    def _solver(self, options: Options | AspOptions | None) -> AspOptions:
+        return options if isinstance(options, AspOptions) else self.options(options)
 
     # -- answers ------------------------------------------------------------
 
@@ -162,14 +177,12 @@ class KnowledgeBase:
         method: str = "asp",
         options: Options | AspOptions | None = None,
     ) -> Iterator[Tree]:
-        """Trees for ``goal_ids`` one after another (the path every command takes); an
-        element that is a tuple of ids is a meal: one tree that makes all of them.
-        ``options``: a request, or the solver options :meth:`options` made of one."""
-        solver = options if isinstance(options, AspOptions) else self.options(options)
-        kind = methods.get(method).kind
-        if kind != "asp" and solver.programs:
+        """Trees for ``goal_ids`` one after another; a tuple of ids is a meal (one tree making
+        all of them).  ``options``: a request, or the solver options :meth:`options` made of one."""
+        solver = self._solver(options)
+        if methods.get(method).kind != "asp" and solver.programs:
             raise InputError(f"constraints apply to ASP methods only; {method!r} is a search baseline")
-        for raw in solve_goals(self.problem, goal_ids, method, solver):
+        for raw in solve_goals(self.solving_problem(solver), goal_ids, method, solver):
             yield Tree(self, raw)
 
     def solve(
@@ -181,23 +194,15 @@ class KnowledgeBase:
         options: Options | None = None,
         **settings: Unpack[Settings],
     ) -> Tree | list[Tree]:
-        """The best task tree for a goal (a :class:`Tree`), or for each of several goals (a list).
-
-        ``together=True``: one tree that makes every goal (a meal; units shared
-        between dishes count once), proven optimal like a single goal's.
-
-        ``goals``: a label, an object's text, ``"#ID"``, an object, a list of
-        these, or ``"all"`` / ``"all-objects"`` (a list).  ``objective``:
-        ``units`` (default), ``success``, ``inputs``, ``depth`` or a
-        lexicographic list.  The constraint keywords match the CLI flags.
-        """
+        """The best task tree for a goal (a :class:`Tree`), or for each of several goals (a list;
+        also for ``"all"`` / ``"all-objects"``).  ``together=True``: one tree that makes every goal
+        (a meal; units shared between dishes count once), proven optimal like a single goal's."""
         solver = self.options(options, **settings)
         ids = self.goal_ids(goals)
         if together:
             return next(self.solve_iter([tuple(dict.fromkeys(ids))], method, solver))
         trees = list(self.solve_iter(ids, method, solver))
-        single = isinstance(goals, str | int | FoonObject) and goals not in ("all", "all-objects")
-        return trees[0] if single else trees
+        return trees[0] if _one(goals) else trees
 
     def check(
         self,
@@ -210,19 +215,14 @@ class KnowledgeBase:
         options: Options | None = None,
         **settings: Unpack[Settings],
     ) -> CheckReport | list[CheckReport]:
-        """Judge a tree: a :class:`Tree`, or a file (FOON text in either dialect, FOON JSON,
-        foon2asp JSON, the unit-list JSON of generated trees, or a plan as Fast Downward writes
-        it for ``export pddl``).
+        """Judge a :class:`Tree`, or each tree of a file (FOON text, FOON JSON, foon2asp JSON, the
+        unit-list JSON of generated trees, or a plan of ``export pddl``): one report, or a list
+        when the file holds several (:meth:`check_all`: always a list).
 
-        A :class:`Tree`, or a file holding one tree, gives one report; a file holding several
-        gives a list, one per tree (:meth:`check_all`: always a list).
-        ``goal``: the goal (several: a meal). Otherwise the goal of a tree in a file is
-        the one of ``goals`` (a goals file or a list) the tree makes, else the one the
-        file names (a JSON result, or the ``# task tree for ...`` line ``solve --format
-        foon`` writes), else the tree's only product no unit of it needs.
-        With ``optimum`` the ASP optimum is solved with ``options`` for each goal (a meal's for a meal).
-        Units of a unit list that are skipped or merged are warned about (:attr:`warnings`; an
-        error with ``strict``).  A tree file judged without a FOON: :func:`foon2asp.api.check_tree`.
+        ``goal``: the goal (several: a meal); else the one of ``goals`` (a goals file or a list)
+        the tree makes, else the one the file names, else the tree's only product no unit needs.
+        ``optimum``: also solve the ASP optimum with ``options``.  ``strict``: units of a unit list
+        skipped or merged (each report's ``warnings``) are an error.
         """
         solver = self.options(options, **settings)
         if isinstance(tree, Tree):
@@ -237,7 +237,6 @@ class KnowledgeBase:
         else:
             view = partial(self.judging_problem, solver)
             reports = matching.check_file(self.data, self.problem, self.projection, view, tree, goal, goals, strict)
-            self.warnings.extend(dict.fromkeys(w for r in reports for w in r.tree.warnings))
         for r in reports if solver.substitutes else []:
             used = [u for u in dict.fromkeys(r.ids) if u is not None]
             r.substitutions = report_substitutions(self.problem, r.meal, used, solver.substitutes) if r.valid else []
@@ -251,19 +250,9 @@ class KnowledgeBase:
         found = [CheckReport(self, r) for r in reports]
         return found[0] if len(found) == 1 else found
 
-    def check_all(
-        self,
-        tree: Tree | str | Path,
-        goal: GoalLike | Sequence[GoalLike] | None = None,
-        optimum: bool = True,
-        goals: Sequence[GoalLike] | str | Path | None = None,
-        *,
-        strict: bool = False,
-        options: Options | None = None,
-        **settings: Unpack[Settings],
-    ) -> list[CheckReport]:
-        """:meth:`check` as a list, whatever the file holds (one report per tree)."""
-        found = self.check(tree, goal, optimum, goals, strict=strict, options=options, **settings)
+    def check_all(self, *args: Any, **kwargs: Any) -> list[CheckReport]:
+        """:meth:`check` (the same arguments) as a list, whatever the file holds."""
+        found = self.check(*args, **kwargs)
         return found if isinstance(found, list) else [found]
 
     def compare(
@@ -286,8 +275,8 @@ class KnowledgeBase:
         options: Options | AspOptions | None = None,
     ) -> Iterator[Comparison]:
         """:meth:`compare` goal by goal: a one-row :class:`Comparison` as soon as each goal is done."""
-        solver = options if isinstance(options, AspOptions) else self.options(options)
-        for row in compare_mod.compare_iter(self.problem, list(goal_ids), list(methods), solver):
+        solver = self._solver(options)
+        for row in compare_mod.compare_iter(self.solving_problem(solver), list(goal_ids), list(methods), solver):
             yield Comparison(self, [row])
 
     def compare_meal(
@@ -300,7 +289,7 @@ class KnowledgeBase:
     ) -> MealRow:
         """The meal's optimal tree (all ``goals`` at once) beside each goal's own optimum."""
         solver = self.options(options, **settings)
-        return compare_mod.compare_meal(self.problem, self.goal_ids(goals), method, solver)
+        return compare_mod.compare_meal(self.solving_problem(solver), self.goal_ids(goals), method, solver)
 
     def reachability(
         self, goals: GoalLike | Sequence[GoalLike] | None = "all", *, options: Options | None = None
@@ -323,17 +312,15 @@ class KnowledgeBase:
         **settings: Unpack[Settings],
     ) -> Missing:
         """The fewest objects to add to the kitchen so ``goal`` can be made (proven minimal), then
-        the best tree by ``objective`` (``units``, ``success``, ``inputs`` or a lexicographic list).
-
-        Several goals: the fewest objects for the whole meal (one tree making all of them).
-        """
+        the best tree by the objective; several goals: the fewest for the whole meal."""
         solver = self.options(options, **settings)
         target: int | tuple[int, ...]
         if isinstance(goal, str | int | FoonObject):
             target = self.object_id(goal)
         else:
             target = tuple(dict.fromkeys(self.object_id(g) for g in goal))
-        return Missing(self, matching.missing(self.problem, partial(self.judging_problem, solver), target, solver))
+        view = partial(self.judging_problem, solver)
+        return Missing(self, matching.missing(self.solving_problem(solver), view, target, solver))
 
     def query(
         self,
@@ -349,16 +336,12 @@ class KnowledgeBase:
         """Run an ASP ``program`` (text) with the facts; shown atoms come back with ids decoded.
 
         ``goal_nodes`` (default: the goals file's entries) become ``goal_node/2`` facts;
-        ``encodings`` are loaded with the ones they need (``reachable`` needs ``tree``).
-        ``models`` (0: all) and ``time_limit`` come from ``options`` or the keywords.
-        With a ``#show`` of its own in ``program`` only what it shows is returned;
-        ``warnings`` names atoms the program uses that no rule or fact defines.
-        With ``substitutes`` the facts include ``substitute(N,K,C)`` (and ``max_substitutions(M)``).
+        ``encodings`` are loaded with the ones they need; ``models`` (0: all), ``time_limit`` and
+        ``substitutes`` come from the request.  ``warnings`` names atoms no rule or fact defines.
         """
         request = Options.of(options, **settings)
         nodes = self.file_goals() if goal_nodes is None else self.goal_ids(goal_nodes)
         gid = None if goal is None else self.object_id(goal)
-        # substitute/3 with substitutes (encodings: "substitutes")
         program += matching.substitute_facts(self.problem, self.projection, request)
         return queries.query(self.problem, (name, program), nodes, gid, encodings, request.models, request.time_limit)
 
@@ -378,18 +361,16 @@ class KnowledgeBase:
     ) -> BatchRun:
         """Many goals x methods into a resumable JSON-lines file (``output``; None keeps results in memory).
 
-        ``grounding``: ``"whole"``, ``"per-goal"`` or ``"auto"`` (chosen from the FOON and the goals by
-        :func:`foon2asp.methods.parts.choose_grounding`; the run's ``grounding`` and ``grounding_reason`` say which).
-        ``workers``: processes, or ``"auto"`` (this process, then a pool on every usable core once the batch has
-        run 5 s; the run's ``workers`` says how many ran; a script using a pool needs the usual
+        ``grounding``: ``"whole"``, ``"per-goal"`` or ``"auto"`` (the run's ``grounding`` and
+        ``grounding_reason`` say which).  ``workers``: processes, or ``"auto"`` (this process, then a
+        pool on every usable core once the batch has run 5 s; a script using a pool needs the
         ``if __name__ == "__main__":`` guard).
         """
         request = Options.of(options, **settings)
         solver = self.options(request)
-        spec = BatchSpec(self.problem, list(dict.fromkeys(methods)), solver, request.grounding, request.shortcuts)
-        executor = None
-        if scheduler:
-            executor = cluster.executor(scheduler)
+        problem = self.solving_problem(solver)
+        spec = BatchSpec(problem, list(dict.fromkeys(methods)), solver, request.grounding, request.shortcuts)
+        executor = cluster.executor(scheduler) if scheduler else None
         count = workers_count(workers)
         outcome = batch_run.run_batch(spec, self.goal_ids(goals), output, resume, count, progress, fsync, executor)
         return BatchRun(self, outcome)
@@ -409,18 +390,16 @@ class KnowledgeBase:
         options: Options | None = None,
         **settings: Unpack[Settings],
     ) -> Schedule | list[Schedule]:
-        """The schedule with the proven-minimal makespan of each goal's best tree (by ``objective``;
-        ``joint``: tree and schedule chosen together) on ``spec``'s agents, or on ``agents``
-        (``"arm=2,human=1"``, default one robot) with the ``durations``, ``capabilities`` and
-        ``resources`` files.  One goal gives a :class:`Schedule`, several a list (as :meth:`solve`);
-        ``together=True``: one schedule of one tree that makes every goal (a meal)."""
+        """The schedule with the proven-minimal makespan of each goal's best tree (``joint``: tree
+        and schedule chosen together) on ``spec``'s agents, or on ``agents`` (``"arm=2,human=1"``,
+        default one robot) with the ``durations``, ``capabilities`` and ``resources`` files.  One
+        goal gives a :class:`Schedule`, several a list; ``together=True``: one schedule of a meal."""
         solver = self.options(options, **settings)
         chosen = make_spec(spec, agents, durations, capabilities, resources)
         ids = self.goal_ids(goals)
         jobs: list[int | tuple[int, ...]] = [tuple(dict.fromkeys(ids))] if together else list(ids)
         found = list(self.schedule_iter(jobs, chosen, solver, joint=joint, encoding=encoding))
-        single = together or (isinstance(goals, str | int | FoonObject) and goals not in ("all", "all-objects"))
-        return found[0] if single else found
+        return found[0] if together or _one(goals) else found
 
     def schedule_iter(
         self,
@@ -432,11 +411,9 @@ class KnowledgeBase:
         encoding: str = DEFAULT_ENCODING,
         progress: Callable[[dict], None] | None = None,
     ) -> Iterator[Schedule]:
-        """:meth:`schedule` goal after goal (the path ``foon2asp schedule`` takes); an element
-        that is a tuple of ids is a meal: one tree, and its schedule, for all of them.
-        ``progress``: called as each goal's schedules improve, with what
-        :func:`foon2asp.schedule.schedule` reports and ``goal``, the goal's label."""
-        solver = options if isinstance(options, AspOptions) else self.options(options)
+        """:meth:`schedule` goal after goal; a tuple of ids is a meal.  ``progress``: called as each
+        goal's schedules improve, with what :func:`foon2asp.schedule.schedule` reports and ``goal``."""
+        solver = self._solver(options)
         trees = self.solve_iter(goal_ids, "asp", solver)
         yield from schedule_trees(trees, spec or ScheduleSpec(), solver, joint, encoding, progress)
 
@@ -444,7 +421,11 @@ class KnowledgeBase:
         self, path: str | Path, spec: ScheduleSpec | None = None, options: Options | None = None
     ) -> list[ScheduleVerdict]:
         """Judge each schedule of a ``schedule --format json`` file on ``spec``'s agents (default one
-        robot, every unit 1 s): the first violation of precedence, one unit per agent at a time,
-        capabilities, durations, resources or the tree's validity, per schedule; with the
-        substitutes of ``options`` what they stand in for is in the kitchen."""
+        robot, every unit 1 s): the first violation per schedule (precedence, one unit per agent at a
+        time, capabilities, durations, resources, the tree's validity)."""
         return check_schedule_file(self.problem, partial(self.judging_problem, options), path, spec or ScheduleSpec())
+
+
+def _one(goals: object) -> bool:
+    """Does ``goals`` name one goal (the answer is one value, not a list)?"""
+    return isinstance(goals, str | int | FoonObject) and goals not in ("all", "all-objects")

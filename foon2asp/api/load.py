@@ -119,4 +119,4 @@ def knowledge_base(
         where = "" if kitchen in (None, LEAVES) else f"{kitchen}: "
         why = " (every object of the FOON is made by some unit)" if kitchen == LEAVES else ""
         found.append(f"{where}the kitchen is empty{why}: no unit can start, so every goal is unreachable")
-    return KnowledgeBase(data, problem, found, seen_as)
+    return KnowledgeBase(data, problem, tuple(found), seen_as)

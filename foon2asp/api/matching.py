@@ -6,6 +6,7 @@ Plain functions of the knowledge base's data (its dataset, problem and projectio
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import replace
 from pathlib import Path
@@ -21,6 +22,7 @@ from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.loaders import Dataset, read_goals
 from foon2asp.foon.matching import Projection, Texts, parse_synonyms, read_synonyms
 from foon2asp.foon.model import FoonObject
+from foon2asp.foon.motioncost import MotionCosts, motion_key, unscaled
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.substitutes import LINE_BREAKS, Substitute, candidates, substituted_kitchen, with_substitutes
 from foon2asp.foon.treefiles import TreeFile, TreeUnit, read_trees
@@ -88,6 +90,14 @@ def object_info(problem: Problem, seen_as: Projection, oid: int) -> dict:
     if len(texts) > 1:
         info["joined"] = list(texts)
     return info
+
+
+def costed(problem: Problem, weights: dict[str, int]) -> Problem:
+    """``problem`` with the motion-cost table of the solver's ``weights`` (cost in hundredths per
+    motion): every tree's measures then include ``cost``."""
+    out = copy.copy(problem)  # what it caches does not depend on the costs
+    out.motion_costs = MotionCosts({motion_key(m): unscaled(w) for m, w in weights.items()})
+    return out
 
 
 def judging_problem(problem: Problem, views: dict, table: tuple[Substitute, ...], goals: Iterable[int] = ()) -> Problem:

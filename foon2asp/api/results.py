@@ -34,6 +34,8 @@ class Source(Protocol):
 
     def options(self, options: Options | None = None, **settings: Unpack[Settings]) -> AspOptions: ...
 
+    def solving_problem(self, solver: AspOptions) -> Problem: ...
+
     def judging_problem(self, solver: AspOptions | Options | None, goals: Iterable[int] = ()) -> Problem: ...
 
 
@@ -329,6 +331,11 @@ class CheckReport:
     @property
     def optimum(self) -> Tree | None:
         return Tree(self.kb, self.raw.optimum) if self.raw.optimum is not None else None
+
+    @property
+    def warnings(self) -> list[str]:
+        """What reading the tree's file skipped or merged (one line each)."""
+        return list(self.raw.tree.warnings)
 
     def to_dict(self) -> dict:
         return report.check.report_json(self.kb.problem, self.raw)

@@ -224,6 +224,8 @@ class Consolidation:
 
     kb: KnowledgeBase
     results: list[ConsolidatedGoal]
+    #: about the candidates, the files and the request
+    warnings: tuple[str, ...] = ()
 
     def __iter__(self) -> Iterator[ConsolidatedGoal]:
         return iter(self.results)
@@ -233,10 +235,6 @@ class Consolidation:
 
     def __getitem__(self, k: int) -> ConsolidatedGoal:
         return self.results[k]
-
-    @property
-    def warnings(self) -> list[str]:
-        return self.kb.warnings
 
     def to_list(self) -> list[dict]:
         """``consolidate --format json`` as data: one object per goal."""
@@ -296,12 +294,14 @@ def consolidate(
     kb = knowledge_base(data, utensil_rule, [w for c in candidates for w in c.warnings], seen_as)
     if not kb.projection.identity:
         candidates, sources = _projected(kb, candidates)
-    solver = kb.options(options, **settings)
+    solver, asked = kb.options_and_warnings(options, **settings)
     ids, source = _goals(kb, candidates, goal, goals)
     jobs: list = [tuple(dict.fromkeys(ids))] if together else ids
     kitchen_source = "leaves" if given is None else given
-    raw = consolidate_mod.consolidate(kb.problem, candidates, sources, jobs, solver, source, kitchen_source)
-    return Consolidation(kb, [ConsolidatedGoal(kb, r) for r in raw])
+    raw = consolidate_mod.consolidate(
+        kb.solving_problem(solver), candidates, sources, jobs, solver, source, kitchen_source
+    )
+    return Consolidation(kb, [ConsolidatedGoal(kb, r) for r in raw], kb.warnings + tuple(asked))
 
 
 def _projected(kb: KnowledgeBase, candidates: list) -> tuple[list, list[list[str]]]:

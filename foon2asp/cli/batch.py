@@ -21,7 +21,7 @@ from foon2asp.cli.options import (
     strategy_options,
     time_limit_option,
 )
-from foon2asp.cli.output import EXIT_CODES, exit_code, warn_kb
+from foon2asp.cli.output import EXIT_CODES, exit_code, solver_of
 from foon2asp.cli.params import SCHEDULER, WORKERS
 from foon2asp.cli.schedule_options import schedule_options
 
@@ -129,10 +129,8 @@ def batch(
     Every result line carries "valid" (the independent validator's verdict); the
     summary counts the valid trees per method. Default goals: the goals file's.
     """
-    kb = data.load(goals)
-    goal_ids = kb.select_goals(goal, goals)
-    kb.options(options)  # checks the request: its warnings (unknown names, misspelt predicates) before the run
-    warn_kb(kb)
+    kb, goal_ids = data.load_goals(goal, goals)
+    solver_of(kb, options)  # the request checked, its warnings before the run
     run = kb.batch(
         goal_ids,
         output,

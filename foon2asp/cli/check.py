@@ -9,7 +9,7 @@ import click
 from foon2asp import api, report
 from foon2asp.cli.main import guarded, main
 from foon2asp.cli.options import MatchArgs, data_options, format_option
-from foon2asp.cli.output import warn, warn_kb
+from foon2asp.cli.output import warn_all
 from foon2asp.cli.schedule_options import schedule_options
 from foon2asp.errors import InputError
 
@@ -92,8 +92,7 @@ def check(trees, data, goal, goals, fmt, optimum, spec):
                 utensil_rule=data.utensil_rule,
                 strict=data.strict,
             )
-            for warning in dict.fromkeys(w for v in found for w in v.warnings):
-                warn(warning)
+            warn_all(dict.fromkeys(w for v in found for w in v.warnings))
             reports += [v.raw for v in found]
         click.echo(report.render("check", fmt, None, reports), nl=False)
     else:
@@ -101,8 +100,8 @@ def check(trees, data, goal, goals, fmt, optimum, spec):
         among = kb.select_goals((), goals) if goals else None
         for path in trees:
             found = kb.check_all(path, list(goal) or None, optimum, among, strict=data.strict, options=data.request())
+            warn_all(dict.fromkeys(w for r in found for w in r.warnings))
             reports += [r.raw for r in found]
-            warn_kb(kb)
         click.echo(report.render("check", fmt, kb.problem, reports), nl=False)
     answered = all(report.check.answered(r) for r in reports)
     sys.exit(0 if answered and all(v.valid for v in verdicts) else 1)

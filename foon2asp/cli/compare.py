@@ -22,7 +22,7 @@ from foon2asp.cli.options import (
     strategy_options,
     time_limit_option,
 )
-from foon2asp.cli.output import EXIT_CODES, exit_code, progress_bar, warn, warn_kb
+from foon2asp.cli.output import EXIT_CODES, exit_code, progress_bar, solver_of, warn
 
 
 @main.command(epilog=EXIT_CODES)
@@ -47,19 +47,16 @@ def compare(data, goal, goals, method_list, fmt, together, options, progress):
     meal's tree (one tree for every goal) beside the sum of the single optima.
     """
     names = methods_of(method_list, api.COMPARE_METHODS)
-    kb = data.load(goals)
-    goal_ids = kb.select_goals(goal, goals)
+    kb, goal_ids = data.load_goals(goal, goals)
     search = [n for n in names if is_search(n)]
     if options.constraints and search:
         warn(f"constraints apply to ASP methods only; {', '.join(search)} ignore them")
+    solver = solver_of(kb, options)
     if together:
         asp = [n for n in names if not is_search(n)]
         meal = kb.compare_meal(goal_ids, (asp or ["asp"])[0], options=options)
-        warn_kb(kb)
         click.echo(report.render("compare", fmt, kb.problem, meal), nl=False)
         sys.exit(exit_code([(meal.meal.status, meal.meal.extra.get("valid"))]))
-    solver = kb.options(options)
-    warn_kb(kb)
     rows = []
     parts = kb.compare_iter(goal_ids, names, solver)
     for part in progress_bar(parts, len(goal_ids), progress, "compare"):

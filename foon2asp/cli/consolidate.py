@@ -20,7 +20,7 @@ from foon2asp.cli.options import (
     strategy_options,
     time_limit_option,
 )
-from foon2asp.cli.output import EXIT_CODES, exit_code, warn
+from foon2asp.cli.output import EXIT_CODES, exit_code, warn_all
 
 
 @main.command(epilog=EXIT_CODES)
@@ -81,8 +81,7 @@ def consolidate(
         options=match.request(options),
         **match.load_args,
     )
-    for warning in found.warnings:
-        warn(warning)
+    warn_all(found.warnings)
     text = found.render(fmt)
     if output:
         api.write_file(output, text)

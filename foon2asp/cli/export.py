@@ -53,12 +53,11 @@ def export_pddl(data, goal, goals, objective, output, name, options):
         raise InputError("--goals all-objects cannot be one PDDL goal; name goals with --goal or a goals FILE")
     if options.substitutes is not None:
         raise InputError("export pddl cannot express --substitutes (a plan cannot count its substitutions)")
-    kb = data.load(goals)
-    goal_ids = kb.select_goals(goal, goals)
-    kb.options(options)  # the motion-cost table, for --objective cost
+    kb, goal_ids = data.load_goals(goal, goals)
+    problem = kb.solving_problem(kb.options(options))  # with the motion costs, for --objective cost
     if not all(c.isalnum() or c in "-_" for c in name) or not name[:1].isalpha():
         raise InputError(f"--name must be a PDDL name (a letter, then letters, digits, - or _), not {name!r}")
-    task = pddl.export(kb.problem, goal_ids, objective, options.constraints, name)
+    task = pddl.export(problem, goal_ids, objective, options.constraints, name)
     out = Path(output)
     out.mkdir(parents=True, exist_ok=True)
     (out / "domain.pddl").write_text(task.domain, encoding="utf-8")

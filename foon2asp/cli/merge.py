@@ -7,7 +7,7 @@ import click
 from foon2asp import api
 from foon2asp.cli.main import guarded, main
 from foon2asp.cli.options import joined_lines, match_options
-from foon2asp.cli.output import warn
+from foon2asp.cli.output import warn_all
 from foon2asp.errors import InputError
 
 
@@ -37,8 +37,7 @@ def merge(files, output, strict, fmt, match):
     if match.substitutes is not None:
         raise InputError("merge writes a FOON: --substitutes applies where trees are found (solve, check, ...)")
     foon = api.read_foons(files, strict)
-    for warning in foon.warnings:
-        warn(warning)
+    warn_all(foon.warnings)
     foon, joined = api.match_foon(foon, **match.load_args)
     for line in joined_lines(joined):
         click.echo(line, err=True)

@@ -18,7 +18,7 @@ from foon2asp.cli.options import (
     strategy_options,
     time_limit_option,
 )
-from foon2asp.cli.output import EXIT_CODES, exit_code, progress_bar, warn_kb
+from foon2asp.cli.output import EXIT_CODES, exit_code, progress_bar, solver_of
 
 
 @main.command(epilog=EXIT_CODES)
@@ -40,10 +40,8 @@ def missing(data, goal, goals, fmt, together, options, progress):
 
     Default goals: the goals file's.  With --together: the fewest objects for the whole meal.
     """
-    kb = data.load(goals)
-    goal_ids = kb.select_goals(goal, goals)
-    kb.options(options)  # checks the names, warns about unknown ones
-    warn_kb(kb)
+    kb, goal_ids = data.load_goals(goal, goals)
+    solver_of(kb, options)  # the request checked, its warnings first
     results = []
     jobs: list = [goal_ids] if together else goal_ids
     for g in progress_bar(jobs, len(jobs), progress, "missing"):

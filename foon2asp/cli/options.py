@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import click
 
 from foon2asp import api, report
-from foon2asp.cli.output import warn_kb
+from foon2asp.cli.output import warn_all
 from foon2asp.cli.params import SECONDS, int32
 from foon2asp.errors import InputError
 
@@ -158,8 +158,13 @@ class DataArgs:
             strict=self.strict,
             **self.match.load_args,
         )
-        warn_kb(kb)
+        warn_all(kb.warnings)
         return kb
+
+    def load_goals(self, goal: tuple[str, ...], goals: str | None) -> tuple[api.KnowledgeBase, list[int]]:
+        """The knowledge base (:meth:`load`) and the goals ``--goal`` and ``--goals`` name."""
+        kb = self.load(goals)
+        return kb, kb.select_goals(goal, goals)
 
 
 STRICT_HELP = "Treat skipped units of FOON and tree files (warnings) as errors."

@@ -40,11 +40,18 @@ def warn(message: str) -> None:
     click.echo(f"foon2asp: warning: {message}", err=True)
 
 
-def warn_kb(kb: api.KnowledgeBase) -> None:
-    """The knowledge base's warnings so far (about the input and the request), then forgotten."""
-    for warning in kb.warnings:
+def warn_all(warnings: Iterable[str]) -> None:
+    """Warnings about the input or the request, one line each on stderr."""
+    for warning in warnings:
         warn(escape(warning))
-    kb.warnings.clear()
+
+
+def solver_of(kb: api.KnowledgeBase, options: api.Options) -> Any:
+    """The solver options of the request ``options`` (:meth:`foon2asp.api.KnowledgeBase.options_and_warnings`),
+    its warnings on stderr."""
+    solver, warnings = kb.options_and_warnings(options)
+    warn_all(warnings)
+    return solver
 
 
 def progress_bar(items: Iterable, total: int, enabled: bool | None, what: str) -> Any:

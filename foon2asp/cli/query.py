@@ -9,7 +9,7 @@ import click
 from foon2asp import api, report
 from foon2asp.cli.main import guarded, main
 from foon2asp.cli.options import GOAL_HELP, data_options, format_option, request_options, time_limit_option
-from foon2asp.cli.output import warn
+from foon2asp.cli.output import warn_all
 from foon2asp.cli.params import int32
 
 #: the statuses of a query that exit 0: a model, the proven optimum (unsatisfiable, feasible and unknown exit 1)
@@ -60,7 +60,6 @@ def query(program, data, goals, goal, encoding_names, fmt, options):
     result = kb.query(
         text, goal=goal or None, encodings=encoding_names, name=program, goal_nodes=nodes, options=options
     )
-    for warning in result.warnings:
-        warn(warning)
+    warn_all(result.warnings)
     click.echo(report.render("query", fmt, kb.problem, result), nl=False)
     sys.exit(0 if result.status in ANSWERED else 1)

@@ -15,5 +15,5 @@ from foon2asp.cli.options import data_options, format_option, goal_options
 @guarded
 def reachable(data, goal, goals, fmt):
     """Which goals (or objects) can be made from the kitchen at all, in one solve (default: the goals file's goals)."""
-    kb = data.load(goals)
-    click.echo(kb.reachability(kb.select_goals(goal, goals), options=data.request()).render(fmt), nl=False)
+    kb, goal_ids = data.load_goals(goal, goals)
+    click.echo(kb.reachability(goal_ids, options=data.request()).render(fmt), nl=False)

@@ -17,7 +17,7 @@ from foon2asp.cli.options import (
     strategy_options,
     time_limit_option,
 )
-from foon2asp.cli.output import GoalProgress, progress_bar, warn_kb
+from foon2asp.cli.output import GoalProgress, progress_bar, solver_of
 from foon2asp.cli.schedule_options import schedule_options
 from foon2asp.report import draw
 from foon2asp.schedule.result import seconds_text
@@ -93,10 +93,8 @@ def schedule(data, goal, goals, spec, joint, fmt, output, encoding, together, pr
     unit at a time; capabilities and resources hold. Ties of makespan go to fewer units done by
     a 'human' agent, then to the tree objective. Text output is printed goal by goal.
     """
-    kb = data.load(goals)
-    goal_ids = kb.select_goals(goal, goals)
-    solver = kb.options(options)
-    warn_kb(kb)
+    kb, goal_ids = data.load_goals(goal, goals)
+    solver = solver_of(kb, options)
     if fmt not in OWN and fmt != "dot":
         draw.require_dot()  # before solving, not after
     jobs: list = [tuple(dict.fromkeys(goal_ids))] if together else goal_ids
@@ -109,7 +107,6 @@ def schedule(data, goal, goals, spec, joint, fmt, output, encoding, together, pr
         if status is not None:
             status.close()
         done.append(s)
-        warn_kb(kb)
         if stream:
             click.echo(("\n" if len(done) > 1 else "") + s.to_text(), nl=False)
             sys.stdout.flush()

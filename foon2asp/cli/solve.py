@@ -22,7 +22,7 @@ from foon2asp.cli.options import (
     solver_options,
     time_limit_option,
 )
-from foon2asp.cli.output import EXIT_CODES, exit_code, goal_progress, progress_bar, warn, warn_kb
+from foon2asp.cli.output import EXIT_CODES, exit_code, goal_progress, progress_bar, solver_of, warn
 from foon2asp.errors import InputError
 from foon2asp.report import draw
 from foon2asp.report.trees import render, render_bytes
@@ -71,8 +71,7 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
     Text, FOON and JSON-lines output is printed goal by goal as each is solved.
     """
     names = methods_of(method_list)
-    kb = data.load(goals)
-    goal_ids = kb.select_goals(goal, goals)
+    kb, goal_ids = data.load_goals(goal, goals)
     search = [m for m in names if is_search(m)]
     if together and search:
         raise InputError(f"--together needs an ASP method; {', '.join(search)} are search baselines")
@@ -81,8 +80,7 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
     status_line = goal_progress(progress)
     if status_line is not None:
         options = api.Options.of(options, on_progress=status_line)
-    solver = kb.options(options)
-    warn_kb(kb)
+    solver = solver_of(kb, options)
     problem = kb.problem
     binary = report.get("trees", fmt).binary
     if fmt in draw.FORMATS and fmt != "dot":
