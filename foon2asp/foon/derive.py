@@ -1,10 +1,7 @@
 """The least fixpoint with levels: what a set of units derives from a set of objects.
 
-One function, :func:`least_fixpoint`, over integer ids: the derivation levels of
-:class:`foon2asp.foon.problem.Problem`, its viable units, the trees the bounds trim
-(:mod:`foon2asp.methods.bounds`), the goals the generator picks
-(the synthetic FOONs of bench/synth.py) and the depth windows of the round-by-round driver
-(:mod:`foon2asp.asp.multishot.depth`) all come from it.
+Levels, viable units, the bounds' trees and the depth windows all come from
+:func:`least_fixpoint` (docs/proofs/preparation.md, "The least fixpoint").
 """
 
 from __future__ import annotations
@@ -22,14 +19,9 @@ def least_fixpoint(
     """``(object_level, unit_level)`` of the objects and units derived from ``start``.
 
     A unit of ``units`` fires at level 1 + the greatest level of its ``required``
-    inputs (objects of ``start`` have level 0); its ``products`` get the unit's level
-    (the least over their producers).  ``object_level`` holds the derived objects only,
-    in the order they were derived (the objects of ``start`` are not in it);
-    ``unit_level`` holds every unit that fires, in the order they fire.
-
-    Breadth first: units fire in the order they become ready, so levels never
-    decrease along the queue, and a unit's level is one more than that of the input
-    that made it ready (the last of its inputs derived, so the highest).
+    inputs (objects of ``start`` have level 0); its ``products`` get the least level
+    of their producers.  ``object_level`` holds the derived objects only (not those of
+    ``start``), in the order derived; ``unit_level`` every unit that fires, in order.
     """
     waiting: dict[int, int] = {}
     users: dict[int, list[int]] = {}
@@ -64,10 +56,9 @@ def least_fixpoint(
 
 
 class Implied(dict):
-    """A dict of the derived objects that also answers for every object of ``start`` (the
-    kitchen) with ``value``, without storing them: ``in``, ``get`` and ``[]`` see them;
-    iteration and ``len`` give the stored entries only.  A large FOON's kitchen has hundreds
-    of thousands of items; a derivation over a goal's few units should not copy them."""
+    """A dict of the derived objects that also answers ``value`` for every object of
+    ``start`` without storing them: ``in``, ``get`` and ``[]`` see them; iteration and
+    ``len`` give the stored entries only."""
 
     def __init__(self, stored: Mapping, start: Collection[int], value: Any) -> None:
         super().__init__(stored)

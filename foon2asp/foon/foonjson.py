@@ -252,17 +252,6 @@ def parse_json(text: str, path: str = "<string>", foon: Foon | None = None) -> F
     return foon
 
 
-def read_json_foon(path: str | Path, foon: Foon | None = None) -> Foon:
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise InputError(f"cannot read FOON file: {exc.strerror or exc}", str(path)) from None
-    except UnicodeDecodeError as exc:
-        raise InputError(f"not UTF-8 text ({exc.reason})", str(path)) from None
-    return parse_json(text, str(path), foon)
-
-
 def looks_like_json(path: str | Path, head: str) -> bool:
     """Is this FOON file JSON (by extension, else by its first character)?"""
     return str(path).lower().endswith(".json") or head.lstrip()[:1] in ("{", "[")

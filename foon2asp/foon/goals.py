@@ -6,7 +6,7 @@ import difflib
 
 from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset, read_goals
-from foon2asp.foon.model import FoonObject
+from foon2asp.foon.model import FoonObject, norm
 from foon2asp.foon.problem import Problem
 
 
@@ -66,14 +66,22 @@ def parse_object_text(text: str) -> FoonObject | None:
     return FoonObject.make(parts[0], states, ingredients, container)
 
 
+def _object_number(problem: Problem, text: str) -> int | None:
+    """The id ``#ID`` names (an error when there is no such object); None for other text."""
+    if not (text.startswith("#") and text[1:].isdigit()):
+        return None
+    oid = int(text[1:])
+    if oid >= len(problem.objects):
+        raise InputError(f"no object #{oid}: ids run from #0 to #{len(problem.objects) - 1}")
+    return oid
+
+
 def resolve_goal(data: Dataset, problem: Problem, text: str) -> int:
     """``--goal``: ``#ID`` (an object id as ``foon2asp objects`` lists it), an object's
     text as foon2asp prints it, or a label (see :func:`resolve_label`)."""
     stripped = text.strip()
-    if stripped.startswith("#") and stripped[1:].isdigit():
-        oid = int(stripped[1:])
-        if oid >= len(problem.objects):
-            raise InputError(f"no object #{oid}: ids run from #0 to #{len(problem.objects) - 1}")
+    oid = _object_number(problem, stripped)
+    if oid is not None:
         return oid
     obj = parse_object_text(stripped)
     if obj is not None:
@@ -85,27 +93,27 @@ def resolve_goal(data: Dataset, problem: Problem, text: str) -> int:
 
 def resolve_label(data: Dataset, problem: Problem, label: str) -> int:
     """``--goal LABEL``: the goals-file entry with that label, else the unique FOON object."""
-    norm = " ".join(label.split()).lower()
+    key = norm(label)
     path = data.paths.get("goals")
-    entries = [(obj, line) for obj, line in data.goals if obj.label == norm]
+    entries = [(obj, line) for obj, line in data.goals if obj.label == key]
     if len(entries) == 1:
         return goal_id(problem, entries[0][0], path, entries[0][1])
     if len(entries) > 1:
         listing = " | ".join(str(o) for o, _ in entries)
         raise InputError(f"goal label {label!r} is ambiguous in the goals file: {listing}", path)
-    candidates = [problem.foon.object_ids[o] for o in problem.foon.by_label(norm)]
+    candidates = [problem.foon.object_ids[o] for o in problem.foon.by_label(key)]
     produced = [o for o in candidates if o in problem.producers] or candidates
     if len(produced) == 1:
         return produced[0]
     if not produced:
-        raise InputError(f"no goal or FOON object labelled {label!r}{_closest(problem, norm)}")
+        raise InputError(f"no goal or FOON object labelled {label!r}{_closest(problem, key)}")
     if len(produced) <= 20:
         listing = " | ".join(f"#{o} {problem.objects[o]}" for o in produced)
         raise InputError(
             f"label {label!r} names {len(produced)} FOON objects; give one as --goal with its text or #ID: {listing}"
         )
     raise InputError(
-        f"label {label!r} names {len(produced)} FOON objects; list them with: foon2asp objects {norm!r}"
+        f"label {label!r} names {len(produced)} FOON objects; list them with: foon2asp objects {key!r}"
         " (then give one as --goal with its text or #ID)"
     )
 
@@ -179,11 +187,9 @@ def object_info(problem: Problem, oid: int) -> dict:
 
 def find_objects(problem: Problem, query: str | None = None, only: str | None = None) -> list[int]:
     """Ids of the objects ``query`` names, in id order: every object (None), ``#ID``, an
-    object's text, a label, else the labels containing ``query`` as words; ``only``
-    keeps the ``produced`` (made by some unit), ``kitchen`` or ``derivable`` ones.
-
-    Nothing matching is an :class:`InputError` with the closest labels.
-    """
+    object's text, a label, else the labels containing ``query`` as words; ``only`` keeps
+    the ``produced``, ``kitchen`` or ``derivable`` ones.  Nothing matching is an
+    :class:`InputError` with the closest labels."""
     if only is not None and only not in OBJECT_FILTERS:
         raise InputError(f"unknown object filter {only!r} (have {', '.join(OBJECT_FILTERS)})")
     if query is None or not query.strip():
@@ -200,21 +206,19 @@ def find_objects(problem: Problem, query: str | None = None, only: str | None = 
 
 
 def _matching(problem: Problem, query: str) -> list[int]:
-    if query.startswith("#") and query[1:].isdigit():
-        oid = int(query[1:])
-        if oid >= len(problem.objects):
-            raise InputError(f"no object #{oid}: ids run from #0 to #{len(problem.objects) - 1}")
+    oid = _object_number(problem, query)
+    if oid is not None:
         return [oid]
     obj = parse_object_text(query)
     if obj is not None and obj in problem.foon.object_ids:
         return [problem.foon.object_ids[obj]]
-    norm = " ".join(query.split()).lower()
-    ids = [problem.foon.object_ids[o] for o in problem.foon.by_label(norm)]
+    key = norm(query)
+    ids = [problem.foon.object_ids[o] for o in problem.foon.by_label(key)]
     if ids:
         return ids
     # the labels that contain the query as whole words ("egg" -> "scrambled egg")
-    words = f" {norm} "
+    words = f" {key} "
     ids = [i for i, o in enumerate(problem.objects) if words in f" {o.label} "]
     if ids:
         return ids
-    raise InputError(f"no object matches {query!r}{_closest(problem, norm)}")
+    raise InputError(f"no object matches {query!r}{_closest(problem, key)}")

@@ -1,13 +1,7 @@
 """The kitchen of a FOON that comes without one (``--kitchen leaves``): its leaves.
 
-Merged generated trees have no ``kitchen.json``: what one starts from is
-every object the units use that no unit makes.  A unit *makes* its outputs
-that have states, ingredients or a container (a bare output, ``knife`` put
-down after use, is not made, as :class:`foon2asp.foon.problem.Problem` has
-it) and that are not among its own inputs: a unit that needs ``stove, on``
-and puts it out again keeps the stove on, it does not make it, so ``stove,
-on`` is a leaf.  Objects that only ever come out of units are never needed
-and are left out.
+The leaves are every input no unit makes; a unit makes its outputs that are not bare
+and not among its own inputs (docs/proofs/preparation.md, "Leaves").
 """
 
 from __future__ import annotations

@@ -11,7 +11,7 @@ from pathlib import Path
 
 from foon2asp.errors import InputError
 from foon2asp.foon.leaves import LEAVES, leaves
-from foon2asp.foon.model import Foon, FoonObject
+from foon2asp.foon.model import Foon, FoonObject, norm
 from foon2asp.foon.parser import read_foons
 from foon2asp.foon.safejson import list_elements
 from foon2asp.foon.safejson import loads as safe_loads
@@ -28,10 +28,6 @@ FILE_NAMES = {
 
 #: what a missing or empty motion file means
 DEFAULT_RATE_NOTE = "every motion gets the default success rate 0.5"
-
-
-def _read_text(path: Path, what: str) -> str:
-    return read_text(path, what)
 
 
 def check_foon_file(path: str | Path) -> None:
@@ -86,7 +82,7 @@ def object_from_json(value: object, path: str, line: int) -> FoonObject:
 def read_objects(path: str | Path, what: str) -> list[FoonObject]:
     """A JSON list of objects (kitchen.json, goal_nodes.json)."""
     path = Path(path)
-    text = _read_text(path, what)
+    text = read_text(path, what)
     values = safe_loads(text, str(path), checked=True)
     if isinstance(values, list):
         # one pass without line numbers; they are found only for a message
@@ -104,7 +100,7 @@ def read_kitchen(path: str | Path) -> list[FoonObject]:
 def read_goals(path: str | Path) -> list[tuple[FoonObject, int]]:
     """Goals with the line each entry starts on (for messages)."""
     path = Path(path)
-    text = _read_text(path, "goals")
+    text = read_text(path, "goals")
     return [(object_from_json(v, str(path), line), line) for v, line in _json_elements(text, str(path))]
 
 
@@ -113,15 +109,11 @@ def _is_comment(line: str) -> bool:
 
 
 def read_motion(path: str | Path, warnings: list[str] | None = None) -> dict[str, float]:
-    """``motion TAB success-rate`` per line; rates must lie in (0, 1].
-
-    Blank lines and lines whose first non-blank character is ``#`` (comments)
-    are skipped.  A file without any rate is warned about (into ``warnings``):
-    every motion then gets the default rate 0.5.
-    """
+    """``motion TAB success-rate`` per line, rates in (0, 1]; blank and ``#`` lines skipped.
+    A file without any rate is warned about (into ``warnings``)."""
     path = Path(path)
     rates: dict[str, float] = {}
-    for lineno, line in enumerate(lines_of(_read_text(path, "motion")), 1):
+    for lineno, line in enumerate(lines_of(read_text(path, "motion")), 1):
         if not line.strip() or _is_comment(line):
             continue
         parts = line.rsplit("\t", 1) if "\t" in line else line.rsplit(None, 1)
@@ -133,22 +125,18 @@ def read_motion(path: str | Path, warnings: list[str] | None = None) -> dict[str
             raise InputError(f"success rate {parts[1].strip()!r} is not a number", str(path), lineno) from None
         if not 0.0 < rate <= 1.0:
             raise InputError(f"success rate {rate} is not in (0, 1]", str(path), lineno)
-        rates[" ".join(parts[0].split()).lower()] = rate
+        rates[norm(parts[0])] = rate
     if not rates and warnings is not None:
         warnings.append(f"{path}: no success rate in the file: {DEFAULT_RATE_NOTE}")
     return rates
 
 
 def read_utensils(path: str | Path, warnings: list[str] | None = None) -> frozenset[str]:
-    """One utensil label per line.
-
-    Blank lines and lines whose first non-blank character is ``#`` (comments)
-    are skipped; a comment that looks like a label (``#`` followed directly by
-    a letter or digit, e.g. ``#mixing bowl``) is warned about (into ``warnings``).
-    """
+    """One utensil label per line; blank and ``#`` lines skipped, and a comment that looks
+    like a label (``#mixing bowl``) warned about (into ``warnings``)."""
     path = Path(path)
     out: set[str] = set()
-    for lineno, line in enumerate(lines_of(_read_text(path, "utensils")), 1):
+    for lineno, line in enumerate(lines_of(read_text(path, "utensils")), 1):
         if not line.strip():
             continue
         if _is_comment(line):
@@ -158,7 +146,7 @@ def read_utensils(path: str | Path, warnings: list[str] | None = None) -> frozen
                     f"{path}:{lineno}: line ignored: '#' starts a comment (a utensil label cannot begin with '#')"
                 )
             continue
-        out.add(" ".join(line.split()).lower())
+        out.add(norm(line))
     return frozenset(out)
 
 
@@ -187,15 +175,9 @@ class Dataset:
         utensils: str | Path | None = None,
         strict: bool = False,
     ) -> Dataset:
-        """Read a data directory; explicit file arguments override its files.
-
-        ``goals``, ``motion`` and ``utensils`` are optional when absent from
-        the directory (a missing ``motion.txt`` is warned about: every motion then
-        gets the success rate 0.5); ``FOON.txt`` and ``kitchen.json`` are required
-        (a FOON without a functional unit is an error), unless
-        ``kitchen`` is ``"leaves"`` (:data:`foon2asp.foon.leaves.LEAVES`): then
-        the kitchen is every object no unit of the FOON makes.
-        """
+        """Read a data directory; explicit file arguments override its files.  ``FOON.txt``
+        (with a unit) and ``kitchen.json`` are required, the others optional (a missing
+        ``motion.txt`` is warned about); ``kitchen="leaves"`` takes the FOON's leaves."""
         base = Path(data_dir) if data_dir is not None else None
         given = {"foon": foon, "kitchen": kitchen, "goals": goals, "motion": motion, "utensils": utensils}
         paths: dict[str, str | list] = {}

@@ -1,37 +1,13 @@
 """Looser matching: FOON's hierarchy levels, label normalisation and synonyms, as a projection.
 
-FOON compares objects at three *hierarchy levels* (foon_api's ``equals_lvl1/2/3``):
-
-* level 1: the label only;
-* level 2: the label and the states, the container counting as the related object
-  of a state (``in [bowl]``, like ``on [plate]``);
-* level 3: label, states, container and ingredients -- foon2asp's identity.
-
-:class:`Projection` maps every object to the object the level sees (one object for
-all objects equal at the level) and a FOON to the FOON of the projected units:
-units equal at the level (motion, set of inputs, set of outputs) are one unit.  At
-levels 1 and 2 a unit's products are its outputs that were not bare in the FOON
-and are not equal at the level to one of the unit's own inputs (such an output
-passes through: chopping an onion makes no new object at level 1); the projected
-units are :class:`LevelUnit` and list their products (see
-:func:`foon2asp.foon.problem.product_outputs`).  Level 3 keeps today's semantics
-exactly: without normalisation or synonyms its projection is the identity.
-
-Texts (labels, states, ingredients, containers) are compared by a key
-(:class:`Texts`): foon2asp's own normalisation (case folding, runs of white space
-as one space), with ``normalize`` the singular of the last word (:func:`noun_key`, by the
-``inflect`` library), then the synonyms (``name = canonical name`` lines,
-:func:`read_synonyms`).  The key only compares: a projected object is spelled
-with the first spelling seen of each text, and :attr:`Projection.texts_joined` and
-:attr:`Projection.sources` say which spellings and objects were joined.
-
-Why inflect: of the 922 texts of ../shared/foon and foon-111 it keys 29 otherwise than
-they are spelled and joins 11 groups of labels and 3 of states, all spellings of one thing (``chive``/``chives``,
-``leaf``/``leaves``, and ``ramen`` with the FOON's misspelt ``raman``); of the 346 last
-words of labels it singularises 13, 4 wrongly (``glas``, ``gras``, ``pres``, ``ramen``).
-lemminflect, the alternative measured, singularises 15, 6 wrongly, and as nouns it
-lemmatises participles (``diced`` -> ``dice``), joining ``juiced`` with ``juice``.  A
-wrong singular only matters when it equals another text's key: keys are never shown.
+FOON's hierarchy levels (foon_api's ``equals_lvl1/2/3``): level 1 compares labels,
+level 2 also states (the container as the related object of a state), level 3 also
+ingredients (foon2asp's identity).  :class:`Projection` maps each object to the one the
+level sees and a FOON to the FOON of the projected units (units equal at the level are
+one unit; at levels 1 and 2 a :class:`LevelUnit` lists its products).  Texts compare by
+a :class:`Texts` key: normalised, with ``normalize`` the last word singular
+(:func:`noun_key`), then synonyms; a projected object keeps the first spelling seen.
+docs/matching.md says why these choices.
 """
 
 from __future__ import annotations
@@ -59,13 +35,9 @@ _WORD = re.compile(r"[^\W\d_]+(?:['-][^\W\d_]+)*")
 
 @lru_cache(maxsize=1)
 def _engine() -> Any:
-    """inflect's engine, imported on first use (only ``--normalize`` needs it).
-
-    inflect wraps its methods in typeguard's ``@typechecked``, which instruments each by
-    parsing the module's source again when inflect is imported: about 7 s.  The checks
-    only test that the arguments are non-empty strings, which :func:`noun_key` ensures,
-    so while inflect's module runs the decorator is the identity (0.2 s in all).
-    """
+    """inflect's engine, imported on first use (only ``--normalize`` needs it), with
+    typeguard's ``@typechecked`` as the identity while inflect's module runs: its checks
+    (non-empty strings) are what :func:`noun_key` ensures, and instrumenting is slow."""
     if sys.modules.get("inflect") is None:
         try:
             import typeguard
@@ -98,11 +70,10 @@ def _no_check(target: Any = None, **_: Any) -> Any:
 
 @lru_cache(maxsize=65536)
 def noun_key(word: str) -> str:
-    """The singular of an English noun as ``inflect`` makes it, the same for both forms:
-    a plural's ``singular_noun``, a singular's the ``singular_noun`` of its ``plural_noun``
-    (``blueberries``, ``blueberry`` -> ``blueberry``; inflect spells a few singulars
-    oddly, ``smoothies`` -> ``smoothy``, and this way ``smoothie`` gets the same key).
-    ``word`` itself for words inflect has no plural for, or that are not words."""
+    """The singular of an English noun as ``inflect`` makes it, the same for both forms: a
+    plural's ``singular_noun``, a singular's the ``singular_noun`` of its ``plural_noun``
+    (so ``smoothie`` and ``smoothies`` both key ``smoothy``); ``word`` itself for words
+    inflect has no plural for, or that are not words."""
     if not _WORD.fullmatch(word):
         return word
     engine = _engine()
@@ -165,13 +136,9 @@ class Texts:
 
 
 def parse_synonyms(text: str, path: str = "<synonyms>", normalize: bool = False) -> dict[str, str]:
-    """Synonyms from lines ``name = canonical name`` (``#`` starts a comment line, blank
-    lines are ignored) as key -> canonical key, chains resolved (``a = b``, ``b = c``: a -> c).
-
-    Both sides are keyed as :class:`Texts` keys them (``normalize``: the singular of
-    the last word).  A name given two canonical names, or a cycle, is an error naming
-    the file and line.
-    """
+    """Synonyms from lines ``name = canonical name`` (``#`` comments) as key -> canonical key,
+    both keyed as :class:`Texts` keys them, chains resolved (``a = b``, ``b = c``: a -> c).
+    A name given two canonical names, or a cycle, is an error naming the file and line."""
     texts = Texts(normalize)
     table: dict[str, str] = {}
     lines: dict[str, int] = {}
@@ -212,7 +179,7 @@ def read_synonyms(path: str | Path, normalize: bool = False) -> dict[str, str]:
 
 
 class Projection:
-    """Objects and units as a hierarchy level with a text key sees them (module docstring)."""
+    """Objects and units as a hierarchy level with a text key sees them."""
 
     def __init__(self, level: int = 3, texts: Texts | None = None):
         if level not in LEVELS:

@@ -1,9 +1,8 @@
 """The FOON model: objects, functional units and the network that holds them.
 
-Object identity is label + set of states + set of ingredients + container,
-independent of order.  Relations other than ``in``/``contains`` (``on``,
-``with``, ``attached to``, ...) are kept as states of the form
-``"on [plate]"`` so they take part in identity and are written back.
+Object identity is label + set of states + set of ingredients + container, independent
+of order (docs/proofs/preparation.md, "Object identity"); relations other than
+``in``/``contains`` are states such as ``"on [plate]"``.
 """
 
 from __future__ import annotations
@@ -12,13 +11,9 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 
 
-def _norm(text: str) -> str:
-    return " ".join(str(text).split()).lower()
-
-
 def norm(text: str) -> str:
     """Text as objects hold it: case-folded, runs of white space as one space."""
-    return _norm(text)
+    return " ".join(str(text).split()).lower()
 
 
 @dataclass(frozen=True, order=True)
@@ -45,11 +40,11 @@ class FoonObject:
         ingredients: Iterable[str] = (),
         container: str | None = None,
     ) -> FoonObject:
-        container = _norm(container) if container not in (None, "") else None
+        container = norm(container) if container not in (None, "") else None
         return cls(
-            _norm(label),
-            tuple(sorted({_norm(s) for s in states if _norm(s)})),
-            tuple(sorted({_norm(i) for i in ingredients if _norm(i)})),
+            norm(label),
+            tuple(sorted({norm(s) for s in states if norm(s)})),
+            tuple(sorted({norm(i) for i in ingredients if norm(i)})),
             container or None,
         )
 
@@ -155,7 +150,7 @@ class Foon:
         return {o.label for o in self.objects}
 
     def by_label(self, label: str) -> list[FoonObject]:
-        label = _norm(label)
+        label = norm(label)
         return [o for o in self.objects if o.label == label]
 
     @classmethod

@@ -1,18 +1,10 @@
 """Motion-cost tables: what each motion costs, for the ``cost`` objective.
 
-A table is a JSON object ``{"chop": 0.9, "pour": 0.1, ...}`` or lines
-``motion<TAB>cost`` (blank lines and ``#`` comments skipped, as in
-``motion.txt``).  Motions are matched as units hold them (case-folded, runs
-of white space as one space, a trailing ``*`` dropped).
-
-Costs are decimals >= 0 and at most :data:`MAX_COST`, exact to
-:data:`PRECISION` (0.01): the solver uses them as integers, ``cost *
-SCALE`` (hundredths), so the summed cost it minimises is exact.  A value
-finer than the precision (``0.125``), a negative, non-numeric, NaN or
-infinite value, or a motion listed twice with different costs is an
-:class:`InputError` naming the file and line.  A motion the table does not
-list costs :data:`DEFAULT_COST` (1); :func:`unit_weights` says so in one
-warning naming those motions.
+A table is a JSON object ``{"chop": 0.9, ...}`` or ``motion<TAB>cost`` lines; motions
+match as units hold them (:func:`motion_key`).  Costs are decimals in [0,
+:data:`MAX_COST`] exact to :data:`PRECISION`, used by the solver as integers ``cost *
+SCALE``; anything else is an :class:`InputError` naming the file and line.  A motion
+the table does not list costs :data:`DEFAULT_COST`.
 """
 
 from __future__ import annotations
@@ -34,7 +26,7 @@ SCALE = 100
 _PLACES = -2  # the exponent of PRECISION
 #: the cost of a motion the table does not list
 DEFAULT_COST = Decimal(1)
-#: the largest cost accepted (its weight, 100,000, keeps the solver's sums far from overflow)
+#: the largest cost accepted (its weight keeps the solver's sums far from overflow)
 MAX_COST = Decimal(1000)
 
 #: the precision in words (for help texts and docs)

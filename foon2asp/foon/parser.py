@@ -1,32 +1,11 @@
 """Read and write FOON text files.
 
-Two dialects are read, line by line, so files may even mix them:
-
-* the ID-less format of the universal FOON (``O\\tlabel``, ``S\\tstate``,
-  ``S\\tcontains\\t{a,b}``, ``S\\tin\\t[c]``, ``M\\tmotion``);
-* the official subgraph format (``O<id>\\tlabel\\t<0|1>``, ``S<id>\\t...``,
-  ``M<id>\\tmotion\\t<start>\\t<end>``, CRLF, ``# Source:`` lines).
-
-A JSON file is FOON JSON (:mod:`foon2asp.foon.foonjson`) or the unit-list form
-of generated trees (:mod:`foon2asp.foon.unitlist`).
-
-``//`` ends a unit; a line starting with ``#`` is a comment; blank lines are
-ignored.  Lines end at LF, CRLF or CR; a control character (NUL, VT, ...),
-NEL, U+2028/U+2029 or a byte that is not UTF-8 is an error naming
-``FILE:LINE:COLUMN``; a byte-order mark at the start is skipped.
-``in`` sets the container, ``contains`` the ingredients; any other relation
-(``on``, ``with``, ``attached to``, ...) is kept as the state ``"rel [arg]"``.
-The brackets of a state line must pair up (``[``/``]``, ``{``/``}``) and the
-argument of ``in``/``contains`` is one bracketed list: ``in\t[bowl`` or
-``in\t[[bowl]]`` is an error naming ``FILE:LINE:COLUMN``.
-A trailing ``*`` on a motion label is dropped.
-
-The ids of official files are kept on the FOON (:attr:`Foon.ids`: one id per
-object label, state name and motion) so that writing the official dialect
-reuses them; :func:`id_map` completes them deterministically for the labels
-that came without one.  Two dialects are written: ``official`` (what FOON_view
-and foon_api load: ``O<id>\tlabel\t0``, ``S<id>\t...``,
-``M<id>\tmotion\tAssumed\tAssumed``) and ``plain`` (the ID-less one).
+Both dialects (ID-less and official, docs/formats.md) are read line by line, so files
+may mix them; a JSON file is FOON JSON (:mod:`foon2asp.foon.foonjson`) or a unit list
+(:mod:`foon2asp.foon.unitlist`).  ``in`` sets the container, ``contains`` the
+ingredients, any other relation is the state ``"rel [arg]"``; brackets must pair up.
+Bad lines are an :class:`InputError` naming ``FILE:LINE[:COLUMN]``.  The ids of official
+files are kept (:attr:`Foon.ids`) and reused when writing the official dialect.
 """
 
 from __future__ import annotations
@@ -44,7 +23,6 @@ from foon2asp.foon.foonjson import looks_like_json, parse_json
 from foon2asp.foon.model import Foon, FoonObject, Unit, norm
 from foon2asp.foon.safetext import check_line, decode_error, lines_of, read_bytes
 
-_LINE = re.compile(r"^([OSM])(\d*)\t(.*)$")  # the line shape _parse checks by hand
 _KINDS = frozenset("OSM")
 _RELATION_STATE = re.compile(r"^(.+?) ([\[{].*[\]}])$")
 
@@ -84,9 +62,9 @@ def _bracket_problem(text: str) -> tuple[str, int] | None:
 
 
 def _check_brackets(line: str, tab: int, path: str, lineno: int) -> None:
-    """An error naming ``FILE:LINE:COLUMN`` when a field of the state line ``line`` (its fields
-    start after ``tab``) has brackets that do not pair up, or when the argument of ``in`` or
-    ``contains`` is not one bracketed list (``in [[bowl]`` would be a container ``[bowl``)."""
+    """An error naming ``FILE:LINE:COLUMN`` when a field of the state line ``line`` (fields
+    start after ``tab``) has brackets that do not pair up, or the argument of ``in`` or
+    ``contains`` is not one bracketed list."""
     start = tab + 1
     raw = line[start:].split("\t")
     shown = " ".join(f.strip() for f in raw if f.strip())
@@ -131,12 +109,8 @@ class _Obj:
 
 
 def parse_lines(lines: Iterable[str], path: str = "<string>", foon: Foon | None = None, strict: bool = False) -> Foon:
-    """Parse FOON text from ``lines`` into ``foon`` (a new one by default).
-
-    A unit without a motion line cannot be used; it is skipped with a warning
-    in ``foon.warnings`` (an error when ``strict``).  Other problems raise
-    :class:`InputError` naming the file and line.
-    """
+    """Parse FOON text from ``lines`` into ``foon`` (a new one by default).  A unit without a
+    motion line is skipped with a warning in ``foon.warnings`` (an error when ``strict``)."""
     foon = foon if foon is not None else Foon()
     gc_enabled = gc.isenabled()
     gc.disable()  # many small long-lived objects: collection passes only cost time here
@@ -177,7 +151,7 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
             line = line[1:]
         check_line(line, path, lineno)
         kind = line[:1]
-        # the common lines first, without a regular expression (same as _LINE)
+        # O, S or M, optional digits, TAB: checked without a regular expression
         tab = line.find("\t") if kind in _KINDS else -1
         if tab < 0 or (tab > 1 and not line[1:tab].isdecimal()):
             if not line.strip():
@@ -290,9 +264,8 @@ DIALECTS = ("official", "plain")
 
 
 def state_parts(state: str) -> tuple[str, str | None]:
-    """``"on [plate]"`` -> ``("on", "[plate]")``; a plain state -> ``(state, None)``.  A state is
-    split only where both parts read back as they are: their brackets pair up, and the name is
-    not ``in``/``contains`` (``"in [bowl]"`` read from one field is a state, not the container)."""
+    """``"on [plate]"`` -> ``("on", "[plate]")``; a plain state -> ``(state, None)``.  Split only
+    where both parts read back as they are (brackets pair up, the name is not ``in``/``contains``)."""
     m = _RELATION_STATE.match(state)
     if m is None or m.group(1).lower() in ("in", "contains", "ingredients"):
         return state, None
@@ -312,13 +285,9 @@ def object_fields(obj: FoonObject) -> list[tuple[str, str | None]]:
 
 
 class IdMap:
-    """One id per object label, state name and motion, for the official dialect.
-
-    Ids read from official files are reused (the first id of a label wins; a
-    label whose id another label already holds gets a fresh one); every other
-    label gets a fresh id, from one above the largest id in use, in sorted
-    order of the labels -- so the same FOON always gets the same ids.
-    """
+    """One id per object label, state name and motion, for the official dialect: the ids
+    read (first per label, unless another label holds it), then fresh ids above the largest
+    in sorted label order, so the same FOON always gets the same ids."""
 
     def __init__(self, known: dict[str, dict[str, int]], labels: dict[str, set[str]]):
         self.table: dict[str, dict[str, int]] = {}

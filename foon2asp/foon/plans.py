@@ -1,13 +1,9 @@
 """Plans from classical planners, read back as task trees.
 
 ``foon2asp export pddl`` names the action of FOON unit ``N`` ``uN-MOTION``
-(:func:`action_name`), so a plan maps back to units by the number alone
-(:func:`unit_of_action`).  A plan file as Fast Downward writes it has one
-``(action-name args...)`` per line and ``;`` comment lines (``; cost = 42
-(unit cost)``).  :func:`plan_units` gives the FOON units it names, which
-:mod:`foon2asp.foon.treefiles` reads as a tree, so ``check`` judges a plan
-exactly as a tree: validity, the first problem, the size beside the proven
-optimum.
+(:func:`action_name`), so a plan (one ``(action-name args...)`` per line, ``;``
+comments, as Fast Downward writes it) maps back to units by the number alone and
+``check`` judges it exactly as a tree.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """The planning problem in integer form: required inputs, products, kitchen.
 
-This is where the default semantics live (see README, "Semantics"):
+The default semantics, stated once for facts, search methods and validator:
 
 * an object is *available* iff it equals a kitchen item on label, states,
   ingredients and container;
@@ -9,9 +9,6 @@ This is where the default semantics live (see README, "Semantics"):
   ingredient inside that utensil (``off`` makes every input required);
 * an output with no states, ingredients or container is not a product
   (:func:`product_outputs`; at hierarchy levels 1 and 2 see foon2asp.foon.matching).
-
-Everything downstream (facts, search methods, validator) reads this class,
-so the semantics are stated exactly once.
 """
 
 from __future__ import annotations
@@ -70,12 +67,9 @@ def walk_back(
     producers: dict[int, list[int]],
     required: list[tuple[int, ...]] | dict,
 ) -> tuple[set[int], set[int], bool]:
-    """Backwards from ``goals`` through ``producers`` and their required inputs.
-
-    Returns ``(units, objects, choice)``: the units reached, the objects
-    reached (the goals included), and whether some non-kitchen object reached
-    has more than one producer.  Kitchen items stop the walk.
-    """
+    """Backwards from ``goals`` through ``producers`` and their required inputs; kitchen
+    items stop the walk.  Returns ``(units, objects, choice)``: the units and objects
+    reached (goals included), and whether a non-kitchen object reached has two producers."""
     seen = set(goals)
     stack = list(seen)
     units: set[int] = set()
@@ -141,15 +135,9 @@ class Problem:
         return cls(data.foon, data.kitchen, data.motion, data.utensils, utensil_rule)
 
     def with_kitchen(self, kitchen: Iterable[int]) -> Problem:
-        """The same problem with the kitchen ``kitchen`` (object ids): a smaller one for a
-        goal's part, or a larger one with objects added.
-
-        The unit tables (inputs, required inputs, products, producers, rates) do not
-        depend on the kitchen and are shared; nothing cached on this problem (the
-        fixpoint, the viable units) is carried over.  ``kitchen_items`` lists the
-        objects of the new kitchen: the original items that are in it, then the
-        added objects in id order.
-        """
+        """The same problem with the kitchen ``kitchen`` (object ids).  The unit tables are
+        shared, nothing cached is carried over; ``kitchen_items`` lists the original items
+        kept, then the added objects in id order."""
         ids = frozenset(kitchen)
         view = self._view()
         view.kitchen = ids
@@ -193,20 +181,12 @@ class Problem:
         return frozenset(self.derivation_levels()[0])
 
     def derivation_levels(self, units: list[int] | None = None) -> tuple[dict[int, int], dict[int, int]]:
-        """Least fixpoint from the kitchen, with levels.
-
-        Returns ``(object_level, unit_level)``: kitchen objects have level 0;
-        a unit fires at level 1 + max level of its required inputs; its
-        products get the unit's level (the minimum over producers).  Only
-        ``units`` are used when given.
-        """
+        """``(object_level, unit_level)`` of :func:`least_fixpoint` from the kitchen (and what
+        substitutes stand in for), kitchen objects at level 0; only ``units`` when given."""
         pool = range(len(self.units)) if units is None else units
-        # what substitutes stand in for counts as had
         start = self.kitchen | self.substitutable if self.substitutable else self.kitchen
         derived, unit_level = least_fixpoint(start, self.required, self.products, pool)
-        if units is not None:
-            # a few units: the kitchen's level-0 entries are implied, not copied (a large FOON's
-            # kitchen has hundreds of thousands of items)
+        if units is not None:  # a few units: the kitchen's level-0 entries are implied, not copied
             return Implied(derived, start, 0), unit_level
         obj_level = dict.fromkeys(start, 0)
         obj_level.update(derived)
@@ -229,11 +209,9 @@ class Problem:
         return out
 
     def units_for(self, goals: Iterable[int]) -> tuple[int, ...]:
-        """The units a tree for any of ``goals`` can use (sorted): backwards from the goals
-        through their viable producers (units that fire in the kitchen's least fixpoint) and
-        the required inputs of those, kitchen items stopping the walk -- exactly the
-        encoding's candidate units, so grounding only these gives the same trees as
-        grounding the whole FOON."""
+        """The units a tree for any of ``goals`` can use (sorted): :func:`walk_back` through
+        the viable producers; exactly the encoding's candidate units
+        (docs/proofs/preparation.md, "Relevance")."""
         units, _, _ = walk_back(goals, self.kitchen, self.viable_producers, self.required)
         return tuple(sorted(units))
 

@@ -1,12 +1,9 @@
 """JSON from users, with limits: nesting depth, number length, file size; located errors.
 
-``json.loads`` recurses once per nesting level and converts integers of any
-length, so a file nested 5,000 deep or a 5,000-digit number would end in a
-``RecursionError`` or ``ValueError``.  :func:`loads` scans the text first
-(strings, brackets, numbers; linear, no recursion) and reports the first
-excess as ``FILE:LINE:COLUMN``; strings whose escapes decode to control,
-separator or surrogate characters (``"\\u0000"``, ``"\\ud800"``) are refused
-the same way.  Every JSON reader of foon2asp uses it.
+Every JSON reader of foon2asp uses :func:`loads`: before ``json.loads`` (which recurses
+per nesting level and converts numbers of any length) a linear scan reports the first
+excess, or a string escaping to a control, separator or surrogate character, as
+``FILE:LINE:COLUMN``.
 """
 
 from __future__ import annotations
@@ -68,11 +65,8 @@ def loads(text: str, path: str, checked: bool = False) -> object:
 
 def list_elements(text: str, path: str, start: int | None = None) -> list[tuple[object, int, int]]:
     """The elements of a JSON list, each with the line and the position it starts at.
-
-    ``start``: the position of a list's ``[`` inside ``text`` (already checked by
-    :func:`loads`); None: the top-level value of ``text``, checked here, which must be a list.
-    Lines are counted incrementally: linear in the size of the list.
-    """
+    ``start``: the position of a list's ``[`` in ``text`` (already checked by :func:`loads`);
+    None: the top-level value of ``text``, checked here, which must be a list."""
     if start is None:
         loads(text, path, checked=True)
         start = len(text) - len(text.lstrip())

@@ -1,10 +1,8 @@
 """Reading user text safely: UTF-8 with located errors, no control or separator characters.
 
-Every reader of a user file (FOON text, JSON, motion.txt, utensils.txt, tree
-files) goes through :func:`read_text` or :func:`check_text`, so a bad byte or
-a control character is one :class:`~foon2asp.errors.InputError` naming
-``FILE:LINE:COLUMN`` and the character (escaped), never a silent change.
-A byte-order mark at the start of a file is skipped.
+Every reader of a user file goes through :func:`read_text` or :func:`check_text`: a bad
+byte or control character is one :class:`~foon2asp.errors.InputError` naming
+``FILE:LINE:COLUMN`` and the character; a byte-order mark at the start is skipped.
 """
 
 from __future__ import annotations

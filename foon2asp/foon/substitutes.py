@@ -1,26 +1,11 @@
 """Ingredient substitutes: which kitchen items may stand in for a needed object.
 
-A substitutes file lists, for a label, the labels that may replace it, either as JSON::
-
-    {"onion": ["red onion", "shallot"], "butter": {"margarine": 2}}
-
-(a list: each substitute costs 1; an object: substitute -> cost) or as lines::
-
-    # needed: substitute, substitute=COST, ...
-    onion: red onion, shallot=2
-
-``#`` starts a comment line; a line is split at its first ``:``, substitutes at
-``,`` and a cost at the last ``=`` (a label holding ``:``, ``,``, ``=`` or
-starting with ``#`` needs the JSON form).  COST is a positive integer, 1 when
-left out (:data:`DEFAULT_COST`), so the summed cost of the substitutions used is
-their number unless costs are given.
-
-A required object that is not a kitchen item counts as available when the kitchen
-holds an object equal to it except that its label, or one of its ingredients, is
-one of the label's substitutes (:func:`candidates`).  The solver chooses which
-substitutions a tree uses (foon2asp/asp/encodings/substitutes.lp); here the
-candidates are only listed, and :func:`with_substitutes` gives the problem whose
-viability counts them as available.
+A substitutes file (docs/matching.md) is JSON, ``{"onion": ["red onion"], "butter":
+{"margarine": 2}}``, or lines ``onion: red onion, shallot=2`` (split at the first ``:``,
+at ``,`` and at the last ``=``); a cost is a positive integer, :data:`DEFAULT_COST`
+when left out.  An object that is not a kitchen item is available when the kitchen
+holds it with its label, or one ingredient, replaced by a substitute
+(:func:`candidates`); the solver chooses which substitutions a tree uses.
 """
 
 from __future__ import annotations
@@ -165,8 +150,8 @@ def _stand_ins(obj: FoonObject, table: dict[str, list[Substitute]]) -> list[tupl
 
 
 def _stood_in_for(used: FoonObject, by_used: dict[str, list[Substitute]]) -> list[FoonObject]:
-    """The objects the kitchen item ``used`` may stand in for (the inverse of :func:`stand_ins`,
-    a superset: an object holding both the needed and the used label is among them)."""
+    """The objects the kitchen item ``used`` may stand in for: a superset of the inverse of
+    :func:`stand_ins` (docs/proofs/preparation.md, "Substitutes")."""
     out = [FoonObject(s.needed, used.states, used.ingredients, used.container) for s in by_used.get(used.label, ())]
     for ingredient in used.ingredients:
         for s in by_used.get(ingredient, ()):
@@ -179,8 +164,7 @@ def _stood_in_for(used: FoonObject, by_used: dict[str, list[Substitute]]) -> lis
 def candidates(problem: Problem, substitutes: Iterable[Substitute]) -> list[Candidate]:
     """Every (needed object, kitchen item, cost) where the kitchen item may stand in for
     an object of the FOON that is not a kitchen item; by object id, then substitute order.
-    A kitchen item reached by two substitutions of one object keeps the cheaper.
-    (Found from the kitchen side: the kitchen is small beside the FOON.)"""
+    A kitchen item reached by two substitutions of one object keeps the cheaper."""
     table = _table(substitutes)
     if not table:
         return []
@@ -227,8 +211,7 @@ def judged_on(problem: Problem, substitutes: Iterable[Substitute], goals: Iterab
 
 def substituted_kitchen(problem: Problem, used: Iterable[int | FoonObject]) -> Problem:
     """``problem`` with the objects ``used`` substitutions stand in for (ids or objects) as
-    kitchen items: the independent validator (foon2asp.tree.validate) accepts a tree that
-    relies on those substitutions on it."""
+    kitchen items, for the independent validator."""
     extra = [problem.objects[o] if isinstance(o, int) else o for o in used]
     ids = problem.foon.object_ids
     view = problem.with_kitchen(problem.kitchen | frozenset(ids[o] for o in extra if o in ids))

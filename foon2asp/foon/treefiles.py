@@ -1,18 +1,9 @@
 """Task trees read from files, in every form foon2asp and the earlier programs write.
 
-A tree file holds FOON text (units closed by ``//``, in the official dialect
-with ids or the ID-less one, as ``solve --format foon|foon-plain`` and the
-earlier search programs write; a leading ``//`` and ``#`` comment lines are
-fine; one tree per ``# task tree for GOAL (...)`` header line), FOON JSON
-(foon_api's ``{"functional_units": [...]}``, ``solve --format foon-json``; one
-tree or a list), foon2asp JSON (the list ``solve --format json`` prints, or one
-such result), the unit-list form of generated trees (:mod:`foon2asp.foon.unitlist`:
-one tree, or one per inner list; units it skips and repeats merged are in
-:attr:`TreeFile.warnings`, an error with ``strict``) or -- given the :class:`~foon2asp.foon.problem.Problem` whose unit
-ids the action names carry -- a plan (:mod:`foon2asp.foon.plans`).
-:func:`read_trees` tells them apart and gives each tree's units as written,
-with the file, line and step of each, and the goal and method when the file
-names them.
+:func:`read_trees` tells the forms apart: FOON text (one tree per ``# task tree for
+GOAL (...)`` header), FOON JSON, foon2asp JSON results, unit lists
+(:mod:`foon2asp.foon.unitlist`) and plans (:mod:`foon2asp.foon.plans`).  It gives each
+tree's units as written, with file, line and step, and the goal and method when named.
 """
 
 from __future__ import annotations
@@ -26,9 +17,10 @@ from foon2asp.errors import InputError
 from foon2asp.foon import foonjson, plans, unitlist
 from foon2asp.foon.goals import parse_object_text
 from foon2asp.foon.loaders import object_from_json
-from foon2asp.foon.model import FoonObject, Unit
+from foon2asp.foon.model import FoonObject, Unit, norm
 from foon2asp.foon.parser import parse_lines
 from foon2asp.foon.problem import Problem
+from foon2asp.foon.safejson import list_elements
 from foon2asp.foon.safejson import loads as safe_loads
 from foon2asp.foon.safetext import lines_of, read_text
 
@@ -97,10 +89,6 @@ def _read_foon_tree(text: str, path: str) -> list[TreeFile]:
     return trees
 
 
-def _line_of(text: str, pos: int) -> int:
-    return text.count("\n", 0, pos) + 1
-
-
 def _json_unit(value: object, path: str, line: int, step: int) -> Unit:
     if not isinstance(value, dict) or not isinstance(value.get("motion"), str):
         raise InputError(f"unit {step} is not an object with a 'motion' string", path, line)
@@ -110,7 +98,7 @@ def _json_unit(value: object, path: str, line: int, step: int) -> Unit:
         if not isinstance(items, list):
             raise InputError(f"unit {step} has no '{side}' list", path, line)
         parts.append(tuple(object_from_json(o, path, line) for o in items))
-    return Unit(" ".join(value["motion"].split()).lower().rstrip("*").strip(), parts[0], parts[1])
+    return Unit(norm(value["motion"]).rstrip("*").strip(), parts[0], parts[1])
 
 
 def _is_foon_json(data: object) -> bool:
@@ -147,21 +135,11 @@ def _read_json_tree(text: str, path: str, strict: bool = False) -> list[TreeFile
     if _is_foon_json(data) or (isinstance(data, list) and data and all(_is_foon_json(d) for d in data)):
         return _read_foon_json_trees(data, path)
     results = data if isinstance(data, list) else [data]
-    # the line each top-level result starts on, for messages
-    starts: list[int] = []
-    if isinstance(data, list):
-        dec = json.JSONDecoder()
-        pos = text.index("[") + 1
-        line, counted = 1, 0
-        for _ in results:
-            while text[pos] in " \t\r\n,":
-                pos += 1
-            line += text.count("\n", counted, pos)
-            counted = pos
-            starts.append(line)
-            pos = dec.raw_decode(text, pos)[1]
+    start = len(text) - len(text.lstrip())
+    if isinstance(data, list):  # the line each top-level result starts on, for messages
+        starts = [line for _, line, _ in list_elements(text, path, start)]
     else:
-        starts.append(_line_of(text, len(text) - len(text.lstrip())))
+        starts = [text.count("\n", 0, start) + 1]
     trees = []
     for result, line in zip(results, starts):
         if not isinstance(result, dict) or not isinstance(result.get("units"), list):

@@ -8,30 +8,13 @@
       "output_nodes": [{"label": "banana", "states": ["peeled"], "ingredients": [], "container": null}]},
      ...]
 
-Read as written: ``motion_node`` is a string or an object with ``label`` (or
-``motion_label``); ``states`` and ``ingredients`` null or missing are empty;
-``container`` missing or null is none.  Objects are made with
-:meth:`FoonObject.make`, so their identity is label + set of states + set of
-ingredients + container, independent of order and case; labels are not
-otherwise changed (``blueberry`` and ``blueberries`` stay two objects).
-
-A unit without ``input_nodes``, ``motion_node`` or ``output_nodes`` (missing,
-null, an empty motion or no input at all) cannot be used: it is skipped with a
-warning naming the file, line and unit (an :class:`InputError` when
-``strict``).  Units that repeat an earlier unit (:meth:`Unit.key`) are merged
-into the first, with one warning saying how many.  Other problems, and the
-limits (:data:`MAX_TEXT_CHARS` characters per label, state, ingredient,
-container and motion; :data:`MAX_ITEMS` entries per list), are one
-:class:`InputError` naming the file, the line of the unit, the unit and the
-field.  Units are numbered from 1 in messages.
-
-:func:`to_unit_list` and :func:`dumps` write the same form back
-(``container`` null when there is none), so ``read_unit_list(dumps(units))``
-gives the units again.  Several trees are a JSON list of unit lists
-(:func:`dumps_trees`, :func:`read_unit_lists`; ``solve --format units-json``
-for several goals); messages then name the tree too (``tree 2, unit 3``).
-FOON files (:func:`foon2asp.foon.parser.read_foon`) and tree files
-(:func:`foon2asp.foon.treefiles.read_trees`) in this form are read here.
+``motion_node`` is a string or an object with ``label`` (or ``motion_label``); null or
+missing ``states``/``ingredients`` are empty, ``container`` none.  A unit without
+inputs, motion or outputs is skipped with a warning (an :class:`InputError` when
+``strict``); repeated units are merged into the first, with one warning.  Other
+problems and the limits (:data:`MAX_TEXT_CHARS`, :data:`MAX_ITEMS`) are an
+:class:`InputError` naming file, line, unit (from 1; ``tree 2, unit 3`` for several
+trees) and field.  :func:`dumps` and :func:`dumps_trees` write the form back.
 """
 
 from __future__ import annotations
@@ -59,12 +42,8 @@ _OTHER_KEYS = frozenset({"motion", "inputs", "outputs", "units", "functional_uni
 
 
 def is_unit_list(value: object) -> bool:
-    """Is ``value`` (parsed JSON) the unit-list form?
-
-    A non-empty list of objects, some having ``motion_node``, ``input_nodes`` or
-    ``output_nodes``, none having the keys of foon2asp's ``{motion, inputs,
-    outputs}`` units, its results (``units``) or FOON JSON (``functional_units``).
-    """
+    """Is ``value`` (parsed JSON) the unit-list form: a non-empty list of objects, some with a
+    key of :data:`KEYS`, none with a key of the other JSON forms?"""
     if not isinstance(value, list) or not value or not all(isinstance(v, dict) for v in value):
         return False
     if any(_OTHER_KEYS.intersection(v) for v in value):
@@ -216,10 +195,9 @@ def read_units(value_or_text: object, path: str, strict: bool = False) -> tuple[
 def read_unit_lists(
     value_or_text: object, path: str, strict: bool = False
 ) -> tuple[list[tuple[list[Located], int | None]], list[str]]:
-    """The trees of a unit list (one tree) or of a list of unit lists (one tree each, as
-    ``solve --format units-json`` writes several goals): per tree its units as
-    :func:`read_units` gives them and the line it starts on (None when given a value); and
-    all the warnings."""
+    """The trees of a unit list (one tree) or of a list of unit lists (one each): per tree
+    its units as :func:`read_units` gives them and its first line (None when given a
+    value); and all the warnings."""
     if not isinstance(value_or_text, str):
         if not is_unit_lists(value_or_text):
             units, warnings = read_units(value_or_text, path, strict)
@@ -232,12 +210,13 @@ def read_unit_lists(
         text = value_or_text
         value = safe_loads(text, path)
         start = len(text) - len(text.lstrip())
+        first = text.count("\n", 0, start) + 1
         if not isinstance(value, list):
-            raise InputError("expected a JSON list of objects", path, text.count("\n", 0, start) + 1)
+            raise InputError("expected a JSON list of objects", path, first)
         top = list_elements(text, path, start)
         if not is_unit_lists(value):
             units, warnings = _read([(v, line) for v, line, _ in top], path, strict)
-            return [(units, text.count("\n", 0, start) + 1)], warnings
+            return [(units, first)], warnings
         located = [([(v, at) for v, at, _ in list_elements(text, path, pos)], line) for _, line, pos in top]
     trees: list[tuple[list[Located], int | None]] = []
     warnings = []
@@ -288,18 +267,22 @@ def to_unit_list(units: Iterable[Unit]) -> list[dict]:
     return [unit_entry(u) for u in units]
 
 
+def _block(lines: list[str]) -> str:
+    """A JSON list of the encoded ``lines``, one per line."""
+    return "[\n" + ",\n".join(lines) + "\n]" if lines else "[]"
+
+
+def _list(units: Iterable[Unit]) -> str:
+    return _block([json.dumps(e, ensure_ascii=False) for e in to_unit_list(units)])
+
+
 def dumps(units: Sequence[Unit] | Iterable[Unit]) -> str:
     """The unit-list JSON of ``units`` (one line per unit)."""
-    entries = [json.dumps(e, ensure_ascii=False) for e in to_unit_list(units)]
-    return "[\n" + ",\n".join(entries) + "\n]\n" if entries else "[]\n"
+    return _list(units) + "\n"
 
 
 def dumps_trees(trees: Sequence[Sequence[Unit]]) -> str:
     """One tree as :func:`dumps` writes it; several as a JSON list of unit lists (one line per unit)."""
     if len(trees) == 1:
         return dumps(trees[0])
-    parts = []
-    for tree in trees:
-        entries = [json.dumps(e, ensure_ascii=False) for e in to_unit_list(tree)]
-        parts.append("[\n" + ",\n".join(entries) + "\n]" if entries else "[]")
-    return "[\n" + ",\n".join(parts) + "\n]\n" if parts else "[]\n"
+    return _block([_list(tree) for tree in trees]) + "\n"
