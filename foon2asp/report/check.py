@@ -15,8 +15,7 @@ from foon2asp.tree.validate import AloneVerdict
 
 
 def unreachable(report: Report | AloneReport) -> bool:
-    """The file gives no tree for the goal and the FOON confirms that none exists
-    (:func:`foon2asp.analysis.check.no_tree`): an answer, neither valid nor invalid."""
+    """The file gives no tree for the goal and the FOON confirms none exists (neither valid nor invalid)."""
     return isinstance(report, Report) and report.finding is not None and report.finding.kind == "unreachable"
 
 
@@ -165,8 +164,7 @@ def assumes_leaves(report: AloneReport) -> bool:
 
 
 def alone_text(report: AloneReport) -> str:
-    """The human-readable verdict on a tree judged on its own; when its leaves stand for the
-    kitchen, they are listed and what that cannot detect is said."""
+    """The human-readable verdict on a tree judged on its own."""
     tree, v = report.tree, report.verdict
     head = f"Tree: {tree.path}" + (f" (line {tree.line})" if tree.line and tree.line > 1 else "")
     if tree.method:
@@ -210,9 +208,8 @@ def alone_text(report: AloneReport) -> str:
 
 
 def alone_json(report: AloneReport) -> dict:
-    """The verdict as plain data: the keys of :func:`report_json` that apply, and what judging
-    on its own adds (``judged``, ``kitchen``, ``kitchen_assumed``, ``note``, ``valid_as_set``,
-    ``blocked``, ``stuck``)."""
+    """The verdict as plain data: the keys of :func:`report_json` that apply, and ``judged``,
+    ``kitchen``, ``kitchen_assumed``, ``note``, ``valid_as_set``, ``blocked``, ``stuck``."""
     tree, v = report.tree, report.verdict
     b = v.blocked
     goal = (

@@ -19,8 +19,7 @@ def _label(problem: Problem, goal: int) -> str:
 
 
 def units_cell(tree: TaskTree) -> str:
-    """``25``, ``10 invalid``, ``12 feasible``, ``65 feasible (>= 54)`` (the lower bound on
-    units, when known), or the status when there is no tree."""
+    """``25``, ``10 invalid``, ``12 feasible``, ``65 feasible (>= 54)`` (with a lower bound), or the status."""
     if not tree.has_tree:
         return tree.status
     cell = str(len(tree.units))
@@ -34,8 +33,7 @@ def units_cell(tree: TaskTree) -> str:
 
 
 def quality_cell(tree: TaskTree) -> str:
-    """``1.02e-10 / 13``: success product / depth (``-`` when the goal is never made), and
-    ``/ cost 1.35`` with a motion-cost table."""
+    """``1.02e-10 / 13``: success product / depth, and ``/ cost 1.35`` with a motion-cost table."""
     if not tree.has_tree:
         return "-"
     depth = tree.cost.get("depth")
@@ -43,25 +41,30 @@ def quality_cell(tree: TaskTree) -> str:
     return cell + (f" / cost {number(tree.cost['cost'])}" if "cost" in tree.cost else "")
 
 
-def _header(name: str) -> str:
+def method_header(name: str) -> str:
+    """The column heading of a method."""
     return "asp optimum" if name == "asp" else name
+
+
+def _grid(head: list[str], body: list[list[str]], markdown: bool, rule: bool = True) -> list[str]:
+    """A table as Markdown or aligned text (``rule``: a dashed line under the heading), the first
+    column left-aligned, the others right-aligned."""
+    if markdown:
+        out = ["| " + " | ".join(head) + " |", "|" + "|".join(["---"] + ["---:"] * (len(head) - 1)) + "|"]
+        return out + ["| " + " | ".join(line) + " |" for line in body]
+    widths = [max(len(x[i]) for x in [head] + body) for i in range(len(head))]
+    lines = [head] + ([["-" * w for w in widths]] if rule else []) + body
+    return [
+        "  ".join(c.ljust(w) if i == 0 else c.rjust(w) for i, (c, w) in enumerate(zip(line, widths))).rstrip()
+        for line in lines
+    ]
 
 
 def _table(problem: Problem, rows: list[Row], cell, markdown: bool) -> list[str]:
     names = list(rows[0].trees) if rows else []
-    head = ["goal"] + [_header(n) for n in names]
+    head = ["goal"] + [method_header(n) for n in names]
     body = [[_label(problem, r.goal)] + [cell(r.trees[n]) for n in names] for r in rows]
-    if markdown:
-        out = ["| " + " | ".join(head) + " |", "|" + "|".join(["---"] + ["---:"] * len(names)) + "|"]
-        out += ["| " + " | ".join(line) + " |" for line in body]
-        return out
-    widths = [max(len(x[i]) for x in [head] + body) for i in range(len(head))]
-
-    def fmt(line: list[str]) -> str:
-        cells = (c.ljust(w) if i == 0 else c.rjust(w) for i, (c, w) in enumerate(zip(line, widths)))
-        return "  ".join(cells).rstrip()
-
-    return [fmt(head), fmt(["-" * w for w in widths])] + [fmt(line) for line in body]
+    return _grid(head, body, markdown)
 
 
 def summary(rows: list[Row]) -> list[str]:
@@ -81,25 +84,17 @@ def summary(rows: list[Row]) -> list[str]:
             " so no conclusion is drawn from comparing them"
         )
     elif "asp" in names:
-        worse = [
-            (r, n)
-            for r in rows
-            for n, t in r.trees.items()
-            if n != "asp"
-            and t.extra.get("valid")
-            and r.trees["asp"].status == "optimal"
-            and len(t.units) < len(r.trees["asp"].units)
-        ]
-        checked = sum(
-            1
+        compared = [
+            (t, r.trees["asp"])
             for r in rows
             for n, t in r.trees.items()
             if n != "asp" and t.extra.get("valid") and r.trees["asp"].status == "optimal"
-        )
+        ]
+        worse = sum(len(t.units) < len(best.units) for t, best in compared)
         if worse:
-            lines.append(f"WARNING: {len(worse)} valid tree(s) smaller than the asp optimum")
+            lines.append(f"WARNING: {worse} valid tree(s) smaller than the asp optimum")
         else:
-            lines.append(f"asp optimum <= every valid tree: yes ({checked} valid trees compared)")
+            lines.append(f"asp optimum <= every valid tree: yes ({len(compared)} valid trees compared)")
     return lines
 
 
@@ -156,15 +151,7 @@ def _meal_lines(problem: Problem, row: MealRow, markdown: bool) -> list[str]:
     body.append(["sum of single optima"] + cells(total, "-"))
     status = "" if row.meal.status == "optimal" else f" ({row.meal.status})"
     body.append([f"meal, together{status}"] + cells(row.meal.cost, row.meal.status))
-    if markdown:
-        out = ["| " + " | ".join(head) + " |", "|---|---:|---:|---:|---:|"]
-        out += ["| " + " | ".join(line) + " |" for line in body]
-    else:
-        widths = [max(len(x[i]) for x in [head] + body) for i in range(len(head))]
-        out = [
-            "  ".join(c.ljust(w) if i == 0 else c.rjust(w) for i, (c, w) in enumerate(zip(line, widths))).rstrip()
-            for line in [head] + body
-        ]
+    out = _grid(head, body, markdown, rule=False)
     if total and row.meal.has_tree:
         saved = total["units"] - row.meal.cost["units"]
         valid = "valid" if row.meal.extra.get("valid") else "INVALID"
@@ -193,33 +180,10 @@ def meal_csv(problem: Problem, row: MealRow) -> str:
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(["row", "status", "units", "success", "inputs", "depth"])
-    for t in row.singles:
-        c = t.cost
-        w.writerow(
-            [
-                str(problem.objects[t.goal]),
-                t.status,
-                c.get("units", ""),
-                c.get("success", ""),
-                c.get("inputs", ""),
-                c.get("depth", ""),
-            ]
-        )
-    total = row.total()
-    w.writerow(
-        [
-            "sum of single optima",
-            "",
-            total.get("units", ""),
-            total.get("success", ""),
-            total.get("inputs", ""),
-            total.get("depth", ""),
-        ]
-    )
-    c = row.meal.cost
-    w.writerow(
-        ["meal", row.meal.status, c.get("units", ""), c.get("success", ""), c.get("inputs", ""), c.get("depth", "")]
-    )
+    lines = [(str(problem.objects[t.goal]), t.status, t.cost) for t in row.singles]
+    lines += [("sum of single optima", "", row.total()), ("meal", row.meal.status, row.meal.cost)]
+    for name, status, cost in lines:
+        w.writerow([name, status, *(cost.get(k, "") for k in ("units", "success", "inputs", "depth"))])
     return buf.getvalue()
 
 

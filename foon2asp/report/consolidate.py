@@ -1,26 +1,20 @@
 """The report of ``consolidate``: text, JSON, HTML (the candidates table and the drawing of the
 result, its units coloured by source) and the result as unit-list JSON.
 
-The JSON is a list with one object per goal (one for a meal):
-``{"goal", "status", "cost", "units": [{..., "sources": [FILE, ...]}], "candidates":
-[{"file", "valid", "problem", "cost", "used_units"}], "missing": [...]}``; ``status`` and
-``cost`` are the tree's as ``solve`` reports them, ``goal`` is an object (a list of objects
-for a meal), ``problem`` the first problem of a candidate in words (null when it is
-executable on its own), ``used_units`` the numbers (in its file, from 1) of its units the
-tree uses, ``missing`` the fewest objects to add to the kitchen when the goal is unreachable;
-with substitutes also ``"substitutions": [{"needed", "used"}]``, the ones the tree uses.
+The JSON is a list with one object per goal (or meal): ``{"goal", "status", "cost", "units":
+[{..., "sources"}], "candidates": [{"file", "valid", "problem", "cost", "used_units"}],
+"missing"}`` (and ``"substitutions"`` when the tree uses any).
 """
 
 from __future__ import annotations
 
-import html
 import json
 import time
 
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.unitlist import dumps_trees
 from foon2asp.report import draw
-from foon2asp.report.html import figure, page, time_line
+from foon2asp.report.html import esc, figure, page, time_line
 from foon2asp.report.registry import register
 from foon2asp.tree.results import CandidateVerdict, Consolidation
 from foon2asp.tree.serialize import number, tree_text
@@ -61,7 +55,7 @@ def consolidation_json(problem: Problem, c: Consolidation) -> dict:
 
 
 def _versus(v: CandidateVerdict, best: dict) -> str:
-    """``7 units (+1 vs the optimum), cost 2.1 (+0.3)``: a valid candidate's measures beside the optimum's."""
+    """``7 units (+1 vs the optimum), cost 2.1 (+0.3 vs the optimum)``."""
     parts = []
     for key, unit in (("units", " units"), ("cost", "")):
         if key not in v.cost:
@@ -130,10 +124,6 @@ def consolidate_units(problem: Problem, results: list[Consolidation]) -> str:
 # ---------------------------------------------------------------- HTML
 
 
-def _esc(text: object) -> str:
-    return html.escape(str(text), quote=True)
-
-
 def colors(results: list[Consolidation]) -> dict[str, str]:
     """The fill colour of each candidate file."""
     files = list(dict.fromkeys(v.candidate.path for c in results for v in c.candidates))
@@ -161,10 +151,10 @@ def _table(c: Consolidation, fill: dict[str, str]) -> list[str]:
         swatch = f'<span style="background:{fill[v.candidate.path]}">&nbsp;&nbsp;&nbsp;</span> '
         cls = "valid" if v.valid else "invalid"
         rows.append(
-            f'<tr class="{cls}"><td>{swatch}{_esc(v.candidate.path)}</td>'
+            f'<tr class="{cls}"><td>{swatch}{esc(v.candidate.path)}</td>'
             f'<td class="{cls}">{"valid" if v.valid else "INVALID"}</td>'
-            f'<td class="num">{_esc(v.cost.get("units"))}</td><td class="num">{_esc(number(v.cost.get("cost", "-")))}</td>'
-            f"<td>{_esc(' '.join(map(str, v.used)) or '-')}</td><td>{_esc(v.verdict.problem or '')}</td></tr>"
+            f'<td class="num">{esc(v.cost.get("units"))}</td><td class="num">{esc(number(v.cost.get("cost", "-")))}</td>'
+            f"<td>{esc(' '.join(map(str, v.used)) or '-')}</td><td>{esc(v.verdict.problem or '')}</td></tr>"
         )
     return rows + ["</tbody></table>"]
 
@@ -177,20 +167,20 @@ def consolidate_html(problem: Problem, results: list[Consolidation]) -> str:
     for k, c in enumerate(results, 1):
         goal = " + ".join(str(problem.objects[g]) for g in c.goals)
         cost = ", ".join(f"{key} {number(val)}" for key, val in c.tree.cost.items())
-        body.append(f'<section class="goal" id="goal-{k}"><h2>{_esc(goal)}</h2>')
+        body.append(f'<section class="goal" id="goal-{k}"><h2>{esc(goal)}</h2>')
         body.append(
-            f"<p>{_esc(c.goal_source)}; {_esc(c.tree.method)}: <b>{_esc(c.tree.status)}</b>"
-            + (f" ({_esc(cost)})" if cost else "")
+            f"<p>{esc(c.goal_source)}; {esc(c.tree.method)}: <b>{esc(c.tree.status)}</b>"
+            + (f" ({esc(cost)})" if cost else "")
             + "</p>"
         )
         body += _table(c, fill)
         if c.missing is not None:
             added = "; ".join(str(problem.objects[o]) for o in c.missing.missing) or "nothing helps"
-            body.append(f'<p class="problem">unreachable from this kitchen; to add: {_esc(added)}</p>')
+            body.append(f'<p class="problem">unreachable from this kitchen; to add: {esc(added)}</p>')
         if c.tree.has_tree and c.tree.units:
             draw.require_dot()
             svg = draw.svg_text(result_graph(problem, c, fill))
-            caption = f"<b>{_esc(goal)}</b>: {len(c.tree.units)} units, {_esc(c.tree.status)}"
+            caption = f"<b>{esc(goal)}</b>: {len(c.tree.units)} units, {esc(c.tree.status)}"
             body.append(figure(svg, f"c{k}", "tree valid", caption, back=f"goal-{k}"))
         body.append("</section>")
     body[0] = time_line(

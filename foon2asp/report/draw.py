@@ -1,18 +1,9 @@
 """Task trees as pictures, in FOON's own drawing conventions.
 
-Objects are ellipses showing their label (bold), states, ingredients
-(``{a,b}``) and container (``[bowl]``); functional units are boxes showing
-their step and motion; edges run input -> motion -> output.  There is one
-node per distinct object and one per unit.  The goal is gold with a double
-outline, kitchen items are green, units done by a person are orange and
-marked ``[human]``, and for an invalid tree the cycle that blocks it (its
-objects, units and edges) is red.  Units may be coloured by what the caller
-says (:attr:`Marks.unit_colors`; ``consolidate``: by source file, striped when
-several files hold the unit).
-
-The graph is built in pure Python as DOT source with the ``graphviz``
-package; rendering it to SVG, PNG or PDF runs Graphviz's ``dot`` (Debian
-package ``graphviz``).
+Objects are ellipses (label, states, ingredients, container), functional units boxes (step,
+motion), edges run input -> motion -> output.  The goal is gold, kitchen items green, a
+person's units orange, and the cycle that blocks an invalid tree red (:class:`Marks`).
+Rendering to SVG, PNG or PDF runs Graphviz.
 """
 
 from __future__ import annotations
@@ -20,7 +11,7 @@ from __future__ import annotations
 import html
 import re
 import shutil
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -30,6 +21,7 @@ from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.treefiles import TreeFile
+from foon2asp.report.registry import register
 from foon2asp.tree.diagnose import Finding, check_units
 from foon2asp.tree.results import Report
 from foon2asp.tree.tasktree import TaskTree
@@ -77,8 +69,7 @@ def _esc(text: str) -> str:
     return html.escape(text, quote=True)
 
 
-#: Graphviz refuses quoted strings longer than 16,384 characters: texts in a drawing are
-#: clipped to these lengths (the full text stays in the tree's other formats)
+#: texts in a drawing are clipped to these lengths (Graphviz refuses very long strings)
 MAX_TEXT = 200
 MAX_ROWS = 12
 MAX_TOOLTIP = 2000
@@ -90,8 +81,7 @@ def _clip(text: str, limit: int = MAX_TEXT) -> str:
 
 
 def object_label(obj: FoonObject) -> str:
-    """An HTML-like Graphviz label: the label in bold, then states, ingredients, container
-    (long texts clipped, at most :data:`MAX_ROWS` states)."""
+    """An HTML-like Graphviz label: the label in bold, then states, ingredients, container."""
     rows = [f"<B>{_esc(_clip(obj.label))}</B>"]
     states = list(obj.states)
     rows += [_esc(_clip(s)) for s in states[:MAX_ROWS]]
@@ -257,10 +247,8 @@ def _top_product(units: list[Unit]) -> FoonObject | None:
 
 
 def record_marks(record: dict, units: list[Unit], problem: Problem | None = None) -> Marks:
-    """Marks of a result record (a line of a batch's results: ``goal`` or ``goals``, ``method``,
-    ``status``, ``valid`` and ``problem`` as the independent validator judged it) whose units are
-    ``units``: its goals; with ``problem`` its kitchen items and, for an invalid tree, the cycle
-    that blocks it (the validator's verdict stands; the cycle is looked up in ``problem``)."""
+    """Marks of a result record (a line of a batch's results) whose units are ``units``: its goals
+    and verdict; with ``problem`` also its kitchen items and an invalid tree's blocking cycle."""
     goals = [g for g in (record.get("goals") or [record.get("goal")]) if isinstance(g, dict)]
     objects = [_record_object(g) for g in goals]
     made = [o for o in objects if o is not None]
@@ -306,8 +294,8 @@ def _record_object(value: dict) -> FoonObject | None:
 
 
 def tree_file_marks(tree: TreeFile, problem: Problem | None = None, report: Report | None = None) -> Marks:
-    """Marks of a tree read from a file; with ``problem`` and its ``report`` (the tree checked):
-    goal, kitchen items, verdict and cycle."""
+    """Marks of a tree read from a file; with ``problem`` and its ``report``: goal, kitchen items,
+    verdict and cycle."""
     units = [tu.unit for tu in tree.units]
     if problem is None or report is None:
         top = tree.goal or _top_product(units)
@@ -328,8 +316,8 @@ def tree_file_marks(tree: TreeFile, problem: Problem | None = None, report: Repo
 def file_graph(
     trees: list[TreeFile], reports: list[Report] | None = None, problem: Problem | None = None
 ) -> graphviz.Digraph:
-    """The drawing of the trees of a tree file (one cluster per tree when there are several),
-    each checked when its ``reports`` (:func:`foon2asp.analysis.check.read_and_check`) are given."""
+    """The drawing of the trees of a tree file (a cluster per tree when there are several), with
+    their verdicts when ``reports`` are given."""
     marks = [tree_file_marks(t, problem, reports[k] if reports else None) for k, t in enumerate(trees)]
     if len(trees) == 1:
         return build_graph([tu.unit for tu in trees[0].units], marks[0])
@@ -350,20 +338,39 @@ def require_dot() -> None:
         )
 
 
-def render(graph: graphviz.Digraph, fmt: str) -> bytes:
-    """``graph`` as ``fmt`` (``dot`` source, or svg/png/pdf laid out by ``dot``)."""
+def render(graph: graphviz.Graph | graphviz.Digraph, fmt: str) -> bytes:
+    """``graph`` as ``fmt``: ``dot`` source, or svg/png/pdf laid out by its engine (``neato``: at
+    the nodes' fixed positions)."""
     if fmt == "dot":
         return graph.source.encode("utf-8")
     if fmt not in FORMATS:
         raise InputError(f"unknown drawing format {fmt!r} (have {', '.join(FORMATS)})")
     require_dot()
+    engine = graph.engine
     try:
+        if engine == "neato":
+            return graph.pipe(format=fmt, neato_no_op=2)
         return graph.pipe(format=fmt, quiet=True)
     except graphviz.ExecutableNotFound:
-        raise InputError("Graphviz 'dot' is not installed: install it (Debian: apt-get install graphviz)") from None
+        raise InputError(
+            f"Graphviz '{engine}' is not installed: install it (Debian: apt-get install graphviz)"
+        ) from None
     except graphviz.CalledProcessError as exc:
         err = (exc.stderr or b"").decode("utf-8", "replace").strip().splitlines()
-        raise InputError(f"Graphviz 'dot' failed: {err[-1] if err else exc}") from None
+        raise InputError(f"Graphviz '{engine}' failed: {err[-1] if err else exc}") from None
+
+
+def register_pictures(kind: str, picture: Callable[..., bytes], source: str, what: str, needs: str) -> None:
+    """Register the formats dot, svg, png and pdf of answers of ``kind``, ``picture(fmt, *answer)``
+    rendering one; ``source`` describes the dot format, ``what`` and ``needs`` the others."""
+    for fmt in FORMATS:
+
+        def render_picture(*answer: object, fmt: str = fmt) -> str | bytes:
+            out = picture(fmt, *answer)
+            return out if fmt in BINARY else out.decode("utf-8")
+
+        text = source if fmt == "dot" else f"{what} as {fmt.upper()} (needs {needs})"
+        register(kind, fmt, fmt, text, binary=fmt in BINARY)(render_picture)
 
 
 def svg_text(graph: graphviz.Digraph) -> str:

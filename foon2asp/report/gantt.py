@@ -1,16 +1,9 @@
 """Gantt charts of schedules: one lane per agent, units as boxes labelled by their motion.
 
-Drawn from the plain JSON record of a schedule (``ScheduleResult.to_dict()``, the
-shape in :mod:`foon2asp.schedule.result`), so any schedule file draws the same.
-Units are coloured as in the tree drawings (:mod:`foon2asp.report.draw`): a
-robot's unit is blue, a person's unit orange.  The chart is a Graphviz graph
-with every node at a fixed position (``neato -n2``): the lanes' names on the
-left, a time axis below, one box per unit as wide as it is long; so the
-graphviz dependency renders SVG, PNG and PDF like the tree drawings.  Every box
-is labelled by its motion: inside it, else beside it on the right when the lane
-is free there, else on a row under the lane (``^ motion``, starting where the box
-starts).  Several charts drawn together (:func:`charts`, an HTML page) share one
-time scale: the longest schedule sets it and every chart is as wide.
+Drawn from the plain JSON record of a schedule (``ScheduleResult.to_dict()``) as a Graphviz
+graph with every node at a fixed position: lane names on the left, a time axis below, one box
+per unit as wide as it is long (a robot's blue, a person's orange), its motion inside, beside
+it or on a row under the lane.  Charts drawn together share one time scale.
 """
 
 from __future__ import annotations
@@ -21,9 +14,7 @@ from pathlib import Path
 
 import graphviz
 
-from foon2asp.errors import InputError
-from foon2asp.report.draw import BINARY, HUMAN_FILL, UNIT_FILL, format_of, require_dot
-from foon2asp.report.registry import register
+from foon2asp.report.draw import HUMAN_FILL, UNIT_FILL, format_of, register_pictures, render
 
 #: points per second of schedule at most, and the widest chart (points) a long schedule is scaled to
 POINTS_PER_SECOND = 40.0
@@ -109,16 +100,15 @@ def schedule_span(record: Mapping) -> float:
 
 
 def time_scale(span: float, fill: bool = False) -> float:
-    """Points per second of a chart spanning ``span`` seconds: :data:`POINTS_PER_SECOND`, less
-    when that would be wider than :data:`MAX_WIDTH`; ``fill``: as much as makes it that wide."""
+    """Points per second of a chart spanning ``span`` seconds: :data:`POINTS_PER_SECOND`, at most
+    :data:`MAX_WIDTH` wide; ``fill``: exactly that wide."""
     if fill or span * POINTS_PER_SECOND > MAX_WIDTH:
         return MAX_WIDTH / span if span > 0 else POINTS_PER_SECOND
     return POINTS_PER_SECOND
 
 
 def chart_width(span: float, fill: bool = False) -> float:
-    """The width (points) of a chart whose time axis spans ``span`` seconds, lane names and margins
-    included (a title or a label beside the last box may stick out)."""
+    """The width (points) of a chart whose time axis spans ``span`` seconds, lane names and margins included."""
     return LABEL_WIDTH + max(span * time_scale(span, fill), 200.0) + 2 * PAD
 
 
@@ -134,10 +124,8 @@ def _text_width(text: str, size: float) -> float:
 
 
 def _label_places(boxes: list[tuple[float, float, str]]) -> tuple[list[tuple[str, float, int]], int]:
-    """Where the label of each box of one lane goes, given (left, right, text) in points:
-    ``("in", 0, 0)`` inside; ``("beside", x, 0)`` right of the box, starting at x, when the lane is
-    free until its end; else ``("under", x, row)`` on row ``row`` (from 0) under the lane,
-    starting where the box starts.  Also the number of rows under the lane."""
+    """Where the label of each box (left, right, text) of one lane goes: ``("in", 0, 0)``,
+    ``("beside", x, 0)`` or ``("under", x, row)``; and the number of rows under the lane."""
     rows: list[float] = []  # where each row under the lane is free again
     order = sorted(range(len(boxes)), key=lambda i: boxes[i][0])
     found: dict[int, tuple[str, float, int]] = {}
@@ -170,8 +158,7 @@ def add_chart(
     fill: bool = False,
 ) -> float:
     """Add the chart of one schedule record to ``g``, its title at height ``top``; the height used.
-    ``span``: the seconds the time axis covers (charts drawn together share the longest one's);
-    default: this schedule's.  ``fill``: the time axis is :data:`MAX_WIDTH` wide (:func:`time_scale`)."""
+    ``span``: the seconds the time axis covers (default: this schedule's); ``fill``: see :func:`time_scale`."""
     agents = [str(a) for a in record.get("agents", [])]
     entries = list(record.get("schedule") or [])
     span = schedule_span(record) if span is None else max(span, schedule_span(record))
@@ -251,8 +238,7 @@ def add_chart(
 
 
 def gantt_graph(record: Mapping, span: float | None = None, fill: bool = False) -> graphviz.Graph:
-    """The chart of one schedule record as a Graphviz graph with fixed node positions
-    (``span``, ``fill``: as :func:`add_chart`)."""
+    """The chart of one schedule record as a Graphviz graph (``span``, ``fill``: as :func:`add_chart`)."""
     g = _new_graph("schedule")
     add_chart(g, record, span=span, fill=fill)
     return g
@@ -268,20 +254,6 @@ def charts(records: Sequence[Mapping]) -> graphviz.Graph:
     return g
 
 
-def render(graph: graphviz.Graph, fmt: str) -> bytes:
-    """``graph`` as ``fmt``: ``dot`` source, or svg/png/pdf at its fixed positions (``neato -n2``)."""
-    if fmt == "dot":
-        return graph.source.encode("utf-8")
-    require_dot()
-    try:
-        return graph.pipe(format=fmt, neato_no_op=2)
-    except graphviz.ExecutableNotFound:
-        raise InputError("Graphviz is not installed: install it (Debian: apt-get install graphviz)") from None
-    except graphviz.CalledProcessError as exc:
-        err = (exc.stderr or b"").decode("utf-8", "replace").strip().splitlines()
-        raise InputError(f"Graphviz 'neato' failed: {err[-1] if err else exc}") from None
-
-
 def gantt_svg(record: Mapping, span: float | None = None, fill: bool = False) -> str:
     """The chart of one schedule as an SVG document (``span``, ``fill``: as :func:`add_chart`)."""
     return render(gantt_graph(record, span, fill), "svg").decode("utf-8")
@@ -294,18 +266,10 @@ def draw_gantt(record: Mapping, path: str | Path) -> Path:
     return path
 
 
-def _chart(fmt: str):
-    def render_chart(records: Sequence[Mapping]) -> str | bytes:
-        out = render(charts(list(records)), fmt)
-        return out if fmt in BINARY else out.decode("utf-8")
-
-    return render_chart
-
-
-for _fmt, _what in (
-    ("dot", "Graphviz source of the Gantt chart"),
-    ("svg", "the Gantt chart as SVG (needs Graphviz)"),
-    ("png", "the Gantt chart as PNG (needs Graphviz)"),
-    ("pdf", "the Gantt chart as PDF (needs Graphviz)"),
-):
-    register("schedule", _fmt, _fmt, _what, binary=_fmt in BINARY)(_chart(_fmt))
+register_pictures(
+    "schedule",
+    lambda fmt, records: render(charts(list(records)), fmt),
+    "Graphviz source of the Gantt chart",
+    "the Gantt chart",
+    "Graphviz",
+)

@@ -1,19 +1,8 @@
 """One self-contained HTML page: the comparison table and a drawing of every tree.
 
-``compare --format html`` writes the earlier work's Table I (units per tree
-for each method beside the proven optimum, invalid trees marked) and, for
-each goal, the drawing of every tree as inline SVG; an invalid tree is
-flagged with the cycle that blocks it (in words and in red in its drawing).
-``batch --summary html`` writes the per-method summary and the drawing of
-every tree in the results (and with ``--schedule`` the Gantt chart of each
-schedule); ``schedule --format html`` the Gantt charts of the schedules.  No
-scripts, no external files.
-
-Every drawing (:func:`figure`) is as wide as the page allows, never so small
-that its text is under 8 px (:data:`MIN_PX_PER_POINT`; a wider one scrolls), and
-its ``full size`` link shows it alone at its natural size (CSS ``:target``).
-The Gantt charts of a page share one time scale: the longest schedule fills the
-page's width.  Each page says how long its parts took (:func:`time_line`).
+``compare --format html`` writes the table and every tree's drawing, ``batch --summary html``
+the summary and the drawings of the results (and the Gantt charts of the schedules),
+``schedule --format html`` the Gantt charts.  No scripts, no external files.
 """
 
 from __future__ import annotations
@@ -26,7 +15,7 @@ import time
 from foon2asp.foon.foonjson import parse_json
 from foon2asp.foon.problem import Problem
 from foon2asp.report import draw, gantt
-from foon2asp.report.compare import summary, units_cell
+from foon2asp.report.compare import method_header, summary, units_cell
 from foon2asp.report.registry import register
 from foon2asp.report.summary import _COLUMNS, _cell
 from foon2asp.tree.results import BatchReport, Row
@@ -58,25 +47,21 @@ p.problem { color: #cc0000; font-size: 0.85em; max-width: 60em; }
 p.time { color: #555; font-size: 0.9em; }
 """
 
-#: the smallest scale a drawing is shown at, in CSS pixels per point of the drawing: text of
-#: 10 points (the drawings' objects and units) is then at least 8.5 px high
+#: the smallest scale a drawing is shown at, in CSS pixels per point of the drawing
 MIN_PX_PER_POINT = 0.85
 
 
-def _esc(text: object) -> str:
+def esc(text: object) -> str:
+    """``text`` escaped for HTML."""
     return html.escape(str(text), quote=True)
 
 
 def page(title: str, body: list[str]) -> str:
     return (
         '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
-        f"<title>{_esc(title)}</title>\n<style>{_STYLE}</style>\n</head>\n<body>\n"
-        f"<h1>{_esc(title)}</h1>\n" + "\n".join(body) + "\n</body>\n</html>\n"
+        f"<title>{esc(title)}</title>\n<style>{_STYLE}</style>\n</head>\n<body>\n"
+        f"<h1>{esc(title)}</h1>\n" + "\n".join(body) + "\n</body>\n</html>\n"
     )
-
-
-def _header(name: str) -> str:
-    return "asp optimum" if name == "asp" else name
 
 
 def _svg_width(svg: str) -> float:
@@ -98,16 +83,14 @@ def figure(
     width: str = "",
     back: str = "",
 ) -> str:
-    """A drawing (an SVG document) as a figure of a page: inline, ids prefixed with ``fig_id``,
-    as wide as the page allows but never under :data:`MIN_PX_PER_POINT`, with a ``full size``
-    link that shows it alone at its natural size (``close`` goes back to ``#back``).
-    ``caption`` and ``note`` are HTML; ``attrs`` more attributes of the figure; ``width`` a CSS
-    width of the drawing (default: its natural width, at most the page's)."""
+    """An SVG document as an inline figure, ids prefixed with ``fig_id``, never under
+    :data:`MIN_PX_PER_POINT`, with a ``full size`` link (``close`` goes back to ``#back``).
+    ``caption`` and ``note`` are HTML, ``attrs`` more attributes, ``width`` a CSS width."""
     style = f"min-width: {MIN_PX_PER_POINT * _svg_width(svg):.0f}px" + (f"; width: {width}" if width else "")
     inline = draw.inline_svg(svg, f"{fig_id}-").replace("<svg", f'<svg style="{style}"', 1)
-    links = f'<a class="zoom" href="#{_esc(fig_id)}">full size</a><a class="close" href="#{_esc(back)}">close</a>'
+    links = f'<a class="zoom" href="#{esc(fig_id)}">full size</a><a class="close" href="#{esc(back)}">close</a>'
     return (
-        f'<figure class="{_esc(classes)}"{attrs} id="{_esc(fig_id)}">'
+        f'<figure class="{esc(classes)}"{attrs} id="{esc(fig_id)}">'
         f"<figcaption>{caption}{links}</figcaption>{note}{inline}</figure>"
     )
 
@@ -116,7 +99,7 @@ def time_line(parts: list[tuple[str, float]], note: str = "") -> str:
     """``Time: 12.3 s in all: solving 8.6 s, drawing this page 3.7 s`` as a paragraph."""
     total = sum(seconds for _, seconds in parts)
     listed = ", ".join(f"{what} {seconds:.2f} s" for what, seconds in parts)
-    return f'<p class="time">Time: {total:.2f} s in all: {_esc(listed)}{_esc(note)}.</p>'
+    return f'<p class="time">Time: {total:.2f} s in all: {esc(listed)}{esc(note)}.</p>'
 
 
 def _tree_figure(
@@ -125,9 +108,9 @@ def _tree_figure(
     """The figure of one task tree: framed in red with its problem in words when it is invalid."""
     state = "invalid" if valid is False else "valid" if valid else "unjudged"
     verdict = {"invalid": "<b>INVALID</b>", "valid": "valid", "unjudged": "not judged"}[state]
-    caption = f"{label}<b>{_esc(method)}</b>: {units} units, {verdict}"
-    note = f'<p class="problem">{_esc(problem)}</p>' if problem and valid is False else ""
-    attrs = f' data-method="{_esc(method)}" data-units="{units}"'
+    caption = f"{label}<b>{esc(method)}</b>: {units} units, {verdict}"
+    note = f'<p class="problem">{esc(problem)}</p>' if problem and valid is False else ""
+    attrs = f' data-method="{esc(method)}" data-units="{units}"'
     return figure(svg, fig_id, f"tree {state}", caption, attrs, note, back=back)
 
 
@@ -138,9 +121,9 @@ def compare_html(problem: Problem, rows: list[Row]) -> str:
     body = [
         "<p>Units per task tree. <b>invalid</b>: the tree is not derivable from the kitchen using only its own "
         "units (see <code>foon2asp check</code>); the optimum is proven by the ASP solver.</p>",
-        f'<p class="legend">{_esc(draw.LEGEND)}</p>',
+        f'<p class="legend">{esc(draw.LEGEND)}</p>',
         '<table id="units">',
-        "<thead><tr><th>goal</th>" + "".join(f"<th>{_esc(_header(n))}</th>" for n in names) + "</tr></thead>",
+        "<thead><tr><th>goal</th>" + "".join(f"<th>{esc(method_header(n))}</th>" for n in names) + "</tr></thead>",
         "<tbody>",
     ]
     for k, r in enumerate(rows, 1):
@@ -152,20 +135,20 @@ def compare_html(problem: Problem, rows: list[Row]) -> str:
                 cls.append("invalid")
             if n == "asp":
                 cls.append("optimum")
-            cells.append(f'<td class="{" ".join(cls)}">{_esc(units_cell(t))}</td>')
+            cells.append(f'<td class="{" ".join(cls)}">{esc(units_cell(t))}</td>')
         label = problem.objects[r.goal].label
-        body.append(f'<tr><td><a href="#goal-{k}">{_esc(label)}</a></td>' + "".join(cells) + "</tr>")
-    body += ["</tbody>", "</table>", "<ul>" + "".join(f"<li>{_esc(line)}</li>" for line in summary(rows)) + "</ul>"]
+        body.append(f'<tr><td><a href="#goal-{k}">{esc(label)}</a></td>' + "".join(cells) + "</tr>")
+    body += ["</tbody>", "</table>", "<ul>" + "".join(f"<li>{esc(line)}</li>" for line in summary(rows)) + "</ul>"]
     timing = len(body)
     body.append("<h2>Task trees</h2>")
     started = time.perf_counter()
     for k, r in enumerate(rows, 1):
-        body.append(f'<section class="goal" id="goal-{k}"><h3>{_esc(problem.objects[r.goal])}</h3>')
+        body.append(f'<section class="goal" id="goal-{k}"><h3>{esc(problem.objects[r.goal])}</h3>')
         body.append('<div class="trees">')
         for n, t in r.trees.items():
             if not t.has_tree:
                 body.append(
-                    f'<figure class="tree none"><figcaption><b>{_esc(n)}</b>: {_esc(t.status)}</figcaption></figure>'
+                    f'<figure class="tree none"><figcaption><b>{esc(n)}</b>: {esc(t.status)}</figcaption></figure>'
                 )
                 continue
             valid = bool(t.extra.get("valid"))
@@ -175,7 +158,7 @@ def compare_html(problem: Problem, rows: list[Row]) -> str:
             )
         body.append("</div></section>")
     solving = {n: sum(r.trees[n].time_s for r in rows) for n in names}
-    each = ", ".join(f"{_header(n)} {seconds:.2f} s" for n, seconds in solving.items())
+    each = ", ".join(f"{method_header(n)} {seconds:.2f} s" for n, seconds in solving.items())
     body.insert(
         timing,
         time_line(
@@ -187,8 +170,8 @@ def compare_html(problem: Problem, rows: list[Row]) -> str:
 
 
 def schedules_body(records: list[dict], timed: bool = True) -> list[str]:
-    """A table of the schedules' makespans and the Gantt chart of each (schedule JSON records), on
-    one time scale that fills the page's width; ``timed``: then how long scheduling and drawing took."""
+    """A table of the schedules' makespans and the Gantt chart of each, on one time scale;
+    ``timed``: then how long scheduling and drawing took."""
     draw.require_dot()
     started = time.perf_counter()
     body = [
@@ -204,7 +187,7 @@ def schedules_body(records: list[dict], timed: bool = True) -> list[str]:
             (r.get("bounds") or {}).get("lower"),
             ", ".join(map(str, r.get("agents", []))),
         ]
-        body.append("<tr>" + "".join(f"<td>{_esc('-' if c is None else c)}</td>" for c in cells) + "</tr>")
+        body.append("<tr>" + "".join(f"<td>{esc('-' if c is None else c)}</td>" for c in cells) + "</tr>")
     body.append("</tbody></table>")
     span = max((gantt.schedule_span(r) for r in records), default=0.0)
     nominal = gantt.chart_width(span, fill=True)
@@ -213,8 +196,8 @@ def schedules_body(records: list[dict], timed: bool = True) -> list[str]:
             svg = gantt.gantt_svg(r, span, fill=True)
             # as wide as the page for a chart of the nominal width: every chart on the same scale
             width = f"{100 * _svg_width(svg) / nominal:.3f}%"
-            attrs = f' data-goal="{_esc(gantt.goal_text(r))}"'
-            caption = f"<b>{_esc(gantt.goal_text(r))}</b>"
+            attrs = f' data-goal="{esc(gantt.goal_text(r))}"'
+            caption = f"<b>{esc(gantt.goal_text(r))}</b>"
             body.append(figure(svg, f"s{k}", "tree schedule", caption, attrs, width=width, back="schedules"))
     if timed:
         scheduling = sum(float(r.get("time_s") or 0.0) for r in records)
@@ -239,22 +222,20 @@ def summary_html(
     problem: Problem | None = None,
 ) -> str:
     """The batch summary table, the drawing of every tree in the results and the Gantt chart of
-    each of ``schedules`` (``batch --schedule``).  With ``problem`` (the batch's FOON and kitchen)
-    the drawings show the kitchen items and an invalid tree's cycle; the validator's verdict
-    of each result is shown either way."""
+    each of ``schedules``; with ``problem`` the drawings show kitchen items and blocking cycles."""
     body = []
     if report is not None:
         body.append(
             f"<p>{report.done} new result(s), {report.skipped} already done, with {report.workers} worker(s)"
-            + (f"; results in {_esc(report.output)}" if report.output else "")
+            + (f"; results in {esc(report.output)}" if report.output else "")
             + "</p>"
         )
     timing = len(body)
     body.append(
-        '<table id="summary"><thead><tr>' + "".join(f"<th>{_esc(c)}</th>" for c in _COLUMNS) + "</tr></thead><tbody>"
+        '<table id="summary"><thead><tr>' + "".join(f"<th>{esc(c)}</th>" for c in _COLUMNS) + "</tr></thead><tbody>"
     )
     for row in rows:
-        body.append("<tr>" + "".join(f"<td>{_esc(_cell(row[c]))}</td>" for c in _COLUMNS) + "</tr>")
+        body.append("<tr>" + "".join(f"<td>{esc(_cell(row[c]))}</td>" for c in _COLUMNS) + "</tr>")
     body.append("</tbody></table>")
     started = time.perf_counter()
     records = report.records if report is not None else []
@@ -268,7 +249,7 @@ def summary_html(
         method = r.get("requested_method", r.get("method", "?"))
         marks = draw.record_marks(r, units, problem)
         svg = draw.svg_text(draw.build_graph(units, marks))
-        label = f"<b>{_esc(goal.get('label', '?'))}</b>: "
+        label = f"<b>{esc(goal.get('label', '?'))}</b>: "
         body.append(
             _tree_figure(
                 svg, f"r{k}", method, len(units), r.get("valid"), label, str(r.get("problem") or ""), "summary"

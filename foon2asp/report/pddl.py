@@ -1,28 +1,10 @@
 """A FOON problem as PDDL: a delete-free STRIPS domain and a problem.
 
-``foon2asp export pddl`` writes the part of the FOON relevant to the goal(s)
-(the units a tree for them can use: :meth:`Problem.units_for`) so that any
-classical planner solves exactly the problem foon2asp solves:
-
-* one predicate ``(have ?o)``; every FOON object of the part is a constant
-  ``o<id>`` (a comment table in both files says which object each is);
-* one action per functional unit, named ``u<id>-<motion>``
-  (:func:`foon2asp.foon.plans.action_name`, so a plan maps back to the
-  units): preconditions are the unit's *required* inputs (the utensil rule
-  applied), effects its *products*; nothing is ever deleted;
-* ``:init`` holds the kitchen items of the part, ``:goal`` every goal.
-
-A plan is a sequence of applicable actions, so its set of actions is a
-well-founded task tree, and a tree in executable order is a plan; an optimal
-plan repeats no action, so the fewest actions is the fewest units.  With
-``objective="success"`` each action costs its unit's integer weight
-round(-1000 ln p) (``:action-costs``), the weight ``--objective success``
-minimises; ``"inputs"`` costs the unit's number of input nodes; ``"cost"`` its
-motion's cost in hundredths (the problem's motion-cost table, ``--motion-cost``).
-
-Constraints that only remove units (``--forbid-motion``, ``--forbid-object``)
-are applied here as filters; general ``--rule``/``--constraint`` programs,
-``--require-*`` and ``--max-units`` cannot be written as STRIPS and are refused.
+The part of the FOON relevant to the goal(s) becomes one predicate ``(have ?o)``, a constant
+``o<id>`` per object and an action ``u<id>-<motion>`` per unit (preconditions its required
+inputs, effects its products); ``:init`` holds the kitchen items, ``:goal`` every goal.  An
+optimal plan is a fewest-units tree; other objectives become action costs.  Constraints that
+only remove units are applied as filters; any other constraint is refused.
 """
 
 from __future__ import annotations
@@ -87,8 +69,7 @@ def allowed(problem: Problem, u: int, spec: ConstraintSpec | None) -> bool:
 
 
 def exported_units(problem: Problem, goals: Iterable[int], spec: ConstraintSpec | None = None) -> list[int]:
-    """The units of the exported domain: those a tree for ``goals`` can use once the filters
-    of ``spec`` removed units (viable without the removed units, relevant to a goal)."""
+    """The units a tree for ``goals`` can use once the filters of ``spec`` removed units."""
     refuse_general(spec)
     keep = [u for u in range(len(problem.units)) if allowed(problem, u, spec)]
     _, unit_level = problem.derivation_levels(keep)  # fires from the kitchen without the removed units
@@ -111,7 +92,8 @@ def export(
     spec: ConstraintSpec | None = None,
     name: str = "foon",
 ) -> PddlTask:
-    """Domain and problem PDDL for making every goal of ``goals`` (see the module docstring)."""
+    """Domain and problem PDDL for making every goal of ``goals``; raises InputError for an
+    objective or constraint PDDL cannot state."""
     goals = tuple(dict.fromkeys(goals))
     if not goals:
         raise InputError("no goal to export")

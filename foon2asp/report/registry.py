@@ -1,11 +1,7 @@
 """The one registry of output formats, by kind of answer.
 
-A format renders one kind of answer -- ``trees`` (solve), ``compare``,
-``check``, ``reachable``, ``missing``, ``query``, ``summary`` (batch),
-``consolidate`` -- to
-text, or to bytes for a ``binary`` format (the PNG and PDF drawings).  Every
-command and the library look formats up here, so a new format is one
-registration.
+A format renders one kind of answer (``trees``, ``compare``, ``check``, ``schedule``, ...) to
+text, or to bytes for a ``binary`` format; commands and the library look formats up here.
 """
 
 from __future__ import annotations
@@ -15,7 +11,7 @@ from dataclasses import dataclass
 
 from foon2asp.errors import InputError
 
-Renderer = Callable[..., str] | Callable[..., bytes]
+Renderer = Callable[..., str | bytes]
 
 
 @dataclass(frozen=True)

@@ -50,21 +50,13 @@ def trees_units_json(problem: Problem, trees: list[TaskTree]) -> str:
     return dumps_trees([[problem.units[u] for u in t.units] for t in trees])
 
 
-def _drawing(fmt: str):
-    def render_drawing(problem: Problem, trees: list[TaskTree]) -> str | bytes:
-        out = draw.render(draw.trees_graph(problem, trees), fmt)
-        return out if fmt in draw.BINARY else out.decode("utf-8")
-
-    return render_drawing
-
-
-for _fmt, _what in (
-    ("dot", "Graphviz DOT source of the drawing"),
-    ("svg", "the drawing as SVG (needs Graphviz 'dot')"),
-    ("png", "the drawing as PNG (needs Graphviz 'dot')"),
-    ("pdf", "the drawing as PDF (needs Graphviz 'dot')"),
-):
-    register("trees", _fmt, _fmt, _what, binary=_fmt in draw.BINARY)(_drawing(_fmt))
+draw.register_pictures(
+    "trees",
+    lambda fmt, problem, trees: draw.render(draw.trees_graph(problem, trees), fmt),
+    "Graphviz DOT source of the drawing",
+    "the drawing",
+    "Graphviz 'dot'",
+)
 
 
 @register("trees", "jsonl", "jsonl", "JSON lines: one result per line, written as each goal is solved")
