@@ -1,12 +1,8 @@
 """Why a task tree is not valid: the first problem, walking back from the goal.
 
-The verdict is the independent validator's (:mod:`foon2asp.tree.validate`):
-a tree is valid iff every unit fires from the kitchen using only units of
-the tree and the goal is made.  When it is not, :func:`diagnose` names the
-first problem found walking back from the goal: a missing input (nothing in
-the tree makes it and it is not in the kitchen), or circular support, with
-the cycle as (object, unit) pairs -- object -> unit -> object ... back to the
-start.
+The verdict is :mod:`foon2asp.tree.validate`'s; :func:`diagnose` names a missing input
+(not in the kitchen, made by no unit of the tree) or circular support, the cycle as
+(object, unit) pairs.
 """
 
 from __future__ import annotations
@@ -16,7 +12,7 @@ from dataclasses import dataclass, field
 
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.treefiles import TreeFile
-from foon2asp.tree.validate import Validation, validate
+from foon2asp.tree.validate import Validation, circular_support, validate
 
 
 @dataclass
@@ -55,13 +51,8 @@ def describe_unit(problem: Problem, u: int, tree: TreeFile | None = None, ids: l
 def diagnose(
     problem: Problem, goal: int, units: list[int], validation: Validation, name: Callable[[int], str] | None = None
 ) -> Finding | None:
-    """The first problem of a tree that does not validate, walking back from the goal.
-
-    Every unit that cannot fire lacks a required input; each such input is
-    either made by no unit of the tree (a missing input) or only by units
-    that cannot fire either, and following those back must close a cycle.
-    ``name(u)`` words a unit in messages.
-    """
+    """The first problem of a tree that does not validate, walking back from the goal
+    (docs/proofs/preparation.md, "Diagnosis"); ``name(u)`` words a unit in messages."""
     if validation.valid:
         return None
     name = name or (lambda u: describe_unit(problem, u))
@@ -134,11 +125,8 @@ def _missing(problem: Problem, obj: int, needed_by: int | None, goal: int, name:
 
 
 def _cycle(problem: Problem, cycle: list[tuple[int, int]], name: Callable[[int], str]) -> Finding:
-    steps = []
-    for k, (o, u) in enumerate(cycle):
-        nxt = cycle[(k + 1) % len(cycle)][0]
-        steps.append(f"[{problem.objects[o]}] is made by {name(u)}, which needs [{problem.objects[nxt]}]")
-    return Finding("cycle", "circular support: " + "; ".join(steps), list(cycle))
+    words = circular_support([(problem.objects[o], u) for o, u in cycle], name)
+    return Finding("cycle", words, list(cycle))
 
 
 def check_units(

@@ -1,23 +1,16 @@
 """Lower bounds and gaps: how far an unproven answer may be from the optimum.
 
-The solver proves lower bounds on its cost vector while it searches (one value
-per priority level, highest first: :meth:`foon2asp.asp.control.Control.solve`);
-the landmarks of :mod:`foon2asp.methods.bounds` give another bound on the first
-level.  :func:`settle` writes the best of them onto a tree:
+:func:`settle` writes onto a tree the best of the solver's lower bounds (one per
+priority level, highest first) and the landmark bound on the first level:
 
-* ``bound``: ``{objective: value}`` for each level of the ranked objective, in the
-  units of the tree's ``cost``: a count for ``units``, ``inputs``, ``depth`` and
-  ``substitutions``, the summed motion cost for ``cost``, and for ``success`` the
-  greatest success product any tree can have (``exp(-L/1000)`` of the weight
-  bound ``L``; exact up to the rounding of the weights, :mod:`foon2asp.tree.weights`).
-  A lexicographic level's bound holds only once every level above it is closed
-  (its bound equals the answer's cost); until then it is the trivial bound (0, or a
-  success product of 1).
-* ``gap``: ``(U - L) / U`` on the solver's weights of the first objective (U the
-  answer's weight, L its bound; 0 when U is 0).
+* ``bound``: ``{objective: value}`` per level, in the units of the tree's ``cost`` (for
+  ``success`` the greatest success product any tree can have); a level below one not
+  yet closed gets the trivial bound (0, or a success product of 1);
+* ``gap``: ``(U - L) / U`` on the solver's weights of the first objective (0 when U is 0).
 
 A proven answer has ``bound`` equal to its cost and ``gap`` 0; an unproven answer whose
-bound meets its cost on every level is proven by it (status ``optimal``).
+bound meets its cost on every level becomes ``optimal`` (docs/proofs/preparation.md,
+"Bounds and gaps").
 """
 
 from __future__ import annotations
@@ -95,10 +88,10 @@ def settle(
     floor: int | None = None,
 ) -> TaskTree:
     """Set ``tree.bound`` and ``tree.gap`` from the solver's lower bound ``lower`` (per level
-    of ``names``, highest first; possibly shorter) and ``floor``, a lower bound on the
-    weight of the first objective from elsewhere (the landmarks); the best bound wins.
-    A proven answer gets its own cost; a search baseline's answer nothing; a ``feasible``
-    answer the bound meets on every level becomes ``optimal`` (``stats["proof"]``)."""
+    of ``names``, highest first; possibly shorter) and ``floor`` (a lower bound on the first
+    objective's weight, from the landmarks).  A proven answer gets its own cost, a search
+    baseline's nothing; a ``feasible`` answer the bound meets on every level becomes
+    ``optimal`` (``stats["proof"]``)."""
     shown = [n for n in names if n != HUMAN]
     if not shown or tree.status in ("found", "not-found", "unreachable", "infeasible"):
         return tree

@@ -1,13 +1,7 @@
 """The answers the commands give, as plain values the renderers of :mod:`foon2asp.report` print.
 
-A :class:`Report` is ``check``'s verdict on one tree read from a file (an
-:class:`AloneReport` when the tree is judged on its own, without a FOON), a
-:class:`Row` (or :class:`MealRow`) one goal of ``compare``, a
-:class:`BatchReport` what a batch did, a :class:`MissingResult` what
-``missing`` would add to the kitchen and a :class:`QueryResult` the models of
-``query``; a :class:`Consolidation` is what ``consolidate`` says about one goal
-of several candidate trees.  They are made in :mod:`foon2asp.analysis` and :mod:`foon2asp.batch`
-and live here, below both, so that rendering them needs neither.
+They are made in :mod:`foon2asp.analysis` and :mod:`foon2asp.batch` and live here, below
+both, so that rendering them needs neither.
 """
 
 from __future__ import annotations
@@ -20,6 +14,7 @@ from typing import Protocol
 import clingo
 
 from foon2asp.foon.model import FoonObject
+from foon2asp.foon.motioncost import as_number
 from foon2asp.foon.treefiles import TreeFile, TreeUnit
 from foon2asp.tree.diagnose import Finding
 from foon2asp.tree.tasktree import TaskTree
@@ -159,9 +154,8 @@ class MealRow:
             "depth": max(t.cost["depth"] or 0 for t in self.singles),
         }
         if all("cost" in t.cost for t in self.singles):
-            # exact: each cost has at most two decimals (foon2asp.foon.motioncost)
-            summed = sum((Decimal(str(t.cost["cost"])) for t in self.singles), Decimal(0))
-            total["cost"] = int(summed) if summed == summed.to_integral_value() else float(summed)
+            # exact: each cost has at most two decimals
+            total["cost"] = as_number(sum((Decimal(str(t.cost["cost"])) for t in self.singles), Decimal(0)))
         return total
 
 

@@ -41,12 +41,8 @@ def tree_json(problem: Problem, tree: TaskTree) -> dict:
 
 
 def json_list(records: list[dict], indent: int | None = 2) -> str:
-    """A JSON list with one record per line (``indent=None``: all on one line).
-
-    Each record is encoded by ``json.dumps`` without indentation, which uses
-    the C encoder; ``indent`` would switch the whole list to the much slower
-    pure-Python encoder.
-    """
+    """A JSON list with one record per line (``indent=None``: all on one line); each record
+    is encoded without indentation, by the C encoder."""
     if indent is None:
         return json.dumps(records)
     if not records:
@@ -60,8 +56,7 @@ def to_json(problem: Problem, trees: list[TaskTree], indent: int | None = 2) -> 
 
 def number(value: object) -> str:
     """A measure as every text output prints it: integers in full, other numbers to 4
-    significant digits (``0.02187``, ``1.016e-10``), ``-`` for none (the depth of a tree that
-    is not well-founded); JSON keeps the full values."""
+    significant digits, ``-`` for none."""
     if value is None:
         return "-"
     if isinstance(value, float):

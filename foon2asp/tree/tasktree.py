@@ -17,14 +17,11 @@ STATUSES = ("optimal", "ranked", "feasible", "unreachable", "infeasible", "unkno
 class TaskTree:
     """The answer for one goal (or one meal: several goals at once) by one method.
 
-    ``units`` are unit ids in executable order (empty when there is no tree).
-    ``status``: ``optimal`` | ``feasible`` | ``unreachable`` | ``infeasible`` (trees exist,
-    the user's constraints rule them all out) | ``unknown`` for ASP methods, ``found`` | ``not-found`` for the search baselines.
-    For a meal ``goals`` holds every goal (``goal`` is the first); for a
-    single goal ``goals`` is empty.  ``alternatives``: the further trees found
-    with this one (the K best trees, all optimal trees), best first; they are
-    not part of the tree's JSON (each is written as a tree of its own).
-    ``bound`` and ``gap`` say how far an unproven answer may be from the optimum.
+    ``units``: unit ids in executable order (empty: no tree).  ``status``: one of
+    :data:`STATUSES` (``infeasible``: the user's constraints rule out every tree;
+    ``found``/``not-found``: the search baselines).  ``goals``: every goal of a meal
+    (``goal`` the first), empty for one goal.  ``alternatives``: further trees found with
+    this one, best first, not part of its JSON.
     """
 
     goal: int
@@ -80,24 +77,17 @@ def goal_fields(goal: int | Iterable[int]) -> dict:
 
 
 def executable_order(problem: Problem, units: list[int] | set[int]) -> list[int]:
-    """``units`` sorted so each runs after the units that make its inputs.
-
-    Units that can never fire (their inputs rest on a cycle) go last, in id
-    order; callers that need validity use :mod:`foon2asp.tree.validate`.
-    """
+    """``units`` sorted so each runs after the units that make its inputs; units that can
+    never fire go last, in id order (validity is :mod:`foon2asp.tree.validate`'s)."""
     units = sorted(set(units))
     _, level = problem.derivation_levels(units)
     return sorted(units, key=lambda u: (level.get(u, math.inf), u))
 
 
 def measures(problem: Problem, goal: int | Iterable[int], units: list[int]) -> dict:
-    """Every measure of a tree: units, success product, input nodes, depth, and with a
-    motion-cost table (:attr:`Problem.motion_costs`) the summed cost of its motions (exact,
-    :func:`foon2asp.foon.motioncost.as_number`: 1.35, or 2 when whole).
-
-    For a meal (several goals) the depth is the number of rounds until every
-    goal is had: the greatest depth of its goals (None when one is not made).
-    """
+    """Every measure of a tree: units, success product, input nodes, depth (of a meal: the
+    greatest of its goals'; None when one is not made) and, with a motion-cost table
+    (:attr:`Problem.motion_costs`), the exact summed cost of its motions."""
     obj_level, _ = problem.derivation_levels(list(units))
     success = 1.0
     for u in units:

@@ -1,14 +1,8 @@
 """A cheap, valid tree for any derivable goal: an upper bound, not an optimum.
 
-:func:`cheapest_sets` runs Knuth's generalisation of Dijkstra's algorithm over
-sets of units (each object's cheapest well-founded tree, shared units counted
-once); :func:`cheapest_tree` takes the union of the goals' sets and makes it
-irredundant: units whose removal keeps every goal derivable are dropped,
-heaviest first.  A unit weighs what it adds to the objective
-(:data:`foon2asp.tree.weights.UNIT_WEIGHTS`), ties going to fewer units
-(:func:`foon2asp.tree.weights.lexicographic`): the order the solver ranks trees
-in.  The bounds of :mod:`foon2asp.methods.bounds` start from the same sets.  The
-solver uses it when it has no tree of its own within the time limit.
+:func:`cheapest_sets` gives each object a cheapest well-founded set of units;
+:func:`cheapest_tree` joins the goals' sets and drops redundant units, heaviest first
+(docs/proofs/preparation.md, "The cheapest-set tree").
 """
 
 from __future__ import annotations
@@ -45,16 +39,10 @@ def cheapest_tree(
 def cheapest_sets(
     problem: Problem, w: Sequence[float], units: Iterable[int] | None = None, goals: Iterable[int] = ()
 ) -> dict[int, frozenset[int]]:
-    """Object -> its cheapest-set tree; kitchen items -> the empty set.
-
-    Knuth's generalisation of Dijkstra's algorithm over sets of units: a unit whose
-    required inputs are settled offers the union of their sets plus itself to each
-    of its products, priced by the total weight ``w`` of that set (shared units count
-    once); an object is settled by the cheapest offer (ties: fewer units, then unit
-    and object ids), so every set is a well-founded tree for its object and the
-    result depends only on the units given.  With ``goals`` the search stops once
-    all of them are settled.
-    """
+    """Object -> its cheapest-set tree (kitchen items: the empty set), by Knuth's
+    generalisation of Dijkstra's algorithm over sets of units priced by their total weight
+    ``w`` (ties: fewer units, then unit and object ids).  With ``goals`` the search stops
+    once all of them are settled."""
     pool = range(len(problem.units)) if units is None else units
     kitchen = problem.kitchen
     settled: dict[int, frozenset[int]] = Implied({}, kitchen, frozenset())

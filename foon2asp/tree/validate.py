@@ -1,18 +1,14 @@
 """An independent validator for task trees.
 
-It does not use the encodings nor :meth:`Problem.derivation_levels`: it
-replays the units on plain objects, straight from the FOON, the kitchen and
-the utensil rule, so it can be trusted to judge every answer.
-
-:func:`judge_alone` judges a tree file on its own (a list of units, no FOON):
-the kitchen is its leaves (:mod:`foon2asp.foon.leaves`), the goal the products
-of its last unit; it says whether the units fire in the order given and as a
-set, and explains the first unit that cannot (the object it waits for and the
-later unit that makes it) and any cycle.
+It replays the units on plain objects, straight from the FOON, the kitchen and the
+utensil rule, without the encodings or the integer problem's fixpoint
+(docs/proofs/preparation.md, "The independent validator").  :func:`judge_alone` judges
+a list of units without a FOON.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
 from foon2asp.foon.leaves import leaves
@@ -37,33 +33,50 @@ def _required(problem: Problem, u: int) -> list[FoonObject]:
     return [o for o, f in zip(unit.inputs, flags) if f]
 
 
-def _products(problem: Problem, u: int) -> list[FoonObject]:
-    return product_outputs(problem.units[u])
-
-
-def validate(problem: Problem, goal: FoonObject | int, units: list[int]) -> Validation:
-    """Is ``goal`` derivable from the kitchen with exactly these ``units``?
-
-    Valid means: every unit id exists, every unit can fire (all its required
-    inputs are kitchen items or made by units that fired before) and the goal
-    is had at the end.  The set is judged, not the order given.
-    """
-    goal_obj = problem.objects[goal] if isinstance(goal, int) else goal
-    for u in units:
-        if not (isinstance(u, int) and 0 <= u < len(problem.units)):
-            return Validation(False, f"unit {u!r} is not in the FOON")
-    have = set(problem.kitchen_items)
-    pending = list(dict.fromkeys(units))
+def _fire_all(
+    todo: list[int], need: Callable[[int], list[FoonObject]], made: Callable[[int], list[FoonObject]], have: set
+) -> tuple[list[int], list[int]]:
+    """Fire the units of ``todo`` whose needs are in ``have`` (which grows), pass after pass,
+    until none can: ``(order fired, units left)``."""
+    pending = list(todo)
     order: list[int] = []
     progress = True
     while progress:
         progress = False
         for u in list(pending):
-            if all(o in have for o in _required(problem, u)):
+            if all(o in have for o in need(u)):
                 pending.remove(u)
                 order.append(u)
-                have.update(_products(problem, u))
+                have.update(made(u))
                 progress = True
+    return order, pending
+
+
+def circular_support(cycle: Iterable[tuple[object, int]], name: Callable[[int], str]) -> str:
+    """``circular support: [A] is made by UNIT, which needs [B]; ...`` for (object, unit) pairs."""
+    pairs = list(cycle)
+    steps = []
+    for k, (o, u) in enumerate(pairs):
+        nxt = pairs[(k + 1) % len(pairs)][0]
+        steps.append(f"[{o}] is made by {name(u)}, which needs [{nxt}]")
+    return "circular support: " + "; ".join(steps)
+
+
+def validate(problem: Problem, goal: FoonObject | int, units: list[int]) -> Validation:
+    """Is ``goal`` derivable from the kitchen with exactly these ``units``: every unit id
+    exists, every unit fires (its required inputs had) and the goal is had at the end?
+    The set is judged, not the order given."""
+    goal_obj = problem.objects[goal] if isinstance(goal, int) else goal
+    for u in units:
+        if not (isinstance(u, int) and 0 <= u < len(problem.units)):
+            return Validation(False, f"unit {u!r} is not in the FOON")
+    have = set(problem.kitchen_items)
+    order, pending = _fire_all(
+        list(dict.fromkeys(units)),
+        lambda u: _required(problem, u),
+        lambda u: product_outputs(problem.units[u]),
+        have,
+    )
     if pending:
         u = pending[0]
         missing = [o for o in _required(problem, u) if o not in have]
@@ -79,8 +92,8 @@ def validate(problem: Problem, goal: FoonObject | int, units: list[int]) -> Vali
 
 
 def derivable_objects(problem: Problem) -> set[FoonObject]:
-    """Every object derivable from the kitchen with any units of the FOON (the least fixpoint,
-    replayed here as :func:`validate` does, on plain objects): a goal outside it has no tree."""
+    """Every object derivable from the kitchen with any units of the FOON, replayed on plain
+    objects: a goal outside it has no tree."""
     have = set(problem.kitchen_items)
     waiting: dict[FoonObject, list[int]] = {}
     lacking: list[int] = []
@@ -94,7 +107,7 @@ def derivable_objects(problem: Problem) -> set[FoonObject]:
             ready.append(u)
     while ready:
         u = ready.pop()
-        for o in _products(problem, u):
+        for o in product_outputs(problem.units[u]):
             if o in have:
                 continue
             have.add(o)
@@ -113,7 +126,7 @@ def check_order(problem: Problem, goal: FoonObject | int, units: list[int]) -> s
         for o in _required(problem, u):
             if o not in have:
                 return f"step {step} (unit {u}) needs {o}, which is not had yet"
-        have.update(_products(problem, u))
+        have.update(product_outputs(problem.units[u]))
     return None if goal_obj in have else f"goal {goal_obj} is not made"
 
 
@@ -169,15 +182,11 @@ def _name(step: int, unit: Unit, v: AloneVerdict | None = None) -> str:
     return f"step {v.step(step) if v is not None else step} ({unit.motion})"
 
 
-def _made_objects(unit: Unit) -> list[FoonObject]:
-    return product_outputs(unit)
-
-
 def last_products(units: list[Unit]) -> tuple[FoonObject, ...]:
     """The products of the last unit that makes any (generated trees list their units in order)."""
     for unit in reversed(units):
-        if _made_objects(unit):
-            return tuple(dict.fromkeys(_made_objects(unit)))
+        if product_outputs(unit):
+            return tuple(dict.fromkeys(product_outputs(unit)))
     return ()
 
 
@@ -191,21 +200,18 @@ def judge_alone(
 ) -> AloneVerdict:
     """Judge a tree file on its own: ``units`` in file order, no FOON.
 
-    The kitchen is the units' leaves (:func:`foon2asp.foon.leaves.leaves`) unless
-    given; the goal is the products of the last unit unless given (one object or
-    several; a list of units that makes nothing is not valid).  The units are replayed
-    on plain objects: in the given order (the first unit that cannot fire, the object
-    it waits for and the later unit that makes it), then as a set (a fixpoint, as
-    :func:`validate` does: a unit that never fires is explained by an object no unit
-    makes or by the cycle it rests on).  ``numbers``: each unit's number in its file, for
-    the messages (:meth:`AloneVerdict.step`); the verdict's fields hold positions.
+    The kitchen defaults to the units' leaves, the goal to the products of the last unit
+    (one object or several).  The units are replayed in the given order, then as a set;
+    a unit that never fires is explained by an object no unit makes or by a cycle.
+    ``numbers``: each unit's number in its file, for the messages; the verdict's fields
+    hold positions.
     """
     start = list(kitchen) if kitchen is not None else leaves(units)
     goals = last_products(units) if goal is None else (goal if isinstance(goal, tuple) else (goal,))
     need = [[o for o, f in zip(u.inputs, required_flags(u, utensils, utensil_rule)) if f] for u in units]
     makers: dict[FoonObject, list[int]] = {}
     for k, u in enumerate(units):
-        for o in _made_objects(u):
+        for o in product_outputs(u):
             makers.setdefault(o, []).append(k)
     verdict = AloneVerdict(False, False, goals, start, numbers=list(numbers or []))
 
@@ -217,21 +223,13 @@ def judge_alone(
             later = next((m for m in makers.get(lacking[0], []) if m > k), None)
             verdict.blocked = Blocked(k + 1, u, lacking[0], None if later is None else later + 1)
             break
-        have.update(_made_objects(u))
+        have.update(product_outputs(u))
     verdict.in_order = bool(goals) and verdict.blocked is None and all(g in have for g in goals)
 
     # as a set
     have = set(start)
-    pending = list(range(len(units)))
-    progress = True
-    while progress:
-        progress = False
-        for k in list(pending):
-            if all(o in have for o in need[k]):
-                pending.remove(k)
-                verdict.order.append(k + 1)
-                have.update(_made_objects(units[k]))
-                progress = True
+    order, pending = _fire_all(list(range(len(units))), need.__getitem__, lambda k: product_outputs(units[k]), have)
+    verdict.order = [k + 1 for k in order]
     verdict.stuck = [k + 1 for k in pending]
     verdict.unmade = [g for g in goals if g not in have]
     verdict.valid = bool(goals) and not pending and not verdict.unmade
@@ -248,9 +246,7 @@ def _explain_stuck(
     k: int,
     verdict: AloneVerdict,
 ) -> None:
-    """Walk back from stuck unit ``k``: a stuck unit waits for an object whose makers are
-    all stuck (else it would be had); the walk ends at an object no unit makes or closes
-    a cycle."""
+    """Walk back from stuck unit ``k`` to an object no unit makes, or around a cycle."""
     path: list[tuple[FoonObject, int]] = []
     seen: dict[FoonObject, int] = {}
     while True:
@@ -271,11 +267,7 @@ def _alone_problem(units: list[Unit], v: AloneVerdict) -> str | None:
     if not v.goals:
         return "no goal: no unit makes an object"
     if v.cycle:
-        steps = []
-        for i, (o, step) in enumerate(v.cycle):
-            nxt = v.cycle[(i + 1) % len(v.cycle)][0]
-            steps.append(f"[{o}] is made by {_name(step, units[step - 1], v)}, which needs [{nxt}]")
-        return "circular support: " + "; ".join(steps)
+        return circular_support(v.cycle, lambda step: _name(step, units[step - 1], v))
     if v.missing is not None and v.needed_by is not None:
         return (
             f"missing input: {v.missing} is needed by {_name(v.needed_by, units[v.needed_by - 1], v)} "

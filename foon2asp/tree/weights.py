@@ -1,13 +1,9 @@
 """What a unit weighs under each objective that sums weights of the used units.
 
-The one table (:data:`UNIT_WEIGHTS`): ``units`` counts a unit once, ``success``
-weighs it ``round(-SCALE ln p)`` (:func:`neglog_weight`; the sum of these over a
-tree is what the solver minimises, so the least sum is the greatest product of
-success rates, up to the rounding), ``inputs`` by its input nodes as the FOON lists
-them.  The solver's facts (:mod:`foon2asp.asp.facts`), the objectives
-(:mod:`foon2asp.asp.objectives`), the cheapest-first trees
-(:mod:`foon2asp.tree.upper`), the bounds (:mod:`foon2asp.methods.bounds`) and the
-goal runner's answers without the solver (:mod:`foon2asp.methods.runner`) all read it.
+The one table (:data:`UNIT_WEIGHTS`) the facts, objectives, bounds and cheapest trees
+all read: ``units`` counts a unit once, ``success`` weighs it ``round(-SCALE ln p)``
+(:func:`neglog_weight`), ``inputs`` by its input nodes (docs/proofs/preparation.md,
+"Weights").
 """
 
 from __future__ import annotations
@@ -61,7 +57,7 @@ def total(problem: Problem, objective: str, units: Iterable[int]) -> int:
 
 def lexicographic(problem: Problem, objective: str) -> list[int]:
     """One weight per unit whose sum orders trees by ``objective``, then by the number of
-    units: ``w(u) * M + 1`` with ``M`` greater than the number of units (1 for ``units``)."""
+    units: ``w(u) * M + 1`` with ``M`` the number of units plus one (1 for ``units``)."""
     if objective == "units":
         return [1] * len(problem.units)
     weight = UNIT_WEIGHTS[objective]
