@@ -45,12 +45,15 @@ def cycle_lines(
     return lines
 
 
+def _tree_head(tree: TreeFile) -> str:
+    head = f"Tree: {tree.path}" + (f" (line {tree.line})" if tree.line and tree.line > 1 else "")
+    return head + (f"  method {tree.method}" if tree.method else "")
+
+
 def report_text(problem: Problem, report: Report) -> str:
     """The human-readable report of one tree."""
     tree, ids = report.tree, report.ids
-    head = f"Tree: {tree.path}" + (f" (line {tree.line})" if tree.line and tree.line > 1 else "")
-    if tree.method:
-        head += f"  method {tree.method}"
+    head = _tree_head(tree)
     source = f"  ({report.goal_source})" if report.goal_source else ""
     if report.goals:
         lines = [head, f"Meal of {len(report.goals)} goals{source}:"]
@@ -166,9 +169,7 @@ def assumes_leaves(report: AloneReport) -> bool:
 def alone_text(report: AloneReport) -> str:
     """The human-readable verdict on a tree judged on its own."""
     tree, v = report.tree, report.verdict
-    head = f"Tree: {tree.path}" + (f" (line {tree.line})" if tree.line and tree.line > 1 else "")
-    if tree.method:
-        head += f"  method {tree.method}"
+    head = _tree_head(tree)
     lines = [head, f"Judged on its own: kitchen = {report.kitchen_source} ({len(v.kitchen)} objects)"]
     if assumes_leaves(report):
         lines.append("Assumed in the kitchen (its leaves): " + ("; ".join(map(str, v.kitchen)) or "-"))

@@ -195,6 +195,11 @@ def cycle_marks(problem: Problem, finding: Finding | None, position: dict[int, i
     }
 
 
+def kitchen_items(problem: Problem, units: list[Unit]) -> frozenset[FoonObject]:
+    """The inputs of ``units`` that are in the problem's kitchen."""
+    return frozenset(o for u in units for o in u.inputs if problem.foon.object_ids.get(o) in problem.kitchen)
+
+
 def tree_marks(problem: Problem, tree: TaskTree, finding: Finding | None = None, judge: bool = True) -> Marks:
     """Marks of a solved tree: goal, kitchen items, human steps, and (``judge``) its blocking cycle."""
     position = {u: k for k, u in enumerate(tree.units)}
@@ -208,8 +213,6 @@ def tree_marks(problem: Problem, tree: TaskTree, finding: Finding | None = None,
     elif finding is not None:
         valid = False
     human = frozenset(position[u] for u in tree.extra.get("human_steps", []) if u in position)
-    used = {o for u in tree.units for o in problem.units[u].inputs}
-    kitchen = frozenset(o for o in used if problem.foon.object_ids.get(o) in problem.kitchen)
     title = f"{problem.objects[tree.goal]} -- {tree.method}, {tree.status}, {len(tree.units)} units"
     if not valid:
         title += ", INVALID"
@@ -217,7 +220,7 @@ def tree_marks(problem: Problem, tree: TaskTree, finding: Finding | None = None,
         title=title,
         goal=problem.objects[tree.goal],
         goals=frozenset(problem.objects[g] for g in tree.meal),
-        kitchen=kitchen,
+        kitchen=kitchen_items(problem, [problem.units[u] for u in tree.units]),
         human=human,
         note=finding.message if finding is not None else "",
         **cycle_marks(problem, finding, position),
@@ -263,7 +266,7 @@ def record_marks(record: dict, units: list[Unit], problem: Problem | None = None
     if problem is None:
         return marks
     oid = problem.foon.object_ids
-    marks.kitchen = frozenset(o for u in units for o in u.inputs if oid.get(o) in problem.kitchen)
+    marks.kitchen = kitchen_items(problem, units)
     index = {u.key(): i for i, u in enumerate(problem.units)}
     ids = [index.get(u.key()) for u in units]
     if valid is False and None not in ids:
@@ -302,12 +305,11 @@ def tree_file_marks(tree: TreeFile, problem: Problem | None = None, report: Repo
         return Marks(title=f"{top if top else tree.path} -- {len(units)} units", goal=top)
     goal = problem.objects[report.meal[0]]
     position = {u: k for k, u in enumerate(report.ids) if u is not None}
-    kitchen = frozenset(o for u in units for o in u.inputs if problem.foon.object_ids.get(o) in problem.kitchen)
     verdict = "valid" if report.valid else "INVALID"
     return Marks(
         title=f"{goal} -- {len(units)} units, {verdict}",
         goal=goal,
-        kitchen=kitchen,
+        kitchen=kitchen_items(problem, units),
         note=report.finding.message if report.finding is not None else "",
         **cycle_marks(problem, report.finding, position),
     )
