@@ -46,10 +46,7 @@ def assert_cycle(problem, finding, units):
 
 
 def test_cycle_named():
-    p = build(
-        [("pour", ["x", "k"], ["g"]), ("fold", ["g"], ["x"]), ("cut", ["k"], ["y"])],
-        kitchen=["k"],
-    )
+    p = build([("pour", ["x", "k"], ["g"]), ("fold", ["g"], ["x"]), ("cut", ["k"], ["y"])], kitchen=["k"])
     g = goal_id(p, "g")
     validation, finding = check_units(p, g, [0, 1, 2])
     assert not validation.valid
@@ -87,10 +84,7 @@ def test_valid_has_no_finding():
 
 
 def test_extra_unit_on_a_cycle_is_invalid_even_if_goal_made():
-    p = build(
-        [("pour", ["k"], ["g"]), ("a", ["y"], ["x"]), ("b", ["x"], ["y"])],
-        kitchen=["k"],
-    )
+    p = build([("pour", ["k"], ["g"]), ("a", ["y"], ["x"]), ("b", ["x"], ["y"])], kitchen=["k"])
     validation, finding = check_units(p, goal_id(p, "g"), [0, 1, 2])
     assert not validation.valid
     assert_cycle(p, finding, [0, 1, 2])

@@ -27,12 +27,7 @@ def cli(*args):
 def trap():
     """g: the greedy choice ('pour', likely and short) rests on a cycle; 'chop' works."""
     return build(
-        [
-            ("pour", ["x"], ["g"]),
-            ("fold", ["g", "k"], ["x"]),
-            ("chop", ["k", "a"], ["g"]),
-            ("cut", ["k"], ["a"]),
-        ],
+        [("pour", ["x"], ["g"]), ("fold", ["g", "k"], ["x"]), ("chop", ["k", "a"], ["g"]), ("cut", ["k"], ["a"])],
         kitchen=["k"],
         rates={"pour": 0.9, "fold": 0.9, "chop": 0.1, "cut": 0.5},
     )

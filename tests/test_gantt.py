@@ -20,10 +20,7 @@ needs_dot = pytest.mark.skipif(shutil.which("neato") is None, reason="Graphviz i
 
 @pytest.fixture
 def record():
-    problem = build(
-        [("cut <&>", ["k"], ["a"]), ("cut <&>", ["k"], ["b"]), ("mix", ["a", "b"], ["g"])],
-        ["k"],
-    )
+    problem = build([("cut <&>", ["k"], ["a"]), ("cut <&>", ["k"], ["b"]), ("mix", ["a", "b"], ["g"])], ["k"])
     spec = ScheduleSpec((("arm", 1), ("human", 1)), Durations({"cut <&>": 2000, "mix": 1000}))
     tree = TaskTree(
         goal=goal_id(problem, "g"), method="given", status="optimal", units=executable_order(problem, [0, 1, 2])
@@ -66,18 +63,9 @@ def test_a_schedule_without_units_still_draws(record):
 @pytest.fixture
 def short_units():
     """A schedule with units far shorter than the others: too narrow for their labels."""
-    problem = build(
-        [
-            ("cut", ["k"], ["a"]),
-            ("sprinkle", ["a"], ["b"]),
-            ("stir", ["b"], ["c"]),
-            ("pour", ["c"], ["d"]),
-            ("mix", ["d", "k"], ["g"]),
-            ("chop", ["k"], ["e"]),
-            ("fold", ["e", "g"], ["h"]),
-        ],
-        ["k"],
-    )
+    chain = [("cut", ["k"], ["a"]), ("sprinkle", ["a"], ["b"]), ("stir", ["b"], ["c"]), ("pour", ["c"], ["d"])]
+    rest = [("mix", ["d", "k"], ["g"]), ("chop", ["k"], ["e"]), ("fold", ["e", "g"], ["h"])]
+    problem = build(chain + rest, ["k"])
     durations = {"cut": 8000, "sprinkle": 200, "stir": 300, "pour": 250, "mix": 6000, "chop": 100, "fold": 5000}
     spec = ScheduleSpec((("arm", 1), ("human", 1)), Durations(durations))
     units = executable_order(problem, list(range(7)))

@@ -181,18 +181,9 @@ def test_missing_expected_answers_on_small():
 
 def blocked():
     """g from a; a from b or c; b only from a; c from a or e; e only from c: nothing can only be brought in."""
-    return build(
-        [
-            ("m1", ["a", "k"], ["g"]),
-            ("m2", ["b"], ["a"]),
-            ("m3", ["c"], ["a"]),
-            ("m4", ["a"], ["b"]),
-            ("m5", ["a"], ["c"]),
-            ("m6", ["e"], ["c"]),
-            ("m7", ["c"], ["e"]),
-        ],
-        ["k"],
-    )
+    to_g = [("m1", ["a", "k"], ["g"]), ("m2", ["b"], ["a"]), ("m3", ["c"], ["a"])]
+    cycles = [("m4", ["a"], ["b"]), ("m5", ["a"], ["c"]), ("m6", ["e"], ["c"]), ("m7", ["c"], ["e"])]
+    return build(to_g + cycles, ["k"])
 
 
 def test_missing_names_the_blocking_cycle():
@@ -245,10 +236,7 @@ def test_missing_respects_constraints():
 
 @pytest.mark.parametrize(
     "label, expected",
-    [
-        ("whipped cream", None),
-        ("fried rice", {("bottle", ("water",)), ("packet", ("carrot", "corn", "green pea"))}),
-    ],
+    [("whipped cream", None), ("fried rice", {("bottle", ("water",)), ("packet", ("carrot", "corn", "green pea"))})],
 )
 def test_missing_on_shared(shared_problem, label, expected):
     data, problem = shared_problem

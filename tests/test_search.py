@@ -31,14 +31,7 @@ def test_registered():
 
 def test_ids_prefers_shallow_tree_over_foon_order():
     # unit 0 (first in FOON order) needs a depth-2 chain; unit 1 needs a kitchen item
-    p = build(
-        [
-            ("mix", ["a"], ["g"]),
-            ("cook", ["k"], ["g"]),
-            ("cut", ["k"], ["a"]),
-        ],
-        kitchen=["k"],
-    )
+    p = build([("mix", ["a"], ["g"]), ("cook", ["k"], ["g"]), ("cut", ["k"], ["a"])], kitchen=["k"])
     tree = run(p, "ids", goal_id(p, "g"))
     assert tree.status == "found"
     assert tree.units == [1]
@@ -59,13 +52,7 @@ def test_ids_takes_first_producer_in_foon_order_at_same_depth():
 def test_ids_order_is_executable_and_units_unique():
     # g <- u0(a, b); a <- u1(c); b <- u2(c); c <- u3(k): c is shared
     p = build(
-        [
-            ("join", ["a", "b"], ["g"]),
-            ("x", ["c"], ["a"]),
-            ("y", ["c"], ["b"]),
-            ("z", ["k"], ["c"]),
-        ],
-        kitchen=["k"],
+        [("join", ["a", "b"], ["g"]), ("x", ["c"], ["a"]), ("y", ["c"], ["b"]), ("z", ["k"], ["c"])], kitchen=["k"]
     )
     g = goal_id(p, "g")
     tree = run(p, "ids", g)
@@ -188,11 +175,7 @@ def test_gbfs_not_found_when_an_object_has_no_producer():
 def test_gbfs_does_not_check_cycles():
     # the greedy choice for g (fast, few inputs) needs x, which only g makes
     p = build(
-        [
-            ("pour", ["x"], ["g"]),
-            ("fold", ["g", "k"], ["x"]),
-            ("chop", ["k", "l", "m"], ["g"]),
-        ],
+        [("pour", ["x"], ["g"]), ("fold", ["g", "k"], ["x"]), ("chop", ["k", "l", "m"], ["g"])],
         kitchen=["k", "l", "m"],
         rates={"pour": 0.9, "fold": 0.9, "chop": 0.1},
     )
@@ -208,10 +191,7 @@ def test_gbfs_does_not_check_cycles():
 
 def test_gbfs_order_is_reverse_selection_order():
     # selection order: u0 (for g), then u1 (for a), then u2 (for b): written reversed
-    p = build(
-        [("join", ["a", "b"], ["g"]), ("x", ["k"], ["a"]), ("y", ["a"], ["b"])],
-        kitchen=["k"],
-    )
+    p = build([("join", ["a", "b"], ["g"]), ("x", ["k"], ["a"]), ("y", ["a"], ["b"])], kitchen=["k"])
     tree = gbfs(p, goal_id(p, "g"), h1, "gbfs-h1")
     assert tree.units == [2, 1, 0]
     # kept as is although u2 needs a, which u1 makes later in that order
