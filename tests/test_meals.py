@@ -155,8 +155,7 @@ def test_batch_runner_per_goal_grounding_takes_meals(demo_problem):
 
 
 @pytest.mark.parametrize(
-    "pair,together,apart",
-    [(("shrimp mango salad", "vinaigrette"), 42, 51), (("carrot salad", "coleslaw"), 33, 37)],
+    "pair,together,apart", [(("shrimp mango salad", "vinaigrette"), 42, 51), (("carrot salad", "coleslaw"), 33, 37)]
 )
 def test_shared_foon_pairs(shared_problem, pair, together, apart):
     data, p = shared_problem

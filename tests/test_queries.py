@@ -130,19 +130,11 @@ SMALL = {
         "dough",
     ),
     # b can be made two ways, one needs only a missing item, the other two
-    "choice": (
-        [("m", ["x"], ["b"]), ("m", ["y", "z"], ["b"]), ("m", ["b", "a"], ["g"]), ("m", ["w"], ["a"])],
-        [],
-        "g",
-    ),
+    "choice": ([("m", ["x"], ["b"]), ("m", ["y", "z"], ["b"]), ("m", ["b", "a"], ["g"]), ("m", ["w"], ["a"])], [], "g"),
     # reachable already: nothing is missing
     "reachable": ([("m", ["a"], ["b"]), ("n", ["b"], ["c"])], ["a"], "c"),
     # a cycle with an escape: e is made from c or from f; f only from e
-    "loop": (
-        [("m", ["e", "k"], ["g"]), ("m", ["c"], ["e"]), ("m", ["f"], ["e"]), ("m", ["e"], ["f"])],
-        ["k"],
-        "g",
-    ),
+    "loop": ([("m", ["e", "k"], ["g"]), ("m", ["c"], ["e"]), ("m", ["f"], ["e"]), ("m", ["e"], ["f"])], ["k"], "g"),
 }
 
 

@@ -86,8 +86,7 @@ def infer_goal(problem: Problem, tree: TreeFile, goal_objects: list[FoonObject])
     if 1 < len(tops) <= 10:
         listing = "; it makes " + " | ".join(str(o) for o in tops) + " without using them"
     raise InputError(
-        f"cannot tell which object is the goal of this tree{hint}{listing}; use --goal TEXT or --goals FILE",
-        tree.path,
+        f"cannot tell which object is the goal of this tree{hint}{listing}; use --goal TEXT or --goals FILE", tree.path
     )
 
 

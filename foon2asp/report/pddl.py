@@ -170,10 +170,5 @@ def export(
         prob.append("  (:metric minimize (total-cost))")
     prob.append(")")
     return PddlTask(
-        "\n".join(dom) + "\n",
-        "\n".join(prob) + "\n",
-        actions,
-        {c: o for o, c in const.items()},
-        goals,
-        objective,
+        "\n".join(dom) + "\n", "\n".join(prob) + "\n", actions, {c: o for o, c in const.items()}, goals, objective
     )
