@@ -6,6 +6,7 @@ import clingo
 import pytest
 
 from foon2asp.asp.facts import facts, neglog_weight, q
+from foon2asp.asp.predicates import FACTS
 from foon2asp.asp.session import Session
 from helpers import build, obj
 
@@ -19,25 +20,6 @@ NASTY = [
     "% comment",
     "unicode crème brûlée",
 ]
-
-VOCABULARY = {
-    ("unit", 1),
-    ("motion", 2),
-    ("success", 2),
-    ("neglog", 2),
-    ("input", 2),
-    ("required", 2),
-    ("output", 2),
-    ("product", 2),
-    ("object", 1),
-    ("label", 2),
-    ("state", 2),
-    ("ingredient", 2),
-    ("container", 2),
-    ("kitchen", 1),
-    ("goal_node", 2),
-    ("goal", 1),
-}
 
 
 def nasty_problem():
@@ -65,7 +47,7 @@ def test_labels_stay_data():
     text = facts(problem, goal_nodes=[gid], goal=gid)
     atoms = ground_atoms(text)
     signatures = {(a.name, len(a.arguments)) for a in atoms}
-    assert signatures <= VOCABULARY
+    assert signatures <= FACTS
     labels = {a.arguments[1].string for a in atoms if a.name == "label"}
     motions = {a.arguments[1].string for a in atoms if a.name == "motion"}
     expected = {o.label for o in problem.objects}

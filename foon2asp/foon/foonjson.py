@@ -10,21 +10,16 @@
        "motion_node": {"motion_id": 54, "motion_label": "pour", "start_time": "Assumed", "end_time": "Assumed"},
        "output_nodes": [...]}, ...]}
 
-The ingredients of a container are the state ``contains`` plus the list
-``ingredients``; the container of an object is the state ``in`` with
-``relative_object``; any other relation (``on``, ``with``, ...) is a state
-with ``relative_object`` (kept here as the state ``"on [plate]"``).
-
-:func:`parse_json` also reads the lab's units in foon2asp's shape -- a list
-of ``{motion, inputs, outputs}`` whose objects are ``{label, states,
-ingredients, container}``, or ``solve --format json`` results holding such
-units -- so every JSON a tool here writes can serve as a FOON.
+The ingredients are the state ``contains`` plus the list ``ingredients``; the container is
+the state ``in`` with ``relative_object``; another relation is kept as the state ``"on
+[plate]"``.  :func:`parse_json` also reads foon2asp's ``{motion, inputs, outputs}`` units
+and ``solve --format json`` results, so every JSON written here can serve as a FOON.
 """
 
 from __future__ import annotations
 
 import json
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Protocol
 
@@ -175,14 +170,24 @@ def _read_official(data: dict, path: str, foon: Foon) -> Foon:
         _need(bool(label), "empty motion label", path, where)
         if str(motion.get("motion_id", "")).strip().lstrip("-").isdigit():
             foon.ids["M"].setdefault(label, int(motion["motion_id"]))
-        sides = []
-        for side in ("input_nodes", "output_nodes"):
-            nodes = fu.get(side)
-            _need(isinstance(nodes, list), f"no '{side}' list", path, where)
-            sides.append(tuple(_read_node(n, path, where, foon) for n in nodes))
+        sides = _sides(fu, ("input_nodes", "output_nodes"), lambda n, p, w: _read_node(n, p, w, foon), path, where)
         _need(bool(sides[0]), "a functional unit without input nodes", path, where)
         foon.add_unit(Unit(label, sides[0], sides[1]), (path, k))
     return foon
+
+
+def _sides(
+    unit: dict, keys: tuple[str, str], read: Callable[[object, str, str], FoonObject], path: str, where: str
+) -> list[tuple[FoonObject, ...]]:
+    """The objects of the two lists ``keys`` of ``unit`` (inputs, outputs), each read by
+    ``read(value, path, where)``."""
+    sides = []
+    for side in keys:
+        items = unit.get(side)
+        _need(isinstance(items, list), f"no '{side}' list", path, where)
+        assert isinstance(items, list)
+        sides.append(tuple(read(o, path, where) for o in items))
+    return sides
 
 
 def _lab_object(value: object, path: str, where: str) -> FoonObject:
@@ -242,11 +247,7 @@ def parse_json(text: str, path: str = "<string>", foon: Foon | None = None) -> F
     for k, u in enumerate(units, 1):
         where = f"unit {k}"
         _need(isinstance(u, dict) and isinstance(u.get("motion"), str), "no 'motion' string", path, where)
-        sides = []
-        for side in ("inputs", "outputs"):
-            items = u.get(side)
-            _need(isinstance(items, list), f"no '{side}' list", path, where)
-            sides.append(tuple(_lab_object(o, path, where) for o in items))
+        sides = _sides(u, ("inputs", "outputs"), _lab_object, path, where)
         _need(bool(sides[0]), "a unit without inputs", path, where)
         foon.add_unit(Unit(norm(u["motion"]).rstrip("*").strip(), sides[0], sides[1]), (path, k))
     return foon

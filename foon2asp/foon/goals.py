@@ -134,12 +134,8 @@ def resolve(data: Dataset, problem: Problem, goal: tuple[str, ...] | None, goals
     for label in goal or ():
         out.append(resolve_goal(data, problem, label))
     if goals == "all":
-        path = data.paths.get("goals")
-        if path is None:
-            raise InputError(
-                "'all' needs a goals file (goal_nodes.json in the data folder, or one given)", hint="goals-all"
-            )
-        out += [goal_id(problem, obj, path, line) for obj, line in data.goals]
+        need = "'all' needs a goals file (goal_nodes.json in the data folder, or one given)"
+        out += _file_goals(data, problem, need, "goals-all")
     elif goals == "all-objects":
         out += all_objects(problem)
     elif goals:
@@ -159,11 +155,15 @@ def resolve(data: Dataset, problem: Problem, goal: tuple[str, ...] | None, goals
 
 def default_goals(data: Dataset, problem: Problem) -> list[int]:
     """The goals when none are named, the same for every command: the goals file's entries."""
+    need = "no goal given and no goals file (name goals, a goals file or 'all-objects')"
+    return _file_goals(data, problem, need, "no-goals-file")
+
+
+def _file_goals(data: Dataset, problem: Problem, need: str, hint: str) -> list[int]:
+    """The ids of the goals file's entries; the error ``need`` (with ``hint``) without a goals file."""
     path = data.paths.get("goals")
     if path is None:
-        raise InputError(
-            "no goal given and no goals file (name goals, a goals file or 'all-objects')", hint="no-goals-file"
-        )
+        raise InputError(need, hint=hint)
     return [goal_id(problem, obj, path, line) for obj, line in data.goals]
 
 
