@@ -111,10 +111,15 @@ SAMPLE = [
 ]
 
 
-def test_official_dialect_conforms_and_round_trips():
+def _sample_foon() -> Foon:
     foon = Foon()
     for u in SAMPLE:
         foon.add_unit(u)
+    return foon
+
+
+def test_official_dialect_conforms_and_round_trips():
+    foon = _sample_foon()
     text = io.StringIO()
     write_foon(foon, text)
     written, loaded, ids = official_units(text.getvalue())
@@ -135,9 +140,7 @@ def test_official_dialect_conforms_and_round_trips():
 
 def test_conformance_checker_catches_placeholder_ids():
     """Ids all 0 make different labels one node: the checker must notice (it can fail)."""
-    foon = Foon()
-    for u in SAMPLE:
-        foon.add_unit(u)
+    foon = _sample_foon()
     text = format_units(foon.units, ids=IdMap({}, {}))
     zeroed = re.sub(r"^([OSM])\d+\t", r"\g<1>0\t", text, flags=re.M)
     with pytest.raises(Conformance):

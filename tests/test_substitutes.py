@@ -114,13 +114,15 @@ def test_candidates_by_label_and_by_ingredient():
 # --- the solver -----------------------------------------------------------------------------
 
 
-def _soup() -> Problem:
+def _soup(first: FoonObject | None = None) -> Problem:
+    """Onion soup: chop a whole onion, cook the chopped one; the kitchen has no onion, but
+    ``first`` (default: a whole red onion), a chopped red onion, a knife and a pan."""
     return build(
         [
             ("chop", [obj("onion", "whole"), obj("knife")], [obj("onion", "chopped")]),
             ("cook", [obj("onion", "chopped"), obj("pan")], [obj("soup", "cooked")]),
         ],
-        [obj("red onion", "whole"), obj("red onion", "chopped"), obj("knife"), obj("pan")],
+        [first or obj("red onion", "whole"), obj("red onion", "chopped"), obj("knife"), obj("pan")],
     )
 
 
@@ -150,15 +152,8 @@ def test_max_substitutions_and_costs():
     subs = parse_substitutes("onion: red onion\n")
     [tree] = solve_goals(problem, [goal], options=AspOptions(substitutes=subs, max_substitutions=0))
     assert tree.status == "unreachable"
-    # the chopped red onion costs 3, the whole one 1: chop the whole one
-    subs = parse_substitutes("onion: red onion=3\n")
-    problem = build(
-        [
-            ("chop", [obj("onion", "whole"), obj("knife")], [obj("onion", "chopped")]),
-            ("cook", [obj("onion", "chopped"), obj("pan")], [obj("soup", "cooked")]),
-        ],
-        [obj("shallot", "whole"), obj("red onion", "chopped"), obj("knife"), obj("pan")],
-    )
+    # the chopped red onion costs 3, the whole shallot 1: chop the shallot
+    problem = _soup(obj("shallot", "whole"))
     subs = parse_substitutes("onion: red onion=3, shallot\n")
     [tree] = solve_goals(problem, [goal_id(problem, obj("soup", "cooked"))], options=AspOptions(substitutes=subs))
     assert len(tree.units) == 2 and tree.extra["asp_cost"][0] == 1
