@@ -8,7 +8,7 @@ import json
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.treefiles import TreeFile
 from foon2asp.report.registry import register
-from foon2asp.tree.diagnose import Finding, describe_unit
+from foon2asp.tree.diagnose import describe_unit
 from foon2asp.tree.results import AloneReport, Report
 from foon2asp.tree.serialize import number
 from foon2asp.tree.validate import AloneVerdict
@@ -33,16 +33,12 @@ def _cost_text(cost: dict) -> str:
     return text + (f", cost {number(cost['cost'])}" if "cost" in cost else "")
 
 
-def cycle_lines(
-    problem: Problem, finding: Finding, tree: TreeFile | None = None, ids: list[int | None] | None = None
-) -> list[str]:
-    """The cycle of ``finding`` as indented lines, one object or unit per line."""
-    lines = []
-    for o, u in finding.cycle:
-        lines.append(f"    {problem.objects[o]}")
-        lines.append(f"      is made in this tree by {describe_unit(problem, u, tree, ids)}, which needs")
-    lines.append(f"    {problem.objects[finding.cycle[0][0]]}   (back to the start)")
-    return lines
+def _cycle_lines(cycle: list[tuple[object, str]]) -> list[str]:
+    """A cycle of (object, what makes it) as the lines of a ``Problem: circular support``."""
+    lines = ["Problem: circular support -- these units need each other and nothing starts the cycle:"]
+    for o, maker in cycle:
+        lines += [f"    {o}", f"      is made {maker}, which needs"]
+    return lines + [f"    {cycle[0][0]}   (back to the start)"]
 
 
 def _tree_head(tree: TreeFile) -> str:
@@ -50,16 +46,23 @@ def _tree_head(tree: TreeFile) -> str:
     return head + (f"  method {tree.method}" if tree.method else "")
 
 
+def _goal_lines(goals: list, source: str) -> list[str]:
+    source = f"  ({source})" if source else ""
+    if len(goals) > 1:
+        return [f"Meal of {len(goals)} goals{source}:"] + [f"  + {g}" for g in goals]
+    return [f"Goal: {goals[0] if goals else '-'}{source}"]
+
+
+def _fire_lines(can: str, never: str) -> list[str]:
+    return [f"Units that can fire (in order, steps): {can or '-'}"] + (
+        [f"Units that never fire (steps): {never}"] if never else []
+    )
+
+
 def report_text(problem: Problem, report: Report) -> str:
     """The human-readable report of one tree."""
     tree, ids = report.tree, report.ids
-    head = _tree_head(tree)
-    source = f"  ({report.goal_source})" if report.goal_source else ""
-    if report.goals:
-        lines = [head, f"Meal of {len(report.goals)} goals{source}:"]
-        lines += [f"  + {problem.objects[g]}" for g in report.goals]
-    else:
-        lines = [head, f"Goal: {problem.objects[report.goal]}{source}"]
+    lines = [_tree_head(tree), *_goal_lines([problem.objects[g] for g in report.meal], report.goal_source)]
     n_known = sum(u is not None for u in ids)
     lines.append(f"Units: {len(ids)} read, {n_known} found in the FOON, {len(ids) - n_known} unknown")
     if unreachable(report):
@@ -71,8 +74,9 @@ def report_text(problem: Problem, report: Report) -> str:
     if report.finding and not unreachable(report):
         f = report.finding
         if f.kind == "cycle":
-            lines.append("Problem: circular support -- these units need each other and nothing starts the cycle:")
-            lines += cycle_lines(problem, f, tree, ids)
+            lines += _cycle_lines(
+                [(problem.objects[o], "in this tree by " + describe_unit(problem, u, tree, ids)) for o, u in f.cycle]
+            )
         else:
             lines.append(f"Problem: {f.message}")
     v = report.validation
@@ -84,9 +88,7 @@ def report_text(problem: Problem, report: Report) -> str:
                 lines.append(f"Order: not executable as written ({report.order_problem})")
                 lines.append("Executable order (steps): " + " ".join(_steps(v.order, ids)))
         else:
-            lines.append(f"Units that can fire (in order, steps): {' '.join(_steps(v.order, ids)) or '-'}")
-            if v.stuck:
-                lines.append(f"Units that never fire (steps): {' '.join(_steps(v.stuck, ids))}")
+            lines += _fire_lines(" ".join(_steps(v.order, ids)), " ".join(_steps(v.stuck, ids)))
     if report.cost:
         lines.append(f"Size: {_cost_text(report.cost)}")
     opt = report.optimum
@@ -169,28 +171,18 @@ def assumes_leaves(report: AloneReport) -> bool:
 def alone_text(report: AloneReport) -> str:
     """The human-readable verdict on a tree judged on its own."""
     tree, v = report.tree, report.verdict
-    head = _tree_head(tree)
-    lines = [head, f"Judged on its own: kitchen = {report.kitchen_source} ({len(v.kitchen)} objects)"]
+    lines = [_tree_head(tree), f"Judged on its own: kitchen = {report.kitchen_source} ({len(v.kitchen)} objects)"]
     if assumes_leaves(report):
         lines.append("Assumed in the kitchen (its leaves): " + ("; ".join(map(str, v.kitchen)) or "-"))
         lines.append(f"Note: {LEAVES_CAVEAT}")
-    source = f"  ({report.goal_source})" if report.goal_source else ""
-    if len(v.goals) > 1:
-        lines.append(f"Meal of {len(v.goals)} goals{source}:")
-        lines += [f"  + {g}" for g in v.goals]
-    else:
-        lines.append(f"Goal: {v.goals[0] if v.goals else '-'}{source}")
+    lines += _goal_lines(list(v.goals), report.goal_source)
     lines.append(f"Units: {len(tree.units)}")
     lines.append(f"Verdict: {'VALID' if report.valid else 'INVALID'}")
     if report.valid:
         lines.append("Order: every unit fires in the order written")
         return "\n".join(lines) + "\n"
     if v.cycle:
-        lines.append("Problem: circular support -- these units need each other and nothing starts the cycle:")
-        for o, p in v.cycle:
-            lines.append(f"    {o}")
-            lines.append(f"      is made by step {v.step(p)} ({tree.units[p - 1].unit.motion}), which needs")
-        lines.append(f"    {v.cycle[0][0]}   (back to the start)")
+        lines += _cycle_lines([(o, f"by step {v.step(p)} ({tree.units[p - 1].unit.motion})") for o, p in v.cycle])
     else:
         lines.append(f"Problem: {v.problem}")
     b = v.blocked
@@ -202,9 +194,7 @@ def alone_text(report: AloneReport) -> str:
     if v.valid:
         lines.append(f"As a set: the units make the goal in another order (steps {_alone_steps(v, v.order)})")
     else:
-        lines.append(f"Units that can fire (in order, steps): {_alone_steps(v, v.order)}")
-        if v.stuck:
-            lines.append(f"Units that never fire (steps): {_alone_steps(v, v.stuck)}")
+        lines += _fire_lines(_alone_steps(v, v.order), _alone_steps(v, v.stuck) if v.stuck else "")
     return "\n".join(lines) + "\n"
 
 
