@@ -15,7 +15,7 @@ from foon2asp.foon.model import Foon, FoonObject, norm
 from foon2asp.foon.parser import read_foons
 from foon2asp.foon.safejson import list_elements
 from foon2asp.foon.safejson import loads as safe_loads
-from foon2asp.foon.safetext import lines_of, read_text
+from foon2asp.foon.safetext import content_lines, lines_of, name_and_value, read_text
 
 FILE_NAMES = {
     "foon": "FOON.txt",
@@ -104,19 +104,13 @@ def read_goals(path: str | Path) -> list[tuple[FoonObject, int]]:
     return [(object_from_json(v, str(path), line), line) for v, line in _json_elements(text, str(path))]
 
 
-def _is_comment(line: str) -> bool:
-    return line.lstrip().startswith("#")
-
-
 def read_motion(path: str | Path, warnings: list[str] | None = None) -> dict[str, float]:
     """``motion TAB success-rate`` per line, rates in (0, 1]; blank and ``#`` lines skipped.
     A file without any rate is warned about (into ``warnings``)."""
     path = Path(path)
     rates: dict[str, float] = {}
-    for lineno, line in enumerate(lines_of(read_text(path, "motion")), 1):
-        if not line.strip() or _is_comment(line):
-            continue
-        parts = line.rsplit("\t", 1) if "\t" in line else line.rsplit(None, 1)
+    for lineno, line in content_lines(read_text(path, "motion")):
+        parts = name_and_value(line)
         if len(parts) != 2:
             raise InputError(f"expected 'motion<TAB>rate', got {line.strip()!r}", str(path), lineno)
         try:
@@ -139,7 +133,7 @@ def read_utensils(path: str | Path, warnings: list[str] | None = None) -> frozen
     for lineno, line in enumerate(lines_of(read_text(path, "utensils")), 1):
         if not line.strip():
             continue
-        if _is_comment(line):
+        if line.lstrip().startswith("#"):
             body = line.lstrip()[1:]
             if body[:1].isalnum() and warnings is not None:
                 warnings.append(

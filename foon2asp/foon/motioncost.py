@@ -18,7 +18,7 @@ from foon2asp.errors import InputError
 from foon2asp.foon.model import norm
 from foon2asp.foon.safejson import MAX_NUMBER_CHARS
 from foon2asp.foon.safejson import loads as safe_loads
-from foon2asp.foon.safetext import lines_of, read_text
+from foon2asp.foon.safetext import content_lines, name_and_value, read_text
 
 #: costs are exact to this step; the solver's integer weight of a cost is cost * SCALE
 PRECISION = Decimal("0.01")
@@ -83,9 +83,13 @@ def _finer(value: Decimal) -> bool:
     return exponent < _PLACES and any(trimmed)
 
 
+def _shown(text: str) -> str:
+    return text if len(text) <= 40 else text[:40] + "..."
+
+
 def parse_cost(text: str, path: str, line: int | None, motion: str) -> Decimal:
     """One cost, checked: a decimal >= 0, at most :data:`MAX_COST`, exact to :data:`PRECISION`."""
-    shown = text if len(text) <= 40 else text[:40] + "..."
+    shown = _shown(text)
     if len(text) > MAX_NUMBER_CHARS:
         raise InputError(f"cost of {motion!r} is longer than {MAX_NUMBER_CHARS} characters", path, line)
     try:
@@ -153,13 +157,10 @@ def parse_motion_costs(text: str, path: str = "<string>") -> MotionCosts:
         for motion, number, at in _json_entries(text, path):
             _add(costs, where, motion, parse_cost(number, path, at, motion), path, at)
         return MotionCosts(costs, path)
-    for lineno, line in enumerate(lines_of(text), 1):
-        if not line.strip() or line.lstrip().startswith("#"):
-            continue
-        parts = line.rsplit("\t", 1) if "\t" in line else line.rsplit(None, 1)
+    for lineno, line in content_lines(text):
+        parts = name_and_value(line)
         if len(parts) != 2 or not parts[0].strip():
-            shown = line.strip() if len(line.strip()) <= 40 else line.strip()[:40] + "..."
-            raise InputError(f"expected 'motion<TAB>cost', got {shown!r}", path, lineno)
+            raise InputError(f"expected 'motion<TAB>cost', got {_shown(line.strip())!r}", path, lineno)
         _add(costs, where, parts[0], parse_cost(parts[1], path, lineno, motion_key(parts[0])), path, lineno)
     return MotionCosts(costs, path)
 

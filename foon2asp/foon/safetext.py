@@ -8,6 +8,7 @@ byte or control character is one :class:`~foon2asp.errors.InputError` naming
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 from pathlib import Path
 
 from foon2asp.errors import BAD_CHAR, InputError, char_name
@@ -30,6 +31,19 @@ def lines_of(text: str) -> list[str]:
     """The lines of ``text`` split at LF, CRLF or CR only (``str.splitlines`` also splits at
     VT, FF, NEL, U+2028, which would hide them)."""
     return LINE_END.split(text)
+
+
+def content_lines(text: str) -> Iterator[tuple[int, str]]:
+    """``(line number, line)`` of the lines of ``text`` that are neither blank nor ``#`` comments."""
+    for lineno, line in enumerate(lines_of(text), 1):
+        body = line.strip()
+        if body and not body.startswith("#"):
+            yield lineno, line
+
+
+def name_and_value(line: str) -> list[str]:
+    """A ``name<TAB>value`` line split at its last TAB (at its last blank when it has none)."""
+    return line.rsplit("\t", 1) if "\t" in line else line.rsplit(None, 1)
 
 
 def check_line(line: str, path: str, lineno: int) -> None:

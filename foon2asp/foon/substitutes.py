@@ -18,7 +18,7 @@ from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject, norm
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.safejson import loads as safe_loads
-from foon2asp.foon.safetext import check_text, lines_of, read_text
+from foon2asp.foon.safetext import check_text, content_lines, read_text
 
 #: the cost of a substitute given without ``=COST``
 DEFAULT_COST = 1
@@ -88,10 +88,8 @@ def _from_json(value: object, path: str) -> dict[tuple[str, str], Substitute]:
 
 def entries(text: str) -> Iterator[tuple[int, str]]:
     """``(line number, stripped line)`` of the lines that are neither blank nor ``#`` comments."""
-    for lineno, line in enumerate(lines_of(text), 1):
-        body = line.strip()
-        if body and not body.startswith("#"):
-            yield lineno, body
+    for lineno, line in content_lines(text):
+        yield lineno, line.strip()
 
 
 def _from_lines(text: str, path: str) -> dict[tuple[str, str], Substitute]:
