@@ -260,9 +260,6 @@ def parse_text(text: str, path: str = "<string>", strict: bool = False) -> Foon:
     return parse_lines(lines_of(text), path, strict=strict)
 
 
-DIALECTS = ("official", "plain")
-
-
 def state_parts(state: str) -> tuple[str, str | None]:
     """``"on [plate]"`` -> ``("on", "[plate]")``; a plain state -> ``(state, None)``.  Split only
     where both parts read back as they are (brackets pair up, the name is not ``in``/``contains``)."""
