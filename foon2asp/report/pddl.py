@@ -40,17 +40,14 @@ def refuse_general(spec: ConstraintSpec | None) -> None:
     """Raise InputError for constraints that are not unit filters."""
     if spec is None:
         return
-    bad = []
-    if spec.files or spec.extra:
-        bad.append("--constraint")
-    if spec.rules:
-        bad.append("--rule")
-    if spec.require_motion:
-        bad.append("--require-motion")
-    if spec.require_object:
-        bad.append("--require-object")
-    if spec.max_units is not None:
-        bad.append("--max-units")
+    given = {
+        "--constraint": spec.files or spec.extra,
+        "--rule": spec.rules,
+        "--require-motion": spec.require_motion,
+        "--require-object": spec.require_object,
+        "--max-units": spec.max_units is not None,
+    }
+    bad = [flag for flag, on in given.items() if on]
     if bad:
         raise InputError(
             f"{', '.join(bad)} cannot be exported to PDDL (only --forbid-motion and --forbid-object, which remove units)"

@@ -14,35 +14,16 @@ from foon2asp.tree.tasktree import TaskTree
 
 #: argument kinds of the vocabulary predicates: o = object id, u = unit id, - = other
 VOCABULARY: dict[tuple[str, int], str] = {
-    ("object", 1): "o",
-    ("label", 2): "o-",
-    ("state", 2): "o-",
-    ("ingredient", 2): "o-",
-    ("container", 2): "o-",
-    ("unit", 1): "u",
-    ("motion", 2): "u-",
-    ("input", 2): "uo",
-    ("required", 2): "uo",
-    ("output", 2): "uo",
-    ("product", 2): "uo",
-    ("success", 2): "u-",
-    ("neglog", 2): "u-",
-    ("kitchen", 1): "o",
-    ("goal_node", 2): "-o",
-    ("goal", 1): "o",
-    ("reach", 1): "o",
-    ("viable", 1): "u",
-    ("relevant", 1): "o",
-    ("candidate", 1): "u",
-    ("use", 1): "u",
-    ("fire", 1): "u",
-    ("had", 1): "o",
-    ("asked", 1): "o",
-    ("reachable", 1): "o",
-    ("unreachable", 1): "o",
-    ("needs", 2): "uo",
-    ("buyable", 1): "o",
-    ("add", 1): "o",
+    (name, len(kinds)): kinds
+    for kinds, names in (
+        ("o", "object kitchen goal reach relevant had asked reachable unreachable buyable add"),
+        ("u", "unit viable candidate use fire"),
+        ("o-", "label state ingredient container"),
+        ("u-", "motion success neglog"),
+        ("uo", "input required output product needs"),
+        ("-o", "goal_node"),
+    )
+    for name in names.split()
 }
 
 
