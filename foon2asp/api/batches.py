@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 from typing import Unpack
 
 from foon2asp import report
 from foon2asp.api.files import write_file
 from foon2asp.api.options import Options, Settings
-from foon2asp.api.results import Schedule, Source, schedules_json
+from foon2asp.api.results import Raw, Schedule, Source, schedules_json
 from foon2asp.api.schedules import make_spec
 from foon2asp.batch import schedules as batch_schedules
 from foon2asp.batch.pool import AUTO
@@ -27,6 +28,14 @@ class BatchRun:
     raw: BatchReport
     #: :meth:`schedule`'s schedules, one per goal (empty until it runs)
     schedules: list[Schedule] = field(default_factory=list)
+    done = Raw[int]("Results computed now.")
+    skipped = Raw[int]("Results already in the file (``resume``).")
+    elapsed_s = Raw[float]()
+    records = Raw[list[dict]]("The JSON lines of the requested (goal, method) pairs, old and new.")
+    workers = Raw[int]()
+    output = Raw[str | None]()
+    grounding = Raw[str]("``whole`` or ``per-goal``: the grounding used.")
+    grounding_reason = Raw[str]('Why ``grounding="auto"`` chose it (empty otherwise).')
 
     def schedule(
         self,
@@ -43,13 +52,11 @@ class BatchRun:
         options: Options | None = None,
         **settings: Unpack[Settings],
     ) -> list[Schedule]:
-        """Schedule the tree of every goal of the run (of ``method``; default the first asked for),
-        as :meth:`Tree.schedule` does; ``output``: also write them there as one JSON list (the
-        shape of ``schedule --format json``; ``batch --schedule`` writes
-        :func:`foon2asp.batch.schedules.schedules_path` of the results file)."""
+        """Schedule the tree of every goal of the run (of ``method``; default the first asked for)
+        as :meth:`Tree.schedule` does; ``output``: also write them there as ``schedule --format json``."""
         solver = self.kb.options(options, **settings)
         chosen = make_spec(spec, agents, durations, capabilities, resources)
-        view = lambda goals: self.kb.judging_problem(solver, goals)  # noqa: E731  (with substitutes)
+        view = partial(self.kb.judging_problem, solver)
         found = batch_schedules.schedule_records(
             self.kb.solving_problem(solver), self.raw.records, chosen, solver, method, joint, encoding, view
         )
@@ -58,50 +65,13 @@ class BatchRun:
             write_file(Path(output), schedules_json(self.schedules).encode("utf-8"))
         return self.schedules
 
-    @property
-    def done(self) -> int:
-        """Results computed now."""
-        return self.raw.done
-
-    @property
-    def skipped(self) -> int:
-        """Results already in the file (``resume``)."""
-        return self.raw.skipped
-
-    @property
-    def elapsed_s(self) -> float:
-        return self.raw.elapsed_s
-
-    @property
-    def records(self) -> list[dict]:
-        """The JSON lines of the requested (goal, method) pairs, old and new."""
-        return self.raw.records
-
-    @property
-    def workers(self) -> int:
-        return self.raw.workers
-
-    @property
-    def output(self) -> str | None:
-        return self.raw.output
-
-    @property
-    def grounding(self) -> str:
-        """``whole`` or ``per-goal``: the grounding used."""
-        return self.raw.grounding
-
-    @property
-    def grounding_reason(self) -> str:
-        """Why ``grounding="auto"`` chose it (empty otherwise)."""
-        return self.raw.grounding_reason
-
     def summary(self) -> list[dict]:
         """One row per method: results per status, trees, valid trees, tree sizes and times."""
         return summarize(self.raw.records)
 
     def render(self, fmt: str = "text") -> str:
         """The summary ``batch`` prints, in a format of ``batch --summary``."""
-        # the HTML page also draws the trees: the schedules, and the FOON for kitchen items and cycles
+        # the HTML page draws the schedules, and the FOON for kitchen items and cycles
         extra = [[s.to_dict() for s in self.schedules], self.kb.problem] if fmt == "html" else []
         return report.render("summary", fmt, self.summary(), self.raw, *extra)
 

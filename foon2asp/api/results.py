@@ -7,7 +7,7 @@ import json
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Protocol, Unpack
+from typing import Any, Generic, Protocol, TypeVar, Unpack, cast
 
 from foon2asp import report
 from foon2asp.analysis import compare as compare_mod
@@ -26,6 +26,8 @@ from foon2asp.tree.results import MissingResult, Report, Row
 from foon2asp.tree.serialize import tree_foon, tree_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
 
+T = TypeVar("T")
+
 
 class Source(Protocol):
     """What an answer asks of the knowledge base that gave it (:class:`foon2asp.api.KnowledgeBase`)."""
@@ -39,12 +41,36 @@ class Source(Protocol):
     def judging_problem(self, solver: AspOptions | Options | None, goals: Iterable[int] = ()) -> Problem: ...
 
 
-class Tree:
-    """A task tree for one goal by one method, with its status and measures.
+class Raw(Generic[T]):
+    """An answer's attribute that is the attribute ``name`` (default: the same name) of its ``raw`` record."""
 
-    ``units`` are the tree's functional units in executable order (each
-    required input is a kitchen item or made by an earlier unit).
-    """
+    def __init__(self, doc: str = "", name: str = "") -> None:
+        self.__doc__, self.name = doc, name
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = self.name or name
+
+    def __get__(self, answer: Any, owner: type | None = None) -> T:
+        return cast(T, self) if answer is None else getattr(answer.raw, self.name)
+
+    def __set__(self, answer: Any, value: Any) -> None:
+        raise AttributeError(f"{self.name!r} is read-only")
+
+
+class Tree:
+    """A task tree for one goal by one method, with its status and measures; ``units`` in
+    executable order."""
+
+    method = Raw[str]()
+    goal_id = Raw[int](name="goal")
+    status = Raw[str]("``optimal`` | ``feasible`` | ``unreachable`` | ``unknown`` (ASP), ``found`` | ``not-found``.")
+    cost = Raw[dict]("``units``, ``success``, ``inputs``, ``depth`` (empty when there is no tree).")
+    bound = Raw[dict | None](
+        "The best proven lower bound per objective level, in the units of :attr:`cost` (None for the search baselines)."
+    )
+    gap = Raw[float | None]("The relative gap to :attr:`bound` on the first objective: 0 when proven.")
+    time_s = Raw[float]()
+    has_tree = Raw[bool]()
 
     def __init__(self, kb: Source, raw: TaskTree) -> None:
         self.kb = kb
@@ -56,39 +82,9 @@ class Tree:
         return self.kb.problem.objects[self.raw.goal]
 
     @property
-    def goal_id(self) -> int:
-        return self.raw.goal
-
-    @property
     def goals(self) -> list[FoonObject]:
-        """Every goal of the tree: one, or the dishes of a meal (``together=True``)."""
+        """Every goal of the tree: one, or the dishes of a meal."""
         return [self.kb.problem.objects[g] for g in self.raw.meal]
-
-    @property
-    def method(self) -> str:
-        return self.raw.method
-
-    @property
-    def status(self) -> str:
-        """``optimal`` | ``feasible`` | ``unreachable`` | ``unknown`` (ASP), ``found`` | ``not-found`` (search)."""
-        return self.raw.status
-
-    @property
-    def cost(self) -> dict:
-        """``units``, ``success``, ``inputs``, ``depth`` (empty when there is no tree)."""
-        return self.raw.cost
-
-    @property
-    def bound(self) -> dict | None:
-        """The best proven lower bound per objective level, in the units of :attr:`cost` (for
-        ``success`` the greatest possible product); a proven tree's is its cost; None for
-        the search baselines (foon2asp.tree.gap)."""
-        return self.raw.bound
-
-    @property
-    def gap(self) -> float | None:
-        """The relative gap to :attr:`bound` on the first objective: 0 when proven."""
-        return self.raw.gap
 
     @property
     def units(self) -> list[Unit]:
@@ -99,16 +95,8 @@ class Tree:
         return list(self.raw.units)
 
     @property
-    def time_s(self) -> float:
-        return self.raw.time_s
-
-    @property
-    def has_tree(self) -> bool:
-        return self.raw.has_tree
-
-    @property
     def valid(self) -> bool | None:
-        """Validity by the independent validator, where it was judged (compare, batch, :meth:`judge`); else None."""
+        """The independent validator's verdict where it was judged (compare, batch, :meth:`judge`); else None."""
         value = self.raw.extra.get("valid")
         return None if value is None else bool(value)
 
@@ -119,7 +107,7 @@ class Tree:
 
     @property
     def substitutions(self) -> list[dict] | None:
-        """With substitutes: the ones the tree uses, ``[{"needed", "used"}]`` (None without substitutes)."""
+        """With substitutes: the ones the tree uses, ``[{"needed", "used"}]`` (else None)."""
         return self.raw.extra.get("substitutions")
 
     @property
@@ -145,10 +133,9 @@ class Tree:
         options: Options | AspOptions | None = None,
         **settings: Unpack[Settings],
     ) -> Schedule:
-        """This tree's units scheduled on ``spec``'s agents (or ``agents`` and the files, as
-        :meth:`KnowledgeBase.schedule`) with the proven-minimal makespan; ``joint``: the tree is
-        chosen again with the schedule (by the tree objective of ``options``), this one's own
-        schedule kept as the result's ``fixed``.  ``time_limit`` (a setting): seconds per solve."""
+        """This tree's units scheduled with the proven-minimal makespan (the agents as in
+        :meth:`KnowledgeBase.schedule`); ``joint``: the tree chosen again with the schedule, this
+        one's own schedule kept as the result's ``fixed``."""
         solver = options if isinstance(options, AspOptions) else self.kb.options(options, **settings)
         chosen = make_spec(spec, agents, durations, capabilities, resources)
         return next(schedule_trees([self], chosen, solver, joint, encoding))
@@ -170,7 +157,7 @@ class Tree:
         return tree_foon(self.kb.problem, self.raw)
 
     def render(self, fmt: str) -> str:
-        """The tree in any text format of ``solve --format`` (:mod:`foon2asp.report`)."""
+        """The tree in a text format of ``solve --format``."""
         return report.render("trees", fmt, self.kb.problem, [self.raw])
 
     def draw(self, path: str | Path) -> Path:
@@ -178,7 +165,6 @@ class Tree:
         return draw.draw_tree(self.kb.problem, self.raw, path)
 
     def _repr_svg_(self) -> str:
-        """The drawing, for Jupyter."""
         return draw.tree_svg(self.kb.problem, self.raw)
 
     def __repr__(self) -> str:
@@ -188,16 +174,15 @@ class Tree:
 class Schedule:
     """The schedule of one goal's tree: who does which unit when, the makespan, its bounds and baseline."""
 
+    status = Raw[str](
+        "``optimal`` | ``feasible`` | ``unschedulable`` | ``unreachable`` | ``unknown`` (no tree in time)."
+    )
+
     def __init__(self, kb: Source, raw: ScheduleResult, spec: ScheduleSpec) -> None:
         self.kb = kb
         #: the internal record (unit ids, times in milliseconds)
         self.raw = raw
         self.spec = spec
-
-    @property
-    def status(self) -> str:
-        """``optimal`` | ``feasible`` | ``unschedulable`` | ``unreachable`` | ``unknown`` (no tree in time)."""
-        return self.raw.status
 
     @property
     def makespan(self) -> float | None:
@@ -246,7 +231,6 @@ class Schedule:
         return gantt.draw_gantt(self.to_dict(), path)
 
     def _repr_svg_(self) -> str:
-        """The Gantt chart, for Jupyter."""
         return gantt.gantt_svg(self.to_dict())
 
     def __repr__(self) -> str:
@@ -268,10 +252,8 @@ def schedule_trees(
     encoding: str = DEFAULT_ENCODING,
     progress: Callable[[dict], None] | None = None,
 ) -> Iterator[Schedule]:
-    """:func:`foon2asp.schedule.schedule` of each tree in turn, as a :class:`Schedule`; with substitutes,
-    on the problem the tree is judged on (what a substitute stands in for is in the kitchen).
-    ``progress``: called with what :func:`foon2asp.schedule.schedule` reports and ``goal``, the
-    tree's goals' labels."""
+    """:func:`foon2asp.schedule.schedule` of each tree, on the problem it is judged on;
+    ``progress``: called with what that reports and ``goal``, the tree's goals' labels."""
     for tree in trees:
         told = None
         if progress is not None:
@@ -291,19 +273,13 @@ class CheckReport:
 
     kb: Source
     raw: Report
-
-    @property
-    def valid(self) -> bool:
-        return self.raw.valid
+    valid = Raw[bool]()
+    substitutions = Raw[list[dict] | None]("With substitutes: the ones a valid tree uses (None without substitutes).")
+    cost = Raw[dict]()
 
     @property
     def goal(self) -> FoonObject:
         return self.kb.problem.objects[self.raw.goal]
-
-    @property
-    def substitutions(self) -> list[dict] | None:
-        """With substitutes: the ones a valid tree uses (None without substitutes)."""
-        return self.raw.substitutions
 
     @property
     def problem(self) -> str | None:
@@ -323,10 +299,6 @@ class CheckReport:
         """The units that can fire, in an executable order."""
         v = self.raw.validation
         return [self.kb.problem.units[u] for u in v.order] if v is not None else []
-
-    @property
-    def cost(self) -> dict:
-        return self.raw.cost
 
     @property
     def optimum(self) -> Tree | None:
@@ -369,10 +341,7 @@ class Missing:
 
     kb: Source
     raw: MissingResult
-
-    @property
-    def status(self) -> str:
-        return self.raw.status
+    status = Raw[str]()
 
     @property
     def missing(self) -> list[FoonObject]:

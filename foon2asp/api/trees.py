@@ -21,7 +21,7 @@ from foon2asp.api.kb import GoalLike, KnowledgeBase
 from foon2asp.api.load import knowledge_base
 from foon2asp.api.matching import projection
 from foon2asp.api.options import Options, Settings
-from foon2asp.api.results import Tree
+from foon2asp.api.results import Raw, Tree
 from foon2asp.errors import InputError
 from foon2asp.foon.leaves import LEAVES, leaves
 from foon2asp.foon.loaders import Dataset, read_goals, read_kitchen, read_motion, read_utensils
@@ -38,10 +38,10 @@ class TreeVerdict:
     (from its leaves, or the kitchen given) and the goal is made."""
 
     raw: AloneReport
-
-    @property
-    def valid(self) -> bool:
-        return self.raw.valid
+    valid = Raw[bool]()
+    kind = Raw[str | None](
+        "``no-goal``, ``cycle``, ``missing-input``, ``order`` or ``goal-not-made`` (None when valid)."
+    )
 
     @property
     def valid_as_set(self) -> bool:
@@ -51,11 +51,6 @@ class TreeVerdict:
     @property
     def goals(self) -> list[FoonObject]:
         return list(self.raw.verdict.goals)
-
-    @property
-    def kind(self) -> str | None:
-        """``no-goal``, ``cycle``, ``missing-input``, ``order`` or ``goal-not-made`` (None when valid)."""
-        return self.raw.kind
 
     @property
     def problem(self) -> str | None:
@@ -142,24 +137,16 @@ class CandidateReport:
     """One candidate file for one goal: executable on its own or not, its measures, the units used."""
 
     raw: CandidateVerdict
+    valid = Raw[bool]("Is it executable on its own (its units, in file order, from the consolidation's kitchen)?")
+    cost = Raw[dict]("Its measures in the merged FOON, as ``solve`` reports a tree's.")
 
     @property
     def file(self) -> str:
         return self.raw.candidate.path
 
     @property
-    def valid(self) -> bool:
-        """Is it executable on its own (its units, in file order, from the consolidation's kitchen)?"""
-        return self.raw.valid
-
-    @property
     def problem(self) -> str | None:
         return None if self.raw.valid else self.raw.verdict.problem
-
-    @property
-    def cost(self) -> dict:
-        """Its measures in the merged FOON, as ``solve`` reports a tree's."""
-        return self.raw.cost
 
     @property
     def used_units(self) -> list[int]:
