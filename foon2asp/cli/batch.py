@@ -9,6 +9,7 @@ import click
 from foon2asp import api, report
 from foon2asp.cli.main import guarded, main
 from foon2asp.cli.options import (
+    choice_option,
     constraint_options,
     data_options,
     gap_option,
@@ -31,11 +32,10 @@ SCHEDULED = ("optimal", "unschedulable")
 #: --grounding and --shortcuts, into the request
 _batch_settings = request_options(
     {"grounding": "grounding", "shortcuts": "shortcuts"},
-    click.option(
+    choice_option(
         "--grounding",
-        type=click.Choice(api.GROUNDINGS),
+        choices=api.GROUNDINGS,
         default="auto",
-        show_default=True,
         help="One grounding for all goals, or a small grounding of each goal's relevant part; auto: per-goal when"
         " the goals' median relevant part is under 10 % of the viable units or there are over 50,000 of them"
         " (the summary says which).",
@@ -83,12 +83,11 @@ _batch_settings = request_options(
 @gap_option
 @strategy_options
 @_batch_settings
-@click.option(
+@choice_option(
     "--summary",
     "summary_fmt",
-    type=click.Choice(report.names("summary")),
+    choices=report.names("summary"),
     default="text",
-    show_default=True,
     help="Format of the summary printed at the end.",
 )
 @progress_option

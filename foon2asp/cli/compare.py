@@ -7,36 +7,24 @@ import sys
 import click
 
 from foon2asp import api, report
-from foon2asp.cli.main import guarded, main
+from foon2asp.cli.main import guarded
 from foon2asp.cli.options import (
-    constraint_options,
-    data_options,
-    format_option,
     gap_option,
-    goal_options,
+    goal_command,
     is_search,
-    method_option,
     methods_of,
-    objective_option,
     progress_option,
     strategy_options,
     time_limit_option,
+    together_option,
 )
-from foon2asp.cli.output import EXIT_CODES, exit_code, progress_bar, solver_of, warn
+from foon2asp.cli.output import exit_code, progress_bar, solver_of, warn
 
 
-@main.command(epilog=EXIT_CODES)
-@data_options
-@goal_options
-@constraint_options
-@method_option(",".join(api.COMPARE_METHODS))
-@objective_option()
-@format_option("compare")
+@goal_command("compare", methods=",".join(api.COMPARE_METHODS))
 @time_limit_option("Seconds per goal for ASP methods.")
 @gap_option
-@click.option(
-    "--together", is_flag=True, help="A meal: the one tree for all goals beside the sum of the single optima (ASP)."
-)
+@together_option("A meal: the one tree for all goals beside the sum of the single optima (ASP).")
 @strategy_options
 @progress_option
 @guarded

@@ -11,14 +11,15 @@ from foon2asp.cli.main import guarded, main
 from foon2asp.cli.options import (
     GOAL_HELP,
     KITCHEN_HELP,
-    STRICT_HELP,
     constraint_options,
+    file_options,
     format_option,
     gap_option,
     match_options,
     objective_option,
     strategy_options,
     time_limit_option,
+    together_option,
 )
 from foon2asp.cli.output import EXIT_CODES, exit_code, warn_all
 
@@ -34,16 +35,7 @@ from foon2asp.cli.output import EXIT_CODES, exit_code, warn_all
     " the candidates' last units that most of them share.",
 )
 @click.option("--kitchen", type=click.Path(), help=KITCHEN_HELP + " Default: leaves.")
-@click.option("--motion", type=click.Path(), help="motion.txt (motion TAB success rate)")
-@click.option("--utensils", type=click.Path(), help="utensils.txt")
-@click.option(
-    "--utensil-rule",
-    type=click.Choice(api.UTENSIL_RULES),
-    default="starter",
-    show_default=True,
-    help="When a utensil holding one ingredient is not a required input.",
-)
-@click.option("--strict", is_flag=True, help=STRICT_HELP)
+@file_options
 @constraint_options
 @objective_option()
 @format_option("consolidate")
@@ -52,7 +44,7 @@ from foon2asp.cli.output import EXIT_CODES, exit_code, warn_all
 )
 @time_limit_option("Seconds per goal; the best tree so far is reported as 'feasible'.")
 @gap_option
-@click.option("--together", is_flag=True, help="A meal: one tree that makes every goal.")
+@together_option("A meal: one tree that makes every goal.")
 @strategy_options
 @match_options
 @guarded

@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from foon2asp.cli.main import guarded, main
-from foon2asp.cli.options import constraint_options, data_options, motion_cost_option, request_options
+from foon2asp.cli.options import choice_option, constraint_options, data_options, motion_cost_option, request_options
 from foon2asp.errors import InputError
 from foon2asp.report import pddl
 
@@ -21,11 +21,10 @@ def export():
 @data_options
 @click.option("--goal", "goal", multiple=True, help="Goal label; repeat for a meal (every goal in :goal).")
 @click.option("--goals", "goals", help="FILE of goal objects or 'all' (the goals file): all of them in one :goal.")
-@click.option(
+@choice_option(
     "--objective",
-    type=click.Choice(pddl.PDDL_OBJECTIVES),
+    choices=pddl.PDDL_OBJECTIVES,
     default="units",
-    show_default=True,
     help="units: plan length; success: integer action costs round(-1000 ln p) (:action-costs); inputs: input nodes;"
     " cost: the motion costs of --motion-cost in hundredths.",
 )

@@ -6,7 +6,7 @@ import click
 
 from foon2asp import api
 from foon2asp.cli.main import guarded, main
-from foon2asp.cli.options import joined_lines, match_options
+from foon2asp.cli.options import choice_option, joined_lines, match_options
 from foon2asp.cli.output import warn_all
 from foon2asp.errors import InputError
 
@@ -15,12 +15,11 @@ from foon2asp.errors import InputError
 @click.argument("files", nargs=-1, required=True, type=click.Path())
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help="The merged FOON file.")
 @click.option("--strict", is_flag=True, help="Treat skipped units (warnings) as errors.")
-@click.option(
+@choice_option(
     "--format",
     "fmt",
-    type=click.Choice(api.FOON_FORMATS),
+    choices=api.FOON_FORMATS,
     default="foon",
-    show_default=True,
     help="foon: official dialect with ids; foon-plain: without ids; foon-json: foon_api's JSON;"
     " units-json: the unit-list JSON of generated trees.",
 )

@@ -7,31 +7,18 @@ import sys
 import click
 
 from foon2asp import report
-from foon2asp.cli.main import guarded, main
-from foon2asp.cli.options import (
-    constraint_options,
-    data_options,
-    format_option,
-    goal_options,
-    objective_option,
-    progress_option,
-    strategy_options,
-    time_limit_option,
-)
-from foon2asp.cli.output import EXIT_CODES, exit_code, progress_bar, solver_of
+from foon2asp.cli.main import guarded
+from foon2asp.cli.options import goal_command, progress_option, strategy_options, time_limit_option, together_option
+from foon2asp.cli.output import exit_code, progress_bar, solver_of
 
 
-@main.command(epilog=EXIT_CODES)
-@data_options
-@goal_options
-@constraint_options
-@objective_option(
-    "After the fewest added objects, the best tree by these objectives (units, success, inputs, cost with"
-    " --motion-cost), comma-separated."
+@goal_command(
+    "missing",
+    objective="After the fewest added objects, the best tree by these objectives (units, success, inputs, cost with"
+    " --motion-cost), comma-separated.",
 )
-@format_option("missing")
 @time_limit_option("Seconds per goal; the best answer so far is reported as 'feasible'.")
-@click.option("--together", is_flag=True, help="A meal: the fewest objects so that one tree makes every goal.")
+@together_option("A meal: the fewest objects so that one tree makes every goal.")
 @strategy_options
 @progress_option
 @guarded

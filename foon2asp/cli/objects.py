@@ -8,7 +8,7 @@ from dataclasses import replace
 import click
 
 from foon2asp.cli.main import guarded, main
-from foon2asp.cli.options import KITCHEN_HELP, data_options, joined_lines
+from foon2asp.cli.options import KITCHEN_HELP, choice_option, data_options, joined_lines
 from foon2asp.errors import InputError
 
 
@@ -41,7 +41,7 @@ def _makers(kb, oid: int) -> tuple[int, int]:
     metavar="FILE|leaves",
     help=KITCHEN_HELP.replace("kitchen.json", "A kitchen.json", 1),
 )
-@click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
+@choice_option("--format", "fmt", choices=("text", "json"), default="text")
 @guarded
 def objects(query, data, only, kitchen_file, fmt):
     """List the objects LABEL names (all objects without it), each with its #ID and text.

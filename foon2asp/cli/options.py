@@ -9,15 +9,28 @@ from __future__ import annotations
 
 import functools
 import inspect
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import click
 
 from foon2asp import api, report
-from foon2asp.cli.output import warn_all
+from foon2asp.cli.main import main
+from foon2asp.cli.output import EXIT_CODES, warn_all
 from foon2asp.cli.params import SECONDS, int32
 from foon2asp.errors import InputError
+
+
+def stacked(func: Callable, decorators: Sequence[Callable]) -> Callable:
+    """``func`` under ``decorators``, the first outermost (as if written above it in this order)."""
+    for decorate in reversed(decorators):
+        func = decorate(func)
+    return func
+
+
+def choice_option(*names: str, choices: Sequence[str], default: str | None = None, help: str | None = None):
+    """An option taking one of ``choices`` (the default shown in the help)."""
+    return click.option(*names, type=click.Choice(choices), default=default, show_default=True, help=help)
 
 
 def request_options(keys: dict[str, str], *opts: Callable, check: Callable[[dict], None] | None = None):
@@ -33,9 +46,7 @@ def request_options(keys: dict[str, str], *opts: Callable, check: Callable[[dict
             kwargs["options"] = api.Options.of(kwargs.pop("options", None), **values)
             return func(*args, **kwargs)
 
-        for opt in reversed(opts):
-            wrapper = opt(wrapper)
-        return wrapper
+        return stacked(wrapper, opts)
 
     return decorate
 
@@ -115,9 +126,7 @@ def match_options(func):
     def wrapper(*args, **kwargs):
         return func(*args, match=_match_args(kwargs), **kwargs)
 
-    for opt in reversed(MATCH_OPTIONS):
-        wrapper = opt(wrapper)
-    return wrapper
+    return stacked(wrapper, MATCH_OPTIONS)
 
 
 # ---------------------------------------------------------------- the data
@@ -172,12 +181,29 @@ KITCHEN_HELP = (
     "kitchen.json, or 'leaves': every object no unit of the FOON makes (merged generated trees have no kitchen)."
 )
 
+#: --motion, --utensils, --utensil-rule and --strict
+FILE_OPTIONS = [
+    click.option("--motion", type=click.Path(), help="motion.txt (motion TAB success rate)"),
+    click.option("--utensils", type=click.Path(), help="utensils.txt"),
+    choice_option(
+        "--utensil-rule",
+        choices=api.UTENSIL_RULES,
+        default="starter",
+        help="When a utensil holding one ingredient is not a required input.",
+    ),
+    click.option("--strict", is_flag=True, help=STRICT_HELP),
+]
+
+
+def file_options(func):
+    """:data:`FILE_OPTIONS` (for a command without the other data options)."""
+    return stacked(func, FILE_OPTIONS)
+
 
 def data_options(func, with_kitchen: bool = True):
     """--data DIR and the per-file overrides, plus --utensil-rule, --strict and the looser-matching
-    options (:data:`MATCH_OPTIONS`), passed on as one ``data`` value (:class:`DataArgs`); a command
-    that takes ``options`` gets the substitutes there too.  ``with_kitchen=False`` leaves out
-    ``--kitchen FILE``."""
+    options, passed on as one ``data`` value (:class:`DataArgs`); a command that takes ``options``
+    gets the substitutes there too.  ``with_kitchen=False`` leaves out ``--kitchen FILE``."""
     opts = [
         click.option(
             "--data",
@@ -193,20 +219,9 @@ def data_options(func, with_kitchen: bool = True):
             multiple=True,
             help="FOON file(s), several are merged; without --data the other files are read from beside the first.",
         ),
-        click.option("--motion", type=click.Path(), help="motion.txt (motion TAB success rate)"),
-        click.option("--utensils", type=click.Path(), help="utensils.txt"),
-        click.option(
-            "--utensil-rule",
-            type=click.Choice(api.UTENSIL_RULES),
-            default="starter",
-            show_default=True,
-            help="When a utensil holding one ingredient is not a required input.",
-        ),
-        click.option("--strict", is_flag=True, help=STRICT_HELP),
+        *([click.option("--kitchen", type=click.Path(), help=KITCHEN_HELP)] if with_kitchen else []),
+        *FILE_OPTIONS,
     ]
-    if with_kitchen:
-        opts.insert(2, click.option("--kitchen", type=click.Path(), help=KITCHEN_HELP))
-
     takes_options = "options" in inspect.signature(func).parameters
 
     @functools.wraps(func)
@@ -220,9 +235,7 @@ def data_options(func, with_kitchen: bool = True):
             kwargs["options"] = match.request(kwargs.get("options"))
         return func(*args, data=DataArgs(**values, match=match), **kwargs)
 
-    for opt in reversed(opts + MATCH_OPTIONS):
-        wrapper = opt(wrapper)
-    return wrapper
+    return stacked(wrapper, opts + MATCH_OPTIONS)
 
 
 # ---------------------------------------------------------------- goals and methods
@@ -239,8 +252,7 @@ GOALS_HELP = (
 
 def goal_options(func):
     func = click.option("--goals", "goals", metavar="FILE|all|all-objects", help=GOALS_HELP)(func)
-    func = click.option("--goal", "goal", multiple=True, metavar="TEXT", help=GOAL_HELP)(func)
-    return func
+    return click.option("--goal", "goal", multiple=True, metavar="TEXT", help=GOAL_HELP)(func)
 
 
 def method_option(default: str):
@@ -273,7 +285,7 @@ def is_search(name: str) -> bool:
 
 def format_option(kind: str):
     """``--format`` with the formats of the answers of ``kind`` (:func:`foon2asp.report.names`)."""
-    return click.option("--format", "fmt", type=click.Choice(report.names(kind)), default="text", show_default=True)
+    return choice_option("--format", "fmt", choices=report.names(kind), default="text")
 
 
 def progress_option(func):
@@ -282,13 +294,20 @@ def progress_option(func):
     )(func)
 
 
+def together_option(help: str):
+    """``--together``: the goals as one meal."""
+    return click.option("--together", is_flag=True, help=help)
+
+
 # ---------------------------------------------------------------- the request
 
+OBJECTIVE_HELP = (
+    "ASP objective(s), comma-separated, most important first: units, success, inputs, depth, cost"
+    " (with --motion-cost), e.g. cost,units."
+)
 
-def objective_option(
-    help: str = "ASP objective(s), comma-separated, most important first: units, success, inputs, depth, cost"
-    " (with --motion-cost), e.g. cost,units.",
-):
+
+def objective_option(help: str = OBJECTIVE_HELP):
     """``--objective`` and ``--motion-cost FILE`` into ``options``."""
     return request_options(
         {"objective": "objective", "motion_cost": "motion_cost"},
@@ -313,6 +332,11 @@ def time_limit_option(help: str):
     return request_options({"time_limit": "time_limit"}, click.option("--time-limit", type=SECONDS, help=help))
 
 
+def models_option(least: int, help: str):
+    """``--models K`` (at least ``least``; the request's ``models``)."""
+    return click.option("--models", type=int32(min=least), default=1, show_default=True, help=help)
+
+
 class Gap(click.ParamType):
     """A relative gap: a number >= 0 (0.05) or a percentage (5%)."""
 
@@ -325,7 +349,7 @@ class Gap(click.ParamType):
         try:
             number = float(text[:-1]) / 100 if text.endswith("%") else float(text)
         except ValueError:
-            self.fail(f"expected a number >= 0 (0.05) or a percentage (5%), not {value!r}", param, ctx)
+            number = -1.0
         if not 0 <= number < float("inf"):
             self.fail(f"expected a number >= 0 (0.05) or a percentage (5%), not {value!r}", param, ctx)
         return number
@@ -343,6 +367,21 @@ def gap_option(func):
             " most G, e.g. 0.05 or 5%; the answer is then 'feasible' with its bound. Default: prove.",
         ),
     )(func)
+
+
+def _tree_has(flag: str, which: str) -> list[Callable]:
+    """``--FLAG-motion M`` and ``--FLAG-object LABEL``: ``which`` unit of the tree has it."""
+    return [
+        click.option(
+            f"--{flag}-motion", multiple=True, metavar="M", help=f"{which} unit of the tree has motion M; repeatable."
+        ),
+        click.option(
+            f"--{flag}-object",
+            multiple=True,
+            metavar="LABEL",
+            help=f"{which} unit of the tree has an input or output labelled LABEL; repeatable.",
+        ),
+    ]
 
 
 def constraint_options(func):
@@ -366,24 +405,8 @@ def constraint_options(func):
         click.option(
             "--rule", multiple=True, help="An extra ASP rule, e.g. ':- use(U), motion(U,\"fry\").'; repeatable."
         ),
-        click.option(
-            "--forbid-motion", multiple=True, metavar="M", help="No unit of the tree has motion M; repeatable."
-        ),
-        click.option(
-            "--forbid-object",
-            multiple=True,
-            metavar="LABEL",
-            help="No unit of the tree has an input or output labelled LABEL; repeatable.",
-        ),
-        click.option(
-            "--require-motion", multiple=True, metavar="M", help="Some unit of the tree has motion M; repeatable."
-        ),
-        click.option(
-            "--require-object",
-            multiple=True,
-            metavar="LABEL",
-            help="Some unit of the tree has an input or output labelled LABEL; repeatable.",
-        ),
+        *_tree_has("forbid", "No"),
+        *_tree_has("require", "Some"),
         click.option("--max-units", type=int32(min=0), help="The tree has at most N units."),
     )(func)
 
@@ -421,7 +444,6 @@ def _exclusive(values: dict) -> None:
 
 def solver_options(func):
     """--max-depth, --human-steps, --models, --all-optimal, then :func:`strategy_options`, into ``options``."""
-    func = strategy_options(func)
     return request_options(
         {"max_depth": "max_depth", "human_steps": "human_steps", "models": "models", "all_optimal": "all_optimal"},
         click.option(
@@ -434,13 +456,22 @@ def solver_options(func):
             type=int32(min=0),
             help="At most M units may be done by a person (success 1.0); the solver picks them, the output marks them.",
         ),
-        click.option(
-            "--models",
-            type=int32(min=1),
-            default=1,
-            show_default=True,
-            help="The K best distinct trees per goal, best first.",
-        ),
+        models_option(1, "The K best distinct trees per goal, best first."),
         click.option("--all-optimal", is_flag=True, help="Every optimal tree per goal (at most 100)."),
         check=_exclusive,
-    )(func)
+    )(strategy_options(func))
+
+
+# ---------------------------------------------------------------- commands on goals
+
+
+def goal_command(
+    kind: str | None, *, methods: str | None = None, objective: str = OBJECTIVE_HELP, epilog: str = EXIT_CODES
+):
+    """A command of ``foon2asp`` on goals with, in this order, the data options, --goal and --goals,
+    the constraint options, --method (default ``methods``; none when None), --objective and
+    --motion-cost, --format (the formats of ``kind``; none when None); the options below it follow."""
+    first = [main.command(epilog=epilog), data_options, goal_options, constraint_options]
+    more = [method_option(methods)] if methods else []
+    last = [format_option(kind)] if kind else []
+    return lambda func: stacked(func, [*first, *more, objective_option(objective), *last])

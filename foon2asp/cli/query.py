@@ -8,9 +8,15 @@ import click
 
 from foon2asp import api, report
 from foon2asp.cli.main import guarded, main
-from foon2asp.cli.options import GOAL_HELP, data_options, format_option, request_options, time_limit_option
+from foon2asp.cli.options import (
+    GOAL_HELP,
+    data_options,
+    format_option,
+    models_option,
+    request_options,
+    time_limit_option,
+)
 from foon2asp.cli.output import warn_all
-from foon2asp.cli.params import int32
 
 #: the statuses of a query that exit 0: a model, the proven optimum (unsatisfiable, feasible and unknown exit 1)
 ANSWERED = frozenset({"satisfiable", "optimal"})
@@ -29,16 +35,7 @@ ANSWERED = frozenset({"satisfiable", "optimal"})
     multiple=True,
     help="Also load a shipped encoding (tree, units, success, inputs, reachable, missing) and what it needs; repeatable.",
 )
-@request_options(
-    {"models": "models"},
-    click.option(
-        "--models",
-        type=int32(min=0),
-        default=1,
-        show_default=True,
-        help="Models to print (0 = all); with an objective, the optimum.",
-    ),
-)
+@request_options({"models": "models"}, models_option(0, "Models to print (0 = all); with an objective, the optimum."))
 @format_option("query")
 @time_limit_option("Seconds for the solve.")
 @guarded

@@ -7,15 +7,14 @@ import sys
 import click
 
 from foon2asp import api, report
-from foon2asp.cli.main import guarded, main
+from foon2asp.cli.main import guarded
 from foon2asp.cli.options import (
-    constraint_options,
-    data_options,
-    goal_options,
-    objective_option,
+    choice_option,
+    goal_command,
     progress_option,
     strategy_options,
     time_limit_option,
+    together_option,
 )
 from foon2asp.cli.output import GoalProgress, progress_bar, solver_of
 from foon2asp.cli.schedule_options import schedule_options
@@ -42,13 +41,11 @@ def status_text(info: dict) -> str:
     return f"{head}, lower bound {seconds_text(info['lower'])} s"
 
 
-@main.command(epilog=EXIT)
-@data_options
-@goal_options
-@constraint_options
-@objective_option(
-    "The tree's objective(s), comma-separated (units, success, inputs, depth, cost): the tree scheduled,"
-    " or with --joint the tie-breaker after makespan and human units."
+@goal_command(
+    None,
+    objective="The tree's objective(s), comma-separated (units, success, inputs, depth, cost): the tree scheduled,"
+    " or with --joint the tie-breaker after makespan and human units.",
+    epilog=EXIT,
 )
 @time_limit_option(
     "Seconds per solve (tree, schedule; with --joint also the search over trees); a schedule cut short is"
@@ -62,26 +59,24 @@ def status_text(info: dict) -> str:
     help="Choose tree and schedule together: the makespan is minimal over every valid tree (the fixed tree's"
     " is reported beside it).",
 )
-@click.option(
+@choice_option(
     "--format",
     "fmt",
-    type=click.Choice([*OWN, *report.names("schedule")]),
+    choices=[*OWN, *report.names("schedule")],
     default="text",
-    show_default=True,
     help="text: a timeline per agent; json: a list, one object per goal; svg/png/pdf/dot: Gantt charts;"
     " html: a page of them.",
 )
 @click.option(
     "-o", "--output", type=click.Path(dir_okay=False), help="Write to FILE instead of stdout (png, pdf: binary)."
 )
-@click.option(
+@choice_option(
     "--encoding",
-    type=click.Choice(api.SCHEDULE_ENCODINGS),
+    choices=api.SCHEDULE_ENCODINGS,
     default=api.DEFAULT_SCHEDULE_ENCODING,
-    show_default=True,
     help="Time steps in plain ASP, or clingo-dl start times (needs clingo-dl).",
 )
-@click.option("--together", is_flag=True, help="A meal: one tree that makes every goal, and one schedule of it.")
+@together_option("A meal: one tree that makes every goal, and one schedule of it.")
 @strategy_options
 @progress_option
 @guarded

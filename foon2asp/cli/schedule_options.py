@@ -8,6 +8,7 @@ import functools
 import click
 
 from foon2asp import api
+from foon2asp.cli.options import stacked
 from foon2asp.errors import InputError
 
 
@@ -55,6 +56,4 @@ def schedule_options(func):
         files = [kwargs.pop(k) for k in ("agents", "durations", "capabilities", "resources")]
         return func(*args, spec=api.ScheduleSpec.from_files(*files), **kwargs)
 
-    for opt in reversed(opts):
-        wrapper = opt(wrapper)
-    return wrapper
+    return stacked(wrapper, opts)

@@ -7,22 +7,18 @@ import sys
 import click
 
 from foon2asp import api, report
-from foon2asp.cli.main import guarded, main
+from foon2asp.cli.main import guarded
 from foon2asp.cli.options import (
-    constraint_options,
-    data_options,
-    format_option,
     gap_option,
-    goal_options,
+    goal_command,
     is_search,
-    method_option,
     methods_of,
-    objective_option,
     progress_option,
     solver_options,
     time_limit_option,
+    together_option,
 )
-from foon2asp.cli.output import EXIT_CODES, exit_code, goal_progress, progress_bar, solver_of, warn
+from foon2asp.cli.output import exit_code, goal_progress, progress_bar, solver_of, warn
 from foon2asp.errors import InputError
 from foon2asp.report import draw
 from foon2asp.report.trees import render, render_bytes
@@ -41,13 +37,7 @@ def written(trees: list) -> str:
     return "; ".join(t.status + (", INVALID" if t.has_tree and t.extra.get("valid") is False else "") for t in trees)
 
 
-@main.command(epilog=EXIT_CODES)
-@data_options
-@goal_options
-@constraint_options
-@method_option("asp")
-@objective_option()
-@format_option("trees")
+@goal_command("trees", methods="asp")
 @click.option(
     "-o",
     "--output",
@@ -56,11 +46,7 @@ def written(trees: list) -> str:
 )
 @time_limit_option("Seconds per goal; the best tree so far is reported as 'feasible'.")
 @gap_option
-@click.option(
-    "--together",
-    is_flag=True,
-    help="A meal: one tree that makes every goal, units shared between dishes counted once (ASP methods).",
-)
+@together_option("A meal: one tree that makes every goal, units shared between dishes counted once (ASP methods).")
 @solver_options
 @progress_option
 @guarded
