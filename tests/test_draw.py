@@ -14,9 +14,9 @@ from foon2asp.asp.session import AspOptions, Session
 from foon2asp.cli.main import main
 from foon2asp.foon import goals
 from foon2asp.report import draw
+from test_pictures import CHROMIUM, chromium
 
 needs_dot = pytest.mark.skipif(shutil.which("dot") is None, reason="Graphviz 'dot' is not installed")
-CHROMIUM = next((shutil.which(b) for b in ("chromium", "chromium-browser", "google-chrome") if shutil.which(b)), None)
 
 
 def cli(*args):
@@ -201,26 +201,7 @@ def test_html_report_has_the_table_and_every_drawing(html_report, shared_foon_di
 @pytest.mark.skipif(CHROMIUM is None, reason="no Chromium installed")
 def test_html_report_in_headless_chromium(html_report, tmp_path):
     def browse(path):
-        res = subprocess.run(
-            [
-                CHROMIUM,
-                "--headless",
-                "--no-sandbox",
-                "--disable-gpu",
-                "--disable-background-networking",
-                "--no-first-run",
-                "--disable-component-update",
-                "--disable-sync",
-                f"--user-data-dir={tmp_path / 'profile'}",
-                "--enable-logging=stderr",
-                "--v=0",
-                "--dump-dom",
-                path.as_uri(),
-            ],
-            capture_output=True,
-            text=True,
-            timeout=180,
-        )
+        res = chromium(tmp_path, "--enable-logging=stderr", "--v=0", "--dump-dom", path.as_uri(), timeout=180)
         return res.stdout, [line for line in res.stderr.splitlines() if ":CONSOLE" in line]
 
     # the console check can fail: a page that logs an error is caught

@@ -71,31 +71,19 @@ def cli(*args):
     return CliRunner().invoke(main, [str(a) for a in args])
 
 
+def chromium(tmp_path, *args: str, timeout: int) -> subprocess.CompletedProcess:
+    """Run headless Chromium with ``args`` and a fresh profile under ``tmp_path``."""
+    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking"]
+    flags += ["--disable-component-update", "--disable-sync", f"--user-data-dir={tmp_path / 'profile'}"]
+    return subprocess.run([CHROMIUM, *flags, *args], capture_output=True, text=True, timeout=timeout)
+
+
 def measure(page: str, tmp_path, fragment: str = "") -> dict:
     """Open ``page`` (HTML text) in headless Chromium, WIDTH px wide, and measure its figures."""
     path = tmp_path / "measured.html"
     path.write_text(page.replace("</body>", MEASURE + "</body>"), encoding="utf-8")
-    res = subprocess.run(
-        [
-            CHROMIUM,
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--hide-scrollbars",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            f"--user-data-dir={tmp_path / 'profile'}",
-            f"--window-size={WIDTH},1000",
-            "--virtual-time-budget=10000",
-            "--dump-dom",
-            path.as_uri() + fragment,
-        ],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
+    args = ["--hide-scrollbars", f"--window-size={WIDTH},1000", "--virtual-time-budget=10000"]
+    res = chromium(tmp_path, *args, "--dump-dom", path.as_uri() + fragment, timeout=300)
     found = re.search(r'<pre id="measured">(.*?)</pre>', res.stdout, re.S)
     assert found, res.stderr[-2000:]
     return json.loads(html.unescape(found.group(1)))
