@@ -219,17 +219,8 @@ def add_chart(
             f'<TABLE BORDER="0" CELLBORDER="0" CELLPADDING="0" CELLSPACING="0" FIXEDSIZE="TRUE"'
             f' WIDTH="{need:.0f}" HEIGHT="10"><TR><TD ALIGN="LEFT">{html.escape(text)}</TD></TR></TABLE>'
         )
-        _text(
-            g,
-            f"{prefix}u{i}label",
-            cell,
-            x + need / 2,
-            height,
-            need,
-            f"{SIDE_FONT:g}",
-            tooltip=tooltip,
-            **{"class": f"label {where}"},
-        )
+        attrs = {"tooltip": tooltip, "class": f"label {where}"}
+        _text(g, f"{prefix}u{i}label", cell, x + need / 2, height, need, f"{SIDE_FONT:g}", **attrs)
     bottom = lane_tops[len(agents)] - 8 if agents else top - 38
     for j, t in enumerate(_ticks(span)):
         _text(g, f"{prefix}t{j}", f"{t:g}", LABEL_WIDTH + t * scale, bottom, 30, "8")
