@@ -21,7 +21,7 @@ from foon2asp.cli.options import (
     time_limit_option,
     together_option,
 )
-from foon2asp.cli.output import EXIT_CODES, exit_code, warn_all
+from foon2asp.cli.output import EXIT_CODES, emit, exit_code, warn_all
 
 
 @main.command(epilog=EXIT_CODES)
@@ -48,9 +48,7 @@ from foon2asp.cli.output import EXIT_CODES, exit_code, warn_all
 @strategy_options
 @match_options
 @guarded
-def consolidate(
-    trees, goal, goals, kitchen, motion, utensils, utensil_rule, strict, fmt, output, together, options, match
-):
+def consolidate(trees, goal, fmt, output, options, match, **given):
     """Merge candidate task trees of one recipe (TREES: files in any form 'check' reads, e.g. the
     unit-list JSON of generated trees) into one FOON and find, for each goal, its proven-best tree.
 
@@ -60,24 +58,8 @@ def consolidate(
     beside the optimum's and which of its units the tree uses.  An unreachable goal comes with
     the fewest objects to add to the kitchen ('missing').
     """
-    found = api.consolidate(
-        list(trees),
-        list(goal) or None,
-        goals=goals,
-        kitchen=kitchen,
-        motion=motion,
-        utensils=utensils,
-        utensil_rule=utensil_rule,
-        together=together,
-        strict=strict,
-        options=match.request(options),
-        **match.load_args,
-    )
+    # given: --goals, --kitchen, the file options and --together, as api.consolidate names them
+    found = api.consolidate(list(trees), list(goal) or None, options=match.request(options), **given, **match.load_args)
     warn_all(found.warnings)
-    text = found.render(fmt)
-    if output:
-        api.write_file(output, text)
-        click.echo(f"wrote the {fmt} report of {len(found)} goal(s) to {output}", err=True)
-    else:
-        click.echo(text, nl=False)
+    emit(found.render(fmt), output, f"wrote the {fmt} report of {len(found)} goal(s)")
     sys.exit(exit_code((r.status, None) for r in found))

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import click
 
-from foon2asp import api
 from foon2asp.cli.main import guarded, main
 from foon2asp.cli.options import GOAL_HELP, data_options
+from foon2asp.cli.output import emit
 
 
 @main.command()
@@ -22,8 +22,4 @@ def facts(data, goals, goal, output):
     kb = data.load(goals)
     nodes = kb.select_goals((), goals) if goals else None
     text = kb.facts(nodes, kb.select_goals(goal, None) if goal else [], options=data.request())
-    if output:
-        api.write_file(output, text)
-        click.echo(f"wrote {len(text.splitlines())} lines to {output}", err=True)
-    else:
-        click.echo(text, nl=False)
+    emit(text, output, f"wrote {len(text.splitlines())} lines")

@@ -54,6 +54,17 @@ def solver_of(kb: api.KnowledgeBase, options: api.Options) -> Any:
     return solver
 
 
+def emit(text: str | bytes, output: str | None, wrote: str) -> None:
+    """``text`` into the file ``output`` (stderr then says ``wrote``, then `` to OUTPUT``), else on stdout."""
+    if output:
+        api.write_file(output, text)
+        click.echo(f"{wrote} to {output}", err=True)
+    elif isinstance(text, bytes):
+        sys.stdout.buffer.write(text)
+    else:
+        click.echo(text, nl=False)
+
+
 def progress_bar(items: Iterable, total: int, enabled: bool | None, what: str) -> Any:
     """``items`` (``total`` goals) behind a progress bar on stderr: when it is a terminal
     and there is more than one goal (``enabled`` None), or as ``enabled`` says."""

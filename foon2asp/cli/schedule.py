@@ -16,7 +16,7 @@ from foon2asp.cli.options import (
     time_limit_option,
     together_option,
 )
-from foon2asp.cli.output import GoalProgress, progress_bar, solver_of
+from foon2asp.cli.output import GoalProgress, emit, progress_bar, solver_of
 from foon2asp.cli.schedule_options import schedule_options
 from foon2asp.report import draw
 from foon2asp.schedule.result import seconds_text
@@ -111,12 +111,6 @@ def schedule(data, goal, goals, spec, joint, fmt, output, encoding, together, pr
         out = api.schedules_json(done)
     else:
         out = report.render_bytes("schedule", fmt, [s.to_dict() for s in done])
-    if output is not None:
-        api.write_file(output, out)
-        click.echo(f"wrote {len(done)} schedule(s) as {fmt} to {output}", err=True)
-    elif not stream:
-        if isinstance(out, bytes):
-            sys.stdout.buffer.write(out)
-        else:
-            click.echo(out, nl=False)
+    if not stream:
+        emit(out, output, f"wrote {len(done)} schedule(s) as {fmt}")
     sys.exit(0 if all(s.status in ANSWERED for s in done) else 1)
