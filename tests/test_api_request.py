@@ -31,15 +31,10 @@ def demo():
 
 
 def test_keywords_map_onto_one_request():
+    same = dict(time_limit=3, models=2, max_depth=9, human_steps=1, opt_strategy="bb", threads=2, grounding="per-goal")
     keywords = dict(
         objective="success, units",
-        time_limit=3,
-        models=2,
-        max_depth=9,
-        human_steps=1,
-        opt_strategy="bb",
-        threads=2,
-        grounding="per-goal",
+        **same,
         shortcuts=False,
         forbid_motions=["heat"],
         forbid_objects=["stove"],
@@ -50,19 +45,7 @@ def test_keywords_map_onto_one_request():
         constraint_files=["no.lp"],
     )
     spec = Constraints(("no.lp",), (":- use(1).",), ("heat",), ("stove",), ("boil",), ("pot",), 7)
-    expected = Options(
-        objective=("success", "units"),
-        constraints=spec,
-        time_limit=3,
-        models=2,
-        all_optimal=False,
-        max_depth=9,
-        human_steps=1,
-        opt_strategy="bb",
-        threads=2,
-        grounding="per-goal",
-        shortcuts=False,
-    )
+    expected = Options(objective=("success", "units"), constraints=spec, all_optimal=False, shortcuts=False, **same)
     assert Options.of(**keywords) == expected
     # keywords go on top of a request, field by field (constraints too)
     base = Options(objective=("inputs",), constraints=Constraints(rules=(":- use(2).",)), threads=4)
