@@ -141,12 +141,18 @@ def gap_text(tree: TaskTree) -> str:
         return ""
     have = tree.cost.get(name)
     words = "upper bound" if name == "success" else "lower bound"
-    head = f"{name} {_num(have)}, " if have is not None else ""
-    return f"{head}{words} {_num(tree.bound[name])}, gap {_percent(tree.gap)}"
+    head = f"{name} {number(have)}, " if have is not None else ""
+    return f"{head}{words} {number(tree.bound[name])}, gap {_percent(tree.gap)}"
 
 
-def _num(value: object) -> str:
-    return f"{value:.4g}" if isinstance(value, float) else str(value)
+def number(value: object) -> str:
+    """A measure as every text output prints it: integers in full, other numbers to 4
+    significant digits, ``-`` for none."""
+    if value is None:
+        return "-"
+    if isinstance(value, float):
+        return f"{value:.4g}"
+    return str(value)
 
 
 def _percent(gap: float) -> str:

@@ -7,7 +7,7 @@ import json
 from foon2asp.foon import foonjson
 from foon2asp.foon.parser import format_units, id_map
 from foon2asp.foon.problem import Problem
-from foon2asp.tree.gap import gap_text
+from foon2asp.tree.gap import gap_text, number
 from foon2asp.tree.tasktree import TaskTree
 
 
@@ -52,16 +52,6 @@ def json_list(records: list[dict], indent: int | None = 2) -> str:
 
 def to_json(problem: Problem, trees: list[TaskTree], indent: int | None = 2) -> str:
     return json_list([tree_json(problem, t) for t in trees], indent)
-
-
-def number(value: object) -> str:
-    """A measure as every text output prints it: integers in full, other numbers to 4
-    significant digits, ``-`` for none."""
-    if value is None:
-        return "-"
-    if isinstance(value, float):
-        return f"{value:.4g}"
-    return str(value)
 
 
 def _cost_text(cost: dict) -> str:
