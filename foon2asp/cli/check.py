@@ -68,7 +68,7 @@ def check(trees, data, goal, goals, fmt, optimum, spec):
         if fmt not in ("text", "json"):
             raise InputError(f"schedules are checked in --format text or json, not {fmt}")
         kb = data.load()
-        verdicts = [v for p in schedules for v in kb.check_schedules(p, spec, data.request())]
+        verdicts = [v for p in schedules for v in kb.check_schedules(p, spec, data.match.request())]
         out = api.verdicts_json(verdicts) if fmt == "json" else "".join(v.to_text() for v in verdicts)
         click.echo(out, nl=False)
         if len(schedules) == len(trees):
@@ -99,7 +99,9 @@ def check(trees, data, goal, goals, fmt, optimum, spec):
         kb = data.load(goals)
         among = kb.select_goals((), goals) if goals else None
         for path in trees:
-            found = kb.check_all(path, list(goal) or None, optimum, among, strict=data.strict, options=data.request())
+            found = kb.check_all(
+                path, list(goal) or None, optimum, among, strict=data.strict, options=data.match.request()
+            )
             warn_all(dict.fromkeys(w for r in found for w in r.warnings))
             reports += [r.raw for r in found]
         click.echo(report.render("check", fmt, kb.problem, reports), nl=False)

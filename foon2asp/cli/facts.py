@@ -21,5 +21,5 @@ def facts(data, goals, goal, output):
     """Write the FOON, kitchen and goals as ASP facts."""
     kb = data.load(goals)
     nodes = kb.select_goals((), goals) if goals else None
-    text = kb.facts(nodes, kb.select_goals(goal, None) if goal else [], options=data.request())
+    text = kb.facts(nodes, kb.select_goals(goal, None) if goal else [], options=data.match.request())
     emit(text, output, f"wrote {len(text.splitlines())} lines")

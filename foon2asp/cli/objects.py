@@ -63,7 +63,7 @@ def objects(query, data, only, kitchen_file, fmt):
             f"no kitchen.json beside the FOON file (looked for {looked_for}); give --kitchen-file FILE,"
             " --kitchen-file leaves (every object no unit makes) or --data DIR"
         ) from None
-    ids = kb.find_objects(query, only, options=data.request())
+    ids = kb.find_objects(query, only, options=data.match.request())
     makers = {i: _makers(kb, i) for i in ids}
     if only == "produced":  # some unit makes it, not only outputs it again
         ids = [i for i in ids if makers[i][0]]

@@ -17,7 +17,7 @@ import click
 from foon2asp import api, report
 from foon2asp.cli.main import main
 from foon2asp.cli.output import EXIT_CODES, warn_all
-from foon2asp.cli.params import SECONDS, int32
+from foon2asp.cli.params import GAP, SECONDS, int32
 from foon2asp.errors import InputError
 
 
@@ -145,10 +145,6 @@ class DataArgs:
     strict: bool
     match: MatchArgs = MatchArgs()
 
-    def request(self, options: api.Options | None = None) -> api.Options:
-        """``options`` with the substitutes of the data options (--substitutes, --max-substitutions)."""
-        return self.match.request(options)
-
     def load(self, goals_file: str | None = None) -> api.KnowledgeBase:
         """The knowledge base these options name (``goals_file``: a ``--goals FILE`` to read); its
         warnings go to stderr.  Never the demo data unless asked."""
@@ -156,17 +152,10 @@ class DataArgs:
             raise InputError(
                 "no data given: use --data DIR, --foon FILE (with kitchen.json ... beside it) or --data demo"
             )
-        kb = api.load(
-            self.data_dir,
-            foon=list(self.foon) if self.foon else None,
-            kitchen=self.kitchen,
-            goals=goals_file if goals_file not in (None, "all", "all-objects") else None,
-            motion=self.motion,
-            utensils=self.utensils,
-            utensil_rule=self.utensil_rule,
-            strict=self.strict,
-            **self.match.load_args,
-        )
+        files = {k: getattr(self, k) for k in ("kitchen", "motion", "utensils", "utensil_rule", "strict")}
+        goals = goals_file if goals_file not in (None, "all", "all-objects") else None
+        foon = list(self.foon) if self.foon else None
+        kb = api.load(self.data_dir, foon=foon, goals=goals, **files, **self.match.load_args)
         warn_all(kb.warnings)
         return kb
 
@@ -288,10 +277,9 @@ def format_option(kind: str):
     return choice_option("--format", "fmt", choices=report.names(kind), default="text")
 
 
-def progress_option(func):
-    return click.option(
-        "--progress/--no-progress", default=None, help="Progress bar on stderr (default: when it is a terminal)."
-    )(func)
+progress_option = click.option(
+    "--progress/--no-progress", default=None, help="Progress bar on stderr (default: when it is a terminal)."
+)
 
 
 def together_option(help: str):
@@ -337,36 +325,17 @@ def models_option(least: int, help: str):
     return click.option("--models", type=int32(min=least), default=1, show_default=True, help=help)
 
 
-class Gap(click.ParamType):
-    """A relative gap: a number >= 0 (0.05) or a percentage (5%)."""
-
-    name = "G"
-
-    def convert(self, value, param, ctx):
-        if isinstance(value, float):
-            return value
-        text = str(value).strip()
-        try:
-            number = float(text[:-1]) / 100 if text.endswith("%") else float(text)
-        except ValueError:
-            number = -1.0
-        if not 0 <= number < float("inf"):
-            self.fail(f"expected a number >= 0 (0.05) or a percentage (5%), not {value!r}", param, ctx)
-        return number
-
-
-def gap_option(func):
-    """``--gap G`` into ``options``: stop a goal once its gap is at most G."""
-    return request_options(
-        {"gap": "gap"},
-        click.option(
-            "--gap",
-            type=Gap(),
-            metavar="G",
-            help="Stop a goal once its gap (the tree against the proven lower bound, first objective) is at"
-            " most G, e.g. 0.05 or 5%; the answer is then 'feasible' with its bound. Default: prove.",
-        ),
-    )(func)
+#: ``--gap G`` into ``options``: stop a goal once its gap is at most G
+gap_option = request_options(
+    {"gap": "gap"},
+    click.option(
+        "--gap",
+        type=GAP,
+        metavar="G",
+        help="Stop a goal once its gap (the tree against the proven lower bound, first objective) is at"
+        " most G, e.g. 0.05 or 5%; the answer is then 'feasible' with its bound. Default: prove.",
+    ),
+)
 
 
 def _tree_has(flag: str, which: str) -> list[Callable]:
@@ -384,31 +353,28 @@ def _tree_has(flag: str, which: str) -> list[Callable]:
     ]
 
 
-def constraint_options(func):
-    """--constraint FILE.lp, --rule TEXT and the convenience flags, into ``options.constraints``."""
-    return request_options(
-        {
-            "constraint": "constraint_files",
-            "rule": "rules",
-            "forbid_motion": "forbid_motions",
-            "forbid_object": "forbid_objects",
-            "require_motion": "require_motions",
-            "require_object": "require_objects",
-            "max_units": "max_units",
-        },
-        click.option(
-            "--constraint",
-            type=click.Path(),
-            multiple=True,
-            help="ASP file with extra rules over the vocabulary (use/1, motion/2, label/2, ...); repeatable.",
-        ),
-        click.option(
-            "--rule", multiple=True, help="An extra ASP rule, e.g. ':- use(U), motion(U,\"fry\").'; repeatable."
-        ),
-        *_tree_has("forbid", "No"),
-        *_tree_has("require", "Some"),
-        click.option("--max-units", type=int32(min=0), help="The tree has at most N units."),
-    )(func)
+#: --constraint FILE.lp, --rule TEXT and the convenience flags, into ``options.constraints``.
+constraint_options = request_options(
+    {
+        "constraint": "constraint_files",
+        "rule": "rules",
+        "forbid_motion": "forbid_motions",
+        "forbid_object": "forbid_objects",
+        "require_motion": "require_motions",
+        "require_object": "require_objects",
+        "max_units": "max_units",
+    },
+    click.option(
+        "--constraint",
+        type=click.Path(),
+        multiple=True,
+        help="ASP file with extra rules over the vocabulary (use/1, motion/2, label/2, ...); repeatable.",
+    ),
+    click.option("--rule", multiple=True, help="An extra ASP rule, e.g. ':- use(U), motion(U,\"fry\").'; repeatable."),
+    *_tree_has("forbid", "No"),
+    *_tree_has("require", "Some"),
+    click.option("--max-units", type=int32(min=0), help="The tree has at most N units."),
+)
 
 
 def _opt_strategy(ctx, param, value):
@@ -417,24 +383,23 @@ def _opt_strategy(ctx, param, value):
     return value
 
 
-def strategy_options(func):
-    """--opt-strategy and --threads into ``options`` (None and 1: the defaults of foon2asp.asp.settings)."""
-    return request_options(
-        {"opt_strategy": "opt_strategy", "threads": "threads"},
-        click.option(
-            "--opt-strategy",
-            callback=_opt_strategy,
-            help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll;"
-            " default usc,oll,succinct,stratify, or with --threads 2+ a portfolio of one bb and one usc solver.",
-        ),
-        click.option(
-            "--threads",
-            type=int32(min=1, max=64),
-            default=1,
-            show_default=True,
-            help="clingo solver threads (parallel mode; in a batch, per worker).",
-        ),
-    )(func)
+#: --opt-strategy and --threads into ``options`` (None and 1: the defaults of foon2asp.asp.settings).
+strategy_options = request_options(
+    {"opt_strategy": "opt_strategy", "threads": "threads"},
+    click.option(
+        "--opt-strategy",
+        callback=_opt_strategy,
+        help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll;"
+        " default usc,oll,succinct,stratify, or with --threads 2+ a portfolio of one bb and one usc solver.",
+    ),
+    click.option(
+        "--threads",
+        type=int32(min=1, max=64),
+        default=1,
+        show_default=True,
+        help="clingo solver threads (parallel mode; in a batch, per worker).",
+    ),
+)
 
 
 def _exclusive(values: dict) -> None:

@@ -2,6 +2,7 @@
 
 * :data:`SECONDS` -- a time limit: a finite number of seconds > 0 (``0``, ``nan``, ``inf``, ``-1``
   refused, in the words the library uses for ``time_limit=``);
+* :data:`GAP` -- a relative gap: a number >= 0 (``0.05``) or a percentage (``5%``);
 * :func:`int32` -- an integer within what the solver takes (clingo numbers are 32-bit), so an
   overflow can never turn into a wrong answer;
 * :data:`SCHEDULER` -- a Dask scheduler address ``[tcp://|tls://|ucx://|ws://|wss://]HOST:PORT``
@@ -40,6 +41,27 @@ class Seconds(click.ParamType):
 
 
 SECONDS = Seconds()
+
+
+class Gap(click.ParamType):
+    """A relative gap: a number >= 0 (0.05) or a percentage (5%)."""
+
+    name = "G"
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, float):
+            return value
+        text = str(value).strip()
+        try:
+            number = float(text[:-1]) / 100 if text.endswith("%") else float(text)
+        except ValueError:
+            number = -1.0
+        if not 0 <= number < float("inf"):
+            self.fail(f"expected a number >= 0 (0.05) or a percentage (5%), not {value!r}", param, ctx)
+        return number
+
+
+GAP = Gap()
 
 
 def int32(min: int = 0, max: int = INT32_MAX) -> click.IntRange:

@@ -16,4 +16,4 @@ from foon2asp.cli.options import data_options, format_option, goal_options
 def reachable(data, goal, goals, fmt):
     """Which goals (or objects) can be made from the kitchen at all, in one solve (default: the goals file's goals)."""
     kb, goal_ids = data.load_goals(goal, goals)
-    click.echo(kb.reachability(goal_ids, options=data.request()).render(fmt), nl=False)
+    click.echo(kb.reachability(goal_ids, options=data.match.request()).render(fmt), nl=False)
