@@ -6,25 +6,10 @@
 >>> t.status, t.cost["units"]
 ('optimal', 1)
 
-Every command of the ``foon2asp`` command line is a thin layer over these
-calls: :func:`load` reads the data, :class:`KnowledgeBase` answers
-(:meth:`~KnowledgeBase.solve`, :meth:`~KnowledgeBase.check`,
-:meth:`~KnowledgeBase.compare`, :meth:`~KnowledgeBase.reachable`,
-:meth:`~KnowledgeBase.missing`, :meth:`~KnowledgeBase.query`,
-:meth:`~KnowledgeBase.batch`, :meth:`~KnowledgeBase.schedule`, :meth:`~KnowledgeBase.facts`) with the settings of
-one request (:class:`Options`), and the answers render themselves in every
-format of :mod:`foon2asp.report`.  Tree files without a FOON: :func:`check_tree`
-judges one on its own, :func:`consolidate` merges candidate trees of one recipe
-into one proven-best tree per goal.
-
-The modules, each importing only those before it: :mod:`~foon2asp.api.options` (the request),
-:mod:`~foon2asp.api.catalog` (methods, objectives and the other names a front end offers),
-:mod:`~foon2asp.api.matching` (goals, tree files and substitutes as the comparison sees them),
-:mod:`~foon2asp.api.files` (FOON files, programs, output files), :mod:`~foon2asp.api.schedules`
-(the agents of a schedule, schedule files checked), :mod:`~foon2asp.api.results` (the answers),
-:mod:`~foon2asp.api.batches` (batch runs), :mod:`~foon2asp.api.kb` (the knowledge base),
-:mod:`~foon2asp.api.load` (reading data) and :mod:`~foon2asp.api.trees` (tree files judged on
-their own or drawn, candidates consolidated).
+Every command of ``foon2asp`` is a thin layer over these calls: :func:`load` reads the data,
+:class:`KnowledgeBase` answers with the settings of one request (:class:`Options`), and the
+answers render themselves in the formats of :mod:`foon2asp.report`.  The modules import each
+other one way: options, catalog, matching, files, schedules, results, batches, kb, load, trees.
 """
 
 from foon2asp.api.batches import BatchRun

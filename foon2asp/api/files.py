@@ -3,6 +3,7 @@ in a FOON dialect or FOON JSON), ASP programs and output files."""
 
 from __future__ import annotations
 
+import io
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 
@@ -44,9 +45,8 @@ def write_file(path: str | Path, text: str | bytes) -> None:
 
 
 def read_foons(paths: Iterable[str | Path], strict: bool = False) -> Foon:
-    """FOON files (text in either dialect, FOON JSON, or the unit-list JSON of generated trees)
-    merged into one FOON, duplicate units once;
-    ``strict``: a unit skipped with a warning is an error.  The warnings are ``.warnings``."""
+    """FOON files (text, FOON JSON or unit-list JSON) merged into one FOON, duplicate units once,
+    with ``.warnings``; ``strict``: a unit skipped with a warning is an error."""
     names = [str(p) for p in paths]
     for name in names:
         if not Path(name).is_file():
@@ -73,18 +73,15 @@ def write_foon(foon: Foon, path: str | Path, fmt: str = "foon", header: str | No
     """Write ``foon`` to ``path`` (its directory created) in a format of :data:`FOON_FORMATS`."""
     if fmt not in FOON_FORMATS:
         raise InputError(f"unknown FOON format {fmt!r} (have {', '.join(FOON_FORMATS)})")
-    if Path(path).parent != Path("."):
-        writable_dir(Path(path).parent)
-    try:
-        with open(path, "w", encoding="utf-8") as fh:
-            if fmt == "foon-json":
-                fh.write(foonjson.dumps(foon.units, parser.id_map(foon), header))
-            elif fmt == "units-json":
-                fh.write(unitlist.dumps(foon.units))
-            else:
-                parser.write_foon(foon, fh, header=header, dialect="plain" if fmt == "foon-plain" else "official")
-    except OSError as exc:
-        raise InputError(f"cannot write the output file: {exc.strerror or exc}", str(path)) from None
+    if fmt == "foon-json":
+        text = foonjson.dumps(foon.units, parser.id_map(foon), header)
+    elif fmt == "units-json":
+        text = unitlist.dumps(foon.units)
+    else:
+        out = io.StringIO()
+        parser.write_foon(foon, out, header=header, dialect="plain" if fmt == "foon-plain" else "official")
+        text = out.getvalue()
+    write_file(path, text)
 
 
 def read_program(path: str | Path) -> str:

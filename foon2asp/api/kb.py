@@ -1,8 +1,7 @@
 """The knowledge base: a FOON with its kitchen, goals, motion success rates and utensils, ready to answer.
 
-Every answer takes the request's settings as ``options=`` (:class:`foon2asp.api.Options`) and/or
-as keywords (:class:`foon2asp.api.options.Settings`); goals are named as :data:`GoalLike`.
-"""
+Every answer takes a request as ``options=`` (:class:`foon2asp.api.Options`) and/or as keywords
+(:class:`foon2asp.api.options.Settings`)."""
 
 from __future__ import annotations
 
@@ -215,15 +214,10 @@ class KnowledgeBase:
         options: Options | None = None,
         **settings: Unpack[Settings],
     ) -> CheckReport | list[CheckReport]:
-        """Judge a :class:`Tree`, or each tree of a file (FOON text, FOON JSON, foon2asp JSON, the
-        unit-list JSON of generated trees, or a plan of ``export pddl``): one report, or a list
-        when the file holds several (:meth:`check_all`: always a list).
-
-        ``goal``: the goal (several: a meal); else the one of ``goals`` (a goals file or a list)
-        the tree makes, else the one the file names, else the tree's only product no unit needs.
-        ``optimum``: also solve the ASP optimum with ``options``.  ``strict``: units of a unit list
-        skipped or merged (each report's ``warnings``) are an error.
-        """
+        """Judge a :class:`Tree`, or each tree of a file (any tree format, or a plan of ``export
+        pddl``): one report, or a list when the file holds several.  ``goal``: the goal (several: a
+        meal); else the one of ``goals`` the tree makes, else the one the file names, else the
+        tree's only product no unit needs.  ``optimum``: also solve the optimum with the request."""
         solver = self.options(options, **settings)
         if isinstance(tree, Tree):
             if goal is not None and not isinstance(goal, str | int | FoonObject):
@@ -333,12 +327,8 @@ class KnowledgeBase:
         options: Options | None = None,
         **settings: Unpack[Settings],
     ) -> QueryResult:
-        """Run an ASP ``program`` (text) with the facts; shown atoms come back with ids decoded.
-
-        ``goal_nodes`` (default: the goals file's entries) become ``goal_node/2`` facts;
-        ``encodings`` are loaded with the ones they need; ``models`` (0: all), ``time_limit`` and
-        ``substitutes`` come from the request.  ``warnings`` names atoms no rule or fact defines.
-        """
+        """Run an ASP ``program`` (text) with the facts (``goal_node/2`` for ``goal_nodes``, default
+        the goals file's entries) and ``encodings``; shown atoms come back with ids decoded."""
         request = Options.of(options, **settings)
         nodes = self.file_goals() if goal_nodes is None else self.goal_ids(goal_nodes)
         gid = None if goal is None else self.object_id(goal)
@@ -359,13 +349,9 @@ class KnowledgeBase:
         options: Options | None = None,
         **settings: Unpack[Settings],
     ) -> BatchRun:
-        """Many goals x methods into a resumable JSON-lines file (``output``; None keeps results in memory).
-
-        ``grounding``: ``"whole"``, ``"per-goal"`` or ``"auto"`` (the run's ``grounding`` and
-        ``grounding_reason`` say which).  ``workers``: processes, or ``"auto"`` (this process, then a
-        pool on every usable core once the batch has run 5 s; a script using a pool needs the
-        ``if __name__ == "__main__":`` guard).
-        """
+        """Many goals x methods into a resumable JSON-lines file (``output``; None keeps results in
+        memory).  ``workers``: processes, or ``"auto"`` (this process, then a pool on every usable
+        core once the batch has run 5 s; a script using a pool needs the ``__main__`` guard)."""
         request = Options.of(options, **settings)
         solver = self.options(request)
         problem = self.solving_problem(solver)

@@ -57,23 +57,11 @@ def load(
     normalize: bool = False,
     synonyms: str | Path | Mapping[str, str] | None = None,
 ) -> KnowledgeBase:
-    """Read a data folder (``FOON.txt``, ``kitchen.json``, ``goal_nodes.json``,
-    ``motion.txt``, ``utensils.txt``) or ``"demo"``; keyword files override its files.
-
-    With ``foon`` and no folder, the other files are read from beside the
-    (first) FOON file when there; a missing ``kitchen.json`` is an error, a
-    missing goals, motion or utensils file a warning saying what that means.
-    A FOON file may be FOON text, FOON JSON or the unit-list JSON of generated
-    trees (:mod:`foon2asp.foon.unitlist`).  ``kitchen="leaves"``: the kitchen is
-    every object no unit of the FOON makes (:mod:`foon2asp.foon.leaves`).
-
-    Looser matching (:mod:`foon2asp.foon.matching`): ``level`` 1 compares objects by label,
-    2 by label, states and container, 3 (default) also by ingredients; ``normalize`` compares
-    texts case-folded with the last word in the singular; ``synonyms`` (a file of
-    ``name = canonical name`` lines, or a mapping) joins further names.  The knowledge base
-    then holds the FOON, kitchen and goals as the level sees them (first spellings kept;
-    :attr:`KnowledgeBase.joined` says which spellings were joined).
-    """
+    """Read a data folder (``FOON.txt``, ``kitchen.json``, ``goal_nodes.json``, ``motion.txt``,
+    ``utensils.txt``) or ``"demo"``; keyword files override its files.  With ``foon`` and no
+    folder, the others are read from beside the first FOON file (no kitchen there is an error).
+    ``kitchen="leaves"``: every object no unit makes.  ``level`` (1 labels, 2 with states and
+    container, 3 also ingredients), ``normalize`` and ``synonyms``: how objects are compared."""
     seen_as = projection(level, normalize, synonyms)
     if path == "demo":
         path = demo_dir()
@@ -101,8 +89,8 @@ def knowledge_base(
     warnings: Sequence[str] = (),
     seen_as: Projection | None = None,
 ) -> KnowledgeBase:
-    """The knowledge base of data read already, with the warnings about it (and ``warnings``),
-    as ``seen_as`` sees it (default: level 3, texts as spelled)."""
+    """The knowledge base of data read already, with the warnings about it (and ``warnings``), as
+    ``seen_as`` sees it (default: level 3, texts as spelled)."""
     seen_as = seen_as or Projection()
     if not seen_as.identity:
         data, seen_as = project_dataset(data, seen_as.level, seen_as.texts.normalize, seen_as.texts.synonyms)

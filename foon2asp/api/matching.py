@@ -1,8 +1,5 @@
 """Looser matching: how ``load``'s level, normalisation and synonyms compare objects, and goals,
-tree files and substitutes as that comparison (:mod:`foon2asp.foon.matching`) sees them.
-
-Plain functions of the knowledge base's data (its dataset, problem and projection), which
-:class:`foon2asp.api.KnowledgeBase` answers with."""
+tree files and substitutes as that comparison (:mod:`foon2asp.foon.matching`) sees them."""
 
 from __future__ import annotations
 

@@ -1,10 +1,7 @@
 """One request's settings: what to optimise, the constraints, how to solve and for how long.
 
-:class:`Options` is the value every answer of :class:`foon2asp.api.KnowledgeBase` takes as
-``options=``; the keyword arguments of those calls (``objective=``, ``forbid_motions=``,
-``time_limit=``, ...; :class:`Settings`) are mapped onto it by :meth:`Options.of`, the one
-place that knows them.  The command line builds one per command from its flags.
-"""
+The keyword arguments of the answers (:class:`Settings`) are mapped onto :class:`Options` by
+:meth:`Options.of`, the one place that knows them."""
 
 from __future__ import annotations
 

@@ -1,11 +1,4 @@
-"""Schedules through the library: the agents and tables of a schedule, and schedule files checked.
-
-:meth:`foon2asp.api.KnowledgeBase.schedule` and :meth:`foon2asp.api.Tree.schedule` return a
-:class:`~foon2asp.api.Schedule` (``foon2asp schedule``); :func:`check_schedule_file` judges a file of
-``schedule --format json`` with :mod:`foon2asp.schedule.check` (``foon2asp check``).  The
-agents, durations, capabilities and resources are one :class:`~foon2asp.schedule.ScheduleSpec`
-(:func:`make_spec`: a spec, or the ``--agents`` text and the three files).
-"""
+"""Schedules through the library: the agents and tables of a schedule, and schedule files checked."""
 
 from __future__ import annotations
 

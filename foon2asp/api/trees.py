@@ -1,10 +1,5 @@
 """Tree files: judged on their own without a FOON (:func:`check_tree`), drawn (:func:`draw_file`),
-and candidate trees of one recipe consolidated into one proven-best tree (:func:`consolidate`).
-
->>> import foon2asp
->>> [v.valid for v in foon2asp.check_tree("data/llm/smoothie-1.json")]
-[True]
-"""
+and candidate trees of one recipe consolidated into one proven-best tree (:func:`consolidate`)."""
 
 from __future__ import annotations
 
@@ -84,10 +79,9 @@ def check_tree(
     utensil_rule: str = "starter",
     strict: bool = False,
 ) -> list[TreeVerdict]:
-    """Judge every tree of a tree file on its own, without a FOON (what ``check TREE`` does
-    without ``--data``/``--foon``): the kitchen is the tree's leaves (or the ``kitchen`` file),
-    the goal ``goal`` (a label or an object's text; several: a meal), else the one the file
-    names, else the products of its last unit."""
+    """Judge every tree of a tree file on its own, without a FOON: the kitchen is its leaves (or
+    the ``kitchen`` file), the goal ``goal`` (several: a meal), else the one the file names, else
+    the products of its last unit."""
     texts = () if goal is None else (goal,) if isinstance(goal, str) else tuple(goal)
     items = None if kitchen in (None, LEAVES) else read_kitchen(str(kitchen))
     source = "its leaves" if items is None else str(kitchen)
@@ -107,12 +101,9 @@ def draw_file(
     warnings: list[str] | None = None,
     options: Options | None = None,
 ) -> int:
-    """Draw every tree of a tree file (any format :meth:`KnowledgeBase.check` reads) into ``output``;
-    the format follows the extension unless ``fmt`` names one.  With ``kb`` the trees are checked:
-    the goal (``goal``, else as :meth:`KnowledgeBase.check` finds it) is gold, kitchen items green,
-    a blocking cycle red (``options.substitutes``: objects a substitute stands in for count as
-    kitchen items).  Units of a unit list that are skipped or merged are added to
-    ``warnings`` (an error with ``strict``).  Returns how many trees were drawn."""
+    """Draw every tree of a tree file into ``output`` (the format by ``fmt`` or the extension) and
+    return how many; with ``kb`` the goal is gold, kitchen items green and a blocking cycle red.
+    What reading the file skipped or merged is added to ``warnings``."""
     fmt = fmt or draw.format_of(output)
     if fmt != "dot":
         draw.require_dot()
@@ -249,18 +240,11 @@ def consolidate(
     options: Options | None = None,
     **settings: Unpack[Settings],
 ) -> Consolidation:
-    """Consolidate candidate trees of one recipe (files in any form :meth:`KnowledgeBase.check`
-    reads) into one proven-best tree per goal (:mod:`foon2asp.analysis.consolidate`).
-
-    The candidates' units are merged into one FOON (each unit remembering its files); the
-    kitchen is its leaves unless ``kitchen`` names a file.  ``goal``: a label, an object's
-    text or ``#ID`` of the merged FOON (several: one result each, or one meal with
-    ``together``); ``goals``: a goals file, or ``"all"`` (every product of a candidate's last
-    unit); neither: the product of the candidates' last units that most of them share.
-    ``options``/keywords: the request (objective, motion costs, constraints, time limit,
-    substitutes, ...); ``level``, ``normalize``, ``synonyms``: how objects are compared (as
-    :func:`foon2asp.api.load`; the candidates' units are judged as that comparison sees them).
-    """
+    """Merge candidate trees of one recipe (files in any tree format) into one FOON and find one
+    proven-best tree per goal; the kitchen is its leaves unless ``kitchen`` names a file.
+    ``goal``: goals of the merged FOON (``together``: one meal); ``goals``: a goals file or
+    ``"all"`` (every product of a candidate's last unit); neither: the product of the last units
+    most candidates share.  ``level``, ``normalize``, ``synonyms``: as :func:`foon2asp.api.load`."""
     if not paths:
         raise InputError("no candidate tree given")
     candidates = consolidate_mod.read_candidates(paths, strict)
