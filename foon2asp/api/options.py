@@ -79,22 +79,12 @@ _CONSTRAINT_KEYWORDS = {
 NOT_A_TIME_LIMIT = "is not a finite number of seconds > 0"
 
 
-def time_limit_error(value: object) -> str | None:
-    """What is wrong with ``value`` as a time limit (None: nothing).  A limit is a finite number
-    of seconds > 0: 0, a negative number, NaN and infinity are refused (no limit is None)."""
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        return f"{value!r} is not a number of seconds"
-    if not math.isfinite(value) or value <= 0:
-        return f"{value!r} {NOT_A_TIME_LIMIT}"
-    return None
-
-
-def unexpected_keywords(given: Iterable[str], known: Collection[str], where: str = "") -> TypeError | None:
-    """A TypeError (``where`` first) naming the keywords of ``given`` not in ``known``, each with
-    the closest known keyword ("did you mean ...?"); None when every keyword is known."""
+def check_keywords(given: Iterable[str], known: Collection[str], where: str = "") -> None:
+    """Raise a TypeError (``where`` first) naming the keywords of ``given`` not in ``known``, each
+    with the closest known keyword ("did you mean ...?")."""
     unknown = sorted(set(given) - set(known))
     if not unknown:
-        return None
+        return
     names = sorted(known)
     parts = []
     guessed = True
@@ -104,7 +94,7 @@ def unexpected_keywords(given: Iterable[str], known: Collection[str], where: str
         guessed = guessed and bool(close)
     word = "argument" if len(parts) == 1 else "arguments"
     known_ones = "" if guessed else f"; the keywords are {', '.join(names)}"
-    return TypeError(f"{where}unexpected keyword {word} {', '.join(parts)}{known_ones}")
+    raise TypeError(f"{where}unexpected keyword {word} {', '.join(parts)}{known_ones}")
 
 
 def split_objective(value: str | Sequence[str]) -> tuple[str, ...]:
@@ -159,27 +149,24 @@ class Options:
     max_substitutions: int | None = None
 
     def __new__(cls, *args: object, **kwargs: object) -> Options:
-        error = unexpected_keywords(kwargs, [f.name for f in fields(cls)], "Options(): ")
-        if error is not None:
-            raise error
+        check_keywords(kwargs, [f.name for f in fields(cls)], "Options(): ")
         return super().__new__(cls)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "objective", split_objective(self.objective))
         if self.constraints is None:
             object.__setattr__(self, "constraints", Constraints())
-        if self.time_limit is not None:
-            error = time_limit_error(self.time_limit)
-            if error is not None:
-                raise InputError(f"time_limit: {error} (None: no limit)")
+        limit = self.time_limit
+        if limit is not None and (isinstance(limit, bool) or not isinstance(limit, int | float)):
+            raise InputError(f"time_limit: {limit!r} is not a number of seconds (None: no limit)")
+        if limit is not None and (not math.isfinite(limit) or limit <= 0):
+            raise InputError(f"time_limit: {limit!r} {NOT_A_TIME_LIMIT} (None: no limit)")
 
     @classmethod
     def of(cls, options: Options | None = None, /, **settings: Unpack[Settings]) -> Options:
         """``options`` (default: all defaults) with the keyword ``settings`` of :class:`Settings` applied."""
         base = options if options is not None else cls()
-        error = unexpected_keywords(settings, Settings.__annotations__)
-        if error is not None:
-            raise error
+        check_keywords(settings, Settings.__annotations__)
         own = {f.name for f in fields(cls)}
         changes: dict = {k: v for k, v in settings.items() if k in own}
         spec = {
@@ -250,11 +237,6 @@ class Options:
         bound = self.max_substitutions
         if bound is not None and (isinstance(bound, bool) or not isinstance(bound, int) or bound < 0):
             raise InputError(f"max_substitutions must be an integer >= 0, not {bound!r}")
-        settings: dict = {}
-        if self.threads is not None:
-            settings["threads"] = self.threads
-        if self.opt_strategy is not None:
-            settings["opt_strategy"] = self.opt_strategy
         if self.gap is not None and not (isinstance(self.gap, int | float) and 0 <= self.gap < math.inf):
             raise InputError(f"the gap must be a number >= 0 (0.05 stops at 5 %), not {self.gap!r}", hint="gap")
         return AspOptions(
@@ -269,5 +251,6 @@ class Options:
             all_optimal=self.all_optimal,
             substitutes=self.substitute_table(),
             max_substitutions=self.max_substitutions,
-            **settings,
+            opt_strategy=self.opt_strategy,
+            threads=1 if self.threads is None else self.threads,
         )
