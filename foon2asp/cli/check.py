@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import sys
+from collections.abc import Callable
+from functools import partial
 
 import click
 
@@ -82,28 +84,21 @@ def check(trees, data, goal, goals, fmt, optimum, spec):
             )
         if goals:
             raise InputError("--goals needs a FOON (--data or --foon); to judge a tree on its own, use --goal")
-        for path in trees:
-            kitchen = None if data.kitchen in (None, "leaves") else data.kitchen
-            found = api.check_tree(
-                path,
-                list(goal) or None,
-                kitchen=kitchen,
-                utensils=data.utensils,
-                utensil_rule=data.utensil_rule,
-                strict=data.strict,
-            )
-            warn_all(dict.fromkeys(w for v in found for w in v.warnings))
-            reports += [v.raw for v in found]
-        click.echo(report.render("check", fmt, None, reports), nl=False)
+        files = {"kitchen": data.kitchen, "utensils": data.utensils, "utensil_rule": data.utensil_rule}
+        judge: Callable[[str], list] = partial(api.check_tree, goal=list(goal) or None, strict=data.strict, **files)
+        problem = None
     else:
         kb = data.load(goals)
         among = kb.select_goals((), goals) if goals else None
-        for path in trees:
-            found = kb.check_all(
-                path, list(goal) or None, optimum, among, strict=data.strict, options=data.match.request()
-            )
-            warn_all(dict.fromkeys(w for r in found for w in r.warnings))
-            reports += [r.raw for r in found]
-        click.echo(report.render("check", fmt, kb.problem, reports), nl=False)
+        options = data.match.request()
+        judge = partial(
+            kb.check_all, goal=list(goal) or None, optimum=optimum, goals=among, strict=data.strict, options=options
+        )
+        problem = kb.problem
+    for path in trees:
+        found = judge(path)
+        warn_all(dict.fromkeys(w for v in found for w in v.warnings))
+        reports += [v.raw for v in found]
+    click.echo(report.render("check", fmt, problem, reports), nl=False)
     answered = all(report.check.answered(r) for r in reports)
     sys.exit(0 if answered and all(v.valid for v in verdicts) else 1)

@@ -4,18 +4,13 @@ from __future__ import annotations
 
 import json
 from dataclasses import replace
+from functools import partial
 
 import click
 
 from foon2asp.cli.main import guarded, main
 from foon2asp.cli.options import KITCHEN_HELP, choice_option, data_options, joined_lines
 from foon2asp.errors import InputError
-
-
-def _data_options_but_kitchen(func):
-    """The data options without ``--kitchen FILE`` (here ``--kitchen`` keeps kitchen items):
-    the kitchen is kitchen.json of --data or beside --foon, or ``--kitchen-file FILE|leaves``."""
-    return data_options(func, with_kitchen=False)
 
 
 def _makers(kb, oid: int) -> tuple[int, int]:
@@ -29,7 +24,7 @@ def _makers(kb, oid: int) -> tuple[int, int]:
 
 @main.command()
 @click.argument("query", required=False, metavar="[LABEL]")
-@_data_options_but_kitchen
+@partial(data_options, with_kitchen=False)  # --kitchen keeps kitchen items; the file is --kitchen-file
 @click.option(
     "--produced", "only", flag_value="produced", help="Only objects some unit makes (without needing it as an input)."
 )
