@@ -101,8 +101,8 @@ class Problem:
     motion_rates: dict[str, float] = field(default_factory=dict)
     utensils: frozenset[str] = frozenset()
     utensil_rule: str = "starter"
-    #: the motion-cost table of the request being answered (``--motion-cost``; set by
-    #: :meth:`foon2asp.api.KnowledgeBase.options`): every tree's measures then include its cost
+    #: the motion-cost table of the request being answered (``--motion-cost``; on the copy
+    #: :meth:`foon2asp.api.KnowledgeBase.solving_problem` gives): every tree's measures then include its cost
     motion_costs: MotionCosts | None = None
     #: objects that count as available for viability though not kitchen items: what a
     #: substitute stands in for (foon2asp.foon.substitutes.with_substitutes); a tree may make them too
