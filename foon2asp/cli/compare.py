@@ -18,7 +18,7 @@ from foon2asp.cli.options import (
     time_limit_option,
     together_option,
 )
-from foon2asp.cli.output import exit_code, progress_bar, solver_of, warn
+from foon2asp.cli.output import echo_now, exit_code, progress_bar, solver_of, warn
 
 
 @goal_command("compare", methods=",".join(api.COMPARE_METHODS))
@@ -50,8 +50,7 @@ def compare(data, goal, goals, method_list, fmt, together, options, progress):
     for part in progress_bar(parts, len(goal_ids), progress, "compare"):
         rows.extend(part.raw)
         if fmt == "jsonl":
-            click.echo(part.render(fmt), nl=False)
-            sys.stdout.flush()
+            echo_now(part.render(fmt))
     if fmt != "jsonl":
         click.echo(api.Comparison(kb, rows).render(fmt), nl=False)
     sys.exit(exit_code((t.status, t.extra.get("valid")) for r in rows for t in r.trees.values()))

@@ -108,7 +108,16 @@ class GoalProgress:
                 self._bar = None
 
 
-def goal_progress(enabled: bool | None) -> GoalProgress | None:
-    """A :class:`GoalProgress` when stderr is a terminal (``enabled`` None) or as ``enabled`` says."""
+def goal_progress(enabled: bool | None, text: Callable[[dict], str] = solving_text) -> GoalProgress | None:
+    """A :class:`GoalProgress` showing ``text`` when stderr is a terminal (``enabled`` None) or as
+    ``enabled`` says."""
     show = sys.stderr.isatty() if enabled is None else enabled
-    return GoalProgress() if show else None
+    return GoalProgress(text) if show else None
+
+
+def echo_now(text: str, status: GoalProgress | None = None, nl: bool = False) -> None:
+    """``text`` on stdout at once, after the status line ``status`` is cleared."""
+    if status is not None:
+        status.close()
+    click.echo(text, nl=nl)
+    sys.stdout.flush()

@@ -16,7 +16,7 @@ from foon2asp.cli.options import (
     time_limit_option,
     together_option,
 )
-from foon2asp.cli.output import GoalProgress, emit, progress_bar, solver_of
+from foon2asp.cli.output import echo_now, emit, goal_progress, progress_bar, solver_of
 from foon2asp.cli.schedule_options import schedule_options
 from foon2asp.report import draw
 from foon2asp.schedule.result import seconds_text
@@ -94,7 +94,7 @@ def schedule(data, goal, goals, spec, joint, fmt, output, encoding, together, pr
         draw.require_dot()  # before solving, not after
     jobs: list = [tuple(dict.fromkeys(goal_ids))] if together else goal_ids
     # a status line on stderr: the best makespan and its bound, then the human units
-    status = GoalProgress(status_text) if (sys.stderr.isatty() if progress is None else progress) else None
+    status = goal_progress(progress, status_text)
     found = kb.schedule_iter(jobs, spec, solver, joint=joint, encoding=encoding, progress=status)
     done: list = []
     stream = fmt == "text" and output is None
@@ -103,8 +103,7 @@ def schedule(data, goal, goals, spec, joint, fmt, output, encoding, together, pr
             status.close()
         done.append(s)
         if stream:
-            click.echo(("\n" if len(done) > 1 else "") + s.to_text(), nl=False)
-            sys.stdout.flush()
+            echo_now(("\n" if len(done) > 1 else "") + s.to_text())
     if fmt == "text":
         out: str | bytes = "\n".join(s.to_text() for s in done)
     elif fmt == "json":

@@ -18,7 +18,7 @@ from foon2asp.cli.options import (
     time_limit_option,
     together_option,
 )
-from foon2asp.cli.output import exit_code, goal_progress, progress_bar, solver_of, warn
+from foon2asp.cli.output import echo_now, exit_code, goal_progress, progress_bar, solver_of, warn
 from foon2asp.errors import InputError
 from foon2asp.report import draw
 from foon2asp.report.trees import render, render_bytes
@@ -94,20 +94,12 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
                 label = "+".join(g.label for g in tree.goals)
                 path = out_dir / f"{safe_name(index, label)}{suffix}.{ext}"
                 api.write_file(path, render_bytes(problem, found, fmt))
-                if status_line is not None:
-                    status_line.close()
-                click.echo(f"wrote {path} ({written(found)})")
-                sys.stdout.flush()
-                continue
-            if sep is None:
+                echo_now(f"wrote {path} ({written(found)})", status_line, nl=True)
+            elif sep is None:
                 held.extend(found)
-                continue
-            if status_line is not None:
-                status_line.close()
-            text = render(problem, found, fmt)
-            click.echo((sep if printed else "") + text, nl=False)
-            sys.stdout.flush()
-            printed += 1
+            else:
+                echo_now((sep if printed else "") + render(problem, found, fmt), status_line)
+                printed += 1
     if status_line is not None:
         status_line.close()
     if binary and not out_dir:
