@@ -6,13 +6,12 @@ a kind of agent, and clasp minimises the number of late steps, then the human
 units (and, for joint scheduling, the tree objective) in one lexicographic
 optimisation.  Agents of a kind are not told apart (at most N of N agents busy
 per step), so there is no symmetry among them; they are dealt afterwards by
-:func:`foon2asp.schedule.model.assign_agents`.  A fixed tree with a person is
-solved in two phases instead (:func:`_steps_in_phases`): the makespan alone, down to
-its lower bound, then, grounded again within the makespan found, the human units
-down to :func:`foon2asp.schedule.bounds.human_lower`.  In one optimisation clasp
-had to refute every schedule with fewer human units, a counting argument it finds
-only by search: three goals of ../shared/foon on two arms and a person, every unit
-1 s, were not proven within a minute, and are within 0.2 s this way (BENCHMARKS.md).
+:func:`foon2asp.schedule.model.assign_agents`.  A fixed tree without durations 0
+reads the same facts with ``asp/encodings/schedule_order.lp``: each start is a chain
+of "starts by step T" atoms (the order encoding).  A fixed tree with a person is
+solved in two phases (:func:`_steps_in_phases`): the makespan alone, down to its
+lower bound, then, grounded again within the makespan found, the human units down
+to :func:`foon2asp.schedule.bounds.human_lower` (docs/proofs/schedules.md).
 
 ``dl`` (``asp/encodings/schedule_dl.lp``): start times are clingo-dl integer
 variables in milliseconds, each unit chooses an agent (symmetry broken by unit
@@ -104,13 +103,18 @@ class Job:
         return None if self.fixed and len(w) < len(self.inst.units) else w
 
 
+def _zeros(inst: Instance) -> bool:
+    """Does some unit take no time on some kind?"""
+    return any(d == 0 for table in inst.durations.values() for d in table.values())
+
+
 def schedule_facts(
     inst: Instance, scale: int, windows: dict[int, tuple[int, int]], fixed: bool, agents: bool, tail: dict | None = None
 ) -> str:
     """The facts both encodings read; times divided by ``scale``; ``fixed``: the units are
     given (``use/1`` facts), else tree.lp chooses them; ``agents``: ``agent(K,I)`` facts (dl)."""
     lines = ["% schedule"]
-    if any(d == 0 for table in inst.durations.values() for d in table.values()):
+    if _zeros(inst):
         lines.append("zeros.")
     makers: set[tuple[int, int]] = set()
     for kind, n in inst.kinds.items():
@@ -175,8 +179,9 @@ def _steps_once(
     inst = job.inst
     scale = divisor(inst)
     steps = horizon // scale
+    name = "schedule_order" if job.fixed and not _zeros(inst) else "schedule_steps"
     parts = [
-        ("encodings/schedule_steps.lp", encodings.encoding("schedule_steps")),
+        (f"encodings/{name}.lp", encodings.encoding(name)),
         ("schedule facts", schedule_facts(inst, scale, windows, job.fixed, False, job.tail if job.fixed else None)),
         ("horizon", f"horizon({steps}).\nfloor({-(-floor // scale)}).\n" + _priorities(job.levels, only)),
         *job.tree_parts,
