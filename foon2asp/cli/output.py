@@ -81,9 +81,8 @@ def solving_text(info: dict) -> str:
 
 
 class GoalProgress:
-    """A status line on stderr while one goal is solved: ``text(info)`` (default: the best
-    tree's cost, the proven lower bound and the gap), at most five times a second.
-    Given to the library as ``progress=`` (:attr:`foon2asp.api.Options.progress`)."""
+    """A status line on stderr while one goal is solved, ``text(info)`` at most five times a second
+    (the library's ``on_progress`` callback)."""
 
     def __init__(self, text: Callable[[dict], str] = solving_text) -> None:
         self._text = text
