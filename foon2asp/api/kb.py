@@ -197,11 +197,8 @@ class KnowledgeBase:
         also for ``"all"`` / ``"all-objects"``).  ``together=True``: one tree that makes every goal
         (a meal; units shared between dishes count once), proven optimal like a single goal's."""
         solver = self.options(options, **settings)
-        ids = self.goal_ids(goals)
-        if together:
-            return next(self.solve_iter([tuple(dict.fromkeys(ids))], method, solver))
-        trees = list(self.solve_iter(ids, method, solver))
-        return trees[0] if _one(goals) else trees
+        trees = list(self.solve_iter(matching.jobs(self.goal_ids(goals), together), method, solver))
+        return trees[0] if together or _one(goals) else trees
 
     def check(
         self,
@@ -382,8 +379,7 @@ class KnowledgeBase:
         goal gives a :class:`Schedule`, several a list; ``together=True``: one schedule of a meal."""
         solver = self.options(options, **settings)
         chosen = make_spec(spec, agents, durations, capabilities, resources)
-        ids = self.goal_ids(goals)
-        jobs: list[int | tuple[int, ...]] = [tuple(dict.fromkeys(ids))] if together else list(ids)
+        jobs = matching.jobs(self.goal_ids(goals), together)
         found = list(self.schedule_iter(jobs, chosen, solver, joint=joint, encoding=encoding))
         return found[0] if together or _one(goals) else found
 

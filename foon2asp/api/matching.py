@@ -30,6 +30,11 @@ from foon2asp.tree.tasktree import meal_of
 GoalLike = str | int | FoonObject
 
 
+def jobs(ids: Sequence[int], together: bool) -> list[int | tuple[int, ...]]:
+    """The goals ``ids`` one by one, or with ``together`` one meal of them (a tuple)."""
+    return [tuple(dict.fromkeys(ids))] if together else list(ids)
+
+
 def projection(level: int, normalize: bool, synonyms: str | Path | Mapping[str, str] | None) -> Projection:
     """How objects are compared for ``load``'s ``level``, ``normalize`` and ``synonyms`` (checked
     before any FOON is read; :class:`foon2asp.foon.matching.Projection`)."""

@@ -14,7 +14,7 @@ from foon2asp.analysis import consolidate as consolidate_mod
 from foon2asp.analysis.check import check_trees, read_and_check
 from foon2asp.api.kb import GoalLike, KnowledgeBase
 from foon2asp.api.load import knowledge_base
-from foon2asp.api.matching import projection
+from foon2asp.api.matching import jobs, projection
 from foon2asp.api.options import Options, Settings
 from foon2asp.api.results import Raw, Tree
 from foon2asp.errors import InputError
@@ -267,10 +267,9 @@ def consolidate(
         candidates, sources = _projected(kb, candidates)
     solver, asked = kb.options_and_warnings(options, **settings)
     ids, source = _goals(kb, candidates, goal, goals)
-    jobs: list = [tuple(dict.fromkeys(ids))] if together else ids
     kitchen_source = "leaves" if given is None else given
     raw = consolidate_mod.consolidate(
-        kb.solving_problem(solver), candidates, sources, jobs, solver, source, kitchen_source
+        kb.solving_problem(solver), candidates, sources, jobs(ids, together), solver, source, kitchen_source
     )
     return Consolidation(kb, [ConsolidatedGoal(kb, r) for r in raw], kb.warnings + tuple(asked))
 

@@ -27,10 +27,9 @@ def missing(data, goal, goals, fmt, together, options, progress):
 
     Default goals: the goals file's.  With --together: the fewest objects for the whole meal.
     """
-    kb, goal_ids = data.load_goals(goal, goals)
+    kb, jobs = data.load_goals(goal, goals, together)
     solver_of(kb, options)  # the request checked, its warnings first
     results = []
-    jobs: list = [goal_ids] if together else goal_ids
     for g in progress_bar(jobs, len(jobs), progress, "missing"):
         results.append(kb.missing(g, options=options).raw)
         if fmt == "jsonl":

@@ -159,10 +159,14 @@ class DataArgs:
         warn_all(kb.warnings)
         return kb
 
-    def load_goals(self, goal: tuple[str, ...], goals: str | None) -> tuple[api.KnowledgeBase, list[int]]:
-        """The knowledge base (:meth:`load`) and the goals ``--goal`` and ``--goals`` name."""
+    def load_goals(
+        self, goal: tuple[str, ...], goals: str | None, together: bool = False
+    ) -> tuple[api.KnowledgeBase, list]:
+        """The knowledge base (:meth:`load`) and the goals ``--goal`` and ``--goals`` name
+        (``together``: one meal of them, a tuple)."""
         kb = self.load(goals)
-        return kb, kb.select_goals(goal, goals)
+        ids = kb.select_goals(goal, goals)
+        return kb, [tuple(dict.fromkeys(ids))] if together else ids
 
 
 STRICT_HELP = "Treat skipped units of FOON and tree files (warnings) as errors."

@@ -88,11 +88,10 @@ def schedule(data, goal, goals, spec, joint, fmt, output, encoding, together, pr
     unit at a time; capabilities and resources hold. Ties of makespan go to fewer units done by
     a 'human' agent, then to the tree objective. Text output is printed goal by goal.
     """
-    kb, goal_ids = data.load_goals(goal, goals)
+    kb, jobs = data.load_goals(goal, goals, together)
     solver = solver_of(kb, options)
     if fmt not in OWN and fmt != "dot":
         draw.require_dot()  # before solving, not after
-    jobs: list = [tuple(dict.fromkeys(goal_ids))] if together else goal_ids
     # a status line on stderr: the best makespan and its bound, then the human units
     status = goal_progress(progress, status_text)
     found = kb.schedule_iter(jobs, spec, solver, joint=joint, encoding=encoding, progress=status)

@@ -57,7 +57,7 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
     Text, FOON and JSON-lines output is printed goal by goal as each is solved.
     """
     names = methods_of(method_list)
-    kb, goal_ids = data.load_goals(goal, goals)
+    kb, jobs = data.load_goals(goal, goals, together)
     search = [m for m in names if is_search(m)]
     if together and search:
         raise InputError(f"--together needs an ASP method; {', '.join(search)} are search baselines")
@@ -77,7 +77,6 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
     held: list = []
     answers: list[tuple[str, object]] = []
     printed = 0
-    jobs: list = [tuple(dict.fromkeys(goal_ids))] if together else goal_ids
     for method in names:
         trees = kb.solve_iter(jobs, method, solver)
         for index, tree in enumerate(progress_bar(trees, len(jobs), progress, f"solve {method}"), 1):
