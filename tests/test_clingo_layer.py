@@ -70,6 +70,57 @@ def test_control_solving_mode_is_restored():
     with control.solving("first"):
         assert (conf.opt_mode, conf.models) == ("ignore", "1")
     assert (conf.opt_mode, conf.models, conf.project) == before
+    with control.solving("first", bound=(3, 1)):
+        assert (conf.opt_mode, conf.models) == ("enum,3,1", "1")
+    assert (conf.opt_mode, conf.models, conf.project) == before
+
+
+#: twelve atoms to choose, each costing its number: models improve one by one from 78 to 0
+IMPROVING = "x(1..12). { a(X) } :- x(X). #minimize { X,X : a(X) }.\n"
+
+
+def test_a_decision_with_a_bound_finds_a_model_that_cheap_or_none():
+    control = Control(["--opt-mode=opt"])
+    control.add("p", ":- not a(5), not a(7).\n" + IMPROVING)
+    control.ground()
+    costs: list[list[int]] = []
+    with control.solving("first", bound=(5,)):
+        result = control.solve(lambda m: costs.append(list(m.cost)))
+    assert result.finished and result.satisfiable and costs == [[5]]
+    with control.solving("first", bound=(4,)):
+        assert control.solve().unsatisfiable is True
+
+
+def test_stop_soon_ends_a_search_and_leaves_the_next_one_whole():
+    """stop_soon ends the call as finished and stopped; an interrupt that comes after its end
+    does not cut the next call short (many rounds: the two race)."""
+    control = Control(["--opt-mode=opt", "--opt-strategy=bb"])
+    control.add("p", IMPROVING)
+    control.ground()
+    for _ in range(40):
+        seen: list[int] = []
+
+        def first(model):
+            seen.append(model.cost[0])
+            control.stop_soon()
+
+        stopped = control.solve(first)
+        assert stopped.finished and stopped.stopped and seen
+        whole = control.solve()
+        assert whole.finished and whole.exhausted and not whole.interrupted
+
+
+def test_a_decision_that_outlasts_its_time_limit_stops_at_it():
+    """A decision starts in the calling thread and goes on in the background: either way the
+    time limit ends it (ten pigeons in nine holes take clasp far longer)."""
+    control = Control()
+    control.add("p", "p(1..10). h(1..9). 1 { at(P,H) : h(H) } 1 :- p(P). :- at(P,H), at(Q,H), P < Q.\n")
+    control.ground()
+    for limit in (0.02, 0.3):
+        with control.solving("first"):
+            result = control.solve(time_limit=limit)
+        assert not result.finished and result.satisfiable is None
+        assert result.time_s < limit + 1.0
 
 
 # --------------------------------------------------------------------------- depth rounds

@@ -31,7 +31,9 @@ def both_encodings(problem: Problem, objective: tuple[str, ...], step: int) -> t
     for g in goals:
         prep = run.preparation(g)
         closed = Session(problem, run._effective, prepared=prep).solve(g)
-        recursive = Session(problem, replace(run._effective, programs=[NOOP]), prepared=prep).solve(g)
+        # prepared.lp optimises (no hint cost to decide at): it must reach what closed.lp answered
+        free = replace(prep, known=None)
+        recursive = Session(problem, replace(run._effective, programs=[NOOP]), prepared=free).solve(g)
         assert closed.status == recursive.status == "optimal", g
         assert closed.extra["asp_cost"] == recursive.extra["asp_cost"], g
         assert validate(problem, g, list(closed.units)).valid, g
@@ -50,6 +52,43 @@ def test_closed_sets_and_positive_recursion_agree_on_the_shared_foon(shared_foon
     problem = Problem(data.foon, data.kitchen, data.motion, data.utensils)
     goals, cut = both_encodings(problem, ("units",), 5)
     assert goals > 100 and cut > 5  # the universal FOON's cycles need cuts
+
+
+def test_a_search_that_meets_the_lower_bound_ends_there(shared_foon_dir):
+    """A model that meets the lower bound ends the search (from outside the model callback:
+    clasp's core shrinking breaks when a callback stops it); here the second model does,
+    on the goal's whole relevant part."""
+    data = Dataset.load(shared_foon_dir)
+    problem = Problem(data.foon, data.kitchen, data.motion, data.utensils)
+    run = GoalRunner("asp", problem, AspOptions(), shortcuts=False)
+    goal = next(g for g, o in enumerate(problem.objects) if str(o) == "bowl, contains {garlic}")
+    units, _, _ = run.parts.relevant(goal)
+    prep = replace(run.preparation(goal), candidates=tuple(units), known=None)
+    assert prep.bound is None and prep.meets is not None
+    tree = Session(problem, run._effective, prepared=prep).solve(goal)
+    assert tree.status == "optimal" and prep.meets(tuple(tree.extra["asp_cost"]))
+    assert validate(problem, goal, list(tree.units)).valid
+
+
+def test_a_goal_whose_hint_meets_the_bound_is_decided_at_the_hint(shared_foon_dir):
+    """clingo decides "a tree of at most the hint's cost?" and answers the hint, the same
+    optimum as an optimisation over the same part."""
+    data = Dataset.load(shared_foon_dir)
+    problem = Problem(data.foon, data.kitchen, data.motion, data.utensils)
+    run = GoalRunner("asp", problem, AspOptions(), shortcuts=False)
+    made = sorted({o for u in range(len(problem.units)) for o in problem.products[u]})
+    decided = 0
+    for g in [g for g in made if run.route(g) == "prepared"][::10]:
+        prep = run.preparation(g)
+        if prep.bound is None:
+            continue
+        decided += 1
+        tree = Session(problem, run._effective, prepared=prep).solve(g)
+        optimised = Session(problem, run._effective, prepared=replace(prep, known=None)).solve(g)
+        assert tree.status == optimised.status == "optimal", g
+        assert tuple(tree.extra["asp_cost"]) == prep.bound == tuple(optimised.extra["asp_cost"]), g
+        assert sorted(tree.units) == sorted(prep.hint), g
+    assert decided > 50
 
 
 def test_a_loop_cut_holds_for_every_tree_and_not_for_the_set_it_cuts(shared_foon_dir):

@@ -16,7 +16,7 @@ goal is in the kitchen: any model is optimal).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 
 import clingo
@@ -61,11 +61,14 @@ def solve_shot(
     time_limit: float | None = None,
     on_lower: Callable[[tuple[int, ...]], None] | None = None,
     stop: Callable[[], bool] | None = None,
+    on_answer: Callable[[Answer, clingo.Model], bool | None] | None = None,
+    bound: Sequence[int] | None = None,
 ) -> Shot:
     """Solve once in ``mode`` (:meth:`Control.solving`: "opt", "optN" up to ``count`` trees,
     "first") with the externals as they are, for at most ``time_limit`` seconds or until
     ``stop()`` (:meth:`Control.solve`) or ``on_model`` answers False; ``on_lower`` sees each
-    proven lower bound."""
+    proven lower bound; ``on_answer`` is ``on_model`` with
+    the model read as an :class:`Answer` first; ``bound``: see :meth:`Control.solving`."""
     optimal: dict[tuple[int, ...], Answer] = {}
     last: list[Answer] = []
 
@@ -74,10 +77,12 @@ def solve_shot(
         last[:] = [answer]
         if mode == "optN" and answer.proven:
             optimal.setdefault(answer.units, answer)
-        # on_model may end the search by answering False
+        # on_model and on_answer may end the search by answering False
+        if on_answer is not None and on_answer(answer, model) is False:
+            return False
         return on_model is None or on_model(model) is not False
 
-    with control.solving(mode, count):
+    with control.solving(mode, count, bound):
         result = control.solve(record, time_limit, on_lower=on_lower, stop=stop)
     finished = result.finished
     latest = _settled(last[0], mode, finished) if last else None

@@ -7,7 +7,8 @@ naming the program (a user file, ``--rule #N``, ...) or what was grounded (the
 depth rounds, ...); it sets the solve mode (:meth:`Control.solving`), adds
 guarded nogoods, and solves with an optional time limit on the asynchronous
 solve handle, so a time-out or an interrupt stops clingo's search through the
-handle (never by tearing the control down mid-call).
+handle (never by tearing the control down mid-call).  A decision starts in the
+calling thread, where a watchdog thread interrupts it when its first slice is up.
 
 Signals: while a clingo call runs (adding, grounding, solving, backend
 updates) SIGINT and SIGTERM are *deferred* (:func:`deferred_signals`): the
@@ -37,6 +38,86 @@ from foon2asp.errors import InputError
 
 #: how often a waiting solve looks for a deferred signal (seconds)
 POLL_S = 0.05
+
+
+class _Watchdog:
+    """One thread per process that interrupts solve calls running in their callers' threads
+    once their time is up (:meth:`Control.solve` runs a search there first: a search in the
+    background costs a thread per call)."""
+
+    NAME = "foon2asp-solve-watchdog"
+
+    def __init__(self) -> None:
+        self.reset()
+        # a forked process starts with no thread and a fresh lock (the parent's may be held)
+        os.register_at_fork(after_in_child=self.reset)
+
+    def reset(self) -> None:
+        self._cond = threading.Condition()
+        self._jobs: dict[int, tuple[clingo.Control, float]] = {}
+        self._next = 0
+        self._thread: threading.Thread | None = None
+        #: the thread looks at the jobs every POLL_S seconds (else it waits to be told)
+        self._awake = False
+
+    @contextmanager
+    def limit(self, ctl: clingo.Control, seconds: float) -> Iterator[None]:
+        """The body's solve call on ``ctl`` is interrupted after ``seconds``."""
+        job = self._add(ctl, seconds)
+        try:
+            yield
+        finally:
+            with self._cond:
+                self._jobs.pop(job, None)
+
+    def interrupt(self, ctl: clingo.Control) -> None:
+        """Interrupt the solve call running on ``ctl`` now (from this thread)."""
+        self._add(ctl, 0.0)
+
+    def forget(self, ctl: clingo.Control) -> None:
+        """Drop the interrupts of ``ctl`` not yet made."""
+        with self._cond:
+            for job in [job for job, (c, _) in self._jobs.items() if c is ctl]:
+                del self._jobs[job]
+
+    def _add(self, ctl: clingo.Control, seconds: float) -> int:
+        with self._cond:
+            if self._thread is None:
+                self._thread = threading.Thread(target=self._run, name=self.NAME, daemon=True)
+                self._thread.start()
+            self._next += 1
+            self._jobs[self._next] = (ctl, time.monotonic() + seconds)
+            if not seconds or not self._awake:  # awake, it looks every POLL_S seconds anyway
+                self._awake = True
+                self._cond.notify()
+            return self._next
+
+    def _run(self) -> None:
+        with self._cond:
+            idle = 0.0
+            while True:
+                now = time.monotonic()
+                for job, (ctl, at) in list(self._jobs.items()):
+                    if at <= now:
+                        del self._jobs[job]
+                        ctl.interrupt()
+                if self._jobs:
+                    idle = 0.0
+                    soonest = min(at for _, at in self._jobs.values())
+                    self._cond.wait(min(POLL_S, max(soonest - now, 0.0)))
+                elif idle < 1.0:
+                    idle += POLL_S
+                    self._cond.wait(POLL_S)
+                else:  # a second without jobs: sleep until the next one
+                    self._awake = False
+                    self._cond.wait()
+
+
+_WATCHDOG = _Watchdog()
+#: the name of the watchdog's thread
+SOLVE_WATCHDOG = _Watchdog.NAME
+#: an atom no program has: a solve assuming it ends at once
+_ABSORB = clingo.Function("foon2asp_no_atom")
 
 _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
@@ -127,12 +208,14 @@ class Answer:
 
 def read_model(model: clingo.Model, proven: bool | None = None) -> Answer:
     """The tree of ``model``: its ``use/1`` and ``human/1`` atoms, cost and optimality."""
-    units, human = [], []
+    units: list[int] = []
+    human: list[int] = []
     for s in model.symbols(shown=True):
-        if s.name == "use" and len(s.arguments) == 1:
-            units.append(s.arguments[0].number)
-        elif s.name == "human" and len(s.arguments) == 1:
-            human.append(s.arguments[0].number)
+        name = s.name
+        if name == "use" or name == "human":
+            args = s.arguments
+            if len(args) == 1:
+                (units if name == "use" else human).append(args[0].number)
     done = model.optimality_proven if proven is None else proven
     return Answer(tuple(sorted(units)), tuple(model.cost), done, tuple(sorted(human)))
 
@@ -178,6 +261,8 @@ class Control:
         self.statistics = True
         self.user_programs: list[tuple[str, str]] = []
         self.theory = theory
+        #: the mode set by :meth:`solving` is "first"; :meth:`stop_soon` was asked; an interrupt may be pending
+        self._decision = self._stopping = self._absorb = False
         try:
             self.ctl = clingo.Control(list(args), logger=self._log, message_limit=message_limit)
         except RuntimeError as exc:
@@ -245,18 +330,30 @@ class Control:
             self.ground([(name, ()), *parts], what)
 
     @contextmanager
-    def solving(self, mode: str = "opt", count: int = 1) -> Iterator[None]:
+    def solving(self, mode: str = "opt", count: int = 1, bound: Sequence[int] | None = None) -> Iterator[None]:
         """Solve in ``mode`` inside the body: "opt" (the best model), "optN" (up to ``count``
         distinct optimal models, projected on the shown atoms) or "first" (the first model,
-        no optimisation).  The previous configuration is restored afterwards."""
+        no optimisation; with ``bound``, the first whose cost vector is at most ``bound``).
+        The previous configuration is restored afterwards."""
         conf: Any = self.ctl.configuration.solve
         saved = (conf.opt_mode, conf.models, conf.project)
         opt_mode, models, project = MODES[mode]
+        if bound is not None:
+            opt_mode = ",".join(["enum", *map(str, bound)])
         conf.opt_mode, conf.models, conf.project = opt_mode, models or str(count), project
+        self._decision = mode == "first"
         try:
             yield
         finally:
             conf.opt_mode, conf.models, conf.project = saved
+            self._decision = False
+
+    def stop_soon(self) -> None:
+        """End the running solve call from another thread, as a time limit does (returning
+        False from a model callback can break clasp's core-guided search while it shrinks a
+        core); the call then reports its search as finished."""
+        self._stopping = True
+        _WATCHDOG.interrupt(self.ctl)
 
     def solve(
         self,
@@ -268,6 +365,10 @@ class Control:
     ) -> SolveResult:
         """Solve, stopping after ``time_limit`` seconds (None: no limit) through the solve handle,
         or as soon as ``stop()`` is true (asked between slices of :data:`POLL_S` seconds).
+
+        A decision (mode "first") runs its first :data:`POLL_S` seconds (at most ``time_limit``)
+        in the calling thread, which costs no background thread; a search that has not ended
+        by then starts again in the background as above.  :meth:`stop_soon` ends the call.
 
         Every lower bound the solver proves (core-guided optimisation) is kept for the
         result and passed to ``on_lower``.  SIGINT/SIGTERM while solving cancel the search
@@ -288,6 +389,26 @@ class Control:
         stopped = False
         with deferred_signals():
             self._last_stats: dict = {}
+            if self._absorb:
+                # an interrupt of the last call may have come after its end: this call takes it
+                self._absorb = False
+                self.ctl.solve(assumptions=[(_ABSORB, True)])
+            self._stopping = False
+            if self._decision:
+                first = POLL_S if deadline is None else min(POLL_S, max(0.0, deadline - time.perf_counter()))
+                done = self._here(on_model, on_unsat, assumptions, first)
+                if done is not None:
+                    self._stopped(done)
+                    return SolveResult(
+                        not done.interrupted or self._stopping,
+                        done.satisfiable,
+                        done.unsatisfiable,
+                        bool(done.exhausted),
+                        bool(done.interrupted),
+                        time.perf_counter() - t0,
+                        lower[0] if lower else None,
+                        self._stopping,
+                    )
             with self.ctl.solve(
                 on_model=on_model,
                 on_unsat=on_unsat,
@@ -310,16 +431,42 @@ class Control:
                 if not finished:
                     handle.cancel()
                 result = handle.get()
+            self._stopped(result)
         return SolveResult(
-            finished and not result.interrupted,
+            finished and (not result.interrupted or self._stopping),
             result.satisfiable,
             result.unsatisfiable,
             bool(result.exhausted),
             bool(result.interrupted),
             time.perf_counter() - t0,
             lower[0] if lower else None,
-            stopped,
+            stopped or self._stopping,
         )
+
+    def _stopped(self, result: clingo.SolveResult) -> None:
+        """After a solve call: no interrupt of :meth:`stop_soon` is left to come, and one that
+        came after the call's end is taken by the next call."""
+        if self._stopping:
+            _WATCHDOG.forget(self.ctl)
+            self._absorb = self._absorb or not result.interrupted
+
+    def _here(
+        self,
+        on_model: Callable[[clingo.Model], bool | None] | None,
+        on_unsat: Callable[[Sequence[int]], None],
+        assumptions: Sequence[tuple[clingo.Symbol, bool]],
+        seconds: float,
+    ) -> clingo.SolveResult | None:
+        """Solve in this thread for at most ``seconds``: the result when the search ended by
+        itself, else None."""
+        with _WATCHDOG.limit(self.ctl, seconds):
+            result = self.ctl.solve(
+                on_model=on_model,
+                on_unsat=on_unsat,
+                on_statistics=self._record_stats if self.statistics else None,
+                assumptions=list(assumptions),
+            )
+        return None if result.interrupted and not self._stopping else result
 
     def backend(self):
         """``ctl.backend()``; use it inside :func:`deferred_signals`."""

@@ -34,7 +34,7 @@ from dataclasses import dataclass, replace
 import clingo
 
 from foon2asp.asp.answers import Shot, Watch, solve_shot
-from foon2asp.asp.control import Answer, Control, read_model
+from foon2asp.asp.control import Answer, Control
 from foon2asp.foon.derive import least_fixpoint
 from foon2asp.foon.problem import Problem
 
@@ -57,6 +57,14 @@ class Preparation:
     floor: int | None = None
     #: does a model of this cost vector meet the lower bound (so it is optimal)?
     meets: Callable[[tuple[int, ...]], bool] | None = None
+
+    @property
+    def bound(self) -> tuple[int, ...] | None:
+        """The hint's cost vector when it meets the lower bound, else None: then every tree
+        that costs no more is optimal, and clingo decides rather than optimises."""
+        if self.known is not None and self.meets is not None and self.meets(self.known):
+            return self.known
+        return None
 
     def facts(self) -> str:
         """``landmark/1``, ``hint/1`` and ``candidate/1`` facts."""
@@ -102,30 +110,40 @@ def search(
     stop the search.  Returns the last round's shot, the answer (the optimum; when cut
     short, the best tree found, unproven), the best lower bound proven, and the number of cuts."""
     best: list[Answer] = []
+    cuts_of: dict[tuple[int, ...], tuple[list[int], list[int]] | None] = {}
 
-    def seen(model: clingo.Model) -> bool:
+    def cut_of(units: tuple[int, ...]) -> tuple[list[int], list[int]] | None:
+        if units not in cuts_of:
+            cuts_of[units] = prep.cut(problem, units)
+        return cuts_of[units]
+
+    def seen(answer: Answer, model: clingo.Model) -> bool:
         if closed:
-            answer = read_model(model)
-            if prep.cut(problem, answer.units) is not None:
+            if cut_of(answer.units) is not None:
                 return True  # a closed set that is no tree: the search goes on
             best[:] = [answer]
         return on_tree(model)
 
     cuts = 0
     lower: tuple[int, ...] | None = None
+    bound = prep.bound
     while True:
         left = None if deadline is None else max(deadline - time.perf_counter(), 1e-3)
-        shot = solve_shot(control, "opt", 1, seen, left, watch.on_lower, watch.stop)
+        mode = "opt" if bound is None else "first"
+        shot = solve_shot(control, mode, 1, None, left, watch.on_lower, watch.stop, on_answer=seen, bound=bound)
         if shot.lower is not None and (lower is None or shot.lower > lower):
             lower = shot.lower
         answer = shot.last
+        if bound is not None and answer is None and shot.finished:
+            bound = None  # no tree within the bound (the hint is one): clingo optimises instead
+            continue
         if not closed or answer is None or (best and best[0].units == answer.units):
             return shot, answer, lower, cuts
-        cut = prep.cut(problem, answer.units)
+        cut = cut_of(answer.units)
         if cut is None:
             return shot, answer, lower, cuts
-        # the last model is a closed set but no tree: its cost bounds every tree from below
-        if shot.finished and (lower is None or answer.cost > lower):
+        # the last model, optimal, is a closed set but no tree: its cost bounds every tree from below
+        if bound is None and shot.finished and (lower is None or answer.cost > lower):
             lower = answer.cost
         if not shot.finished or (deadline is not None and time.perf_counter() >= deadline):
             shot.finished = False

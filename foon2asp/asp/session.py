@@ -19,6 +19,7 @@ import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import replace
+from functools import lru_cache
 
 import clingo
 
@@ -49,10 +50,16 @@ def _objective_facts(objective: Iterable[str]) -> str:
 _OPTIONAL_FACTS = re.compile(r"\b(" + "|".join((*OPTIONAL, "input_nodes")) + r")\s*\(")
 
 
+@lru_cache(maxsize=256)
+def _mentions(text: str) -> frozenset[str]:
+    """The optional fact predicates (facts.OPTIONAL, input_nodes) ``text`` mentions."""
+    return frozenset(m.group(1) for m in _OPTIONAL_FACTS.finditer(text))
+
+
 def _read_predicates(parts: list[tuple[str, str]]) -> set[str]:
     """The optional fact predicates (facts.OPTIONAL, input_nodes) some program mentions
     outside the part that defines them (a mention in a comment counts too: harmless)."""
-    return {m.group(1) for name, text in parts if name != "input nodes" for m in _OPTIONAL_FACTS.finditer(text)}
+    return set().union(*(_mentions(text) for name, text in parts if name != "input nodes"))
 
 
 #: the statistics of a goal decided without a solve call
@@ -89,8 +96,12 @@ class Session:
         # with substitutes, what they stand in for counts as available (foon2asp.asp.substitutes)
         problem = self.problem = substitutes.prepare(problem, self.options)
         args = self.options.args()
-        if prepared is not None and prepared.hint and (self.options.opt_strategy or "").startswith("bb"):
-            # the hint is a domain heuristic (prepared.lp) for a search from above; core-guided
+        if (
+            prepared is not None
+            and prepared.hint
+            and (prepared.bound is not None or (self.options.opt_strategy or "").startswith("bb"))
+        ):
+            # the hint is a domain heuristic for a decision or a search from above; core-guided
             # search climbs from below, and a first model it is steered to only slows it down
             args.append("--heuristic=Domain")
         self.control = Control(args)
@@ -325,7 +336,7 @@ class Session:
         """The optimisation over the prepared part: closed sets and loop cuts in rounds
         (foon2asp.asp.prepared) until the optimum is a tree, or prepared.lp in one round.
         The search stops as soon as a tree meets the lower bound of the preparation (that
-        tree is optimal).  Among equal optima the answer is the hint when the preparation
+        tree is optimal); when the hint meets it, clingo decides whether a tree costs no more.  Among equal optima the answer is the hint when the preparation
         allows it, else the first optimum clingo finds here (a fresh grounding of the part:
         the same on every path); with several threads, whose search is not deterministic,
         the smallest optimal tree (foon2asp.asp.canonical)."""
@@ -343,8 +354,9 @@ class Session:
             if on_model is not None:
                 on_model(model)
             if prep.meets is not None and prep.meets(tuple(model.cost)):
-                met.append(True)
-                return False  # the lower bound is met: nothing better exists
+                met.append(True)  # the lower bound is met: nothing better exists
+                if prep.bound is None:
+                    self.control.stop_soon()  # a decision ends at its first tree by itself
             return True
 
         shot, answer, lower, cuts = search(self.control, prep, self.problem, self._closed, seen, deadline, watch)

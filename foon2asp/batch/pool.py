@@ -46,6 +46,7 @@ from collections.abc import Generator, Iterator
 from dataclasses import dataclass, field
 
 from foon2asp.analysis.compare import judge
+from foon2asp.asp.control import SOLVE_WATCHDOG
 from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
@@ -87,9 +88,11 @@ def reruns_main() -> bool:
 
 
 def _other_threads() -> list[threading.Thread]:
-    """The threads of this process but the current one and tqdm's monitor."""
+    """The threads of this process but the current one, tqdm's monitor and the solve watchdog
+    (both wait holding no lock a forked worker could need)."""
     here = threading.current_thread()
-    return [t for t in threading.enumerate() if t is not here and t.name != "tqdm_monitor"]
+    quiet = ("tqdm_monitor", SOLVE_WATCHDOG)
+    return [t for t in threading.enumerate() if t is not here and t.name not in quiet]
 
 
 def start_method() -> str:

@@ -52,6 +52,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import replace
 
 from foon2asp.asp.check import ConstraintCheck, checkable
+from foon2asp.asp.control import deferred_signals
 from foon2asp.asp.dominance import applies as dominance_applies
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
@@ -266,11 +267,6 @@ class GoalRunner:
             return Preparation(goal, tuple(units), tuple(sorted(lm.landmarks(goal))), floor=None)
         bounds = self.parts.bounds_for(self._ranked, units)
         tree = bounds.tree(goal) or ()
-        if not self._constrained:
-            units = bounds.keep(goal, units)
-            if dominance_applies(self._effective, self._ranked):
-                dominated = self.parts.dominators(self._ranked).dominated(goal, units)
-                units = [u for u in units if u not in dominated or u in tree]
         lower = bounds.lower(goal)
         scale = len(self.problem.units) + 1
 
@@ -278,7 +274,7 @@ class GoalRunner:
             weight = cost[0] if len(cost) == 1 else cost[0] * scale + cost[1]
             return weight <= lower
 
-        return Preparation(
+        prep = Preparation(
             goal,
             tuple(units),
             tuple(sorted(bounds.landmarks(goal))),
@@ -287,6 +283,13 @@ class GoalRunner:
             floor=bounds.first_lower(goal),
             meets=meets if len(self._ranked) <= 2 else None,
         )
+        if self._constrained:
+            return prep
+        units = bounds.keep(goal, units)
+        if dominance_applies(self._effective, self._ranked):
+            dominated = self.parts.dominators(self._ranked).dominated(goal, units)
+            units = [u for u in units if u not in dominated or u in tree]
+        return replace(prep, candidates=tuple(units))
 
     def _prepared(self, goal: int, t0: float) -> TaskTree:
         """clingo on the goal's prepared part.  Under user programs that a tree can be checked
@@ -300,8 +303,9 @@ class GoalRunner:
             if tree.status == "optimal" and self._allows(tree.units):
                 return tree
         prep = self.preparation(goal)
-        session = Session(self.problem, self._effective, prepared=prep)
-        tree = session.solve(goal, floor=prep.floor)
+        with deferred_signals():  # one section for the grounding and the search (a search still stops at a signal)
+            session = Session(self.problem, self._effective, prepared=prep)
+            tree = session.solve(goal, floor=prep.floor)
         tree.time_s = round(time.perf_counter() - t0, 6)
         tree.stats["candidates"] = len(prep.candidates)
         return tree
