@@ -101,6 +101,17 @@ def row(label: str, rs: list[dict], mode: str) -> str:
     )
 
 
+def settings(args):
+    """Each measured setting of ``args``: (agents, durations label, spec, encoding, mode, time limit)."""
+    for agents in [a for a in args.agents.split(";") if a]:
+        for durations in (None, TABLE):
+            spec = ScheduleSpec.from_files(agents, durations)
+            dname = "1 s" if durations is None else "table"
+            for encoding in args.encodings.split(","):
+                for mode in ("fixed",) if args.no_joint else ("fixed", "joint"):
+                    yield agents, dname, spec, encoding, mode, args.limit if mode == "fixed" else args.joint_limit
+
+
 def presets(args) -> None:
     """The share of the hard presets' schedules proven within 10 s (fixed tree and joint)."""
     from synth import preset
@@ -120,29 +131,22 @@ def presets(args) -> None:
             trees = [t.raw for t in kb.solve_iter(chosen, "asp", kb.options(time_limit=args.tree_limit)) if t.has_tree]
             sizes = sorted(len(t.units) for t in trees)
             print(f"{name}: {len(chosen)} goals, {len(trees)} trees", file=sys.stderr, flush=True)
-            for agents in [a for a in args.agents.split(";") if a]:
-                for durations in (None, TABLE):
-                    spec = ScheduleSpec.from_files(agents, durations)
-                    dname = "1 s" if durations is None else "table"
-                    for encoding in args.encodings.split(","):
-                        for mode in ("fixed",) if args.no_joint else ("fixed", "joint"):
-                            limit = args.limit if mode == "fixed" else args.joint_limit
-                            rs = run(kb, trees, spec, encoding, mode == "joint", limit, not args.no_shortcut)
-                            times = [r["time_s"] for r in rs] or [0.0]
-                            proven = sum(r["status"] == "optimal" for r in rs)
-                            fast = sum(r["status"] == "optimal" and r["time_s"] <= 10.0 for r in rs)
-                            print(
-                                f"| {name}, {agents}, {dname}, {mode}, {encoding} | {len(rs)} | {proven}/{len(rs)} |"
-                                f" {fast}/{len(rs)} ({100 * fast / max(1, len(rs)):.0f}%) |"
-                                f" {statistics.median(times):.3f} | {max(times):.3f} |"
-                                f" {sizes[len(sizes) // 2] if sizes else '-'}, {sizes[-1] if sizes else '-'} |",
-                                flush=True,
-                            )
-                            for r in rs:
-                                records.append(
-                                    {"preset": name, "agents": agents, "durations": dname, "mode": mode,
-                                     "encoding": encoding, **r}
-                                )  # fmt: skip
+            for agents, dname, spec, encoding, mode, limit in settings(args):
+                rs = run(kb, trees, spec, encoding, mode == "joint", limit, not args.no_shortcut)
+                times = [r["time_s"] for r in rs] or [0.0]
+                proven = sum(r["status"] == "optimal" for r in rs)
+                fast = sum(r["status"] == "optimal" and r["time_s"] <= 10.0 for r in rs)
+                print(
+                    f"| {name}, {agents}, {dname}, {mode}, {encoding} | {len(rs)} | {proven}/{len(rs)} |"
+                    f" {fast}/{len(rs)} ({100 * fast / max(1, len(rs)):.0f}%) |"
+                    f" {statistics.median(times):.3f} | {max(times):.3f} |"
+                    f" {sizes[len(sizes) // 2] if sizes else '-'}, {sizes[-1] if sizes else '-'} |",
+                    flush=True,
+                )
+                for r in rs:
+                    records.append(
+                        {"preset": name, "agents": agents, "durations": dname, "mode": mode, "encoding": encoding, **r}
+                    )
     if args.json:
         Path(args.json).write_text("".join(json.dumps(r) + "\n" for r in records), encoding="utf-8")
 
@@ -187,26 +191,20 @@ def main() -> None:
     )
     print(header)
     per_goal: dict[str, list[dict]] = {}
-    for agents in [a for a in args.agents.split(";") if a]:
-        for durations in (None, TABLE):
-            spec = ScheduleSpec.from_files(agents, durations)
-            dname = "1 s" if durations is None else "table"
-            for encoding in args.encodings.split(","):
-                for mode in ("fixed",) if args.no_joint else ("fixed", "joint"):
-                    limit = args.limit if mode == "fixed" else args.joint_limit
-                    rs = run(kb, trees, spec, encoding, mode == "joint", limit, shortcut, args.repeat)
-                    print(row(f"{agents}, {dname}, {mode}, {encoding}", rs, mode), flush=True)
-                    if args.per_goal:
-                        for r in rs:
-                            print(
-                                f"    {r['goal']}: {r['status']} {r['makespan']:g} s (lower {r['lower']:g}),"
-                                f" human {r['human_units']} (proven {r['human_units_proven']}), {r['time_s']:.3f} s",
-                                flush=True,
-                            )
-                    for r in rs:
-                        records.append({"agents": agents, "durations": dname, "mode": mode, "encoding": encoding, **r})
-                    if agents == args.goals_table and durations is not None and encoding == "steps":
-                        per_goal[mode] = rs
+    for agents, dname, spec, encoding, mode, limit in settings(args):
+        rs = run(kb, trees, spec, encoding, mode == "joint", limit, shortcut, args.repeat)
+        print(row(f"{agents}, {dname}, {mode}, {encoding}", rs, mode), flush=True)
+        if args.per_goal:
+            for r in rs:
+                print(
+                    f"    {r['goal']}: {r['status']} {r['makespan']:g} s (lower {r['lower']:g}),"
+                    f" human {r['human_units']} (proven {r['human_units_proven']}), {r['time_s']:.3f} s",
+                    flush=True,
+                )
+        for r in rs:
+            records.append({"agents": agents, "durations": dname, "mode": mode, "encoding": encoding, **r})
+        if agents == args.goals_table and dname == "table" and encoding == "steps":
+            per_goal[mode] = rs
     if args.spec_dir:  # capabilities, resources and a person: the data/schedule files
         d = Path(args.spec_dir)
         files = (d / "durations.json", d / "capabilities.json", d / "resources.json")

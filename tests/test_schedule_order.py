@@ -82,18 +82,17 @@ def test_order_encoding_is_unsatisfiable_below_the_optimum(horizon_steps):
 def test_two_identical_arms_and_a_person_equal_brute_force():
     """Five units on two arms and a fast person: the fixed-tree schedule (the order encoding)
     has brute force's makespan and fewest human units, and the checker accepts it."""
-    problem = build(
-        [
-            ("peel", ["k"], ["a"]),
-            ("chop", ["a"], ["b"]),
-            ("cut", ["k"], ["c"]),
-            ("pour", ["k"], ["d"]),
-            ("mix", ["b", "c", "d"], ["e"]),
-        ],
-        ["k"],
-    )
-    arm = {"peel": 4000, "chop": 3000, "cut": 2000, "pour": 1000, "mix": 3000}
-    person = {"peel": 2000, "chop": 1000, "cut": 1000, "pour": 1000, "mix": 1000}
+    # motion: (inputs, output, seconds on an arm, seconds for the person)
+    table = {
+        "peel": (["k"], "a", 4, 2),
+        "chop": (["a"], "b", 3, 1),
+        "cut": (["k"], "c", 2, 1),
+        "pour": (["k"], "d", 1, 1),
+        "mix": (["b", "c", "d"], "e", 3, 1),
+    }
+    problem = build([(m, ins, [out]) for m, (ins, out, _, _) in table.items()], ["k"])
+    arm = {m: 1000 * a for m, (_, _, a, _) in table.items()}
+    person = {m: 1000 * h for m, (_, _, _, h) in table.items()}
     spec = ScheduleSpec(TWO_ARMS_AND_A_PERSON, Durations(arm, {"human": person}))
     units = [0, 1, 2, 3, 4]
     want = brute_schedule(problem, units, spec)

@@ -116,16 +116,11 @@ def window_lengths(rows: Sequence[Sequence[float]], m: int) -> list[float]:
 
 
 Gaps = list[tuple[float, float]]
+#: unit -> milliseconds (durations, earliest starts, tails)
+Times = dict[int, int]
 
 
-def _gaps(
-    parts: list[list[int]],
-    d: dict[int, int],
-    start: dict[int, int],
-    tail: dict[int, int],
-    servers: int,
-    limit: int | None = None,
-) -> Gaps:
+def _gaps(parts: list[list[int]], d: Times, start: Times, tail: Times, servers: int, limit: int | None = None) -> Gaps:
     """The makespans :func:`energy_over` rules out: open intervals (low, high)."""
     units = [u for g in parts for u in g]
     if not units:

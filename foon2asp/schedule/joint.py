@@ -45,6 +45,33 @@ _TREES = ("encodings/schedule_trees.lp", encodings.encoding("schedule_trees"))
 Candidate = tuple[tuple[int, ...], tuple[tuple[int, int], ...]]
 
 
+@dataclass(frozen=True)
+class Listing:
+    """What the trees are listed from: the candidate units (``inst``), their earliest starts
+    (``head``) and least times to the end (``tail``), the makespan a tree must fit
+    (``horizon``), tree.lp with its facts (``tree_parts``) and clingo's arguments."""
+
+    inst: Instance
+    head: dict[int, int]
+    tail: dict[int, int]
+    horizon: int
+    tree_parts: Sequence[tuple[str, str]]
+    args: Sequence[str]
+
+    def bound_facts(self) -> str:
+        """work/2, too_late/1 and capacity/1 for ``schedule_trees.lp`` (times in steps of the divisor)."""
+        inst, g = self.inst, divisor(self.inst)
+        late = [
+            u
+            for u in inst.units
+            if u not in self.head or u not in self.tail or self.head[u] + self.tail[u] > self.horizon
+        ]
+        lines = [f"work({u},{inst.min_duration(u) // g})." for u in inst.units if inst.durations[u]]
+        lines += [f"too_late({u})." for u in late]
+        lines.append(f"capacity({len(inst.agents) * (self.horizon // g)}).")
+        return "\n".join(lines) + "\n"
+
+
 @dataclass
 class Trees:
     """The designated trees found, complete unless the cap or the time limit ended it."""
@@ -53,35 +80,16 @@ class Trees:
     complete: bool
 
 
-def _bound_facts(inst: Instance, head: dict[int, int], tail: dict[int, int], horizon: int) -> str:
-    """work/2, too_late/1 and capacity/1 for ``schedule_trees.lp`` (times in steps of the divisor)."""
-    g = divisor(inst)
-    late = [u for u in inst.units if u not in head or u not in tail or head[u] + tail[u] > horizon]
-    lines = [f"work({u},{inst.min_duration(u) // g})." for u in inst.units if inst.durations[u]]
-    lines += [f"too_late({u})." for u in late]
-    lines.append(f"capacity({len(inst.agents) * (horizon // g)}).")
-    return "\n".join(lines) + "\n"
-
-
-def candidate_trees(
-    inst: Instance,
-    head: dict[int, int],
-    tail: dict[int, int],
-    horizon: int,
-    tree_parts: Sequence[tuple[str, str]],
-    args: Sequence[str],
-    time_limit: float | None,
-    cap: int | None = None,
-) -> Trees:
-    """The designated trees (over ``inst``'s candidate units; ``tree_parts``: tree.lp and its
-    facts) whose work fits the agents within ``horizon`` and whose units can each end within it."""
+def candidate_trees(listing: Listing, time_limit: float | None, cap: int | None = None) -> Trees:
+    """The designated trees whose work fits the agents within the horizon and whose units can
+    each end within it (at most ``cap``, default :data:`MAX_TREES`)."""
     cap = MAX_TREES if cap is None else cap
     parts = [
-        *tree_parts,
+        *listing.tree_parts,
         ("encodings/schedule_first.lp", encodings.encoding("schedule_first")),
-        ("bounds", _bound_facts(inst, head, tail, horizon)),
+        ("bounds", listing.bound_facts()),
     ]
-    control = Control(["--opt-mode=ignore", "--models=0", *args])
+    control = Control(["--opt-mode=ignore", "--models=0", *listing.args])
     control.add_all(parts)
     control.ground()
     found: list[Candidate] = []
@@ -146,12 +154,7 @@ def _record_tree(model: clingo.Model, into: dict) -> None:
 
 
 def best_by_work(
-    inst: Instance,
-    head: dict[int, int],
-    tail: dict[int, int],
-    horizon: int,
-    tree_parts: Sequence[tuple[str, str]],
-    args: Sequence[str],
+    listing: Listing,
     levels: int,
     bound: Callable[[Candidate], tuple],
     solve: Callable[[Candidate, float | None, int | None], Any],
@@ -166,8 +169,9 @@ def best_by_work(
     (one agent: a makespan is the work; ties go to the tree objective, the second order).
     (best, proven)."""
     t0 = time.perf_counter()
+    inst = listing.inst
     m = len(inst.agents)
-    facts = _bound_facts(inst, head, tail, horizon)
+    facts = listing.bound_facts()
     order = f"#minimize {{ D@{levels + 1},U : use(U), work(U,D) }}.\n"
     seen: list[tuple[int, ...]] = []
     best, proven = None, True
@@ -178,8 +182,8 @@ def best_by_work(
         cuts = "".join(
             ":- " + ", ".join(f"use({u})" for u in t) + f", #count {{ U : use(U) }} = {len(t)}.\n" for t in seen
         )
-        control = Control(["--opt-mode=opt", *args])
-        control.add_all([*tree_parts, _TREES, ("bounds", facts), ("least work first", order + cuts)])
+        control = Control(["--opt-mode=opt", *listing.args])
+        control.add_all([*listing.tree_parts, _TREES, ("bounds", facts), ("least work first", order + cuts)])
         control.ground()
         last: dict[str, Any] = {}
         result = control.solve(partial(_record_tree, into=last), left)

@@ -28,21 +28,11 @@ from foon2asp.asp.facts import OPTIONAL, facts
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
-from foon2asp.schedule import encode, joint
+from foon2asp.schedule import encode, joint, model
 from foon2asp.schedule.baseline import list_schedule
 from foon2asp.schedule.bounds import bounds
 from foon2asp.schedule.fixed import DEFAULT_ENCODING, forced_human, schedule_fixed, solve_encoded, solver_arguments
-from foon2asp.schedule.model import (
-    Entry,
-    Instance,
-    compact,
-    designate,
-    divisor,
-    earliest,
-    instance,
-    joint_tails,
-    makespan,
-)
+from foon2asp.schedule.model import Instance, earliest, instance, makespan
 from foon2asp.schedule.result import ScheduleResult
 from foon2asp.schedule.spec import ScheduleSpec
 from foon2asp.tree.tasktree import TaskTree, executable_order, goal_fields, measures
@@ -115,7 +105,7 @@ def tree_parts(problem: Problem, meal: tuple[int, ...], inst: Instance, options:
 
 
 @dataclass
-class _Joint:
+class JointRequest:
     """One joint scheduling request: the given tree, its own (``fixed``) schedule and how to
     schedule the trees looked at."""
 
@@ -181,7 +171,7 @@ def _rank(problem: Problem, ranked: tuple[str, ...]) -> Callable[[ScheduleResult
 
 
 def _by_trees(
-    job: _Joint,
+    job: JointRequest,
     inst: Instance,
     start: dict[int, int],
     tail: dict[int, int],
@@ -199,12 +189,13 @@ def _by_trees(
     is ``partial`` and the result None (the one encoding goes on)."""
     problem, spec, options = job.problem, job.spec, job.options
     single = len(inst.agents) == 1
+    within = horizon if single or not job.fixed.has_schedule else horizon - model.divisor(inst)
+    listing = joint.Listing(inst, start, tail, within, parts, solver_arguments(options))
     if single:  # the makespan is the tree's work: least work first, the first tree is the best
-        within, found = horizon, joint.Trees([], False)
+        found = joint.Trees([], False)
     else:
-        within = horizon - divisor(inst) if job.fixed.has_schedule else horizon
         left = None if deadline is None else max(0.0, deadline - time.perf_counter()) / 3
-        found = joint.candidate_trees(inst, start, tail, within, parts, solver_arguments(options), left)
+        found = joint.candidate_trees(listing, left)
         if not found.complete and (deadline is not None and time.perf_counter() >= deadline):
             return None, False, None
     ranked = objectives.ranked(options)
@@ -214,7 +205,7 @@ def _by_trees(
         (:func:`foon2asp.schedule.bounds.bounds`), the units only a person can do, and (no
         person among the agents) the tree objective."""
         units, first = cand
-        sub = designate(inst.restrict(units), first)
+        sub = model.designate(inst.restrict(units), first)
         if len(earliest(sub)) < len(units):  # the designated makers wait for one another
             return (math.inf, 0, ())
         low = bounds(sub).lower
@@ -231,9 +222,7 @@ def _by_trees(
         levels = len(ranked)
         first = single and not spec.has_human()  # a person alone: fewest units among equal work
         share = left if single or left is None else left / 4
-        best, proven = joint.best_by_work(
-            inst, start, tail, within, parts, solver_arguments(options), levels, bound, job.solve, key, share, first
-        )
+        best, proven = joint.best_by_work(listing, levels, bound, job.solve, key, share, first)
     stats = {"joint": "tree by tree" if found.complete else "tree by tree, least work first"}
     result, proven = job.finish((best, proven), key, ties, stats)
     if not single and not found.complete and not proven:
@@ -241,20 +230,12 @@ def _by_trees(
     return result, proven, None
 
 
-def schedule_joint(
-    problem: Problem,
-    tree: TaskTree,
-    spec: ScheduleSpec,
-    options: AspOptions,
-    fixed: ScheduleResult,
-    encoding: str = DEFAULT_ENCODING,
-    time_limit: float | None = None,
-    shortcut: bool = True,
-) -> ScheduleResult:
-    """The tree and schedule chosen together; ``fixed`` is ``tree``'s own schedule.  An answer
-    not proven optimal carries ``joint_bound``: no tree is shorter
+def schedule_joint(job: JointRequest, time_limit: float | None = None) -> ScheduleResult:
+    """The tree and schedule chosen together; ``job.fixed`` is ``job.tree``'s own schedule.  An
+    answer not proven optimal carries ``joint_bound``: no tree is shorter
     (:func:`foon2asp.schedule.joint.every_tree_bound`, at most the answer's makespan)."""
-    result = _schedule_joint(problem, tree, spec, options, fixed, encoding, time_limit, shortcut)
+    problem, tree, spec = job.problem, job.tree, job.spec
+    result = _schedule_joint(job, time_limit)
     if result.status == "feasible" and result.makespan is not None:
         inst = instance(problem, problem.units_for(tree.meal), spec)
         start = earliest(inst)
@@ -275,17 +256,10 @@ def _floor(problem: Problem, inst: Instance, meal: tuple[int, ...], start: dict[
     return max((t for t in made if t is not None), default=0)
 
 
-def _schedule_joint(
-    problem: Problem,
-    tree: TaskTree,
-    spec: ScheduleSpec,
-    options: AspOptions,
-    fixed: ScheduleResult,
-    encoding: str,
-    time_limit: float | None,
-    shortcut: bool,
-) -> ScheduleResult:
+def _schedule_joint(job: JointRequest, time_limit: float | None) -> ScheduleResult:
     """:func:`schedule_joint` but the bound over every tree."""
+    problem, tree, spec, options, fixed = job.problem, job.tree, job.spec, job.options, job.fixed
+    encoding, shortcut = job.encoding, job.shortcut
     t0 = time.perf_counter()
     meal = tree.meal
     cands = list(problem.units_for(meal))
@@ -308,10 +282,9 @@ def _schedule_joint(
     ):
         stats["shortcut"] = "the given tree's makespan meets the lower bound over every tree"
         return replace(fixed, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
-    tail = joint_tails(inst, meal, products)
+    tail = model.joint_tails(inst, meal, products)
     deadline = None if time_limit is None else t0 + time_limit
     ties = spec.has_human() or tree.status != "optimal"
-    job = _Joint(problem, tree, spec, options, fixed, encoding, shortcut)
     parts = tree_parts(problem, meal, inst, options)
     by_trees, proven, partial = _by_trees(job, inst, start, tail, horizon, parts, ties, deadline)
     if by_trees is not None:
@@ -352,7 +325,7 @@ def _schedule_joint(
         return replace(fixed, status=status, joint=True, fixed=fixed, time_s=elapsed, stats=stats)
     units = list(sol.units)
     sub = inst.restrict(units)
-    entries: list[Entry] = compact(sub, sol.entries)
+    entries = model.compact(sub, sol.entries)
     chosen = TaskTree(
         method=f"{tree.method}+schedule",
         status="optimal" if sol.proven else "feasible",
@@ -413,4 +386,4 @@ def schedule(
     fixed = schedule_fixed(problem, tree, spec, options, encoding, limit, shortcut, progress=progress)
     if not joint or not tree.has_tree:
         return replace(fixed, joint=joint) if joint else fixed
-    return schedule_joint(problem, tree, spec, options, fixed, encoding, limit, shortcut)
+    return schedule_joint(JointRequest(problem, tree, spec, options, fixed, encoding, shortcut), limit)
