@@ -1,16 +1,8 @@
 """Lower bounds on the makespan of an instance (:class:`foon2asp.schedule.model.Instance`; ms).
 
-* chain: the longest chain of minimum durations (each unit at its least duration over the
-  kinds that can do it; a unit waits for the first maker of each object it needs);
-* work: the total minimum work over the number of agents, rounded up;
-* energy: energetic reasoning over time windows (:func:`energy_over`), at least both, also
-  over the pools of units that share fewer servers (:func:`pools`) and, with several kinds
-  of agents, with each unit on one kind at that kind's duration (:func:`kind_energy`: a
-  fast person and slow arms are not three agents of the person's speed).
-
-The fewest units a person must do in a schedule of a given makespan: :func:`human_lower`.
-
-The baseline schedules are in :mod:`foon2asp.schedule.baseline`.
+The chain, work and energy bounds (:func:`bounds`; energetic reasoning over windows, pools
+of units sharing fewer servers and kinds of agents), and the fewest units a person must do
+at a makespan (:func:`human_lower`).  Why each is a bound: docs/proofs/schedules.md.
 """
 
 from __future__ import annotations
@@ -57,24 +49,16 @@ def energy_over(
     step: int,
     limit: int | None = None,
 ) -> int:
-    """Energetic reasoning: in a schedule of makespan C, unit u (duration ``d[u]``, earliest
-    start r, at least q from its start to the end) runs at least ``min(d, r + d - a, q - b)``
-    within ``[a, C - b]``; a part (a list of units of which one runs; a unit alone, or the
-    possible makers of an object) at least the least of its units.  Those parts fit on the
-    ``servers`` only if that window is at least :func:`window_lengths` long; so no C strictly
-    between a + b and a + b + that length is possible.  The bound is the least C >= ``floor``,
-    a multiple of ``step`` (every makespan of a left-justified schedule is a sum of
-    durations), outside all those gaps, for a over the heads and b over the tails of the
-    units; windows with a + b at ``limit`` or later are not looked at (the bound is then at
-    most what they would give, still a bound)."""
+    """Energetic reasoning: the least makespan at least ``floor``, a multiple of ``step``, at
+    which every window between a unit's earliest start and a tail can hold the parts of
+    ``parts`` (lists of units of which one runs, durations ``d``) on ``servers``; windows with
+    a + b at ``limit`` or later are not looked at (docs/proofs/schedules.md)."""
     return _clear([_gaps(parts, d, start, tail, servers, limit)], floor, step)
 
 
 def pools(inst: Instance) -> list[tuple[list[int], dict[int, int], int]]:
-    """Sets of units that share fewer servers than the agents: ``(units, durations, servers)``
-    for each set of kinds but all (the units only those kinds can do, each at its least
-    duration among them, on their agents) and for each resource (the units using it, on its
-    capacity)."""
+    """Sets of units sharing fewer servers than the agents, as ``(units, durations, servers)``:
+    for each set of kinds but all, and for each resource (docs/proofs/schedules.md)."""
     kinds = sorted(inst.kinds)
     out = []
     for r in range(1, len(kinds)):
@@ -93,9 +77,7 @@ def pools(inst: Instance) -> list[tuple[list[int], dict[int, int], int]]:
 
 def window_length(c: Sequence[float], m: int) -> float:
     """The least L > 0 with sum(min(c_i, L)) <= m L for parts of lengths ``c``: the shortest
-    window that holds them on m servers (0 when they need no window).  With the c_i sorted, L
-    lies in [c_(j-1), c_j) for the first j where prefix_j / (m - (n - j)) does (prefix_j: the
-    sum of the j shortest)."""
+    window that holds them on m servers (0 when they need no window; inf when none does)."""
     c = sorted(c)
     n = len(c)
     prefix = 0.0
@@ -154,10 +136,8 @@ def _clear(gaps: list[Gaps], floor: int, step: int) -> int:
 
 
 def bounds(inst: Instance) -> Bounds:
-    """The chain, work and energy bounds (each unit at its minimum duration over the kinds that
-    can do it); the energy bound also counts each pool of units sharing fewer servers
-    (:func:`pools`: the units only some kinds can do, the units using a resource) and, with
-    several kinds, each unit at the duration of the kind doing it (:func:`kind_energy`)."""
+    """The chain, work and energy bounds, the energy bound also over :func:`pools` and, with
+    several kinds, :func:`kind_energy`."""
     start = earliest(inst)
     if len(start) < len(inst.units):
         raise ValueError("some unit never becomes ready")
@@ -179,10 +159,9 @@ def bounds(inst: Instance) -> Bounds:
 
 
 def _classes(inst: Instance) -> list[tuple[int, dict[int, int], int, dict[int, int]]]:
-    """Two classes of agents per test of :func:`kind_energy`: one kind, and the other kinds
-    taken as one (their agents together, each unit at its least duration among them);
-    ``(agents, durations, agents, durations)``, a unit missing from a class's durations when
-    no agent of it can do the unit.  None with a single kind (its agents are alike)."""
+    """Two classes of agents per test of :func:`kind_energy`: one kind, and the other kinds as
+    one; ``(agents, durations, agents, durations)``, a unit missing from a class's durations
+    when no agent of it can do the unit.  Empty with a single kind."""
     kinds = sorted(inst.kinds)
     if len(kinds) < 2:
         return []
@@ -201,13 +180,9 @@ def _mandatory(length: int, b: int, a: int, r: int, e: int, p: int) -> int:
 
 
 def _kinds_fit(inst: Instance, start: dict[int, int], tail: dict[int, int], horizon: int) -> bool:
-    """Can the units end by ``horizon`` as far as energetic reasoning with kinds tells?  Each
-    unit runs within ``[start, horizon - tail + its least duration]``; on an agent of a class
-    (:func:`_classes`) it takes that class's duration, so within a window ``[a, b]`` it runs
-    at least its mandatory part for that duration.  The window fits only if the parts can be
-    split between the two classes, each within its agents times ``b - a``: the least work
-    left to the second class is a fractional knapsack (units on the first class by the work
-    they take off the second per work they put on the first)."""
+    """Can the units end by ``horizon`` as far as energetic reasoning with kinds tells (each
+    window's mandatory parts split between two classes, :func:`_classes`, by a fractional
+    knapsack; docs/proofs/schedules.md)?"""
     units = [u for u in inst.units if inst.durations[u]]
     if not units:
         return True
@@ -256,8 +231,7 @@ def _kinds_fit(inst: Instance, start: dict[int, int], tail: dict[int, int], hori
 
 def kind_energy(inst: Instance, start: dict[int, int], tail: dict[int, int], floor: int, step: int) -> int:
     """The least makespan at least ``floor``, a multiple of ``step``, that :func:`_kinds_fit`
-    allows (``floor`` itself with a single kind).  Allowed makespans are upward closed (a
-    later end only widens the windows), so the search doubles, then halves."""
+    allows (``floor`` itself with a single kind)."""
     low = -(-floor // step) * step
     if len(inst.kinds) < 2 or _kinds_fit(inst, start, tail, low):
         return low
@@ -276,27 +250,17 @@ def kind_energy(inst: Instance, start: dict[int, int], tail: dict[int, int], flo
 
 def human_lower(inst: Instance, horizon: int) -> int:
     """The fewest units a person (an agent of kind ``human``) does in every schedule of
-    makespan at most ``horizon`` (0 without a person): the larger of two counts.
-
-    * Capacity: each unit runs within ``[start, horizon - tail + its least duration]``; the
-      units whose windows lie within ``[a, b]`` run there, the other agents doing at most as
-      many of them as their shortest durations fit in their number times ``b - a`` (units
-      only a person can do, or too long for the window on the others, fit none); the rest
-      are the person's.  Windows that do not overlap add up (the best set of them by
-      weighted interval scheduling).
-    * Chains (:func:`_chain_human`): the fewest units a person must do for every chain of
-      units to end in time, each at the duration of the kind doing it."""
+    makespan at most ``horizon`` (0 without a person): the larger of a capacity count and a
+    chain count (docs/proofs/schedules.md)."""
     if HUMAN not in inst.kinds:
         return 0
     return max(_capacity_human(inst, horizon), _chain_human(inst, horizon))
 
 
 def _chain_human(inst: Instance, horizon: int) -> int:
-    """The fewest units done by a person such that each unit, at the duration of the kind
-    doing it, starts no earlier than its earliest start, ends within its window and before
-    the unit after it starts: exact by recursion over a forest of the precedence (each unit
-    keeps the one unit after it with the longest tail; leaving out the others only relaxes),
-    over the latest end each unit may have.  Every unit, if no assignment fits."""
+    """The fewest units done by a person for every unit to fit its window and precede the unit
+    after it, each at the duration of the kind doing it, over a forest of the precedence;
+    every unit when no assignment fits."""
     start, tail = earliest(inst), tails(inst)
     preds = inst.preds
     after: dict[int, list[int]] = {u: [] for u in inst.units}

@@ -11,7 +11,7 @@ A shortcut: when a list schedule (:func:`foon2asp.schedule.baseline.known_schedu
 the lower bound and uses no more human units than a person must do at that makespan
 (:func:`foon2asp.schedule.bounds.human_lower`), it is optimal and no solver runs.  Otherwise
 the solver starts from that schedule: the time-step encoding within its makespan,
-clingo-dl below the baseline's (a tighter start left it stuck above the optimum).
+clingo-dl below the baseline's.
 """
 
 from __future__ import annotations

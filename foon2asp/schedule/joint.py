@@ -1,21 +1,14 @@
 """Joint scheduling by trees: every tree that could beat a known makespan, each scheduled alone.
 
-A schedule's first makers of what is needed form a tree of their own that is
-as short, in which every unit is the first maker of the goal or of something
-another unit needs, and waits only for the first makers of what it needs.
-So the joint optimum is the best fixed-tree optimum over such *designated*
-trees (each needed object with one maker,
-:func:`foon2asp.schedule.model.designate`) whose work (each
-unit at its least duration) fits the agents within the known makespan and whose
-units can each end within it; clingo enumerates them
-(``asp/encodings/schedule_first.lp``, over ``schedule_trees.lp``).  They are
-scheduled one by one (:func:`foon2asp.schedule.solve.schedule_fixed`), lowest
-lower bound first, stopping when the next lower bound reaches the best
-makespan found: the best is then proven.  Ties go to the fewest human units,
-then the tree objective (equal trees: the given one, then the first found).  When there are more than :data:`MAX_TREES` such trees,
-:func:`best_by_work` asks for them one at a time, least work first (each tree
-found is excluded from the next question), until the work of the next one
-over the number of agents exceeds the best makespan found.
+clingo lists the *designated* trees (each needed object with one first maker,
+:func:`foon2asp.schedule.model.designate`; ``asp/encodings/schedule_first.lp`` over
+``schedule_trees.lp``) whose work fits the agents within the known makespan and whose
+units can each end within it.  They are scheduled one by one
+(:func:`foon2asp.schedule.solve.schedule_fixed`), lowest lower bound first, until the next
+bound reaches the best makespan found (:func:`best_tree`).  Ties go to the fewest human
+units, then the tree objective (equal trees: the given one, then the first found).  With
+more than :data:`MAX_TREES` trees, :func:`best_by_work` asks for them one at a time, least
+work first.  Why this finds the joint optimum: docs/proofs/schedules.md.
 """
 
 from __future__ import annotations
@@ -127,12 +120,10 @@ def best_tree(
     key: Callable[[Any], tuple],
     time_limit: float | None,
 ) -> tuple[Any, bool]:
-    """The best result of ``solve`` (a designated tree, the time left, the best makespan so far: only a
-    schedule as short matters) over ``trees`` by ``key`` (makespan, human units, tree
-    objective; equal keys keep the one found first), lowest ``bound`` first (a lower bound on
-    a tree's key, known before solving): a tree whose bound is no better than the best key is
-    not solved, and no later one is.
-    (best, proven): proven when every tree solved was solved to its optimum."""
+    """The best result of ``solve`` (a designated tree, the time left, the best makespan so
+    far) over ``trees`` by ``key`` (equal keys keep the one found first), lowest ``bound``
+    first (a lower bound on a tree's key), stopping when the next bound is no better than the
+    best key.  (best, proven): proven when every tree solved was solved to its optimum."""
     t0 = time.perf_counter()
     best, proven = None, True
     for t in sorted(trees, key=bound):
@@ -162,12 +153,10 @@ def best_by_work(
     time_limit: float | None,
     first: bool = False,
 ) -> tuple[Any, bool]:
-    """Like :func:`best_tree` over the trees of ``schedule_trees.lp`` (undesignated: each unit
-    waits for the first maker of what it needs), asked for one at a time, least work first
-    (a fresh grounding each time, the trees seen excluded): no tree after one whose work over
-    the agents exceeds the best makespan can reach it.  ``first``: the first tree is the best
-    (one agent: a makespan is the work; ties go to the tree objective, the second order).
-    (best, proven)."""
+    """Like :func:`best_tree` over the trees of ``schedule_trees.lp`` (undesignated), asked
+    for one at a time, least work first (the trees seen excluded), stopping when a tree's
+    work over the agents exceeds the best makespan.  ``first``: the first tree is the best
+    (one agent).  (best, proven)."""
     t0 = time.perf_counter()
     inst = listing.inst
     m = len(inst.agents)
@@ -210,12 +199,9 @@ def every_tree_bound(
     inst: Instance, goals: Sequence[int], products: dict[int, tuple[int, ...]], start: dict[int, int], floor: int
 ) -> int:
     """A lower bound on the makespan of every tree of ``inst`` for ``goals`` (``start``: the
-    units' earliest starts; at least ``floor``): energetic reasoning
-    (:func:`foon2asp.schedule.bounds.energy_over`) over the units every tree holds -- the
-    landmarks, a greatest fixpoint: an object's are those all its makers share, a unit's are
-    itself and those of what it needs -- and one part per object they or the goals need that
-    no landmark makes (the least of its makers; parts with disjoint makers), with each
-    landmark's tail raised by the longest chain of landmarks that waits for it."""
+    units' earliest starts; at least ``floor``): energetic reasoning over the landmarks,
+    the units every tree holds, and the objects they need that no landmark makes
+    (docs/proofs/schedules.md)."""
     makers: dict[int, list[int]] = {}
     for u in inst.units:
         for o, ms in inst.needs[u]:

@@ -6,19 +6,12 @@ that can do it (whole milliseconds, :data:`~foon2asp.schedule.spec.TICKS` per
 second), which units must end before it starts, and the limited resources its
 inputs use.
 
-Precedence: unit V starts once each of its *required* inputs (required as
-:func:`foon2asp.foon.problem.required_flags` and :class:`~foon2asp.foon.problem.Problem`
-say: the utensil rule may leave an input out) that is not a kitchen item has
-been made by a unit of the set that has ended.  When each such object has one
-maker in the set, V waits for every unit that makes one of its required
-inputs.  When it has several (on ../shared/foon the last unit of the ``rib``
-tree makes again the ``baking tray, contains {ribs}`` its third unit needs),
-V waits for the first of them to end: waiting for all of them would make the
-tree wait for itself, while the object is had as soon as one has made it --
-the validator's rule (:mod:`foon2asp.tree.validate`), in time.
-
-Times are integers throughout; an :class:`Entry` places one unit on one agent
-over ``[start, end)``.  A unit of duration 0 occupies nobody.
+Precedence: unit V starts once each of its *required* inputs
+(:func:`foon2asp.foon.problem.required_flags`) that is not a kitchen item has been
+made by a unit of the set that has ended; with several makers in the set, the
+first to end supplies it (docs/proofs/schedules.md).  Times are integers
+throughout; an :class:`Entry` places one unit on one agent over ``[start, end)``.
+A unit of duration 0 occupies nobody.
 """
 
 from __future__ import annotations
@@ -64,8 +57,7 @@ class Instance:
     @property
     def preds(self) -> dict[int, tuple[int, ...]]:
         """unit -> the units that must end before it starts: the sole maker of a needed object,
-        or its only maker that does not itself wait for the unit (a maker that waits, through
-        these edges, for what the unit makes cannot supply it); to a fixpoint."""
+        or its only maker that does not itself wait for the unit (docs/proofs/schedules.md)."""
         preds = {u: {ms[0] for _, ms in self.needs[u] if len(ms) == 1} for u in self.units}
         several = [(u, ms) for u in self.units for _, ms in self.needs[u] if len(ms) > 1]
         changed = bool(several)
@@ -155,10 +147,9 @@ def instance(problem: Problem, units: Iterable[int], spec: ScheduleSpec) -> Inst
 
 
 def earliest(inst: Instance) -> dict[int, int]:
-    """The earliest start of each unit at minimum durations: a unit starts no sooner than the
-    first maker of each object it needs ends (for joint scheduling, over every candidate: a
-    tree holds at least one maker of each).  Knuth's generalisation of Dijkstra's algorithm
-    to these max-of-min equations; units no agent can do, or never ready, are left out."""
+    """The earliest start of each unit at minimum durations, a unit waiting for the first maker
+    of each object it needs (for joint scheduling, over every candidate); units no agent can
+    do, or never ready, are left out."""
     users: dict[int, list[int]] = {}
     for u in inst.units:
         for o, _ in inst.needs[u]:
@@ -194,12 +185,10 @@ def earliest(inst: Instance) -> dict[int, int]:
 
 
 def joint_tails(inst: Instance, goals: Iterable[int], products: dict[int, tuple[int, ...]]) -> dict[int, int]:
-    """For joint scheduling (``inst`` holds every candidate unit): each unit's minimum duration
-    plus the shortest chain after it to a unit making a goal, through units that need what it
-    makes (reverse Dijkstra).  A schedule's first makers of what is needed form a tree as short
-    as its own, in which every unit is followed by such a chain, so a bound on the makespan
-    bounds each start by it.  ``products``: unit -> the objects it makes; units that lead to
-    no goal are left out."""
+    """For joint scheduling (``inst`` holds every candidate unit): each unit's minimum
+    duration plus the shortest chain after it to a unit making a goal, through units that
+    need what it makes.  ``products``: unit -> the objects it makes; units that lead to no
+    goal are left out."""
     wanted = set(goals)
     users: dict[int, list[int]] = {}
     for v in inst.units:
@@ -226,7 +215,7 @@ def joint_tails(inst: Instance, goals: Iterable[int], products: dict[int, tuple[
 
 def tails(inst: Instance) -> dict[int, int]:
     """Each unit's minimum duration plus the longest chain of minimum durations of the units
-    that must wait for it (:attr:`Instance.preds`) -- a lower bound on the time from its start
+    that must wait for it (:attr:`Instance.preds`): a lower bound on the time from its start
     to the end, and the priority of list scheduling."""
     preds = inst.preds
     succs: dict[int, list[int]] = {u: [] for u in inst.units}
@@ -315,9 +304,9 @@ def assign_agents(inst: Instance, kind_of_unit: dict[int, str], start: dict[int,
 
 
 def compact(inst: Instance, entries: list[Entry]) -> list[Entry]:
-    """The same assignment and sequences with every unit started as early as they allow: each
-    agent's units and each resource's lanes keep their order, and each needed object still
-    comes from the same maker.  No unit starts later, so the makespan does not grow."""
+    """The same assignment and sequences with every unit started as early as they allow (each
+    agent's and resource lane's order and each needed object's maker kept); the makespan does
+    not grow."""
     seq = sequence(inst, entries)
     before: dict[int, set[int]] = {e.unit: set() for e in seq}
     placed: dict[int, Entry] = {}
