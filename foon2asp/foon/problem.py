@@ -176,6 +176,11 @@ class Problem:
         return sorted({u.motion for u in self.foon.units} - set(self.motion_rates))
 
     @cached_property
+    def kitchen_set(self) -> frozenset[FoonObject]:
+        """The kitchen items as a set (read by the independent validator)."""
+        return frozenset(self.kitchen_items)
+
+    @cached_property
     def derivable(self) -> frozenset[int]:
         """Objects derivable from the kitchen using any units (least fixpoint)."""
         return frozenset(self.derivation_levels()[0])

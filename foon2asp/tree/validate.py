@@ -27,6 +27,19 @@ class Validation:
     stuck: list[int] = field(default_factory=list)
 
 
+class _Had:
+    """The kitchen items and the objects made so far (the kitchen set is not copied)."""
+
+    def __init__(self, kitchen: frozenset[FoonObject]) -> None:
+        self.kitchen, self.made = kitchen, set[FoonObject]()
+
+    def __contains__(self, o: object) -> bool:
+        return o in self.made or o in self.kitchen
+
+    def update(self, objects: Iterable[FoonObject]) -> None:
+        self.made.update(objects)
+
+
 def _required(problem: Problem, u: int) -> list[FoonObject]:
     unit = problem.units[u]
     flags = required_flags(unit, problem.utensils, problem.utensil_rule)
@@ -34,7 +47,7 @@ def _required(problem: Problem, u: int) -> list[FoonObject]:
 
 
 def _fire_all(
-    todo: list[int], need: Callable[[int], list[FoonObject]], made: Callable[[int], list[FoonObject]], have: set
+    todo: list[int], need: Callable[[int], list[FoonObject]], made: Callable[[int], list[FoonObject]], have: set | _Had
 ) -> tuple[list[int], list[int]]:
     """Fire the units of ``todo`` whose needs are in ``have`` (which grows), pass after pass,
     until none can: ``(order fired, units left)``."""
@@ -70,7 +83,7 @@ def validate(problem: Problem, goal: FoonObject | int, units: list[int]) -> Vali
     for u in units:
         if not (isinstance(u, int) and 0 <= u < len(problem.units)):
             return Validation(False, f"unit {u!r} is not in the FOON")
-    have = set(problem.kitchen_items)
+    have = _Had(problem.kitchen_set)
     order, pending = _fire_all(
         list(dict.fromkeys(units)),
         lambda u: _required(problem, u),
