@@ -56,7 +56,7 @@ def uses_depth(options) -> bool:
 def encoding_names(options, registry: dict[str, str]) -> list[str]:
     """The encodings (beside tree.lp) a session with ``options`` loads."""
     if options.heuristic:
-        names = ["greedy", f"greedy_{options.heuristic}"]
+        names = [f"greedy_{options.heuristic}"]  # includes greedy.lp
     else:
         names = [registry[o] for o in ranked(options) if o in registry]
     if uses_depth(options) and "depth" not in names:

@@ -42,7 +42,8 @@ def encoding(name: str) -> str:
     return expand(name)
 
 
-#: the shipped encodings each encoding needs loaded with it (tree.lp defines use/1, reach/1, ...)
+#: the shipped encodings each encoding needs loaded beside it (tree.lp defines use/1, reach/1, ...;
+#: the objectives are loaded with closed.lp or prepared.lp too, so they cannot include it)
 DEPENDS: dict[str, tuple[str, ...]] = {
     "reachable": ("tree",),
     "dominance": ("tree",),
@@ -52,18 +53,21 @@ DEPENDS: dict[str, tuple[str, ...]] = {
     "cost": ("tree",),
     "human": ("tree",),
     "greedy": ("tree",),
-    "greedy_h1": ("greedy",),
-    "greedy_h2": ("greedy",),
     "substitutes": ("tree",),
 }
 
 
 def with_dependencies(wanted: list[str] | tuple[str, ...]) -> list[str]:
-    """``wanted`` with what each needs (:data:`DEPENDS`), each name once, needed ones first."""
+    """``wanted`` with what each needs beside it (:data:`DEPENDS`, also for the encodings it
+    includes), each name once, needed ones first."""
     out: list[str] = []
 
+    def needs(name: str) -> list[str]:
+        included = [m.group("name") for m in INCLUDE.finditer(source(name))]
+        return [*DEPENDS.get(name, ()), *(dep for other in included for dep in needs(other))]
+
     def visit(name: str) -> None:
-        for dep in DEPENDS.get(name, ()):
+        for dep in needs(name):
             visit(dep)
         if name not in out:
             out.append(name)
