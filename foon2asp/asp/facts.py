@@ -25,7 +25,7 @@ Vocabulary (stable, documented in docs/vocabulary.md):
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.weights import neglog_weight, success_permille
@@ -38,36 +38,38 @@ def q(text: str) -> str:
     return '"' + text.translate(_ESCAPES) + '"'
 
 
+Lines = Callable[[Problem, int], list[str]]
+
+#: the facts of an object after ``object(O).``, in order: (predicate, its lines)
+_OBJECT_LINES: tuple[tuple[str, Lines], ...] = (
+    ("label", lambda p, o: [f"label({o},{q(p.objects[o].label)})."]),
+    ("state", lambda p, o: [f"state({o},{q(s)})." for s in p.objects[o].states]),
+    ("ingredient", lambda p, o: [f"ingredient({o},{q(i)})." for i in p.objects[o].ingredients]),
+    ("container", lambda p, o: [f"container({o},{q(c)})." for c in [p.objects[o].container] if c is not None]),
+)
+
+#: the facts of a unit after ``unit(U).``, in order ("": always written)
+_UNIT_LINES: tuple[tuple[str, Lines], ...] = (
+    ("motion", lambda p, u: [f"motion({u},{q(p.units[u].motion)})."]),
+    ("success", lambda p, u: [f"success({u},{success_permille(p.rates[u])})."]),
+    ("neglog", lambda p, u: [f"neglog({u},{neglog_weight(p.rates[u])})."]),
+    ("input", lambda p, u: [f"input({u},{o})." for o in dict.fromkeys(p.inputs[u])]),
+    ("", lambda p, u: [f"required({u},{o})." for o in p.required[u]]),
+    ("output", lambda p, u: [f"output({u},{o})." for o in dict.fromkeys(p.outputs[u])]),
+    ("", lambda p, u: [f"product({u},{o})." for o in p.products[u]]),
+)
+
+
+def _lines(table: tuple[tuple[str, Lines], ...], problem: Problem, key: int, leave_out: frozenset[str]) -> list[str]:
+    return [line for name, make in table if name not in leave_out for line in make(problem, key)]
+
+
 def object_facts(problem: Problem, oid: int, leave_out: frozenset[str] = frozenset()) -> list[str]:
-    obj = problem.objects[oid]
-    out = [f"object({oid})."]
-    if "label" not in leave_out:
-        out.append(f"label({oid},{q(obj.label)}).")
-    if "state" not in leave_out:
-        out += [f"state({oid},{q(s)})." for s in obj.states]
-    if "ingredient" not in leave_out:
-        out += [f"ingredient({oid},{q(i)})." for i in obj.ingredients]
-    if obj.container is not None and "container" not in leave_out:
-        out.append(f"container({oid},{q(obj.container)}).")
-    return out
+    return [f"object({oid}).", *_lines(_OBJECT_LINES, problem, oid, leave_out)]
 
 
 def unit_facts(problem: Problem, u: int, leave_out: frozenset[str] = frozenset()) -> list[str]:
-    rate = problem.rates[u]
-    out = [f"unit({u})."]
-    if "motion" not in leave_out:
-        out.append(f"motion({u},{q(problem.units[u].motion)}).")
-    if "success" not in leave_out:
-        out.append(f"success({u},{success_permille(rate)}).")
-    if "neglog" not in leave_out:
-        out.append(f"neglog({u},{neglog_weight(rate)}).")
-    if "input" not in leave_out:
-        out += [f"input({u},{o})." for o in dict.fromkeys(problem.inputs[u])]
-    out += [f"required({u},{o})." for o in problem.required[u]]
-    if "output" not in leave_out:
-        out += [f"output({u},{o})." for o in dict.fromkeys(problem.outputs[u])]
-    out += [f"product({u},{o})." for o in problem.products[u]]
-    return out
+    return [f"unit({u}).", *_lines(_UNIT_LINES, problem, u, leave_out)]
 
 
 #: predicates a solver session may leave out when no program it grounds reads them
@@ -96,11 +98,9 @@ def facts(
 
     ``units`` restricts the FOON part to those units (and their objects);
     ``goal_nodes`` are written as ``goal_node(N,O)``, ``goal`` as ``goal(O)``.
-    ``leave_out`` names predicates of :data:`OPTIONAL` not to write: the tree
-    encodings read none of the strings, ``input/2`` or ``output/2``, and a
-    solver session grounds faster without facts nobody reads.  ``whole_kitchen=False``
-    writes only the kitchen items among the units' objects (a goal's part needs no other);
-    ``declare=False`` leaves out ``unit/1`` and ``object/1`` (a prepared part reads neither).
+    ``leave_out`` names predicates of :data:`OPTIONAL` not to write (ValueError for
+    others); ``whole_kitchen=False`` writes only the kitchen items among the units'
+    objects; ``declare=False`` leaves out ``unit/1`` and ``object/1``.
     """
     leave_out = frozenset(leave_out)
     unknown = leave_out - set(OPTIONAL)
