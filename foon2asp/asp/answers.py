@@ -1,17 +1,10 @@
 """From models to task trees: one solve call's answers, their status and the tree they make.
 
-Both ways of solving a goal go through here: the one plain optimisation of
-:class:`foon2asp.asp.session.Session` and the multi-shot solves of
-:class:`foon2asp.asp.multishot.driver.Driver` (depth bounds, alternatives,
-greedy retrieval).  :func:`solve_shot` sets the solve mode, solves once and
-reads every model (:func:`foon2asp.asp.control.read_model`) into a
-:class:`Shot`; :func:`status` says what an answer is worth; :func:`task_tree`
-turns an answer into the :class:`~foon2asp.tree.tasktree.TaskTree` every
-caller returns.
-
-An answer is *proven* when clingo says so, when the search for it ran to its
-end (in the modes that optimise), or when it has no cost at all (e.g. the
-goal is in the kitchen: any model is optimal).
+:func:`solve_shot` sets the solve mode, solves once and reads every model into a
+:class:`Shot`; :class:`Watch` follows the cost and lower bound of one goal (progress, the
+gap); :func:`status` says what an answer is worth; :func:`task_tree` turns an answer into
+the :class:`~foon2asp.tree.tasktree.TaskTree` every caller returns.  When an answer counts
+as proven: docs/proofs/solving.md, "Proven answers and the gap".
 """
 
 from __future__ import annotations
@@ -66,9 +59,9 @@ def solve_shot(
 ) -> Shot:
     """Solve once in ``mode`` (:meth:`Control.solving`: "opt", "optN" up to ``count`` trees,
     "first") with the externals as they are, for at most ``time_limit`` seconds or until
-    ``stop()`` (:meth:`Control.solve`) or ``on_model`` answers False; ``on_lower`` sees each
-    proven lower bound; ``on_answer`` is ``on_model`` with
-    the model read as an :class:`Answer` first; ``bound``: see :meth:`Control.solving`."""
+    ``stop()`` or ``on_model`` answers False; ``on_lower`` sees each proven lower bound;
+    ``on_answer`` is ``on_model`` with the model read as an :class:`Answer` first;
+    ``bound``: see :meth:`Control.solving`."""
     optimal: dict[tuple[int, ...], Answer] = {}
     last: list[Answer] = []
 
@@ -95,8 +88,7 @@ def solve_shot(
 class Watch:
     """The best model's cost and the proven lower bound while one goal is solved: reported to
     ``progress`` and, with a ``target`` gap, the signal to stop (:func:`foon2asp.tree.gap.gap_of`
-    on level ``first``, the lower bound raised to ``floor``).  A target of 0 never stops early:
-    the solver's own proof ends the search, as without a target."""
+    on level ``first``, the lower bound raised to ``floor``; a target of 0 never stops)."""
 
     def __init__(
         self,

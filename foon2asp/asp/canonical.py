@@ -1,35 +1,9 @@
 """The canonical optimal tree: among several optimal trees, one that depends only on the input.
 
-Which optimal model clingo reports first depends on its search history: the
-grounding (whole or per goal), the goals solved before on the same control,
-the number of threads.  Once the optimum cost ``C`` of a goal is proven,
-:func:`canonicalise` replaces the tree by the *lexicographically smallest*
-optimal tree: order the units by FOON id and compare two trees at the
-smallest unit in which they differ -- the tree holding it is smaller.  Only
-the goal's candidate units can ever differ, and they are the same in every
-grounding, so the result does not depend on the grounding.
-
-``encodings/canonical.lp`` is grounded once with the session (a chain of
-auxiliary atoms over the grounded units in id order, :func:`chain_facts`).
-:func:`canonicalise` switches ``lex_cur(U)`` on for the units of the current
-tree and ``lex_on`` on, and asks, on the same grounding and with the goal's
-externals still on, for a tree of cost at most ``C`` (``opt-mode=enum,C``); each
-tree found is smaller and becomes the current one, until none is left.  When
-the tree is the only optimal one (the usual case), this costs one
-satisfiability check under the cost bound.
-
-*Bounded, and still deterministic.*  Proving that no smaller optimal tree
-exists can cost far more than proving the optimum (on FOONs with real choice,
-seconds to minutes against tenths of a second), so the search is bounded by a
-budget of clasp conflicts (:data:`CONFLICTS`), not by time.  It runs only in
-the goal's *canonical session* (:func:`canonical_problem`: a fresh grounding of
-the goal's part, solved from scratch), where clasp is deterministic, so the
-tree it ends with -- the smallest optimal tree when the search completes
-within the budget, else the smallest one it reached -- depends only on the
-input and the options.  A session that is not the goal's canonical session
-hands the goal to one (:meth:`foon2asp.asp.session.Session.solve`).  A wall
-time limit that cuts the search short leaves an optimal tree that may not be
-the canonical one (marked in the tree's stats).
+:func:`canonicalise` replaces an optimal tree by the lexicographically smallest optimal tree
+(units in FOON id order), searched with ``encodings/canonical.lp`` on the same grounding
+within a budget of clasp conflicts; :func:`canonical_problem` is what the goal's canonical
+session grounds.  Why the result depends only on the input: docs/proofs/solving.md.
 """
 
 from __future__ import annotations
@@ -45,8 +19,8 @@ from foon2asp.foon.problem import Problem
 
 LEX_ON = clingo.Function("lex_on", [])
 
-#: the budget of the search for a smaller optimal tree, in clasp conflicts (about 0.7 s on a
-#: 2,850-unit part; measured in BENCHMARKS.md, "Canonical trees")
+#: the budget of the search for a smaller optimal tree, in clasp conflicts (BENCHMARKS.md,
+#: "Canonical trees")
 CONFLICTS = 5000
 
 
@@ -83,9 +57,8 @@ def canonicalise(
     """The smallest optimal tree (``answer`` has the proven optimum cost), and whether that is proven.
 
     At most ``conflicts`` clasp conflicts in all (None: :data:`CONFLICTS`) and, with a
-    ``deadline``, no longer than that: the smallest tree found so far otherwise.
-    The externals of the goal must be on; they are left as they are.  The
-    solver configuration (opt-mode, models, projection, limit) is restored afterwards.
+    ``deadline``, no longer than that: the smallest tree found so far otherwise.  The
+    goal's externals must be on (they are left so); the solver configuration is restored.
     """
     if not answer.cost:
         return answer, True  # no cost terms: every tree is optimal

@@ -1,15 +1,9 @@
 """Does a given tree satisfy the user's constraints?  One grounding, one decision per tree.
 
-Preparation may settle a goal with a tree it knows is optimal (the only tree of the
-goal's part, or the bounds tree whose cost meets the landmark bound).  User programs
-that only remove trees (:func:`foon2asp.asp.constraints.only_constraints`) leave such
-a tree optimal whenever it satisfies them.  :class:`ConstraintCheck` grounds the
-programs once over the facts of the whole problem with ``use/1`` as externals and
-decides each tree by one solve with the tree's externals on: no search for an optimum, only the
-check that the tree's own atoms break no constraint; when grounding leaves no
-constraint at all (a rule that nothing in this FOON matches), every tree passes.  Programs that read predicates
-the encodings derive (``had/1``, ``fire/1``, ...) cannot be checked this way
-(:func:`checkable`): their goals go to clingo.
+:class:`ConstraintCheck` grounds the user's programs once over the facts with ``use/1`` as
+externals and decides each tree by one solve with the tree's atoms on; :func:`checkable`
+says whether programs can be checked so (they read only the facts and ``use/1``).  Why a
+tree that passes is the answer: docs/proofs/solving.md, "The routes".
 """
 
 from __future__ import annotations

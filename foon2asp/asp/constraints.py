@@ -3,17 +3,10 @@
 Everything here becomes a list of ``(name, text)`` programs for
 :attr:`foon2asp.asp.options.AspOptions.programs`.  The convenience flags
 (``--forbid-motion`` and friends) are generated ASP text in which every motion
-or label is written with :func:`foon2asp.asp.facts.q`, so a label is always a
-string constant and can never add code.  Files and ``--rule`` texts are the
-user's own code; they are checked on their own first, so a syntax error or an
-unsafe variable is reported as one line naming the file (or rule) and line.
-
-The rules speak the vocabulary of docs/vocabulary.md: ``use(U)`` is a unit of
-the tree, ``motion(U,M)``, ``input(U,O)``, ``output(U,O)``, ``label(O,L)``.
-A predicate a user program uses that nothing defines -- no shipped encoding, no
-fact foon2asp writes, no user program -- is a misspelling that would silently
-match nothing; :func:`rule_warnings` names it, where it is and the closest
-defined predicates.
+or label is a string constant written with :func:`foon2asp.asp.facts.q`, so it can
+never add code.  Files and ``--rule`` texts are the user's own code, checked on
+their own first, so an error is one line naming the file (or rule) and line;
+:func:`rule_warnings` names a predicate they use that nothing defines.
 """
 
 from __future__ import annotations
@@ -45,12 +38,9 @@ def motion_name(text: str) -> str:
     return text[:-1].rstrip() if text.endswith("*") else text
 
 
-_motion = motion_name
-
-
 def forbid_motion(motion: str) -> str:
     """No unit of the tree has motion ``motion``."""
-    return f":- use(U), motion(U,{q(_motion(motion))}).\n"
+    return f":- use(U), motion(U,{q(motion_name(motion))}).\n"
 
 
 def forbid_object(label: str) -> str:
@@ -61,7 +51,7 @@ def forbid_object(label: str) -> str:
 
 def require_motion(motion: str) -> str:
     """Some unit of the tree has motion ``motion``."""
-    return f":- #count {{ U : use(U), motion(U,{q(_motion(motion))}) }} = 0.\n"
+    return f":- #count {{ U : use(U), motion(U,{q(motion_name(motion))}) }} = 0.\n"
 
 
 def require_object(label: str) -> str:
@@ -177,7 +167,7 @@ class ConstraintSpec:
 
     def names(self) -> tuple[list[str], list[str]]:
         """Motions and object labels the convenience flags mention (normalised)."""
-        motions = [_motion(m) for m in (*self.forbid_motion, *self.require_motion)]
+        motions = [motion_name(m) for m in (*self.forbid_motion, *self.require_motion)]
         labels = [normalise(x) for x in (*self.forbid_object, *self.require_object)]
         return motions, labels
 
@@ -253,7 +243,7 @@ def shrinking(programs: Iterable[tuple[str, str]]) -> Shrinking | None:
     for name, text in programs:
         flag, _, value = name.partition(" ")
         if flag == "--forbid-motion" and text == forbid_motion(value):
-            motions.add(_motion(value))
+            motions.add(motion_name(value))
         elif flag == "--forbid-object" and text == forbid_object(value):
             labels.add(normalise(value))
         elif name == "--max-units" and (n := _cap(text)) is not None:

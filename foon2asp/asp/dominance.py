@@ -1,29 +1,9 @@
 """Dominated units: producers no canonical optimal tree needs (``encodings/dominance.lp``).
 
-A unit ``V`` *dominates* a unit ``U`` when
-
-* ``V < U`` (FOON id order, the order of canonical trees: foon2asp.asp.canonical),
-  or ``V`` costs strictly less than ``U`` in some ranked objective (below),
-* every required input of ``V`` that is not a kitchen item is a required input of ``U``,
-* ``V`` makes every product of ``U`` that is relevant to the goal (the products of
-  ``U`` that ``V`` does not make are listed as ``dom_extra(V,U,O)``; the solver
-  checks that none of them is ``relevant/1``, which depends on the goal), and
-* ``V`` costs no more than ``U`` in every ranked objective: the same for
-  ``units`` and ``depth`` (``V`` fires no later than ``U``), at most the success
-  weight for ``success``, at most the input nodes for ``inputs``.
-
-Then in a tree that uses ``U``, ``U`` can be replaced by ``V`` (``V`` fires
-whenever ``U`` does and makes what ``U`` made for the tree): the tree stays valid
-and costs no more; if ``V`` is in the tree already, dropping ``U`` is cheaper.
-So an optimal tree using ``U`` gives an optimal tree without it that is smaller
-in the canonical order (``V < U``; when ``V`` is cheaper, no optimal tree uses
-``U`` at all), and the canonical optimal tree never uses a dominated unit: forbidding them changes neither the optimum nor the canonical tree, only
-removes interchangeable alternatives the proof of optimality would otherwise
-have to rule out one by one.
-
-Only valid when every answer is an optimal tree with nothing else asked of it:
-:func:`applies` leaves it out with user programs, extra encodings, human steps,
-several trees per goal or all optimal trees (those may need a dominated unit).
+A unit ``V`` dominates ``U`` when it can replace ``U`` in any tree at no greater cost and
+comes first in FOON id order or costs less (docs/proofs/preparation.md, "Dominance").
+:class:`Dominators` lists the dominators of each unit, :func:`dominance_facts` writes them
+for ``encodings/dominance.lp``, and :func:`applies` says when forbidding them is sound.
 """
 
 from __future__ import annotations
@@ -53,13 +33,8 @@ def applies(options, ranked: Iterable[str]) -> bool:
 class Dominators:
     """The units that dominate each unit, for one problem and ranked objectives: ``of(u)``
     lists ``(V, extra)`` over ``producers`` (object -> its producers in id order; the
-    problem's viable producers when not given), computed once per unit.
-
-    Whether ``V`` dominates ``U`` depends on the two units alone, so the pairs among any
-    set of units are those whose ``V`` is in the set (:func:`dominance_pairs`); the goal
-    runner keeps one per problem instead of listing the pairs of each goal's part again
-    (2.1 of 34.5 s on every 20th object of hard-4k, BENCHMARKS.md, "Less Python around
-    the solver")."""
+    problem's viable producers when not given), computed once per unit.  The pairs among
+    any set of units are those whose ``V`` is in the set."""
 
     def __init__(
         self, problem: Problem, ranked: Iterable[str] = ("units",), producers: dict[int, list[int]] | None = None

@@ -216,8 +216,7 @@ def _changes_search(text: str) -> bool:
 def only_constraints(programs: Iterable[tuple[str, str]]) -> bool:
     """Do the user ``programs`` only remove trees: integrity constraints and rules whose heads
     are predicates of their own (none that foon2asp defines or writes), nothing that changes
-    the objective or the search?  Then what preparation proves of a goal (it cannot be made,
-    the relevant part, the landmarks, the lower bounds) still holds with them."""
+    the objective or the search?"""
     known = known_predicates()
     for _, text in programs:
         try:

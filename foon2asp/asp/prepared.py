@@ -1,28 +1,9 @@
 """What preparation hands clingo for one goal: the part to search and what is known of it.
 
-Python prepares a goal in polynomial time (:mod:`foon2asp.methods.bounds`,
-:mod:`foon2asp.asp.dominance`): the goal's relevant part without the units no
-optimal tree needs, the landmark units every tree uses, a valid tree (the
-bounds tree) and lower bounds.  A :class:`Preparation` carries them to a
-:class:`~foon2asp.asp.session.Session`, which grounds an encoding of its own
-over the candidates instead of ``tree.lp`` and writes the rest as facts:
-``landmark/1`` and ``hint/1`` (the tree clingo tries first under
-``--heuristic=Domain``).  The search for the optimum stays clingo's.
-
-The session grounds ``encodings/closed.lp``: the *closed* sets of candidates, in which
-every needed object is made by a used unit but units may support each other around a
-cycle.  Every tree is closed, so an optimal closed set that derives the goal (the least
-fixpoint over its units) is an optimal tree.  One that does not is cut off by a *loop
-cut* (:meth:`Preparation.cut`), grounded as part ``cut(k)`` of the encoding, and clingo
-searches again: let ``L`` be the needed objects the set does not derive; a tree that
-needs an object of ``L`` has a first one, made by a unit whose required inputs lie
-outside ``L`` (an *outside* producer), so every tree satisfies "an object of ``L``
-needed implies an outside producer used", and the set does not (an outside producer
-it used would fire and derive an object of ``L``).  Each cut removes the last optimum
-and only finitely many sets exist, so the rounds end with an optimal tree or with no
-tree at all.  With user programs, which may read ``had/1`` or ``fire/1``, and with
-several threads (the smallest optimal tree, :mod:`foon2asp.asp.canonical`), the session
-grounds ``encodings/prepared.lp`` instead, which derives the goal by positive recursion.
+A :class:`Preparation` carries a goal's candidates, landmarks, hint and lower bound to a
+:class:`~foon2asp.asp.session.Session`; :func:`search` runs clingo's optimisation over it,
+over closed sets with loop cuts (``encodings/closed.lp``) or in one round
+(``encodings/prepared.lp``).  Why this keeps every optimum: docs/proofs/solving.md.
 """
 
 from __future__ import annotations
@@ -60,8 +41,8 @@ class Preparation:
 
     @property
     def bound(self) -> tuple[int, ...] | None:
-        """The hint's cost vector when it meets the lower bound, else None: then every tree
-        that costs no more is optimal, and clingo decides rather than optimises."""
+        """The hint's cost vector when it meets the lower bound (clingo then decides rather
+        than optimises), else None."""
         if self.known is not None and self.meets is not None and self.meets(self.known):
             return self.known
         return None
@@ -74,9 +55,9 @@ class Preparation:
         return "\n".join(lines) + "\n"
 
     def cut(self, problem: Problem, units: Iterable[int]) -> tuple[list[int], list[int]] | None:
-        """The loop cut of a closed set of ``units`` (see the module docstring): the needed
-        objects it does not derive, and the candidates or landmarks that make one of them
-        from inputs outside them; None when ``units`` derive every needed object (a tree)."""
+        """The loop cut of a closed set of ``units``: the needed objects it does not derive,
+        and the candidates or landmarks that make one of them from inputs outside them;
+        None when ``units`` derive every needed object (a tree)."""
         units = list(units)
         kitchen = problem.kitchen
         derived, _ = least_fixpoint(kitchen, problem.required, problem.products, units)
@@ -103,12 +84,12 @@ def search(
     watch: Watch,
 ) -> tuple[Shot, Answer | None, tuple[int, ...] | None, int]:
     """clingo's optimisation over the prepared part grounded on ``control``: with ``closed``
-    (encodings/closed.lp) in rounds, each closed set that is no tree answered by a loop cut
-    (:meth:`Preparation.cut`), until the optimum is a tree, there is none, or ``deadline``
-    passes; else (encodings/prepared.lp) in one round.  ``on_tree`` sees each model that is a
-    tree and may end the search by answering False; ``watch`` sees the lower bounds and may
-    stop the search.  Returns the last round's shot, the answer (the optimum; when cut
-    short, the best tree found, unproven), the best lower bound proven, and the number of cuts."""
+    in rounds of loop cuts until the optimum is a tree, there is none, or ``deadline``
+    passes; else in one round.  ``on_tree`` sees each model that is a tree and may end the
+    search by answering False; ``watch`` sees the lower bounds and may stop the search.
+
+    Returns the last round's shot, the answer (the optimum; when cut short, the best tree
+    found, unproven), the best lower bound proven, and the number of cuts."""
     best: list[Answer] = []
     cuts_of: dict[tuple[int, ...], tuple[list[int], list[int]] | None] = {}
 

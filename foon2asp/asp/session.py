@@ -1,15 +1,10 @@
 """Ground and solve with the clingo Python API, one grounding for many goals.
 
-A :class:`Session` grounds the facts of a whole problem together with the
-encodings once; each :meth:`Session.solve` then switches the external atom
-``goal(G)`` on for one goal, so many goals reuse one grounding.  A *meal* (a
-tuple of goal ids) switches ``goal(G)`` on for each of its goals: the tree
-must make all of them, and a unit two dishes share is counted once.
-
-A solve is one plain optimisation here, or, when the options ask for more
-(depth bounds, human steps, alternatives, greedy retrieval), the session's
-:class:`~foon2asp.asp.multishot.driver.Driver`; both read models into task
-trees through :mod:`foon2asp.asp.answers`.
+A :class:`Session` grounds the facts with the encodings once; each :meth:`Session.solve`
+switches the external ``goal(G)`` on for one goal, or for every goal of a meal (one tree
+that makes all of them).  A solve is one plain optimisation, the prepared part's search
+(:mod:`foon2asp.asp.prepared`), or the :class:`~foon2asp.asp.multishot.driver.Driver`
+when the options ask for more.
 """
 
 from __future__ import annotations
@@ -79,11 +74,9 @@ class Session:
         prepared: Preparation | None = None,
     ):
         """``units``: ground only these (default ``options.units``, else the viable units);
-        ``require``: units every tree must use (a caller that knows them, e.g. landmarks);
-        ``goal``: a session for this goal (or meal) alone, grounded with the goal as a fact
-        (the grounder then simplifies what follows from it: core-guided proofs on hard parts
-        take about half the time of a goal switched on as an external); ``prepared``: a session
-        for one goal's prepared part (foon2asp.asp.prepared), grounded over its candidates."""
+        ``require``: units every tree must use; ``goal``: a session for this goal (or meal)
+        alone, grounded with the goal as a fact; ``prepared``: a session for one goal's
+        prepared part (foon2asp.asp.prepared), grounded over its candidates."""
         #: what preparation knows of the goal (None: the encoding derives the part itself)
         self.prepared = prepared
         #: the prepared part is searched as closed sets with loop cuts (foon2asp.asp.prepared)
@@ -196,11 +189,9 @@ class Session:
         ``options.gap`` is reached); an unproven answer carries the best lower bound
         proven and its gap (:mod:`foon2asp.tree.gap`).
 
-        ``known`` is a valid tree the caller has, with its cost vector (as the solver
-        reports it): when its cost is the proven optimum it is the answer, otherwise
-        the canonical (smallest) optimal tree is; either way no second optimal model
-        is searched for first.  ``floor``: a lower bound on the first objective's weight
-        the caller knows (the landmarks).
+        ``known``: a valid tree the caller has, with its cost vector as the solver reports
+        it (the answer when its cost is the proven optimum); ``floor``: a lower bound on
+        the first objective's weight the caller knows (the landmarks).
         """
         meal = meal_of(goal)
         self._lower = None
@@ -274,8 +265,8 @@ class Session:
         floor: int | None = None,
     ) -> TaskTree:
         """One plain optimisation for ``meal`` (the driver when the options need more), then
-        the canonical tree: here, or in the meal's canonical session.  The shot's lower bound
-        is kept (``_lower``): the optimum's cost once the search has proven it."""
+        the canonical tree: here, or in the meal's canonical session.  The proven lower
+        bound is kept in ``_lower``."""
         if self.prepared is not None:
             return self._solve_prepared(meal, on_model, time_limit)
         if self.options.driven:
@@ -289,8 +280,7 @@ class Session:
             # a goal is not an object of the grounded facts: nothing makes it (no solve call)
             return self._tree(meal, None, "unreachable", t0, dict(NO_SOLVE))
         here = self._canonical_here(meal)
-        # with a known tree one plain optimisation decides whether it is optimal; the canonical
-        # session always looks for a second optimal tree, so its answer does not depend on `known`
+        # with a known tree one plain optimisation decides whether it is optimal
         plain = known is not None and self.options.canonical and not here
         mode, count = ("optN", 2) if self.options.canonical and not plain else ("opt", 1)
         watch = Watch(first_level(self.levels), self.options.gap, floor, self.options.progress)
@@ -333,13 +323,10 @@ class Session:
         on_model: Callable[[clingo.Model], None] | None,
         time_limit: float | None,
     ) -> TaskTree:
-        """The optimisation over the prepared part: closed sets and loop cuts in rounds
-        (foon2asp.asp.prepared) until the optimum is a tree, or prepared.lp in one round.
-        The search stops as soon as a tree meets the lower bound of the preparation (that
-        tree is optimal); when the hint meets it, clingo decides whether a tree costs no more.  Among equal optima the answer is the hint when the preparation
-        allows it, else the first optimum clingo finds here (a fresh grounding of the part:
-        the same on every path); with several threads, whose search is not deterministic,
-        the smallest optimal tree (foon2asp.asp.canonical)."""
+        """The search over the prepared part (:func:`foon2asp.asp.prepared.search`), stopped as
+        soon as a tree meets the preparation's lower bound.  Among equal optima the answer is
+        the hint when its cost is the optimum, else clingo's first optimum; with several
+        threads, the smallest optimal tree."""
         prep = self.prepared
         assert prep is not None
         time_limit = self.options.time_limit if time_limit is None else time_limit

@@ -1,22 +1,10 @@
 """The default solver settings, in one place (chosen on the hard benchmark: BENCHMARKS.md).
 
-Every answer that comes from clingo (``solve``, ``compare``, the optimum of
-``check``, ``missing``, ``batch``, the Python API) builds its clingo
-arguments with :func:`solver_args`; a user who sets nothing gets:
-
-* one thread: ``--opt-strategy=usc,oll,succinct,stratify`` (core-guided optimisation,
-  OLL, without the redundant symmetry constraints OLL adds over the outputs of
-  its cardinality constraints, weights taken in strata from the heaviest: the
-  success objective's weights differ widely), each core shrunk by binary search
-  (``--opt-usc-shrink=bin``), with clasp's ``--configuration=trendy``.  On FOONs with real choice it proves where
-  branch and bound (clingo's own default) stalls, and it is as fast on FOONs
-  with little choice; ``succinct`` proves the hardest goals of the hard
-  presets several times faster than plain ``usc`` (BENCHMARKS.md);
-* ``--threads N`` (N >= 2) and no ``--opt-strategy``: a portfolio of one
-  branch-and-bound solver (``--opt-heuristic=sign,model``) beside one such usc
-  solver (:data:`PORTFOLIO`, clasp's configuration-file format; more threads
-  repeat its lines).
-
+Every answer that comes from clingo builds its clingo arguments with :func:`solver_args`.
+A user who sets nothing gets, on one thread, core-guided optimisation
+(:data:`DEFAULT_OPT_STRATEGY`, with :data:`DEFAULT_TUNING`), and with ``--threads N``
+(N >= 2) a portfolio of one branch-and-bound and one such core-guided solver
+(:data:`PORTFOLIO`, clasp's configuration-file format; more threads repeat its lines).
 ``--opt-strategy`` always wins: it is passed on as given, for every thread.
 """
 

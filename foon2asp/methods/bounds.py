@@ -1,67 +1,12 @@
 """Bounds on the optimum without the solver: a valid tree (upper bound) and a lower bound.
 
-For the monotone objectives -- the cost of a tree is a sum of non-negative
-weights of its units -- in the ranked orders ``units``, ``success,units`` and
-``inputs,units``.  A lexicographic pair (objective, then units) is one sum of
-weights ``w(u) * M + 1`` with ``M`` greater than the number of units, so
-minimising the sum minimises the pair.  Everything here is plain Python over a
-:class:`~foon2asp.foon.problem.Problem` (no clingo).
-
-**Upper bound: the cheapest-set tree.**  A Knuth-style generalised Dijkstra
-over the FOON whose key is the *weight of a set of units*, not the cost of the
-unfolded tree.  Kitchen items are settled with the empty set.  A unit *fires*
-once all its required inputs are settled; its set is ``{u}`` plus the union of
-the sets of its required inputs, and it offers that set to each product.  An
-object is settled with the smallest offer popped first, ordered by (weight,
-size, producing unit).
-
-*Why every settled set is a valid, well-founded tree.*  By induction on the
-settling order: the sets of the inputs were settled before, so each is a
-valid tree for its input; their union still derives every input (adding units
-never disables one: the FOON is delete-free), and then ``u`` fires, so the set
-derives the object.  Every unit in it fires after units settled strictly
-earlier, so nothing rests on a cycle.
-
-*Why it is deterministic and depends on the goal's relevant part only.*  An
-offer made after popping key ``(c, n)`` has a key ``(c', n')`` with ``c' >= c``
-(weights are non-negative and the set grows) and ``n' > n`` (a unit fires once,
-so it is not yet in its inputs' sets).  So no offer equal to or below a popped
-key comes later, and the settled set of an object is the least of *all* its
-offers in a total order that names nothing outside it.  Its offers come from
-its viable producers, built from the settled sets of their required inputs:
-all inside the object's relevant part.  The same set results whether the run
-sees the whole FOON or only that part, and in whatever order units are listed.
-
-The set is then made *irredundant*: its units are tried heaviest first (ties:
-higher id first) and dropped when the rest still derives the goal (checked by
-a fixpoint); the result is still a valid tree.  This trimmed set is *the
-bounds tree* of the goal; its weight is the upper bound ``UB``.
-
-**Lower bound.**  *Landmarks*: the greatest fixpoint of
-``LM(o) = intersection over the viable producers u of o of ulm(u)``,
-``ulm(u) = {u} + union of LM(i) over u's required inputs``, ``LM(kitchen) = {}``.
-Every tree for ``o`` contains ``LM(o)``: in a tree the units fire in some
-order; by induction on it, when ``o`` is first had through ``u``, the units
-fired so far include ``ulm(u)`` (its inputs were had before), and
-``LM(o) <= ulm(u)``.  Likewise every tree that uses ``u`` contains ``ulm(u)``.
-So ``w(LM(g))`` is a lower bound, strengthened by three valid arguments:
-
-* *closure*: a tree containing a set ``S`` weighs at least ``w(S)`` plus, for
-  the required inputs of ``S``'s units that no unit of ``S`` makes (and that
-  are not kitchen items), a *packing*: each needs a producer outside ``S``;
-  producer sets that are pairwise disjoint need distinct units, each weighing
-  at least its set's lightest unit.
-* *one more producer*: a needed object (the goal, or a required input of a
-  landmark unit) that no landmark unit makes is made by one of its viable
-  producers ``u``, so the tree contains ``ulm(u) + LM(g)``; the lower bound is
-  at least the least closure bound over those producers.
-* *depth* (``units`` alone): a tree for ``g`` has at least ``level(g)`` units,
-  a chain of that many units that fire one after another.
-
-When ``LB == UB`` the bounds tree is optimal.  Otherwise :meth:`Bounds.keep`
-prunes the goal's part exactly: a unit ``u`` whose closure bound of
-``ulm(u) + LM(g)`` exceeds ``UB`` is in no optimal tree, and the units of
-``LM(g)`` are in every tree.
+For the ranked objectives of :data:`SUPPORTED`, whose cost is one sum of non-negative unit
+weights (a lexicographic pair weighs a unit ``w(u) * M + 1``).  :class:`Bounds` gives each
+goal's *bounds tree* (the cheapest-set tree of :func:`foon2asp.tree.upper.cheapest_sets`,
+made irredundant: the upper bound), the landmarks and a lower bound, and prunes a goal's
+part to the units an optimal tree may use (:meth:`Bounds.keep`).  Plain Python, no clingo.
+Why the tree is valid and the bounds are bounds: docs/proofs/preparation.md ("Weights",
+"The cheapest-set tree", "Landmarks").
 """
 
 from __future__ import annotations
@@ -91,7 +36,7 @@ def landmarks(
     problem: Problem, units: Iterable[int] | None = None
 ) -> tuple[dict[int, frozenset[int]], dict[int, frozenset[int]]]:
     """``(LM, ulm)``: object -> units every tree for it uses; viable unit -> units every
-    tree using it uses (the greatest fixpoint of the module docstring)."""
+    tree using it uses (a greatest fixpoint: docs/proofs/preparation.md, "Landmarks")."""
     pool = list(range(len(problem.units))) if units is None else list(units)
     kitchen = problem.kitchen
     # the kitchen items the units need (not the whole kitchen: a large FOON's is large)
@@ -129,10 +74,8 @@ def landmarks(
 
 
 class Bounds:
-    """Upper bound (the bounds tree) and lower bound of every object for one ranked objective list.
-
-    Built once per problem (about 0.1 s for ../shared/foon); the per-goal parts are cached.
-    """
+    """Upper bound (the bounds tree) and lower bound of every object for one ranked objective
+    list, built once per problem (or goal's part); the per-goal answers are cached."""
 
     def __init__(
         self,
@@ -222,7 +165,8 @@ class Bounds:
         return extra
 
     def lower(self, goal: int) -> int:
-        """A lower bound on the weight of every tree for ``goal`` (see the module docstring)."""
+        """A lower bound on the weight of every tree for ``goal`` (landmarks, closure, one more
+        producer and, for ``units`` alone, the goal's level)."""
         if goal in self._lower:
             return self._lower[goal]
         kitchen = self.problem.kitchen
@@ -243,8 +187,7 @@ class Bounds:
 
     def first_lower(self, goal: int) -> int:
         """A lower bound on the first objective's weight (as the solver weighs it) of every
-        tree for ``goal``: :meth:`lower` with the tie-break on units taken out (the weights
-        are ``w(u) * M + 1`` with ``M`` above the number of units, foon2asp.tree.weights)."""
+        tree for ``goal``: :meth:`lower` with the tie-break on units taken out."""
         return self.first(self.lower(goal))
 
     def first(self, weight: int) -> int:

@@ -103,15 +103,9 @@ AUTO_SAMPLE = 50
 
 
 def choose_grounding(problem: Problem, goals: list[int], parts: Parts | None = None) -> tuple[str, str]:
-    """``(grounding, reason)`` for ``--grounding auto``.
-
-    ``per-goal`` when the FOON has more than :data:`AUTO_MAX_WHOLE` viable
-    units (one grounding of everything costs minutes and gigabytes there), or
-    when the median relevant part of a sample of the goals
-    (:meth:`Parts.relevant`) is under :data:`AUTO_PART_SHARE` of the viable
-    units (each small grounding is then cheap, and one big one would be
-    searched for every goal); ``whole`` otherwise (the parts overlap most of
-    the FOON, so grounding each of them again would repeat the same work).
+    """``(grounding, reason)`` for ``--grounding auto``: ``per-goal`` when the FOON has more
+    than :data:`AUTO_MAX_WHOLE` viable units, or when the median relevant part of a sample
+    of the goals is under :data:`AUTO_PART_SHARE` of the viable units; ``whole`` otherwise.
     """
     parts = parts if parts is not None else Parts(problem)
     viable = len(parts.viable)

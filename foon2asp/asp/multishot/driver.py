@@ -2,25 +2,12 @@
 features beyond a single optimisation: depth bounds (:mod:`foon2asp.asp.multishot.depth`),
 human steps, the K best trees, all optimal trees and greedy retrieval.
 
-A goal may be a meal (a tuple of goal ids): ``goal(G)`` is then switched on
-for every goal, and a depth bound applies to the meal (every goal within the
-bound; see :mod:`foon2asp.asp.multishot.depth`).
-
-Every solve sets the externals it needs (``goal(G)``, ``query(k)``,
-``within(k)``, exclusion guards) and switches them off again afterwards, so
-the next goal of the session starts clean; clingo proves each optimum anew
-for the current externals (tests compare with a fresh Control per goal).
-The driver owns what it keeps between goals: the depth blocks grounded on the
-session's Control (:class:`~foon2asp.asp.multishot.depth.Rounds`) and the
-depth search of the current goal.
-
-Alternatives: the optimal trees of one cost level are enumerated with
-``opt-mode=optN`` and projection on ``use/1`` (``#project use/1``), so two
-answers are always distinct sets of units; for ``--models K`` each tree found
-is then excluded together with its supersets by a nogood (guarded by an
-external switched on only for this goal) and the next level is solved, so
-trees come best first and no tree merely adds units to an earlier one.  The
-further trees are the best tree's :attr:`~foon2asp.tree.tasktree.TaskTree.alternatives`.
+Every solve sets the externals it needs (``goal(G)`` for each goal of a meal, the depth
+blocks' ``query(k)`` and ``within(k)``, exclusion guards) and switches them off again, so
+the next goal of the session starts clean.  For ``--models K`` each tree found is excluded
+with its supersets and the next cost level is solved; the further trees are the best
+tree's :attr:`~foon2asp.tree.tasktree.TaskTree.alternatives` (docs/proofs/solving.md,
+"Alternatives").
 """
 
 from __future__ import annotations
@@ -140,13 +127,8 @@ class Driver:
         return result, bound
 
     def exclude(self, answer: Answer) -> int:
-        """A nogood forbidding ``answer``'s units together, behind a fresh external guard.
-
-        It forbids the tree and every superset of it: a superset that is a tree
-        is never better than the tree it contains (units is always a
-        tie-breaker), so the further trees are the next best ones that do not
-        merely add units to a tree already given.
-        """
+        """A nogood forbidding ``answer``'s units together (the tree and its supersets), behind
+        a fresh external guard."""
         return self.control.guard(clingo.Function("use", [clingo.Number(u)]) for u in answer.units)
 
     # -- a goal ------------------------------------------------------------
