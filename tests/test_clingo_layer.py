@@ -10,7 +10,8 @@ import signal
 
 import pytest
 
-from foon2asp.asp.control import Control, signal_pending
+from foon2asp.asp.control import Control
+from foon2asp.asp.interrupts import signal_pending
 from foon2asp.asp.multishot.depth import Rounds
 from foon2asp.asp.multishot.driver import Driver, alternatives
 from foon2asp.asp.options import AspOptions

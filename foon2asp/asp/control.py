@@ -1,29 +1,16 @@
 """The one wrapper around :class:`clingo.Control` that solving and queries share.
 
-It adds named programs to named parts (``#program NAME(P, ...)``: the
-``base`` part by default) and grounds parts with their arguments, so that a
-syntax or grounding error becomes one :class:`~foon2asp.errors.InputError`
-naming the program (a user file, ``--rule #N``, ...) or what was grounded (the
-depth rounds, ...); it sets the solve mode (:meth:`Control.solving`), adds
-guarded nogoods, and solves with an optional time limit on the asynchronous
-solve handle, so a time-out or an interrupt stops clingo's search through the
-handle (never by tearing the control down mid-call).  A decision starts in the
-calling thread, where a watchdog thread interrupts it when its first slice is up.
-
-Signals: while a clingo call runs (adding, grounding, solving, backend
-updates) SIGINT and SIGTERM are *deferred* (:func:`deferred_signals`): the
-handler only records the signal; a running search is then cancelled through
-its handle, grounding (which cannot be interrupted) runs to its end, and the
-signal is delivered to the previous handler once the call has returned
-cleanly (``KeyboardInterrupt`` for SIGINT).  So a Control is never left in the
-middle of a call, whatever moment the signal arrives.
+:class:`Control` adds named programs to named parts and grounds them, turning a syntax or
+grounding error into one :class:`~foon2asp.errors.InputError` naming the program; it sets
+the solve mode, adds guarded nogoods, and solves with an optional time limit through the
+solve handle.  While a clingo call runs, SIGINT and SIGTERM are deferred
+(:func:`~foon2asp.asp.interrupts.deferred_signals`) until the call has returned.  Why a
+control is never left in the middle of a call: docs/proofs/solving.md, "The watchdog and
+signals".
 """
 
 from __future__ import annotations
 
-import os
-import signal
-import threading
 import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
@@ -34,92 +21,11 @@ import clingo
 import clingo.ast
 
 from foon2asp.asp.constraints import check_syntax, clingo_error
+from foon2asp.asp.interrupts import POLL_S, WATCHDOG, deferred_signals, signal_pending
 from foon2asp.errors import InputError
 
-#: how often a waiting solve looks for a deferred signal (seconds)
-POLL_S = 0.05
-
-
-class _Watchdog:
-    """One thread per process that interrupts solve calls running in their callers' threads
-    once their time is up (:meth:`Control.solve` runs a search there first: a search in the
-    background costs a thread per call)."""
-
-    NAME = "foon2asp-solve-watchdog"
-
-    def __init__(self) -> None:
-        self.reset()
-        # a forked process starts with no thread and a fresh lock (the parent's may be held)
-        os.register_at_fork(after_in_child=self.reset)
-
-    def reset(self) -> None:
-        self._cond = threading.Condition()
-        self._jobs: dict[int, tuple[clingo.Control, float]] = {}
-        self._next = 0
-        self._thread: threading.Thread | None = None
-        #: the thread looks at the jobs every POLL_S seconds (else it waits to be told)
-        self._awake = False
-
-    @contextmanager
-    def limit(self, ctl: clingo.Control, seconds: float) -> Iterator[None]:
-        """The body's solve call on ``ctl`` is interrupted after ``seconds``."""
-        job = self._add(ctl, seconds)
-        try:
-            yield
-        finally:
-            with self._cond:
-                self._jobs.pop(job, None)
-
-    def interrupt(self, ctl: clingo.Control) -> None:
-        """Interrupt the solve call running on ``ctl`` now (from this thread)."""
-        self._add(ctl, 0.0)
-
-    def forget(self, ctl: clingo.Control) -> None:
-        """Drop the interrupts of ``ctl`` not yet made."""
-        with self._cond:
-            for job in [job for job, (c, _) in self._jobs.items() if c is ctl]:
-                del self._jobs[job]
-
-    def _add(self, ctl: clingo.Control, seconds: float) -> int:
-        with self._cond:
-            if self._thread is None:
-                self._thread = threading.Thread(target=self._run, name=self.NAME, daemon=True)
-                self._thread.start()
-            self._next += 1
-            self._jobs[self._next] = (ctl, time.monotonic() + seconds)
-            if not seconds or not self._awake:  # awake, it looks every POLL_S seconds anyway
-                self._awake = True
-                self._cond.notify()
-            return self._next
-
-    def _run(self) -> None:
-        with self._cond:
-            idle = 0.0
-            while True:
-                now = time.monotonic()
-                for job, (ctl, at) in list(self._jobs.items()):
-                    if at <= now:
-                        del self._jobs[job]
-                        ctl.interrupt()
-                if self._jobs:
-                    idle = 0.0
-                    soonest = min(at for _, at in self._jobs.values())
-                    self._cond.wait(min(POLL_S, max(soonest - now, 0.0)))
-                elif idle < 1.0:
-                    idle += POLL_S
-                    self._cond.wait(POLL_S)
-                else:  # a second without jobs: sleep until the next one
-                    self._awake = False
-                    self._cond.wait()
-
-
-_WATCHDOG = _Watchdog()
-#: the name of the watchdog's thread
-SOLVE_WATCHDOG = _Watchdog.NAME
 #: an atom no program has: a solve assuming it ends at once
 _ABSORB = clingo.Function("foon2asp_no_atom")
-
-_SIGNALS = (signal.SIGINT, signal.SIGTERM)
 
 #: between programs added in one call: each starts in the base part, as a separate add would
 _JOIN = "\n#program base.\n"
@@ -137,61 +43,6 @@ Part = tuple[str, Sequence[int | clingo.Symbol]]
 
 def _symbol(value: int | clingo.Symbol) -> clingo.Symbol:
     return clingo.Number(value) if isinstance(value, int) else value
-
-
-class _Deferral:
-    depth = 0
-    pending: int | None = None
-
-
-_DEFER = _Deferral()
-
-
-def _record(signum, frame) -> None:
-    if _DEFER.pending is None:
-        _DEFER.pending = signum
-
-
-def signal_pending() -> bool:
-    """Did SIGINT or SIGTERM arrive during the current deferred section?"""
-    return _DEFER.pending is not None
-
-
-def _deliver(signum: int, handler) -> None:
-    if callable(handler):
-        handler(signum, None)
-    elif handler == signal.SIG_DFL:
-        if signum == signal.SIGINT:
-            raise KeyboardInterrupt
-        os.kill(os.getpid(), signum)
-
-
-@contextmanager
-def deferred_signals() -> Iterator[None]:
-    """Run the body with SIGINT/SIGTERM recorded instead of raised; deliver the first one afterwards.
-
-    Only the main thread handles signals; elsewhere (Dask worker threads) this does nothing.
-    Ignored signals stay ignored (pool workers ignore SIGINT: their parent stops them).
-    """
-    if _DEFER.depth or threading.current_thread() is not threading.main_thread():
-        yield  # nested: the outer section delivers
-        return
-    saved = {}
-    for signum in _SIGNALS:
-        handler = signal.getsignal(signum)
-        if handler is not signal.SIG_IGN and handler is not None:
-            saved[signum] = handler
-            signal.signal(signum, _record)
-    _DEFER.depth, _DEFER.pending = 1, None
-    try:
-        yield
-    finally:
-        _DEFER.depth = 0
-        for signum, handler in saved.items():
-            signal.signal(signum, handler)
-        pending, _DEFER.pending = _DEFER.pending, None
-        if pending is not None and pending in saved:
-            _deliver(pending, saved[pending])
 
 
 @dataclass
@@ -349,11 +200,10 @@ class Control:
             self._decision = False
 
     def stop_soon(self) -> None:
-        """End the running solve call from another thread, as a time limit does (returning
-        False from a model callback can break clasp's core-guided search while it shrinks a
-        core); the call then reports its search as finished."""
+        """End the running solve call from another thread, as a time limit does; the call
+        then reports its search as finished."""
         self._stopping = True
-        _WATCHDOG.interrupt(self.ctl)
+        WATCHDOG.interrupt(self.ctl)
 
     def solve(
         self,
@@ -363,17 +213,11 @@ class Control:
         on_lower: Callable[[tuple[int, ...]], None] | None = None,
         stop: Callable[[], bool] | None = None,
     ) -> SolveResult:
-        """Solve, stopping after ``time_limit`` seconds (None: no limit) through the solve handle,
-        or as soon as ``stop()`` is true (asked between slices of :data:`POLL_S` seconds).
+        """Solve, stopping after ``time_limit`` seconds (None: no limit) or as soon as ``stop()``
+        is true (asked every :data:`POLL_S` seconds); :meth:`stop_soon` ends the call too.
 
-        A decision (mode "first") runs its first :data:`POLL_S` seconds (at most ``time_limit``)
-        in the calling thread, which costs no background thread; a search that has not ended
-        by then starts again in the background as above.  :meth:`stop_soon` ends the call.
-
-        Every lower bound the solver proves (core-guided optimisation) is kept for the
-        result and passed to ``on_lower``.  SIGINT/SIGTERM while solving cancel the search
-        through the handle; the interrupt is raised once the handle is closed (see
-        :func:`deferred_signals`).
+        Every lower bound the solver proves is kept for the result and passed to
+        ``on_lower``.  A signal while solving cancels the search and is raised afterwards.
         """
         t0 = time.perf_counter()
         deadline = None if time_limit is None else t0 + max(0.0, time_limit)
@@ -399,16 +243,7 @@ class Control:
                 done = self._here(on_model, on_unsat, assumptions, first)
                 if done is not None:
                     self._stopped(done)
-                    return SolveResult(
-                        not done.interrupted or self._stopping,
-                        done.satisfiable,
-                        done.unsatisfiable,
-                        bool(done.exhausted),
-                        bool(done.interrupted),
-                        time.perf_counter() - t0,
-                        lower[0] if lower else None,
-                        self._stopping,
-                    )
+                    return self._result(done, True, False, t0, lower)
             with self.ctl.solve(
                 on_model=on_model,
                 on_unsat=on_unsat,
@@ -432,6 +267,13 @@ class Control:
                     handle.cancel()
                 result = handle.get()
             self._stopped(result)
+        return self._result(result, finished, stopped, t0, lower)
+
+    def _result(
+        self, result: clingo.SolveResult, finished: bool, stopped: bool, t0: float, lower: list[tuple[int, ...]]
+    ) -> SolveResult:
+        """The :class:`SolveResult` of a call started at ``t0`` (a stop asked by
+        :meth:`stop_soon` counts as the end of the search)."""
         return SolveResult(
             finished and (not result.interrupted or self._stopping),
             result.satisfiable,
@@ -447,7 +289,7 @@ class Control:
         """After a solve call: no interrupt of :meth:`stop_soon` is left to come, and one that
         came after the call's end is taken by the next call."""
         if self._stopping:
-            _WATCHDOG.forget(self.ctl)
+            WATCHDOG.forget(self.ctl)
             self._absorb = self._absorb or not result.interrupted
 
     def _here(
@@ -459,7 +301,7 @@ class Control:
     ) -> clingo.SolveResult | None:
         """Solve in this thread for at most ``seconds``: the result when the search ended by
         itself, else None."""
-        with _WATCHDOG.limit(self.ctl, seconds):
+        with WATCHDOG.limit(self.ctl, seconds):
             result = self.ctl.solve(
                 on_model=on_model,
                 on_unsat=on_unsat,
@@ -467,10 +309,6 @@ class Control:
                 assumptions=list(assumptions),
             )
         return None if result.interrupted and not self._stopping else result
-
-    def backend(self):
-        """``ctl.backend()``; use it inside :func:`deferred_signals`."""
-        return self.ctl.backend()
 
     def assign(self, externals: dict[clingo.Symbol, bool]) -> None:
         """Set external atoms (a signal meanwhile waits until all are set)."""
@@ -508,18 +346,8 @@ class Control:
         return {a.symbol for a in self.ctl.symbolic_atoms.by_signature(name, arity) if a.is_fact}
 
     def _record_stats(self, step, accumulated) -> None:
-        """Keep the few numbers :meth:`stats` reports (reading them here is cheaper than
-        converting the whole statistics tree afterwards)."""
-        try:
-            summary = step["summary"]
-            self._last_stats = {
-                "choices": int(step["solving"]["solvers"]["choices"]),
-                "conflicts": int(step["solving"]["solvers"]["conflicts"]),
-                "models": int(summary["models"]["enumerated"]),
-                "solve_s": round(summary["times"]["solve"], 6),
-            }
-        except (KeyError, RuntimeError):
-            self._last_stats = {}
+        """Keep the few numbers :meth:`stats` reports (cheaper than reading them afterwards)."""
+        self._last_stats = _summary(step)
 
     def stats(self) -> dict:
         """Choices, conflicts, models and solve time of the last solve call (none when
@@ -529,14 +357,20 @@ class Control:
         if getattr(self, "_last_stats", None):
             return dict(self._last_stats)
         try:
-            s = self.ctl.statistics
-            solving = s["solving"]["solvers"]
-            summary = s["summary"]
-            return {
-                "choices": int(solving["choices"]),
-                "conflicts": int(solving["conflicts"]),
-                "models": int(summary["models"]["enumerated"]),
-                "solve_s": round(summary["times"]["solve"], 6),
-            }
-        except (KeyError, RuntimeError):
+            return _summary(self.ctl.statistics)
+        except RuntimeError:
             return {}
+
+
+def _summary(stats) -> dict:
+    """Choices, conflicts, models and solve time from clingo's statistics (empty: none)."""
+    try:
+        solvers, summary = stats["solving"]["solvers"], stats["summary"]
+        return {
+            "choices": int(solvers["choices"]),
+            "conflicts": int(solvers["conflicts"]),
+            "models": int(summary["models"]["enumerated"]),
+            "solve_s": round(summary["times"]["solve"], 6),
+        }
+    except (KeyError, RuntimeError):
+        return {}

@@ -1,35 +1,12 @@
 """The worker pool of a batch: runners built once per process, asked goal after goal.
 
-A :class:`Worker` holds the runners of one process (one per method, built
-once from a :class:`BatchSpec`); :class:`Execution` runs (goal, method) tasks
-in this process or, with ``workers > 1``, in a process pool whose
-initializer builds each worker's runners once, and yields each result as one
-JSON line as it finishes (:mod:`foon2asp.batch.cluster` runs the same
-workers on a Dask cluster).
-
-``workers=AUTO`` (the default of ``batch``) starts in this process and hands
-the tasks left to a pool of one worker per usable core once the batch has run
-for :data:`SWITCH_S` seconds: a short batch never pays for starting
-processes (on ../shared/foon two workers take as long as one), a long one
-runs on every core (BENCHMARKS.md, "Workers").
-
-Pool workers ignore SIGINT (the parent stops them) and exit when the
-parent dies, even by SIGKILL (``PR_SET_PDEATHSIG`` on Linux, and a thread
-watching the parent process elsewhere).
-
-How workers start (:func:`start_method`): a ``spawn`` (or ``forkserver``) worker
-runs the main module again before it takes a task, so a script run by its path
-without the ``if __name__ == "__main__":`` guard would start its batch again in
-every worker (and ``multiprocessing.Pool`` would replace the failing workers
-forever).  On Linux such a script's workers are forked, which runs nothing again,
-as long as no other thread runs in this process (a thread's locks would stay
-held in a forked worker; the progress bar's monitor is no matter, the workers
-never use it).  Otherwise, and for ``-m foon2asp`` and Python without a main
-file, workers are spawned: each starts from nothing.  Where a spawned worker would
-run the main script again, one probe process starts first, and if it cannot start
-(the script without the guard reached the batch again) the batch stops at once
-with :data:`NEEDS_GUARD`.  ``forkserver`` is no way round the guard: Python
-prepares its workers as ``spawn`` does, running the main script again in each.
+A :class:`Worker` holds the runners of one process (one per method, built once from a
+:class:`BatchSpec`); :class:`Execution` runs (goal, method) tasks in this process or in a
+process pool, and yields each result as one JSON line as it finishes.  ``workers=AUTO``
+starts in this process and hands the tasks left to a pool on every usable core after
+:data:`SWITCH_S` seconds.  Pool workers ignore SIGINT and exit when the parent dies; how
+they start (:func:`start_method`, the ``__main__`` guard) is described in docs/batch.md,
+"Workers and Dask".
 """
 
 from __future__ import annotations
@@ -46,7 +23,7 @@ from collections.abc import Generator, Iterator
 from dataclasses import dataclass, field
 
 from foon2asp.analysis.compare import judge
-from foon2asp.asp.control import SOLVE_WATCHDOG
+from foon2asp.asp.interrupts import SOLVE_WATCHDOG
 from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
@@ -108,8 +85,7 @@ def start_method() -> str:
 
 def refuse_while_starting() -> None:
     """Stop a worker that is being started and has reached a batch while running the main
-    script again (no ``if __name__ == "__main__":`` guard): it exits at once, before it opens
-    any results file; the pool's process says why (:data:`NEEDS_GUARD`)."""
+    script again (no ``if __name__ == "__main__":`` guard), before it opens any results file."""
     process = multiprocessing.current_process()
     if not getattr(process, "_inheriting", False):  # Python's own mark of a worker being prepared
         return

@@ -1,30 +1,12 @@
 """The results file of a batch: one JSON line per result, a header, resumable.
 
-Every finished result is appended to the output file at once as one complete
-JSON line (the ``solve --format json`` shape of one tree plus
-``"requested_method"``, the registry name it was asked for): the line is built
-in full and written with one ``os.write`` on an append-only descriptor
-before the next goal starts.  What is guaranteed:
-
-* a *killed process* (SIGKILL, an interrupt, a crash of Python) loses no line
-  it has finished: a line handed to ``os.write`` is in the operating system's
-  cache and reaches the file whether or not the process lives on; a signal
-  waits until the line is whole, so there is no broken line;
-* a *crash of the machine* (power, kernel) can lose only lines not yet synced:
-  with ``--fsync`` (the default) the file is ``fsync``-ed at most
-  :data:`SYNC_INTERVAL_S` after the previous sync, at the first line finished
-  after that interval (group commit), and when the batch ends; so at most the
-  lines finished since the last sync are lost, and at worst a last line cut
-  short, which ``--resume`` drops (:func:`read_results`).
-
-The file is self-describing and locked: its first line is a header
-``{"foon2asp_results": 1, "config": {...}}`` recording the configuration that
-produced it (:func:`configuration`: objective, constraints, semantics, solver
-settings, a hash of the input); ``--resume`` with another configuration is
-refused (:func:`config_differences`).  While a batch writes, it holds an
-exclusive lock on the file (``flock``): a second writer gets a one-line error.
-:func:`pending_tasks` says which (goal, method) pairs the file does not hold
-yet, :func:`summarize` the counts and tree sizes per method.
+:class:`ResultFile` appends each finished result as one whole line with one ``os.write``
+(signals wait until it is written), syncs in groups (at most :data:`SYNC_INTERVAL_S`
+apart) and holds an exclusive lock while open; the first line is a header with the
+:func:`configuration` that produced the file, and ``--resume`` with another one is refused
+(:func:`config_differences`).  :func:`read_results` drops a last line cut short,
+:func:`pending_tasks` says which (goal, method) pairs are still to do and :func:`summarize`
+counts per method.  What survives a kill or a crash: docs/batch.md, "The results file".
 """
 
 from __future__ import annotations
@@ -41,8 +23,8 @@ try:
 except ModuleNotFoundError:  # pragma: no cover - not POSIX
     fcntl = None  # type: ignore[assignment]
 
-from foon2asp.asp.control import deferred_signals
 from foon2asp.asp.facts import facts
+from foon2asp.asp.interrupts import deferred_signals
 from foon2asp.batch.pool import BatchSpec
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject

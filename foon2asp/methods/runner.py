@@ -5,44 +5,12 @@
 ``solve``, ``compare``, ``check``, ``batch`` and the library take, and
 :func:`runner` the runner of one method for a caller that asks goal by goal.
 
-The route of a goal (:meth:`GoalRunner.route`, every branch in one table):
-
-============== ==================================================================== ============
-route          when                                                                 proven_by
-============== ==================================================================== ============
-``search``     a search baseline (IDS, GBFS): its own answer, not proven            null
-``fixpoint``   the goal is not derivable from the kitchen (the least fixpoint),     fixpoint
-               or it is a kitchen item
-``only-tree``  every object of the goal's relevant part has one viable producer:    only-tree
-               the whole part is the only tree
-``prepared``   clingo on the goal's prepared part (:mod:`foon2asp.asp.prepared`):    clingo
-               every goal with real choice: relevant, undominated units without
-               those no optimal tree uses, landmarks as facts, the bounds tree
-               (:mod:`foon2asp.methods.bounds`) as the answer among equal optima
-               and a domain heuristic, the lower bound as the point where the
-               search stops
-``clingo``     clingo on the whole grounding (or the goal's part, ``per-goal``):     clingo
-               meals, depth rounds, human steps, alternatives, greedy heuristics,
-               substitutes, extra encodings, user programs that define what the
-               encodings define
-============== ==================================================================== ============
-
-Preparation settles only goals without real choice (the first three rows): every
-goal with more than one tree is clingo's, even when the bounds already meet.  User programs that only remove trees
-(:func:`foon2asp.asp.constraints.only_constraints`) keep what preparation
-proves of reachability, the relevant part and the lower bounds: the only tree, or
-the optimum without them, is the answer when it satisfies them
-(:class:`foon2asp.asp.check.ConstraintCheck`), else the goal takes the
-``prepared`` route without the pruning and dominance (their proofs assume no
-constraints) and with the bounds tree as a hint only.  Trees exist but the user's programs rule them
-all out: ``infeasible``, naming the program when one alone does it.
-
-*The same tree on every path*: the prepared part of a goal depends on the input
-only, and clingo on one thread searches a fresh grounding of it
-deterministically, so solve, compare, check, batch (any grounding, any
-workers) and the library answer with the same tree; among equal optima the
-bounds tree is preferred.  With several threads the smallest optimal tree
-(:mod:`foon2asp.asp.canonical`) is searched for.
+Each goal takes one route (:meth:`GoalRunner.route`, a key of :data:`PROVEN_BY`):
+``search`` (a search baseline), ``fixpoint`` (not derivable, or a kitchen item),
+``only-tree`` (the relevant part has no choice), ``prepared`` (clingo on the goal's
+prepared part, :mod:`foon2asp.asp.prepared`) or ``clingo`` (the whole grounding or the
+goal's part: meals, depth rounds, alternatives, ...).  The table of routes and why each
+answer is proven: docs/proofs/solving.md, "The routes".
 """
 
 from __future__ import annotations
@@ -52,8 +20,8 @@ from collections.abc import Iterable, Iterator
 from dataclasses import replace
 
 from foon2asp.asp.check import ConstraintCheck, checkable
-from foon2asp.asp.control import deferred_signals
 from foon2asp.asp.dominance import applies as dominance_applies
+from foon2asp.asp.interrupts import deferred_signals
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.predicates import only_constraints
@@ -110,16 +78,14 @@ def _view(problem: Problem, objects: set[int]) -> Problem:
 
 
 class GoalRunner:
-    """The runner of one registered method for many goals (see the module docstring).
+    """The runner of one registered method for many goals.
 
-    ``options`` are the caller's: every solve of the runner uses them (with the
-    method's adjustments, :func:`~foon2asp.methods.registry.effective_options`).
-    ``goals``: the goals the runner will be asked, if known; the ``clingo`` route then
-    grounds only the units a tree for one of them can use (:meth:`Problem.units_for`),
-    unless ``options.units`` says otherwise.  ``parts``: the viable units and relevant
-    parts of ``problem`` when the caller has them (several runners share them).
-    ``shortcuts=False``: preparation settles no goal that can be made (no ``only-tree``
-    route): clingo answers every such goal (a check of that route).
+    ``options`` are the caller's (with the method's adjustments,
+    :func:`~foon2asp.methods.registry.effective_options`).  ``goals``: the goals the runner
+    will be asked, if known (the ``clingo`` route then grounds only the units a tree for one
+    of them can use).  ``parts``: the viable units and relevant parts of ``problem`` when
+    the caller has them.  ``shortcuts=False``: no ``only-tree`` route (clingo answers every
+    goal that can be made).
     """
 
     def __init__(
@@ -293,8 +259,8 @@ class GoalRunner:
 
     def _prepared(self, goal: int, t0: float) -> TaskTree:
         """clingo on the goal's prepared part.  Under user programs that a tree can be checked
-        against, the optimum without them first: when it satisfies them it is their optimum too
-        (they only remove trees), else clingo searches again with them."""
+        against, the optimum without them first: the answer when it satisfies them, else
+        clingo searches again with them."""
         if self._checkable:
             if self._free is None:
                 free = replace(self._effective, programs=[])
@@ -370,14 +336,9 @@ def solve_goals(
     grounding: str = "whole",
     shortcuts: bool = True,
 ) -> Iterator[TaskTree]:
-    """The trees of ``method`` for ``goals``, in order, each solved when it is asked for.
-
-    The one "solve these goals" entry point: ``solve``, ``compare``, ``check`` and the
-    library call it; ``batch``, whose processes are handed goals one by one, builds the
-    same :class:`GoalRunner` once per process.  The runner is built here, at the call,
-    so a bad method or grounding is an error before any goal is solved.
-
-    A goal is an object id, or a tuple of them (a meal: one tree for all).
+    """The trees of ``method`` for ``goals`` (object ids, or tuples of them: meals), in order,
+    each solved when it is asked for.  A bad method or grounding is an error at the call,
+    before any goal is solved.
     """
     goals = list(goals)
     run = GoalRunner(method, problem, options, grounding, shortcuts, goals=goals)  # built now: errors come first

@@ -1,47 +1,12 @@
 """Depth bounds by multi-shot solving on one clingo Control.
 
-``encodings/depth.lp`` has a ``#program bound(k,g,d)`` part: the rounds of
-the used units for goal ``g`` under depth bound ``d`` (``had_at(k,O,t)``), an
-external ``query(k)`` (the goal must be had after ``d`` rounds) and an
-external ``within(k)`` (the rounds count towards the depth cost).  The loop
-lives here, in Python (``python -m clingo`` would ignore an embedded incmode
-script): a block is grounded once, when a goal first needs that bound, and
-kept on the Control.
-
-What is grounded is cut down by the least fixpoint (:class:`Levels`): unit
-``U`` cannot fire before its level ``L`` (the level in
-:meth:`Problem.derivation_levels` over all the session's units), and it
-cannot help the goal after round ``d - dist``, where ``dist`` is the least
-number of rounds between U's products and the goal.  So the block grounds
-``fire_at(k,U,t)`` for ``L <= t <= d - dist`` only, for the units that can
-contribute to ``g`` at all.
-
-* depth first (``--objective depth[,…]``): the least fixpoint also gives the
-  minimum depth over all trees: no tree is shallower than the goal's level
-  (levels only grow when units are left out), and the producers that give
-  each object its level form a tree of exactly that depth.  So the bounds
-  below the goal's level are refuted without solving, and the loop starts at
-  the level; it raises the bound only when the solve is unsatisfiable
-  (user constraints, trees excluded for ``--models``).  The first satisfiable
-  bound is the minimum depth, proven; the same solve optimises the remaining
-  objectives (at least units) within it.
-* depth later in the list (``--objective units,depth``): solve with the depth
-  cost switched off; the depth d of that tree bounds the depth of the
-  lexicographic optimum (which is optimal on the earlier objectives too), so
-  a second solve with bound d and the depth cost on is the proven optimum.
-  When d is already the goal's level, no tree is shallower and the first
-  tree is the optimum (no second solve).
-* ``--max-depth N`` alone: one solve with the bound N: units (etc.) within N.
-
-Meals (a tuple of goals): the depth of a meal is the round by which every
-goal is had, the greatest of the goals' levels.  A meal's bound ``d`` grounds
-the block of each goal for ``d`` (query and within off) and a block
-``meal(m,d)`` over them (``meal_query(m)``, ``meal_within(m)``); the least
-fixpoint's lower bound for a meal is the greatest level of its goals.
-
-The depth of a tree is the level of the goal in
-:meth:`Problem.derivation_levels` over the tree's units, which is what
-:func:`foon2asp.tree.tasktree.measures` reports; ``had_at(k,O,t)`` is "level of O <= t".
+``encodings/depth.lp`` has a ``#program bound(k,g,d)`` part: the rounds of the used units
+for goal ``g`` under depth bound ``d``, with externals ``query(k)`` (the goal must be had
+after ``d`` rounds) and ``within(k)`` (the rounds count towards the depth cost); a meal's
+bound adds a part ``meal(m,d)`` over its goals' blocks.  :class:`Rounds` grounds each block
+once, over the windows of :class:`Levels` (the rounds in which a unit can matter), and
+:func:`solve_depth` runs the loop over bounds: depth first, depth later in the objectives,
+or ``--max-depth`` alone.  Why each keeps the optimum: docs/proofs/solving.md, "Depth rounds".
 """
 
 from __future__ import annotations
@@ -53,18 +18,14 @@ from typing import Any
 
 import clingo
 
-from foon2asp.asp.control import Control, deferred_signals
+from foon2asp.asp.control import Control
+from foon2asp.asp.interrupts import deferred_signals
 from foon2asp.foon.derive import least_fixpoint
 
 
 class Levels:
-    """The least fixpoint of the session's facts, for depth windows.
-
-    ``required`` (facts only) gives the levels, ``required_any`` (every
-    ``required`` atom) the distances: facts that could only lower a level or a
-    distance are taken generously, so levels and distances stay lower bounds
-    and the windows never cut a round that matters.
-    """
+    """The least fixpoint of the session's facts, for depth windows: ``required`` (facts
+    only) gives the levels, ``required_any`` (every ``required`` atom) the distances."""
 
     def __init__(
         self,
@@ -258,16 +219,13 @@ def solve_depth(
     max_depth: int | None,
     single: bool = True,
 ):
-    """Run the depth strategy ``mode`` for ``goal`` with ``shot(externals, solve_mode)``.
+    """Run the depth strategy ``mode`` for ``goal``; returns ``(result, bound)``.
 
-    ``shot`` solves once with the given externals switched on (``solve_mode``
-    None: as configured; "opt": one optimum; "first": the first model) and
-    returns a result with ``answers``, ``unsat`` and ``finished``;
-    ``tree_depth(answer)`` is the depth of an answer's tree.  ``state``
-    persists across calls for the same goal (:class:`DepthSearch`);
-    ``max_depth``: the --max-depth bound (None: none).
-    ``single``: one optimum is wanted (not all trees of the optimal cost).
-    Returns ``(result, bound)``.
+    ``shot(externals, solve_mode)`` solves once with the externals on (``solve_mode`` None:
+    as configured; "opt"; "first") and returns a result with ``answers``, ``unsat`` and
+    ``finished``; ``tree_depth(answer)`` is the depth of an answer's tree; ``state``
+    persists across calls for the same goal; ``max_depth``: the --max-depth bound (None:
+    none); ``single``: one optimum is wanted (not all trees of the optimal cost).
     """
     least = rounds.levels.level(goal)
     if mode == "bound":
