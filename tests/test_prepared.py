@@ -21,12 +21,23 @@ from synth import preset
 NOOP = ("noop", ':- use(U), motion(U,"teleport").\n')
 
 
+def shared_problem(folder) -> Problem:
+    data = Dataset.load(folder)
+    return Problem(data.foon, data.kitchen, data.motion, data.utensils)
+
+
+def prepared_goals(run: GoalRunner, step: int) -> list[int]:
+    """Every ``step``-th object some unit makes that takes the prepared route."""
+    problem = run.problem
+    made = sorted({o for u in range(len(problem.units)) for o in problem.products[u]})
+    return [g for g in made if run.route(g) == "prepared"][::step]
+
+
 def both_encodings(problem: Problem, objective: tuple[str, ...], step: int) -> tuple[int, int]:
     """Every ``step``-th goal that needs a search, solved on its prepared part by closed.lp and
     by prepared.lp: the same optimum, a valid tree; returns (goals, goals that needed a cut)."""
-    made = sorted({o for u in range(len(problem.units)) for o in problem.products[u]})
     run = GoalRunner("asp", problem, AspOptions(objective=objective), shortcuts=False)
-    goals = [g for g in made if run.route(g) == "prepared"][::step]
+    goals = prepared_goals(run, step)
     cut = 0
     for g in goals:
         prep = run.preparation(g)
@@ -48,9 +59,7 @@ def test_closed_sets_and_positive_recursion_agree_on_the_small_preset(objective)
 
 
 def test_closed_sets_and_positive_recursion_agree_on_the_shared_foon(shared_foon_dir):
-    data = Dataset.load(shared_foon_dir)
-    problem = Problem(data.foon, data.kitchen, data.motion, data.utensils)
-    goals, cut = both_encodings(problem, ("units",), 5)
+    goals, cut = both_encodings(shared_problem(shared_foon_dir), ("units",), 5)
     assert goals > 100 and cut > 5  # the universal FOON's cycles need cuts
 
 
@@ -58,8 +67,7 @@ def test_a_search_that_meets_the_lower_bound_ends_there(shared_foon_dir):
     """A model that meets the lower bound ends the search (from outside the model callback:
     clasp's core shrinking breaks when a callback stops it); here the second model does,
     on the goal's whole relevant part."""
-    data = Dataset.load(shared_foon_dir)
-    problem = Problem(data.foon, data.kitchen, data.motion, data.utensils)
+    problem = shared_problem(shared_foon_dir)
     run = GoalRunner("asp", problem, AspOptions(), shortcuts=False)
     goal = next(g for g, o in enumerate(problem.objects) if str(o) == "bowl, contains {garlic}")
     units, _, _ = run.parts.relevant(goal)
@@ -73,12 +81,10 @@ def test_a_search_that_meets_the_lower_bound_ends_there(shared_foon_dir):
 def test_a_goal_whose_hint_meets_the_bound_is_decided_at_the_hint(shared_foon_dir):
     """clingo decides "a tree of at most the hint's cost?" and answers the hint, the same
     optimum as an optimisation over the same part."""
-    data = Dataset.load(shared_foon_dir)
-    problem = Problem(data.foon, data.kitchen, data.motion, data.utensils)
+    problem = shared_problem(shared_foon_dir)
     run = GoalRunner("asp", problem, AspOptions(), shortcuts=False)
-    made = sorted({o for u in range(len(problem.units)) for o in problem.products[u]})
     decided = 0
-    for g in [g for g in made if run.route(g) == "prepared"][::10]:
+    for g in prepared_goals(run, 10):
         prep = run.preparation(g)
         if prep.bound is None:
             continue
@@ -94,12 +100,10 @@ def test_a_goal_whose_hint_meets_the_bound_is_decided_at_the_hint(shared_foon_di
 def test_a_loop_cut_holds_for_every_tree_and_not_for_the_set_it_cuts(shared_foon_dir):
     """For closed sets that are no trees: the cut's objects are needed and not derived, its
     outside units make one of them from inputs outside the cut, and the set uses none of them."""
-    data = Dataset.load(shared_foon_dir)
-    problem = Problem(data.foon, data.kitchen, data.motion, data.utensils)
+    problem = shared_problem(shared_foon_dir)
     run = GoalRunner("asp", problem, AspOptions(), shortcuts=False)
-    made = sorted({o for u in range(len(problem.units)) for o in problem.products[u]})
     checked = 0
-    for g in [g for g in made if run.route(g) == "prepared"][::8]:
+    for g in prepared_goals(run, 8):
         prep = run.preparation(g)
         tree = run(g)
         assert prep.cut(problem, tree.units) is None  # the answer is a tree
