@@ -1,26 +1,10 @@
 """ASP facts for a problem.
 
-Objects and units are integer ids; every piece of text (labels, states,
-ingredients, containers, motions) enters as a clingo string built with
-:func:`clingo.String`, so quotes, backslashes, ``).``, ``#show`` or newlines
-in a label stay data and can never change the program.
-
-Vocabulary (stable, documented in docs/vocabulary.md):
-
-=====================  =====================================================
-``object(O)``          O is an object id
-``label(O,L)``         its label; ``state(O,S)``, ``ingredient(O,I)``,
-                       ``container(O,C)`` likewise
-``unit(U)``            U is a functional unit id (FOON file order)
-``motion(U,M)``        the motion of U
-``input(U,O)``         O is an input of U; ``required(U,O)`` if it must be had
-``output(U,O)``        O is an output of U; ``product(U,O)`` if it counts as made
-``success(U,P)``       motion success rate of U in thousandths (1..1000)
-``neglog(U,W)``        round(-1000 * ln rate), the weight the success objective sums
-``kitchen(O)``         O is available in the kitchen
-``goal_node(N,O)``     entry N (from 1) of the goals file is object O
-``goal(O)``            the object to make (only when a goal is fixed)
-=====================  =====================================================
+Objects and units are integer ids; every piece of text (labels, states, ingredients,
+containers, motions) enters as an escaped string literal (:func:`q`), so no label can
+change the program.  The predicates (``object/1``, ``label/2``, ``unit/1``, ``input/2``,
+``required/2``, ``product/2``, ``kitchen/1``, ``goal/1``, ...) are the stable vocabulary of
+docs/vocabulary.md.
 """
 
 from __future__ import annotations

@@ -1,21 +1,9 @@
 """Objectives and solver features: which encodings and extra facts a session needs.
 
-Objectives (``--objective``, most important first) are lexicographic: the
-wrapper writes ``objective(Name,Priority)`` and each ``encodings/NAME.lp``
-minimises at that priority.  ``units`` is always the last tie-breaker (added
-when it is not listed), so an optimal tree never carries a superfluous unit.
-
-=========== ========================================================== ==============
-objective   minimises                                                   encoding
-=========== ========================================================== ==============
-``units``   number of functional units                                  units.lp
-``success`` sum of round(-1000 ln p) over the robot's units, i.e. the    success.lp
-            greatest product of motion success rates (see PRECISION)
-``inputs``  total number of input nodes of the tree's units             inputs.lp
-``depth``   sequential rounds to make the goal (multi-shot, depth.py)   depth.lp
-``cost``    summed motion cost of the units, in hundredths (exact; the    cost.lp
-            table of AspOptions.motion_costs, foon2asp.foon.motioncost)
-=========== ========================================================== ==============
+Objectives (``--objective``, most important first) are lexicographic: the wrapper writes
+``objective(Name,Priority)`` and each ``encodings/NAME.lp`` minimises at that priority
+(docs/objectives.md).  ``units`` is always the last tie-breaker (added when it is not
+listed), so an optimal tree never carries a superfluous unit.
 """
 
 from __future__ import annotations

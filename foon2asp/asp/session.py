@@ -114,10 +114,8 @@ class Session:
         self._driver: Driver | None = None
         #: the lower bound the last solve proved (solver weights per level), None: none
         self._lower: tuple[int, ...] | None = None
-        t0 = time.perf_counter()
         self.control.add_all(self._parts(), user=[name for name, _ in self.options.programs])
         self.control.ground()
-        self.ground_s = time.perf_counter() - t0
         self.goal_atoms = self._goal_atoms()
 
     def _parts(self) -> list[tuple[str, str]]:

@@ -1,21 +1,10 @@
 """Substitutes in the solver: candidate facts, the problem a session solves, the report.
 
-Python only lists the candidates (:func:`foon2asp.foon.substitutes.candidates`); the
-tree chooses among them in ``encodings/substitutes.lp``:
-
-=========================  ==================================================
-``substitute(N,K,C)``      kitchen item number K (from 0, in the order of the
-                           candidates) may stand in for object N at cost C
-``max_substitutions(M)``   at most M substitutions (``AspOptions.max_substitutions``)
-``subst(N,K)``             the tree has N through K (shown)
-=========================  ==================================================
-
-The substitutions rank above every objective: the least summed cost (the fewest
-substitutions, with the default cost 1) first, then the objectives as usual.
-:func:`prepare` gives the problem whose viable units count the objects substitutes
-stand in for as available (so the session grounds the units that need them), and
-:func:`report` reads which substitutions a tree uses, as the encoding chooses them
-for exactly the tree's units.
+Python lists the candidates (:func:`foon2asp.foon.substitutes.candidates`) as
+``substitute(N,K,C)`` facts (:func:`substitute_facts`); ``encodings/substitutes.lp``
+chooses among them, the least summed cost ranked above every objective (docs/vocabulary.md).
+:func:`prepare` gives the problem whose viable units count what substitutes stand in for as
+available, and :func:`report` reads which substitutions a tree uses.
 """
 
 from __future__ import annotations
