@@ -9,7 +9,7 @@ docs/vocabulary.md.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.weights import neglog_weight, success_permille
@@ -60,10 +60,15 @@ def unit_facts(problem: Problem, u: int, leave_out: frozenset[str] = frozenset()
 OPTIONAL = ("label", "state", "ingredient", "container", "motion", "success", "neglog", "input", "output")
 
 
-def fact_objects(problem: Problem, unit_ids: Iterable[int]) -> set[int]:
+def unit_ids(problem: Problem, units: Iterable[int] | None = None) -> Sequence[int]:
+    """``units`` sorted, each once; None: every unit of ``problem``."""
+    return range(len(problem.units)) if units is None else sorted(set(units))
+
+
+def fact_objects(problem: Problem, units: Iterable[int]) -> set[int]:
     """The objects :func:`facts` writes for these units (their inputs and outputs, the kitchen)."""
     objects: set[int] = set(problem.kitchen)
-    for u in unit_ids:
+    for u in units:
         objects.update(problem.inputs[u])
         objects.update(problem.outputs[u])
     return objects
@@ -90,14 +95,14 @@ def facts(
     unknown = leave_out - set(OPTIONAL)
     if unknown:
         raise ValueError(f"facts cannot leave out {sorted(unknown)}")
-    unit_ids = range(len(problem.units)) if units is None else sorted(set(units))
+    ids = unit_ids(problem, units)
     lines = ["% units"]
-    for u in unit_ids:
+    for u in ids:
         lines += unit_facts(problem, u, leave_out)[0 if declare else 1 :]
     if whole_kitchen:
-        objects = fact_objects(problem, unit_ids)
+        objects = fact_objects(problem, ids)
     else:
-        objects = {o for u in unit_ids for o in (*problem.inputs[u], *problem.outputs[u])}
+        objects = {o for u in ids for o in (*problem.inputs[u], *problem.outputs[u])}
     goal_nodes = list(goal_nodes)
     objects.update(goal_nodes)
     if goal is not None:

@@ -12,6 +12,7 @@ import math
 from collections.abc import Iterable
 
 from foon2asp.asp import dominance, substitutes
+from foon2asp.asp.facts import unit_ids
 from foon2asp.errors import InputError
 from foon2asp.foon.motioncost import DEFAULT_COST, motion_key, scaled
 from foon2asp.foon.problem import Problem
@@ -60,14 +61,14 @@ def encoding_names(options, registry: dict[str, str]) -> list[str]:
 
 def input_node_facts(problem: Problem, units: Iterable[int] | None = None) -> str:
     """``input_nodes(U,N).``: N input nodes as the FOON lists them (what measures() counts)."""
-    ids = range(len(problem.units)) if units is None else sorted(set(units))
+    ids = unit_ids(problem, units)
     return "".join(f"input_nodes({u},{len(problem.inputs[u])}).\n" for u in ids)
 
 
 def motion_cost_weights(problem: Problem, costs: dict[str, int], units: Iterable[int] | None = None) -> dict[int, int]:
     """Unit -> the integer weight of its motion (``costs``: motion -> cost in hundredths; a
     motion not listed weighs the default cost, 1)."""
-    ids = range(len(problem.units)) if units is None else sorted(set(units))
+    ids = unit_ids(problem, units)
     default = scaled(DEFAULT_COST)
     keyed = {motion_key(m): w for m, w in costs.items()}
     return {u: keyed.get(problem.units[u].motion, default) for u in ids}
@@ -98,7 +99,7 @@ def greedy_key(problem: Problem, heuristic: str, unit: int) -> tuple[int, int]:
 def rank_facts(problem: Problem, heuristic: str, units: Iterable[int] | None = None) -> str:
     """``rank(O,U,R).``: U is the producer of O that greedy retrieval tries R-th (from 0),
     among the producers in ``units`` (all units when None)."""
-    ids = range(len(problem.units)) if units is None else sorted(set(units))
+    ids = unit_ids(problem, units)
     producers: dict[int, list[int]] = {}
     for u in ids:
         for o in problem.products[u]:
@@ -113,7 +114,7 @@ def rank_facts(problem: Problem, heuristic: str, units: Iterable[int] | None = N
 def human_order_facts(problem: Problem, units: Iterable[int] | None = None) -> str:
     """``human_unit(P,U).``: the units with a positive success weight, heaviest (least
     likely) first, ties in FOON file order; a person does the first M used ones."""
-    ids = range(len(problem.units)) if units is None else sorted(set(units))
+    ids = unit_ids(problem, units)
     weight = UNIT_WEIGHTS["success"]
     weighted = [(weight(problem, u), u) for u in ids]
     order = sorted(((-w, u) for w, u in weighted if w > 0))
@@ -135,8 +136,7 @@ def extra_parts(
         if "success" in ranked(options) and options.human_steps > 0:
             parts.append(("human order", human_order_facts(problem, units)))
     if dominated and dominance.applies(options, ranked(options)):
-        ids = range(len(problem.units)) if units is None else units
-        parts.append(("dominated units", dominance.dominance_facts(problem, ids, ranked(options))))
+        parts.append(("dominated units", dominance.dominance_facts(problem, unit_ids(problem, units), ranked(options))))
     if substitutes.applies(options):
         facts = substitutes.substitute_facts(problem, options.substitutes, units, options.max_substitutions)
         parts.append(("substitutes", facts))

@@ -15,7 +15,7 @@ import clingo
 
 from foon2asp.asp import encodings
 from foon2asp.asp.control import Control
-from foon2asp.asp.facts import OPTIONAL, fact_objects, facts
+from foon2asp.asp.facts import OPTIONAL, fact_objects, facts, unit_ids
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
@@ -42,8 +42,7 @@ def substitute_facts(
     and ``max_substitutions(M).`` with a ``limit``; ``cands``: the candidates, when known."""
     if cands is None:
         cands = candidates(problem, substitutes)
-    ids = range(len(problem.units)) if units is None else units
-    objects = fact_objects(problem, ids)
+    objects = fact_objects(problem, unit_ids(problem, units))
     number = numbered(cands)
     lines = [f"substitute({c.needed},{number[c.used]},{c.cost}).\n" for c in cands if c.needed in objects]
     if limit is not None:
