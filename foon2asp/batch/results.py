@@ -77,6 +77,9 @@ def read_results(path: str | Path, repair: bool = False) -> list[dict]:
     return records
 
 
+#: statuses of records with a tree
+WITH_TREE = ("optimal", "ranked", "feasible", "found")
+
 HEADER_KEY = "foon2asp_results"
 HEADER_VERSION = 1
 
@@ -248,8 +251,9 @@ def summarize(records: list[dict]) -> list[dict]:
         statuses: dict[str, int] = {}
         for r in recs:
             statuses[r.get("status", "?")] = statuses.get(r.get("status", "?"), 0) + 1
-        sizes = [len(r.get("units", [])) for r in recs if r.get("status") in ("optimal", "ranked", "feasible", "found")]
-        valid = [r.get("valid") for r in recs if r.get("status") in ("optimal", "ranked", "feasible", "found")]
+        trees = [r for r in recs if r.get("status") in WITH_TREE]
+        sizes = [len(r.get("units", [])) for r in trees]
+        valid = [r.get("valid") for r in trees]
         times = [float(r.get("time_s", 0.0)) for r in recs]
         rows.append(
             {

@@ -35,13 +35,13 @@ class Levels:
         required_any: dict[int, list[int]] | None = None,
     ):
         self.kitchen = kitchen
-        self.required = {u: [o for o in dict.fromkeys(req) if o not in kitchen] for u, req in required.items()}
-        self.required_any = (
-            self.required
-            if required_any is None
-            else {u: [o for o in dict.fromkeys(req) if o not in kitchen] for u, req in required_any.items()}
-        )
-        self.products = {u: [o for o in dict.fromkeys(prods) if o not in kitchen] for u, prods in products.items()}
+
+        def outside(table: dict[int, list[int]]) -> dict[int, list[int]]:
+            return {u: [o for o in dict.fromkeys(objects) if o not in kitchen] for u, objects in table.items()}
+
+        self.required = outside(required)
+        self.required_any = self.required if required_any is None else outside(required_any)
+        self.products = outside(products)
         self.producers: dict[int, list[int]] = {}
         for u, prods in self.products.items():
             for o in prods:
