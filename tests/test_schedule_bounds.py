@@ -171,3 +171,16 @@ def test_a_joint_search_cut_short_bounds_every_tree(shared_foon_dir):
     d = cut.to_dict()
     assert d["joint_bound"] <= full.makespan and d["joint_bound"] <= d["makespan"]
     assert f"Every tree: at least {d['joint_bound']:g} s" in cut.to_text()
+
+
+@pytest.mark.parametrize("seed, lower, optimum", [(18, 4500, 4500), (80, 3500, 3500), (165, 3500, 4000)])
+def test_one_window_per_kind_raises_the_bound(seed, lower, optimum):
+    """Random trees with a person where one window for both kinds allows half a second less:
+    one window per kind (both from the start, or both to the end; bounds._kinds_fit) raises
+    the bound, never above brute force."""
+    rng = random.Random(seed)
+    kinds = AGENT_SETS[2 + seed % 2]
+    problem, _, units = random_tree(rng, 5 + seed % 2, knife=0.0)
+    spec = random_spec(rng, kinds)
+    assert bounds(instance(problem, units, spec)).lower == lower
+    assert brute_schedule(problem, units, spec)[0] == optimum

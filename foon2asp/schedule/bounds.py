@@ -180,9 +180,10 @@ def _mandatory(length: int, b: int, a: int, r: int, e: int, p: int) -> int:
 
 
 def _kinds_fit(inst: Instance, start: dict[int, int], tail: dict[int, int], horizon: int) -> bool:
-    """Can the units end by ``horizon`` as far as energetic reasoning with kinds tells (each
-    window's mandatory parts split between two classes, :func:`_classes`, by a fractional
-    knapsack; docs/proofs/schedules.md)?"""
+    """Can the units end by ``horizon`` as far as energetic reasoning with kinds tells (the
+    mandatory parts in a window of each of two classes, :func:`_classes`, split between the
+    classes by a fractional knapsack; one window for both, or, from the start or to the end,
+    one window per class; docs/proofs/schedules.md)?"""
     units = [u for u in inst.units if inst.durations[u]]
     if not units:
         return True
@@ -196,12 +197,12 @@ def _kinds_fit(inst: Instance, start: dict[int, int], tail: dict[int, int], hori
         py = {u: dur_y[u] for u in units if u in dur_y and dur_y[u] <= e[u] - r[u]}
         if any(u not in px and u not in py for u in units):
             return False
-        only_x = [u for u in units if u in px and u not in py]
-        only_y = [u for u in units if u in py and u not in px]
-        both = [u for u in units if u in px and u in py]
         # windows from an earliest start or a latest start to a latest end or an earliest end
         lefts = sorted({*r.values(), *(e[u] - p for u, p in px.items()), *(e[u] - p for u, p in py.items())})
         rights = sorted({*e.values(), *(r[u] + p for u, p in px.items()), *(r[u] + p for u, p in py.items())})
+        only_x = [u for u in units if u in px and u not in py]
+        only_y = [u for u in units if u in py and u not in px]
+        both = [u for u in units if u in px and u in py]
         for a in lefts:
             for b in rights:
                 if b <= a:
@@ -211,22 +212,67 @@ def _kinds_fit(inst: Instance, start: dict[int, int], tail: dict[int, int], hori
                 cap_y = n_y * length - sum(_mandatory(length, b, a, r[u], e[u], py[u]) for u in only_y)
                 if cap_x < 0 or cap_y < 0:
                     return False
-                if not both:
-                    continue
                 work = [
                     (_mandatory(length, b, a, r[u], e[u], px[u]), _mandatory(length, b, a, r[u], e[u], py[u]))
                     for u in both
                 ]
-                # the first class takes the units saving the second class most per its own work
-                work.sort(key=lambda w: -(w[1] / w[0]) if w[0] > 0 else -math.inf)
-                room, left = float(cap_x), 0.0
-                for wx, wy in work:
-                    taken = 1.0 if wx == 0 else min(max(room / wx, 0.0), 1.0)
-                    room -= wx
-                    left += (1 - taken) * wy
-                if left > cap_y + 1e-6:
+                if work and not _split(work, cap_x, cap_y):
                     return False
+        if all(px.get(u) == py.get(u) for u in units):
+            continue  # alike on both classes: no windows per class (fewer windows, still a bound)
+        parts = _Parts(units, r, e, px, py)
+        lo, hi = lefts[0], rights[-1]
+        ends = [(lo, b) for b in sorted(set(e.values())) if b > lo]
+        begins = [(a, hi) for a in sorted(set(r.values())) if a < hi]
+        for windows in (ends, begins):
+            if not all(parts.fit(wx, wy, n_x, n_y) for wx in windows for wy in windows if wx != wy):
+                return False
     return True
+
+
+class _Parts:
+    """The mandatory parts of units in windows, on two classes of agents (durations ``px``
+    and ``py``; a unit missing from one cannot go there), each unit within ``[r, e]``."""
+
+    def __init__(self, units: list[int], r: Times, e: Times, px: Times, py: Times) -> None:
+        self.r, self.e, self.px, self.py = r, e, px, py
+        self.both = [u for u in units if u in px and u in py]
+        self.cache: dict[tuple[int, int, bool], tuple[dict[int, int], int, int]] = {}
+
+    def parts(self, window: tuple[int, int], x: bool) -> tuple[dict[int, int], int, int]:
+        """Each unit's least part within ``window`` on class x (``x``) or y, if it can go there;
+        the sum over the units only that class can do, and over those both can."""
+        key = (*window, x)
+        if key in self.cache:
+            return self.cache[key]
+        a, b = window
+        mine, other = (self.px, self.py) if x else (self.py, self.px)
+        part = {u: _mandatory(b - a, b, a, self.r[u], self.e[u], d) for u, d in mine.items()}
+        self.cache[key] = part, sum(m for u, m in part.items() if u not in other), sum(part[u] for u in self.both)
+        return self.cache[key]
+
+    def fit(self, wx: tuple[int, int], wy: tuple[int, int], n_x: int, n_y: int) -> bool:
+        """Can the parts be split: class x's in ``wx`` on its ``n_x`` agents, y's in ``wy``?"""
+        (on_x, only_x, both_x), (on_y, only_y, both_y) = self.parts(wx, True), self.parts(wy, False)
+        cap_x = n_x * (wx[1] - wx[0]) - only_x
+        cap_y = n_y * (wy[1] - wy[0]) - only_y
+        if cap_x < 0 or cap_y < 0:
+            return False
+        if both_x <= cap_x or both_y <= cap_y:  # all of them on one class
+            return True
+        return _split([(on_x[u], on_y[u]) for u in self.both], cap_x, cap_y)
+
+
+def _split(work: list[tuple[int, int]], cap_x: int, cap_y: int) -> bool:
+    """Can parts of ``(work on x, work on y)`` be split, fractionally, within the capacities?
+    The first class takes the units saving the second class most per its own work."""
+    work = sorted(work, key=lambda w: -(w[1] / w[0]) if w[0] > 0 else -math.inf)
+    room, left = float(cap_x), 0.0
+    for x, y in work:
+        taken = 1.0 if x == 0 else min(max(room / x, 0.0), 1.0)
+        room -= x
+        left += (1 - taken) * y
+    return left <= cap_y + 1e-6
 
 
 def kind_energy(inst: Instance, start: dict[int, int], tail: dict[int, int], floor: int, step: int) -> int:
