@@ -240,18 +240,10 @@ def test_time_limit_gives_a_feasible_schedule():
 
 def longer_tree_shorter_chain():
     """g from a 3-unit chain, or from 4 units: three independent ones and a join."""
-    return build(
-        [
-            ("m", ["k"], ["a1"]),
-            ("m", ["a1"], ["a2"]),
-            ("m", ["a2"], ["g"]),
-            ("m", ["k"], ["b1"]),
-            ("m", ["k"], ["b2"]),
-            ("m", ["k"], ["b3"]),
-            ("m", ["b1", "b2", "b3"], ["g"]),
-        ],
-        ["k"],
-    )
+    chain = [("k", "a1"), ("a1", "a2"), ("a2", "g")]
+    join = [("k", "b1"), ("k", "b2"), ("k", "b3")]
+    units = [("m", [i], [o]) for i, o in chain + join]
+    return build([*units, ("m", ["b1", "b2", "b3"], ["g"])], ["k"])
 
 
 JOINT_WAYS = {
