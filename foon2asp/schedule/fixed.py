@@ -117,10 +117,10 @@ def schedule_fixed(
 ) -> ScheduleResult:
     """The optimal schedule of ``tree``'s units.  ``within`` (ms; joint scheduling): only a
     schedule of at most that makespan matters; when there is none the status is
-    ``unschedulable`` (reason: not within), found faster than the optimum of a longer one.
-    ``progress``: called as schedules improve (:class:`foon2asp.schedule.encode.Job`).
-    ``first`` (joint scheduling): (object, maker) pairs; a unit needing the object waits for
-    that maker (:func:`foon2asp.schedule.model.designate`)."""
+    ``unschedulable`` (reason: not within).  ``progress``: called as schedules improve
+    (:class:`foon2asp.schedule.encode.Job`).  ``first`` (joint scheduling): (object, maker)
+    pairs; a unit needing the object waits for that maker
+    (:func:`foon2asp.schedule.model.designate`)."""
     t0 = time.perf_counter()
     if not tree.has_tree:
         status = "unreachable" if tree.status in ("unreachable", "not-found") else "unknown"

@@ -60,10 +60,9 @@ def _check_joint(options: AspOptions) -> tuple[str, ...]:
 
 
 def _dominance(problem: Problem, inst: Instance, ranked: tuple[str, ...]) -> str:
-    """``dom(V,U)`` facts (encodings/dominance.lp) for the tree dominance of
-    :mod:`foon2asp.asp.dominance` where V also takes no longer than U for every kind that can
-    do U and uses no resource U does not: then V can replace U in a schedule (on U's agent,
-    in U's time, what it needs is had earlier), nothing gets worse, so an optimum without U exists."""
+    """``dom(V,U)`` facts (encodings/dominance.lp): the tree dominance of
+    :mod:`foon2asp.asp.dominance` where V also takes no longer than U on every kind that can
+    do U and uses no resource U does not (docs/proofs/schedules.md)."""
     out = []
     for v, u, extra in _replaceable(problem, inst, ranked):
         out.append(f"dom({v},{u}).\n")
