@@ -25,14 +25,10 @@ from foon2asp.foon.loaders import Dataset  # noqa: E402
 from foon2asp.foon.problem import Problem  # noqa: E402
 
 STRATEGIES = ("bb", "bb,hier", "usc", "usc,oll")
+#: each objective alone, then depth beside success and units
 OBJECTIVES = (
-    ("units",),
-    ("success",),
-    ("inputs",),
-    ("depth",),
-    ("depth", "success"),
-    ("success", "depth"),
-    ("units", "depth"),
+    *((name,) for name in ("units", "success", "inputs", "depth")),
+    *(("depth", "success"), ("success", "depth"), ("units", "depth")),
 )
 EXTRA = (
     ("units, --max-depth 12", dict(objective=("units",), max_depth=12)),

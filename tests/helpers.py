@@ -96,3 +96,13 @@ def goal_part(problem: Problem, goal: int, limit: int = 12) -> tuple[Problem, in
         foon.add_unit(problem.units[u])
     sub = Problem(foon, problem.kitchen_items, problem.motion_rates, problem.utensils)
     return sub, sub.foon.object_ids[problem.objects[goal]]
+
+
+def one_line_error(res, code=2):
+    """The one ``foon2asp: error:`` line of a CLI result that exited with ``code``."""
+    assert res.exit_code == code, (res.exit_code, res.output, res.stderr)
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1, res.stderr
+    assert lines[0].startswith("foon2asp: error: ")
+    assert "Traceback" not in res.stderr
+    return lines[0]

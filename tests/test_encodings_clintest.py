@@ -17,6 +17,7 @@ from collections.abc import Callable, Iterable, Sequence
 
 import clingo
 import clingo.ast
+import pytest
 from clingodl import ClingoDLTheory
 from clintest import assertion as a
 from clintest import quantifier as q
@@ -444,24 +445,19 @@ def test_cost_least_motion_cost():
     check(solver(["tree", "cost"], SCORES, objectives("cost")), optimum(use(0), 100))
 
 
-def test_lexicographic_units_before_success():
-    names = ["tree", "units", "success"]
-    check(solver(names, SCORES, objectives("units", "success")), optimum(use(0), 1, 900))
-
-
-def test_lexicographic_success_before_units():
-    names = ["tree", "units", "success"]
-    check(solver(names, SCORES, objectives("success", "units")), optimum(use(1, 2), 200, 2))
-
-
-def test_lexicographic_cost_before_inputs():
-    names = ["tree", "cost", "inputs"]
-    check(solver(names, SCORES, objectives("cost", "inputs")), optimum(use(0), 100, 5))
-
-
-def test_lexicographic_inputs_before_cost():
-    names = ["tree", "cost", "inputs"]
-    check(solver(names, SCORES, objectives("inputs", "cost")), optimum(use(1, 2), 2, 160))
+@pytest.mark.parametrize(
+    "ranked, units, cost",
+    [
+        (("units", "success"), (0,), (1, 900)),
+        (("success", "units"), (1, 2), (200, 2)),
+        (("cost", "inputs"), (0,), (100, 5)),
+        (("inputs", "cost"), (1, 2), (2, 160)),
+    ],
+    ids=lambda v: ",".join(map(str, v)),
+)
+def test_lexicographic_objectives(ranked, units, cost):
+    """Two objectives: the first listed decides, the second breaks ties."""
+    check(solver(["tree", *ranked], SCORES, objectives(*ranked)), optimum(use(*units), *cost))
 
 
 def test_units_tie_broken_by_a_lower_priority():

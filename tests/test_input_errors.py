@@ -15,6 +15,7 @@ from foon2asp.api.options import Options
 from foon2asp.cli.main import main
 from foon2asp.errors import InputError
 from foon2asp.foon.parser import parse_text
+from helpers import one_line_error
 
 DEMO = Path(__file__).resolve().parent.parent / "data"
 
@@ -24,15 +25,6 @@ UNIT = "O\ttomato\nS\twhole\nO\tbowl\nS\tempty\nM\tpour\nO\ttomato\nS\tchopped\n
 
 def run(*args):
     return CliRunner().invoke(main, [str(a) for a in args])
-
-
-def one_line_error(res, code=2):
-    assert res.exit_code == code, (res.exit_code, res.output, res.stderr)
-    lines = res.stderr.strip().splitlines()
-    assert len(lines) == 1, res.stderr
-    assert lines[0].startswith("foon2asp: error: ")
-    assert "Traceback" not in res.stderr
-    return lines[0]
 
 
 def warnings_of(res) -> list[str]:

@@ -20,7 +20,7 @@ from foon2asp.batch.results import ResultFile, read_header, read_results
 from foon2asp.cli.main import main
 from foon2asp.methods.bounds import Bounds
 from foon2asp.methods.runner import GoalRunner, solve_goals
-from helpers import brute_force, build, goal_id
+from helpers import brute_force, build, goal_id, one_line_error
 
 REPO = Path(__file__).resolve().parent.parent
 DEMO = REPO / "data"
@@ -35,15 +35,6 @@ def run(*args):
     if argv and argv[0] in _DATA_COMMANDS and not {"--data", "--foon"} & set(argv):
         argv += ["--data", "demo"]
     return CliRunner().invoke(main, argv)
-
-
-def one_line_error(res, code=2):
-    assert res.exit_code == code, (res.exit_code, res.output, res.stderr)
-    lines = res.stderr.strip().splitlines()
-    assert len(lines) == 1, res.stderr
-    assert lines[0].startswith("foon2asp: error: ")
-    assert "Traceback" not in res.stderr
-    return lines[0]
 
 
 def demo_copy(tmp_path: Path) -> Path:
