@@ -144,18 +144,21 @@ class Bounds:
 
     def _closure(self, units: frozenset[int], need: set[int]) -> int:
         """``closure(units)`` where the objects ``need`` must be had too."""
-        made = {o for u in units for o in self.problem.products[u]}
-        need = need | {i for u in units for i in self.problem.required[u]}
-        return self.weight(units) + self._packing(
-            [u for u in self._producers.get(i, ()) if u not in units]
-            for i in sorted(need)
-            if i not in self.problem.kitchen and i not in made
-        )
+        problem = self.problem
+        made = set().union(*(problem.products[u] for u in units))
+        need = need.union(*(problem.required[u] for u in units))
+        kitchen, producers = problem.kitchen, self._producers
+        # identical groups count once: a second copy is never disjoint from the first
+        groups = {
+            tuple(u for u in producers.get(i, ()) if u not in units) for i in need if i not in kitchen and i not in made
+        }
+        return self.weight(units) + self._packing(groups)
 
-    def _packing(self, groups: Iterable[list[int]]) -> int:
-        """Pairwise disjoint producer groups need distinct units: the sum of their lightest weights."""
+    def _packing(self, groups: Iterable[tuple[int, ...]]) -> int:
+        """Pairwise disjoint producer groups (each sorted) need distinct units: the sum of
+        their lightest weights, the groups taken smallest first."""
         w = self.w
-        sets = sorted((len(g), min(w[u] for u in g), sorted(g)) for g in groups if g)
+        sets = sorted((len(g), min(w[u] for u in g), g) for g in groups if g)
         used: set[int] = set()
         extra = 0
         for _, lightest, group in sets:
