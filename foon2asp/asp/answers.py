@@ -71,9 +71,15 @@ def solve_shot(
         if mode == "optN" and answer.proven:
             optimal.setdefault(answer.units, answer)
         # on_model and on_answer may end the search by answering False
-        if on_answer is not None and on_answer(answer, model) is False:
-            return False
-        return on_model is None or on_model(model) is not False
+        if (on_answer is not None and on_answer(answer, model) is False) or (
+            on_model is not None and on_model(model) is False
+        ):
+            if mode != "opt":
+                return False
+            # an optimisation is stopped from outside the callback: answering False can break
+            # clasp's core-guided search while it shrinks a core
+            control.stop_soon()
+        return True
 
     with control.solving(mode, count, bound):
         result = control.solve(record, time_limit, on_lower=on_lower, stop=stop)

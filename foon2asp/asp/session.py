@@ -339,9 +339,8 @@ class Session:
             if on_model is not None:
                 on_model(model)
             if prep.meets is not None and prep.meets(tuple(model.cost)):
-                met.append(True)  # the lower bound is met: nothing better exists
-                if prep.bound is None:
-                    self.control.stop_soon()  # a decision ends at its first tree by itself
+                met.append(True)
+                return False  # the lower bound is met: nothing better exists
             return True
 
         shot, answer, lower, cuts = search(self.control, prep, self.problem, self._closed, seen, deadline, watch)
