@@ -116,7 +116,10 @@ def test_bad_capabilities_and_resources(tmp_path, loader, text, words):
     assert msg.startswith(str(path)) and words in msg and "\n" not in msg
 
 
-def test_missing_file_is_one_line(tmp_path):
+@pytest.mark.parametrize("kind", ["durations", "capabilities", "resources"])
+def test_missing_file_is_one_line(tmp_path, kind):
     with pytest.raises(InputError) as err:
-        ScheduleSpec.from_files("arm=1", durations=tmp_path / "nope.json")
-    assert "nope.json" in str(err.value) and "\n" not in str(err.value)
+        ScheduleSpec.from_files("arm=1", **{kind: tmp_path / "nope.json"})
+    text = str(err.value)
+    assert "nope.json" in text and "\n" not in text
+    assert f"{kind} file not found" in text and "file file" not in text

@@ -82,7 +82,7 @@ def _records(path: str | Path) -> list | None:
     if Path(path).suffix.lower() != ".json" or not Path(path).is_file():
         return None
     try:
-        _, doc = safejson.load(path, "schedule file")
+        _, doc = safejson.load(path, "schedule")
     except InputError:
         return None
     items = doc if isinstance(doc, list) else [doc]

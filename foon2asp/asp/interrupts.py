@@ -51,7 +51,7 @@ class _Watchdog:
                 self._jobs.pop(job, None)
 
     def interrupt(self, ctl: clingo.Control) -> None:
-        """Interrupt the solve call running on ``ctl`` now (from this thread)."""
+        """Interrupt the solve call running on ``ctl`` now, from the watchdog's thread."""
         self._add(ctl, 0.0)
 
     def forget(self, ctl: clingo.Control) -> None:

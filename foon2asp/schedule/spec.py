@@ -154,7 +154,7 @@ class Durations:
 def load_durations(path: str | Path) -> Durations:
     """Read a durations file (``{motion: seconds}`` or ``{KIND: {motion: seconds}}``)."""
     p = str(path)
-    text, doc = _read(path, "durations file")
+    text, doc = _read(path, "durations")
     if not isinstance(doc, dict):
         raise InputError("a durations file is a JSON object {motion: seconds} or {KIND: {motion: seconds}}", p, 1)
     motions: dict[str, int] = {}
@@ -176,7 +176,7 @@ def load_durations(path: str | Path) -> Durations:
 def load_capabilities(path: str | Path) -> dict[str, frozenset[str]]:
     """Read a capabilities file ``{KIND: [motion, ...]}``: kind -> the motions it can do."""
     p = str(path)
-    text, doc = _read(path, "capabilities file")
+    text, doc = _read(path, "capabilities")
     if not isinstance(doc, dict):
         raise InputError("a capabilities file is a JSON object {KIND: [motion, ...]}", p, 1)
     out: dict[str, frozenset[str]] = {}
@@ -193,7 +193,7 @@ def load_capabilities(path: str | Path) -> dict[str, frozenset[str]]:
 def load_resources(path: str | Path) -> dict[str, int]:
     """Read a resources file ``{label: capacity}``: label -> how many units using it may run at once."""
     p = str(path)
-    text, doc = _read(path, "resources file")
+    text, doc = _read(path, "resources")
     if not isinstance(doc, dict):
         raise InputError("a resources file is a JSON object {label: capacity}", p, 1)
     out: dict[str, int] = {}
