@@ -50,6 +50,17 @@ def test_to_dict_is_the_cli_json(kb, shared_foon_dir):
     assert [strip(d) for d in cli] == [strip(d) for d in lib]
 
 
+def test_tree_proven_by_says_who_proved_each_reference_goal(kb):
+    """``tree.proven_by`` is the JSON field; every reference goal with real choice is clingo's."""
+    trees = kb.solve("all")
+    assert all(t.proven_by == t.to_dict()["proven_by"] for t in trees)
+    counts: dict[str | None, int] = {}
+    for t in trees:
+        counts[t.proven_by] = counts.get(t.proven_by, 0) + 1
+    assert counts == {"clingo": 21, "only-tree": 2, "fixpoint": 2}
+    assert {t.status for t in trees if t.proven_by == "fixpoint"} == {"unreachable"}
+
+
 def test_goal_forms_name_the_same_object(kb):
     egg = kb.objects("scrambled egg")[3]
     oid = kb.object_id(egg)

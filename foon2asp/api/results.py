@@ -69,6 +69,9 @@ class Tree:
         "The best proven lower bound per objective level, in the units of :attr:`cost` (None for the search baselines)."
     )
     gap = Raw[float | None]("The relative gap to :attr:`bound` on the first objective: 0 when proven.")
+    proven_by = Raw[str | None](
+        "What proved the answer: ``clingo``, ``fixpoint`` or ``only-tree``; None when not proven and for the search baselines."
+    )
     time_s = Raw[float]()
     has_tree = Raw[bool]()
 
