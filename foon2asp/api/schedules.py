@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from foon2asp.errors import InputError
-from foon2asp.foon import safejson
+from foon2asp.foon import reading
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec
@@ -82,7 +82,7 @@ def _records(path: str | Path) -> list | None:
     if Path(path).suffix.lower() != ".json" or not Path(path).is_file():
         return None
     try:
-        _, doc = safejson.load(path, "schedule")
+        _, doc = reading.load(path, "schedule")
     except InputError:
         return None
     items = doc if isinstance(doc, list) else [doc]

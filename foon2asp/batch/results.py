@@ -29,7 +29,7 @@ from foon2asp.batch.pool import BatchSpec
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.safejson import loads as safe_loads
+from foon2asp.foon.reading import loads as safe_loads
 
 
 def goal_key(problem: Problem, record: dict) -> int | None:

@@ -13,9 +13,8 @@ from foon2asp.errors import InputError
 from foon2asp.foon.leaves import LEAVES, leaves
 from foon2asp.foon.model import Foon, FoonObject, norm
 from foon2asp.foon.parser import read_foons
-from foon2asp.foon.safejson import list_elements
-from foon2asp.foon.safejson import loads as safe_loads
-from foon2asp.foon.safetext import content_lines, lines_of, name_and_value, read_text
+from foon2asp.foon.reading import content_lines, lines_of, list_elements, name_and_value, read_text
+from foon2asp.foon.reading import loads as safe_loads
 
 FILE_NAMES = {
     "foon": "FOON.txt",

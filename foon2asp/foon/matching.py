@@ -24,7 +24,7 @@ from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.model import Foon, FoonObject, Unit, norm
 from foon2asp.foon.parser import state_parts
-from foon2asp.foon.safetext import read_text
+from foon2asp.foon.reading import read_text
 from foon2asp.foon.substitutes import Substitute, entries
 
 LEVELS = (1, 2, 3)

@@ -16,9 +16,8 @@ from pathlib import Path
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import norm
-from foon2asp.foon.safejson import MAX_NUMBER_CHARS
-from foon2asp.foon.safejson import loads as safe_loads
-from foon2asp.foon.safetext import content_lines, name_and_value, read_text
+from foon2asp.foon.reading import MAX_NUMBER_CHARS, content_lines, name_and_value, read_text
+from foon2asp.foon.reading import loads as safe_loads
 
 #: costs are exact to this step; the solver's integer weight of a cost is cost * SCALE
 PRECISION = Decimal("0.01")

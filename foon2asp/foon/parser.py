@@ -21,7 +21,7 @@ from foon2asp.errors import InputError
 from foon2asp.foon import unitlist
 from foon2asp.foon.foonjson import looks_like_json, parse_json
 from foon2asp.foon.model import Foon, FoonObject, Unit, norm
-from foon2asp.foon.safetext import check_line, decode_error, lines_of, read_bytes
+from foon2asp.foon.reading import check_line, lines_of, read_text
 
 _KINDS = frozenset("OSM")
 _RELATION_STATE = re.compile(r"^(.+?) ([\[{].*[\]}])$")
@@ -216,23 +216,10 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
 
 def read_foon(path: str | Path, foon: Foon | None = None, strict: bool = False) -> Foon:
     """Read one FOON file: FOON text (either dialect) or FOON JSON (``.json``, or text starting with ``{``/``[``)."""
-    path = Path(path)
-    try:
-        with open(path, encoding="utf-8", newline="") as fh:
-            head = fh.read(64)
-            if looks_like_json(path, head):
-                return _json_foon(head + fh.read(), str(path), foon, strict)
-            fh.seek(0)
-            return parse_lines(fh, str(path), foon, strict)
-    except OSError as exc:
-        raise InputError(f"cannot read FOON file: {exc.strerror or exc}", str(path)) from None
-    except UnicodeDecodeError:
-        data = read_bytes(path, "FOON")
-        try:
-            data.decode("utf-8")
-        except UnicodeDecodeError as exc:
-            raise decode_error(data, exc, str(path)) from None
-        raise  # pragma: no cover - the bytes decode as a whole
+    text = read_text(path, "FOON", checked=False)  # FOON text is checked line by line
+    if looks_like_json(path, text[:64]):
+        return _json_foon(text, str(path), foon, strict)
+    return parse_lines(lines_of(text), str(path), foon, strict)
 
 
 def _json_foon(text: str, path: str, foon: Foon | None, strict: bool) -> Foon:

@@ -17,8 +17,8 @@ from pathlib import Path
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject, norm
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.safejson import loads as safe_loads
-from foon2asp.foon.safetext import check_text, content_lines, read_text
+from foon2asp.foon.reading import check_text, content_lines, read_text
+from foon2asp.foon.reading import loads as safe_loads
 
 #: the cost of a substitute given without ``=COST``
 DEFAULT_COST = 1

@@ -20,9 +20,8 @@ from foon2asp.foon.loaders import object_from_json
 from foon2asp.foon.model import FoonObject, Unit, norm
 from foon2asp.foon.parser import parse_lines
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.safejson import list_elements
-from foon2asp.foon.safejson import loads as safe_loads
-from foon2asp.foon.safetext import lines_of, read_text
+from foon2asp.foon.reading import lines_of, list_elements, read_text
+from foon2asp.foon.reading import loads as safe_loads
 
 
 @dataclass

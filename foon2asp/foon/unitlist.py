@@ -25,9 +25,8 @@ from pathlib import Path
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject, Unit, norm
-from foon2asp.foon.safejson import list_elements
-from foon2asp.foon.safejson import loads as safe_loads
-from foon2asp.foon.safetext import check_text, read_text
+from foon2asp.foon.reading import check_text, list_elements, read_text
+from foon2asp.foon.reading import loads as safe_loads
 
 #: the keys of one unit, in the order generators write them
 KEYS = ("input_nodes", "motion_node", "output_nodes")

@@ -36,7 +36,7 @@ from decimal import Decimal, InvalidOperation
 from pathlib import Path
 
 from foon2asp.errors import InputError
-from foon2asp.foon import safejson
+from foon2asp.foon import reading
 from foon2asp.foon.model import norm
 
 #: the kind of agent that is a person (success 1.0, counted by the tie-breaker)
@@ -100,7 +100,7 @@ def _line_of(text: str, *keys: str) -> int | None:
 
 def _read(path: str | Path, what: str) -> tuple[str, object]:
     """The text of a JSON file and its value, numbers as :class:`~decimal.Decimal` (exact)."""
-    text, _ = safejson.load(path, what)
+    text, _ = reading.load(path, what)
     return text, json.loads(text, parse_float=Decimal, parse_int=Decimal)
 
 
