@@ -396,7 +396,6 @@ def test_joint_under_forbidding_constraints_equals_brute_force(seed, monkeypatch
     programs) agree with brute force over the allowed trees."""
     problem, g, spec, motion, most, allowed, want, _ = forbidding_case(seed)
     options = AspOptions(programs=constraints.programs(forbid_motions=[motion.upper()], max_unit_count=most))
-    assert constraints.shrinking(options.programs) is not None
     tree = given(problem, g, list(min(allowed, key=len)))
     for way in ("tree by tree", "one encoding"):
         with monkeypatch.context() as mp:
@@ -424,7 +423,6 @@ def test_joint_with_a_forbidden_object_or_a_required_motion():
     assert r.status == "optimal" and r.makespan == 3000 and sorted(r.tree.units) == [0, 1, 2]
     assert r.stats["joint"] == "tree by tree"
     need_m = AspOptions(programs=constraints.programs(require_motions=["m"]))
-    assert constraints.shrinking(need_m.programs) is None
     r = schedule(problem, tree, spec, joint=True, shortcut=False, options=need_m)
     assert r.status == "optimal" and r.makespan == 2000 and r.stats["joint"].startswith("tree by tree")
 

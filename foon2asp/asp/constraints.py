@@ -224,41 +224,6 @@ def programs(
     return out
 
 
-@dataclass(frozen=True)
-class Shrinking:
-    """Programs that only forbid: motions and object labels no unit of the tree may have, and
-    a most number of units.  A subset of an allowed tree is allowed too."""
-
-    motions: frozenset[str]
-    labels: frozenset[str]
-    max_units: int | None
-
-
-def shrinking(programs: Iterable[tuple[str, str]]) -> Shrinking | None:
-    """What ``programs`` forbid when every one of them is a ``--forbid-motion``,
-    ``--forbid-object`` or ``--max-units`` program made by :func:`programs`; None otherwise."""
-    motions: set[str] = set()
-    labels: set[str] = set()
-    most: int | None = None
-    for name, text in programs:
-        flag, _, value = name.partition(" ")
-        if flag == "--forbid-motion" and text == forbid_motion(value):
-            motions.add(motion_name(value))
-        elif flag == "--forbid-object" and text == forbid_object(value):
-            labels.add(normalise(value))
-        elif name == "--max-units" and (n := _cap(text)) is not None:
-            most = n if most is None else min(most, n)
-        else:
-            return None
-    return Shrinking(frozenset(motions), frozenset(labels), most)
-
-
-def _cap(text: str) -> int | None:
-    """The number of a :func:`max_units` program (None: some other text)."""
-    digits = text.rpartition("> ")[2].rstrip(".\n")
-    return int(digits) if digits.isdigit() and text == max_units(int(digits)) else None
-
-
 def unknown_names(problem, spec: ConstraintSpec) -> list[str]:
     """Warnings for flag values that match no motion or object label of the FOON, and for
     predicates the user's files and rules use that are defined nowhere (:func:`rule_warnings`)."""

@@ -16,17 +16,10 @@ from foon2asp.asp.facts import unit_ids
 from foon2asp.errors import InputError
 from foon2asp.foon.motioncost import DEFAULT_COST, motion_key, scaled
 from foon2asp.foon.problem import Problem
-from foon2asp.tree.weights import SCALE, UNIT_WEIGHTS, success_permille, total
+from foon2asp.tree.weights import UNIT_WEIGHTS, success_permille, total
 
 #: the tie-breaker appended to every objective list that lacks it
 TIE_BREAK = "units"
-
-#: how exact the success objective is, in words (also in docs/objectives.md)
-PRECISION = (
-    f"success rates are used to 1/{SCALE} and each unit weighs round(-{SCALE} ln p); "
-    f"the rounding is at most 0.5/{SCALE} per unit, so a tree of n units is ranked by a product "
-    f"that is off by a factor of at most exp(n/{2 * SCALE}) (under 1.3% for 25 units)"
-)
 
 
 def ranked(options) -> tuple[str, ...]:

@@ -50,12 +50,3 @@ def solver_args(opt_strategy: str | None = None, threads: int = 1, portfolio: st
     if parallel:
         return [*parallel, f"--configuration={portfolio_file(portfolio or PORTFOLIO)}"]
     return [f"--opt-strategy={DEFAULT_OPT_STRATEGY}", *DEFAULT_TUNING]
-
-
-def describe(opt_strategy: str | None = None, threads: int = 1) -> str:
-    """The setting in words, e.g. ``usc,oll,succinct,stratify`` or ``portfolio bb(sign,model)|usc x2``."""
-    if opt_strategy:
-        return opt_strategy + (f" x{threads}" if threads > 1 else "")
-    if threads > 1:
-        return f"portfolio bb(sign,model)|usc x{threads}"
-    return DEFAULT_OPT_STRATEGY
