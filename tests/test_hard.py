@@ -17,7 +17,7 @@ from click.testing import CliRunner
 import foon2asp
 from foon2asp.api import KnowledgeBase
 from foon2asp.asp import control as control_mod
-from foon2asp.asp import settings
+from foon2asp.asp import options as settings
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session

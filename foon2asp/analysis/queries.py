@@ -18,7 +18,7 @@ from foon2asp.asp.constraints import check_syntax
 from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import facts
 from foon2asp.asp.objectives import input_node_facts
-from foon2asp.asp.options import OBJECTIVES, AspOptions
+from foon2asp.asp.options import OBJECTIVES, AspOptions, solver_args
 from foon2asp.asp.predicates import (
     Signature,
     known_predicates,
@@ -27,7 +27,6 @@ from foon2asp.asp.predicates import (
     signature_text,
     undefined,
 )
-from foon2asp.asp.settings import solver_args
 from foon2asp.errors import InputError, escape
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.runner import solve_goals

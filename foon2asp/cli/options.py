@@ -387,7 +387,7 @@ def _opt_strategy(ctx, param, value):
     return value
 
 
-#: --opt-strategy and --threads into ``options`` (None and 1: the defaults of foon2asp.asp.settings).
+#: --opt-strategy and --threads into ``options`` (None and 1: the defaults of foon2asp.asp.options).
 strategy_options = request_options(
     {"opt_strategy": "opt_strategy", "threads": "threads"},
     click.option(

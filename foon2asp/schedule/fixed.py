@@ -20,8 +20,7 @@ import time
 from collections.abc import Callable, Sequence
 
 from foon2asp.asp import objectives
-from foon2asp.asp.options import AspOptions
-from foon2asp.asp.settings import solver_args
+from foon2asp.asp.options import AspOptions, solver_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule import encode
