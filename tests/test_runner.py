@@ -17,6 +17,7 @@ from foon2asp.batch.pool import BatchSpec, Worker
 from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.problem import Problem
+from foon2asp.methods.registry import effective_options
 from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.tasktree import TaskTree, measures
 from foon2asp.tree.validate import validate
@@ -59,12 +60,12 @@ def kind(name: str) -> str:
     """``exact`` (an ASP optimum), ``greedy`` (an ASP first model) or ``search``."""
     if methods.get(name).kind != "asp":
         return "search"
-    return "greedy" if methods.effective_options(name, AspOptions()).heuristic else "exact"
+    return "greedy" if effective_options(name, AspOptions()).heuristic else "exact"
 
 
 def objective_of(name: str) -> str:
     """The first objective an exact ASP method optimises."""
-    return ranked(methods.effective_options(name, AspOptions()))[0]
+    return ranked(effective_options(name, AspOptions()))[0]
 
 
 def value(problem: Problem, objective: str, goals, units: list[int], options: AspOptions) -> int:

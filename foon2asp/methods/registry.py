@@ -2,25 +2,28 @@
 
 A method is a name, a kind and what the goal runner (:mod:`foon2asp.methods.runner`)
 needs to answer with it: for an ASP method, how it adjusts the caller's options (the
-objective, the greedy heuristic) before the runner's sessions solve; for a search
-baseline, a factory turning (problem, options) into a *runner*, a function from a
-goal object id to a :class:`TaskTree` (made once per problem, so it may keep state).
-The CLI's ``solve``, ``compare`` and ``batch`` all look methods up here.
+objective, the greedy heuristic); for a search baseline, a factory turning (problem,
+options) into a *runner*, a function from a goal object id to a :class:`TaskTree` (made
+once per problem, so it may keep state).  ``solve``, ``compare`` and ``batch`` all look
+methods up here.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from functools import partial
 
 from foon2asp.asp.options import HEURISTICS, OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.search import IDS, gbfs, h1, h2
-from foon2asp.tree.tasktree import Goals, TaskTree, meal_of
+from foon2asp.tree.tasktree import Goals, TaskTree
 
 Runner = Callable[[Goals], TaskTree]
-Factory = Callable[[Problem, AspOptions], Runner]
+#: a search baseline's runner: one goal object id at a time
+Search = Callable[[int], TaskTree]
+Factory = Callable[[Problem, AspOptions], Search]
 
 
 @dataclass(frozen=True)
@@ -89,48 +92,25 @@ def names() -> list[str]:
 
 
 register_asp("asp", "answer-set programming, proven optimal for --objective (default: units)")
-
-
-def _objective_is(objective: str) -> Callable[[AspOptions], AspOptions]:
-    return lambda options: replace(options, objective=(objective,))
-
-
-def _heuristic_is(heuristic: str) -> Callable[[AspOptions], AspOptions]:
-    return lambda options: replace(options, heuristic=heuristic)
-
-
-for _name in list(OBJECTIVES):
-    register_asp(f"asp-{_name}", f"ASP, proven optimal for the objective {_name!r}", _objective_is(_name))
-
-
-_GREEDY = {"h1": "highest motion success rate", "h2": "fewest input nodes"}
-for _h in HEURISTICS:
+for _name in OBJECTIVES:
+    register_asp(
+        f"asp-{_name}", f"ASP, proven optimal for the objective {_name!r}", partial(replace, objective=(_name,))
+    )
+for _h, _words in zip(HEURISTICS, ("highest motion success rate", "fewest input nodes"), strict=True):
     register_asp(
         f"asp-greedy-{_h}",
-        f"ASP first model under #heuristic {_h} ({_GREEDY[_h]}), valid by construction",
-        _heuristic_is(_h),
+        f"ASP first model under #heuristic {_h} ({_words}), valid by construction",
+        partial(replace, heuristic=_h),
     )
 
-
-def _single(name: str, run: Callable[[int], TaskTree]) -> Runner:
-    """A search baseline's runner: one goal at a time (meals need an ASP method)."""
-
-    def runner(goal: Goals) -> TaskTree:
-        meal = meal_of(goal)
-        if len(meal) > 1:
-            raise InputError(f"meals (several goals in one tree) need an ASP method; {name!r} is a search baseline")
-        return run(meal[0])
-
-    return runner
-
-
-# the search baselines (foon2asp.search knows nothing of this registry)
+# the search baselines (foon2asp.search knows nothing of this registry); the goal runner
+# hands them one goal at a time
 register("ids", "search", "iterative deepening search (first producer in FOON order per depth; not optimal)")(
-    lambda problem, options: _single("ids", IDS(problem))
+    lambda problem, options: IDS(problem)
 )
 register("gbfs-h1", "search", "greedy best-first, h1: highest motion success rate (no cycle check)")(
-    lambda problem, options: _single("gbfs-h1", lambda goal: gbfs(problem, goal, h1, "gbfs-h1"))
+    lambda problem, options: partial(gbfs, problem, score=h1, method="gbfs-h1")
 )
 register("gbfs-h2", "search", "greedy best-first, h2: fewest input nodes (no cycle check)")(
-    lambda problem, options: _single("gbfs-h2", lambda goal: gbfs(problem, goal, h2, "gbfs-h2"))
+    lambda problem, options: partial(gbfs, problem, score=h2, method="gbfs-h2")
 )

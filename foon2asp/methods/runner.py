@@ -32,7 +32,7 @@ from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.bounds import supports as bounds_supports
 from foon2asp.methods.parts import GROUNDINGS, Parts
-from foon2asp.methods.registry import Runner, check_substitutes, effective_options, get
+from foon2asp.methods.registry import Runner, Search, check_substitutes, effective_options, get
 from foon2asp.tree.gap import settle
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
 from foon2asp.tree.weights import UNIT_WEIGHTS, total
@@ -141,9 +141,10 @@ class GoalRunner:
         #: the same method without the user's programs (their optimum, checked against them)
         self._free: GoalRunner | None = None
         self._bounded = self._preparable and bounds_supports(self._ranked)
+        self._search: Search | None = None
         if self.kind != "asp":
             assert method.factory is not None, f"search method {name!r} has no factory"
-            self._whole = method.factory(problem, self.options)
+            self._search = method.factory(problem, self.options)
 
     def route(self, goal: Goals) -> str:
         """How ``goal`` is answered: a key of :data:`PROVEN_BY` (see the module docstring)."""
@@ -182,8 +183,8 @@ class GoalRunner:
         t0 = time.perf_counter()
         how = self.route(goal)
         self.counts[how] += 1
-        if how == "search":
-            return self._solve(meal[0])
+        if self._search is not None:
+            return self._search(meal[0])
         if how == "clingo":
             tree = self._solve(meal if len(meal) > 1 else meal[0])
         elif how == "fixpoint":
@@ -290,8 +291,8 @@ class GoalRunner:
         return self._whole
 
     def _solve(self, goal: Goals) -> TaskTree:
-        """clingo on the whole grounding or the goal's part (a search baseline's answer)."""
-        if self.kind != "asp" or self.grounding == "whole" or len(meal_of(goal)) > 1:
+        """clingo on the whole grounding or the goal's part."""
+        if self.grounding == "whole" or len(meal_of(goal)) > 1:
             return self._whole_runner()(goal)
         units, objects, _ = self.parts.relevant(goal)
         if self._allowed is not None:
