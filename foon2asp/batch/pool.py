@@ -1,12 +1,6 @@
 """The worker pool of a batch: runners built once per process, asked goal after goal.
 
-A :class:`Worker` holds the runners of one process (one per method, built once from a
-:class:`BatchSpec`); :class:`Execution` runs (goal, method) tasks in this process or in a
-process pool, and yields each result as one JSON line as it finishes.  ``workers=AUTO``
-starts in this process and hands the tasks left to a pool on every usable core after
-:data:`SWITCH_S` seconds.  Pool workers ignore SIGINT and exit when the parent dies; how
-they start (:func:`start_method`, the ``__main__`` guard) is described in docs/batch.md,
-"Workers and Dask".
+How workers start, stop and exit with their parent: docs/batch.md, "Workers and Dask".
 """
 
 from __future__ import annotations
@@ -167,7 +161,7 @@ def _exit_with_parent() -> None:
     threading.Thread(target=watch, name="parent-watch", daemon=True).start()
 
 
-def _init_worker(spec: BatchSpec, processes: int = 1) -> None:
+def _init_worker(spec: BatchSpec) -> None:
     global _WORKER
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # an interrupt is the parent's to handle
     # the pool ends its workers with SIGTERM: a forked worker must not run the parent's handler
@@ -179,11 +173,6 @@ def _init_worker(spec: BatchSpec, processes: int = 1) -> None:
 def _run_in_worker(tasks: list[tuple[int, str]]) -> list[tuple[int, str, str]]:
     assert _WORKER is not None, "worker not initialised"
     return _WORKER.run_many(tasks)
-
-
-def _chunks(tasks: list[tuple[int, str]], size: int) -> Iterator[list[tuple[int, str]]]:
-    for i in range(0, len(tasks), size):
-        yield tasks[i : i + size]
 
 
 class Execution:
@@ -209,8 +198,8 @@ class Execution:
 
     def _run(self) -> Generator[tuple[int, str, str], None, None]:
         tasks, workers = self.tasks, self.requested
-        if workers == AUTO:
-            cores = usable_cores()
+        if workers <= 1:
+            cores = usable_cores() if workers == AUTO else 1
             worker = Worker(self.spec)
             t0 = time.perf_counter()
             done = 0
@@ -221,31 +210,17 @@ class Execution:
                 done += 1
             del worker
             tasks, workers = tasks[done:], cores
-        elif workers <= 1:
-            worker = Worker(self.spec)
-            for goal, method in tasks:
-                yield goal, method, worker.run(goal, method)
-            return
         if not tasks:
             return
         self.workers = workers
         context = multiprocessing.get_context(start_method())
         _check_start(context)
-        pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec, workers))
+        pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec,))
+        chunks = (tasks[i : i + self.chunk] for i in range(0, len(tasks), self.chunk))
         try:
-            for results in pool.imap_unordered(_run_in_worker, _chunks(tasks, self.chunk)):
+            for results in pool.imap_unordered(_run_in_worker, chunks):
                 yield from results
             pool.close()
         finally:
             pool.terminate()
             pool.join()
-
-
-def execute(
-    spec: BatchSpec,
-    tasks: list[tuple[int, str]],
-    workers: int = 1,
-    chunk: int = 1,
-) -> Execution:
-    """:class:`Execution` of ``tasks`` on ``workers`` processes (:data:`AUTO`: as the batch needs)."""
-    return Execution(spec, tasks, workers, chunk)

@@ -1,12 +1,6 @@
 """The results file of a batch: one JSON line per result, a header, resumable.
 
-:class:`ResultFile` appends each finished result as one whole line with one ``os.write``
-(signals wait until it is written), syncs in groups (at most :data:`SYNC_INTERVAL_S`
-apart) and holds an exclusive lock while open; the first line is a header with the
-:func:`configuration` that produced the file, and ``--resume`` with another one is refused
-(:func:`config_differences`).  :func:`read_results` drops a last line cut short,
-:func:`pending_tasks` says which (goal, method) pairs are still to do and :func:`summarize`
-counts per method.  What survives a kill or a crash: docs/batch.md, "The results file".
+What survives a kill or a crash, and what ``--resume`` refuses: docs/batch.md, "The results file".
 """
 
 from __future__ import annotations
@@ -16,6 +10,7 @@ import json
 import os
 import statistics
 import time
+from collections import Counter
 from pathlib import Path
 
 try:
@@ -87,13 +82,17 @@ HEADER_VERSION = 1
 RESUMABLE_KEYS = ("methods",)
 
 
+def _digest(text: str) -> str:
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
+
+
 def configuration(spec: BatchSpec) -> dict:
-    """What produced a results file: the answers depend on these (see the module docstring)."""
+    """What produced a results file: the answers depend on these."""
     o = spec.options
-    return {
+    config = {
         "methods": list(spec.methods),
         "objective": list(o.objective),
-        "constraints": [[name, hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]] for name, text in o.programs],
+        "constraints": [[name, _digest(text)] for name, text in o.programs],
         "encodings": list(o.encodings),
         "utensil_rule": spec.problem.utensil_rule,
         "time_limit": o.time_limit,
@@ -108,22 +107,15 @@ def configuration(spec: BatchSpec) -> dict:
         "canonical": o.canonical,
         **({"gap": o.gap} if o.gap else {}),
         "input_sha256": hashlib.sha256(facts(spec.problem).encode("utf-8")).hexdigest(),
-        **(
-            {"motion_costs": hashlib.sha256(json.dumps(o.motion_costs, sort_keys=True).encode()).hexdigest()[:16]}
-            if o.motion_costs is not None
-            else {}
-        ),
-        **(_substitutes_config(spec) if o.substitutes else {}),
     }
-
-
-def _substitutes_config(spec: BatchSpec) -> dict:
-    """The substitutes and the kitchen items they may use (not all are in the facts), hashed."""
-    o = spec.options
-    table = sorted([s.needed, s.used, s.cost] for s in o.substitutes)
-    kitchen = sorted(obj.text for obj in spec.problem.kitchen_items)
-    digest = hashlib.sha256(json.dumps([table, kitchen]).encode("utf-8")).hexdigest()[:16]
-    return {"substitutes": digest, "max_substitutions": o.max_substitutions}
+    if o.motion_costs is not None:
+        config["motion_costs"] = _digest(json.dumps(o.motion_costs, sort_keys=True))
+    if o.substitutes:  # the substitutes and the kitchen items they may use (not all are in the facts)
+        table = sorted([s.needed, s.used, s.cost] for s in o.substitutes)
+        kitchen = sorted(obj.text for obj in spec.problem.kitchen_items)
+        config["substitutes"] = _digest(json.dumps([table, kitchen]))
+        config["max_substitutions"] = o.max_substitutions
+    return config
 
 
 def header_line(config: dict) -> str:
@@ -185,8 +177,7 @@ class ResultFile:
             ) from None
 
     def append(self, line: str) -> None:
-        data = line.encode("utf-8")
-        view = memoryview(data)
+        view = memoryview(line.encode("utf-8"))
         with deferred_signals():  # an interrupt waits until the line is whole
             while view:
                 written = os.write(self.fd, view)
@@ -217,28 +208,49 @@ class ResultFile:
         self.close()
 
 
+def record_key(problem: Problem, record: dict) -> tuple[int | None, str | None]:
+    """The (goal, method) pair a result record answers."""
+    return goal_key(problem, record), record.get("requested_method", record.get("method"))
+
+
 def pending_tasks(
     problem: Problem, goals: list[int], method_names: list[str], previous: list[dict]
 ) -> tuple[list[tuple[int, str]], int]:
     """The (goal, method) pairs not yet in ``previous``, and how many were skipped."""
-    have = set()
-    for record in previous:
-        g = goal_key(problem, record)
-        if g is not None:
-            have.add((g, record.get("requested_method", record.get("method"))))
-    todo: list[tuple[int, str]] = []
-    skipped = 0
-    seen: set[tuple[int, str]] = set()
-    for g in goals:
-        for m in method_names:
-            if (g, m) in seen:
-                continue
-            seen.add((g, m))
-            if (g, m) in have:
-                skipped += 1
-            else:
-                todo.append((g, m))
-    return todo, skipped
+    have = {record_key(problem, r) for r in previous}
+    pairs = list(dict.fromkeys((g, m) for g in goals for m in method_names))
+    todo = [pair for pair in pairs if pair not in have]
+    return todo, len(pairs) - len(todo)
+
+
+def open_results(output: str | Path, config: dict, resume: bool, sync: bool) -> tuple[ResultFile, list[dict]]:
+    """The results file ``output`` opened and locked for a batch of configuration ``config``, and
+    the records already in it (with ``resume``; without it a non-empty file is refused, with it
+    another configuration)."""
+    path = Path(output)
+    if path.is_dir():
+        raise InputError("results file is a directory", str(path))
+    if path.exists() and path.stat().st_size > 0 and not resume:
+        raise InputError("results file exists; use --resume to continue it or choose another --output", str(path))
+    out = ResultFile(path, sync)  # locked from here on
+    try:
+        previous: list[dict] = []
+        if resume:
+            old = read_header(path)
+            differ = config_differences(old, config) if old is not None else []
+            if differ:
+                raise InputError(
+                    "results file was made with another configuration (differs in: "
+                    f"{', '.join(differ)}); choose another --output or the same options",
+                    str(path),
+                )
+            previous = read_results(path, repair=True)
+        if path.stat().st_size == 0:
+            out.append(header_line(config))
+    except BaseException:
+        out.close()
+        raise
+    return out, previous
 
 
 def summarize(records: list[dict]) -> list[dict]:
@@ -248,9 +260,7 @@ def summarize(records: list[dict]) -> list[dict]:
         by_method.setdefault(r.get("requested_method", r.get("method", "?")), []).append(r)
     rows = []
     for method, recs in by_method.items():
-        statuses: dict[str, int] = {}
-        for r in recs:
-            statuses[r.get("status", "?")] = statuses.get(r.get("status", "?"), 0) + 1
+        statuses = Counter(r.get("status", "?") for r in recs)
         trees = [r for r in recs if r.get("status") in WITH_TREE]
         sizes = [len(r.get("units", [])) for r in trees]
         valid = [r.get("valid") for r in trees]

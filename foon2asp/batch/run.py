@@ -1,12 +1,9 @@
 """Batch solving: goals x methods, one JSON line per result, resumable.
 
-:func:`run_batch` checks the methods and the grounding (``auto``:
-:func:`foon2asp.methods.parts.choose_grounding`), opens and locks the
-results file (:mod:`foon2asp.batch.results`; ``--resume`` skips every
-(goal, method) pair already in it and refuses another configuration), runs
-the pending pairs in the worker pool (:mod:`foon2asp.batch.pool`, or an
-``executor`` such as :mod:`foon2asp.batch.cluster`'s Dask one) and appends
-each result line as it finishes.
+:func:`run_batch` checks the methods and the grounding, opens the results file
+(:mod:`foon2asp.batch.results`), runs the pending pairs in the worker pool
+(:mod:`foon2asp.batch.pool`, or an ``executor`` such as :mod:`foon2asp.batch.cluster`'s)
+and appends each result line as it finishes.
 """
 
 from __future__ import annotations
@@ -21,25 +18,11 @@ from pathlib import Path
 from tqdm import tqdm
 
 from foon2asp import methods as methods_mod
-from foon2asp.batch.pool import AUTO, BatchSpec, execute, refuse_while_starting
-from foon2asp.batch.results import (
-    ResultFile,
-    config_differences,
-    configuration,
-    goal_key,
-    header_line,
-    pending_tasks,
-    read_header,
-    read_results,
-)
+from foon2asp.batch.pool import AUTO, BatchSpec, Execution, refuse_while_starting
+from foon2asp.batch.results import configuration, open_results, pending_tasks, record_key
 from foon2asp.errors import InputError
 from foon2asp.methods.parts import GROUNDING_CHOICES, GROUNDINGS, choose_grounding
 from foon2asp.tree.results import BatchReport
-
-
-def _progress(total: int, enabled: bool | None):
-    disable = not sys.stderr.isatty() if enabled is None else not enabled
-    return tqdm(total=total, unit="result", desc="batch", file=sys.stderr, disable=disable, smoothing=0.05)
 
 
 def run_batch(
@@ -72,42 +55,17 @@ def run_batch(
         spec = replace(spec, grounding=grounding)
     elif spec.grounding not in GROUNDINGS:
         raise InputError(f"unknown grounding {spec.grounding!r} (have {', '.join(GROUNDING_CHOICES)})")
-    previous: list[dict] = []
-    out = None
-    if output is not None:
-        path = Path(output)
-        if path.is_dir():
-            raise InputError("results file is a directory", str(path))
-        if path.exists() and path.stat().st_size > 0 and not resume:
-            raise InputError("results file exists; use --resume to continue it or choose another --output", str(path))
-        out = ResultFile(output, sync)  # locked from here on
+    out, previous = (None, []) if output is None else open_results(output, configuration(spec), resume, sync)
     try:
-        if out is not None:
-            config = configuration(spec)
-            if resume:
-                old = read_header(out.path)
-                if old is not None:
-                    differ = config_differences(old, config)
-                    if differ:
-                        raise InputError(
-                            "results file was made with another configuration (differs in: "
-                            f"{', '.join(differ)}); choose another --output or the same options",
-                            str(out.path),
-                        )
-                previous = read_results(out.path, repair=True)
-            if out.path.stat().st_size == 0:
-                out.append(header_line(config))
         todo, skipped = pending_tasks(spec.problem, goals, spec.methods, previous)
         t0 = time.perf_counter()
         new_records: list[dict] = []
-        bar = _progress(len(todo), progress)
+        disable = not sys.stderr.isatty() if progress is None else not progress
+        bar = tqdm(total=len(todo), unit="result", desc="batch", file=sys.stderr, disable=disable, smoothing=0.05)
         results: Iterable[tuple[int, str, str]] = ()
         used = 1 if workers == AUTO else workers  # the processes that ran tasks (the pool's, once it started)
         try:
-            if executor is not None:
-                results = executor(spec, todo)
-            else:
-                results = execute(spec, todo, workers, chunk)
+            results = executor(spec, todo) if executor is not None else Execution(spec, todo, workers, chunk)
             for _goal, _method, line in results:
                 if out is not None:
                     out.append(line)
@@ -124,14 +82,6 @@ def run_batch(
             out.close()
     elapsed = time.perf_counter() - t0
     wanted = {(g, m) for g in goals for m in spec.methods}
-    kept = [r for r in previous if (goal_key(spec.problem, r), r.get("requested_method", r.get("method"))) in wanted]
-    return BatchReport(
-        len(new_records),
-        skipped,
-        elapsed,
-        kept + new_records,
-        used,
-        str(output) if output else None,
-        spec.grounding,
-        reason,
-    )
+    kept = [r for r in previous if record_key(spec.problem, r) in wanted]
+    output = str(output) if output else None
+    return BatchReport(len(new_records), skipped, elapsed, kept + new_records, used, output, spec.grounding, reason)
