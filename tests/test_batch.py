@@ -23,7 +23,7 @@ from foon2asp.batch.run import run_batch
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.methods.runner import GoalRunner
-from foon2asp.report.summary import render_summary
+from foon2asp.report.compare import render_summary
 from foon2asp.tree.serialize import tree_json
 from foon2asp.tree.validate import validate
 from helpers import best, build, goal_id

@@ -1,15 +1,16 @@
-"""The comparison table of ``compare``: text, Markdown, CSV and JSON."""
+"""Tables: the comparison of ``compare`` and the summary of ``batch``, as text, Markdown, CSV and JSON."""
 
 from __future__ import annotations
 
 import csv
 import io
 import json
+from collections.abc import Callable, Iterable
 
 from foon2asp.foon.problem import Problem
 from foon2asp.report import registry
 from foon2asp.report.registry import register
-from foon2asp.tree.results import MealRow, Row
+from foon2asp.tree.results import BatchReport, MealRow, Row
 from foon2asp.tree.serialize import json_list, number, tree_json
 from foon2asp.tree.tasktree import TaskTree
 
@@ -46,25 +47,33 @@ def method_header(name: str) -> str:
     return "asp optimum" if name == "asp" else name
 
 
-def _grid(head: list[str], body: list[list[str]], markdown: bool, rule: bool = True) -> list[str]:
+def grid(head: list[str], body: list[list[str]], markdown: bool, rule: bool = True, right: bool = True) -> list[str]:
     """A table as Markdown or aligned text (``rule``: a dashed line under the heading), the first
-    column left-aligned, the others right-aligned."""
+    column left-aligned, the others right-aligned (``right``) or left-aligned."""
     if markdown:
-        out = ["| " + " | ".join(head) + " |", "|" + "|".join(["---"] + ["---:"] * (len(head) - 1)) + "|"]
+        align = "---:" if right else "---"
+        out = ["| " + " | ".join(head) + " |", "|" + "|".join(["---"] + [align] * (len(head) - 1)) + "|"]
         return out + ["| " + " | ".join(line) + " |" for line in body]
     widths = [max(len(x[i]) for x in [head] + body) for i in range(len(head))]
     lines = [head] + ([["-" * w for w in widths]] if rule else []) + body
     return [
-        "  ".join(c.ljust(w) if i == 0 else c.rjust(w) for i, (c, w) in enumerate(zip(line, widths))).rstrip()
+        "  ".join(c.rjust(w) if i and right else c.ljust(w) for i, (c, w) in enumerate(zip(line, widths))).rstrip()
         for line in lines
     ]
+
+
+def csv_text(rows: Iterable[Iterable[object]]) -> str:
+    """``rows`` (the heading first) as CSV."""
+    buf = io.StringIO()
+    csv.writer(buf, lineterminator="\n").writerows(rows)
+    return buf.getvalue()
 
 
 def _table(problem: Problem, rows: list[Row], cell, markdown: bool) -> list[str]:
     names = list(rows[0].trees) if rows else []
     head = ["goal"] + [method_header(n) for n in names]
     body = [[_label(problem, r.goal)] + [cell(r.trees[n]) for n in names] for r in rows]
-    return _grid(head, body, markdown)
+    return grid(head, body, markdown)
 
 
 def summary(rows: list[Row]) -> list[str]:
@@ -109,36 +118,30 @@ def render_table(problem: Problem, rows: list[Row], markdown: bool = False) -> s
 
 
 def render_csv(problem: Problem, rows: list[Row]) -> str:
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["goal", "method", "status", "valid", "units", "success", "depth", "inputs", "time_s", "problem"])
-    for r in rows:
-        for name, t in r.trees.items():
-            c = t.cost
-            w.writerow(
-                [
-                    str(problem.objects[r.goal]),
-                    name,
-                    t.status,
-                    str(bool(t.extra.get("valid"))).lower(),
-                    len(t.units) if t.has_tree else "",
-                    c.get("success", ""),
-                    "" if c.get("depth") is None else c["depth"],
-                    c.get("inputs", ""),
-                    round(t.time_s, 6),
-                    t.extra.get("problem", ""),
-                ]
-            )
-    return buf.getvalue()
+    head = ["goal", "method", "status", "valid", "units", "success", "depth", "inputs", "time_s", "problem"]
+    return csv_text(
+        [head]
+        + [
+            [
+                str(problem.objects[r.goal]),
+                name,
+                t.status,
+                str(bool(t.extra.get("valid"))).lower(),
+                len(t.units) if t.has_tree else "",
+                t.cost.get("success", ""),
+                "" if t.cost.get("depth") is None else t.cost["depth"],
+                t.cost.get("inputs", ""),
+                round(t.time_s, 6),
+                t.extra.get("problem", ""),
+            ]
+            for r in rows
+            for name, t in r.trees.items()
+        ]
+    )
 
 
-def render_json(problem: Problem, rows: list[Row]) -> str:
-    """A flat list of ``solve``-shaped results, each with ``"valid"``."""
-    return json_list([tree_json(problem, t) for r in rows for t in r.trees.values()]) + "\n"
-
-
-def _meal_lines(problem: Problem, row: MealRow, markdown: bool) -> list[str]:
-    head = ["", "units", "success", "inputs", "depth"]
+def render_meal(problem: Problem, row: MealRow, markdown: bool = False) -> str:
+    """The meal's optimum beside each goal's own optimum and their sum."""
 
     def cells(cost: dict, status: str) -> list[str]:
         if not cost:
@@ -151,74 +154,110 @@ def _meal_lines(problem: Problem, row: MealRow, markdown: bool) -> list[str]:
     body.append(["sum of single optima"] + cells(total, "-"))
     status = "" if row.meal.status == "optimal" else f" ({row.meal.status})"
     body.append([f"meal, together{status}"] + cells(row.meal.cost, row.meal.status))
-    out = _grid(head, body, markdown, rule=False)
+    out = [f"Meal of {len(row.goals)} goals: one tree for all, beside the single optima", ""]
+    out += grid(["", "units", "success", "inputs", "depth"], body, markdown, rule=False)
     if total and row.meal.has_tree:
         saved = total["units"] - row.meal.cost["units"]
         valid = "valid" if row.meal.extra.get("valid") else "INVALID"
         out += ["", f"{'- ' if markdown else ''}shared units counted once: {saved} unit(s) fewer together ({valid})"]
     elif row.meal.extra.get("reason"):
         out += ["", f"{'- ' if markdown else ''}{row.meal.extra['reason']}"]
-    return out
+    return "\n".join(out) + "\n"
 
 
-def render_meal(problem: Problem, row: MealRow, markdown: bool = False) -> str:
-    """The meal's optimum beside each goal's own optimum and their sum."""
-    out = [f"Meal of {len(row.goals)} goals: one tree for all, beside the single optima", ""]
-    return "\n".join(out + _meal_lines(problem, row, markdown)) + "\n"
-
-
-def meal_json(problem: Problem, row: MealRow) -> dict:
-    return {
+def meal_json(problem: Problem, row: MealRow) -> str:
+    doc = {
         "goals": [problem.objects[g].to_json() for g in row.goals],
         "meal": tree_json(problem, row.meal),
         "singles": [tree_json(problem, t) for t in row.singles],
         "sum_of_singles": row.total(),
     }
+    return json.dumps(doc) + "\n"
 
 
 def meal_csv(problem: Problem, row: MealRow) -> str:
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["row", "status", "units", "success", "inputs", "depth"])
     lines = [(str(problem.objects[t.goal]), t.status, t.cost) for t in row.singles]
     lines += [("sum of single optima", "", row.total()), ("meal", row.meal.status, row.meal.cost)]
-    for name, status, cost in lines:
-        w.writerow([name, status, *(cost.get(k, "") for k in ("units", "success", "inputs", "depth"))])
-    return buf.getvalue()
+    keys = ("units", "success", "inputs", "depth")
+    return csv_text(
+        [["row", "status", *keys]] + [[name, status, *(cost.get(k, "") for k in keys)] for name, status, cost in lines]
+    )
 
 
-def _text(problem: Problem, rows) -> str:
-    return render_meal(problem, rows) if isinstance(rows, MealRow) else render_table(problem, rows)
-
-
-def _markdown(problem: Problem, rows) -> str:
-    return render_meal(problem, rows, True) if isinstance(rows, MealRow) else render_table(problem, rows, True)
-
-
-def _csv(problem: Problem, rows) -> str:
-    return meal_csv(problem, rows) if isinstance(rows, MealRow) else render_csv(problem, rows)
-
-
-def _json(problem: Problem, rows) -> str:
-    if isinstance(rows, MealRow):
-        return json.dumps(meal_json(problem, rows)) + "\n"
-    return render_json(problem, rows)
-
-
-register("compare", "text", "txt", "aligned table, goals x methods (a meal: beside the single optima)")(_text)
-register("compare", "markdown", "md", "Markdown table, goals x methods (a meal: beside the single optima)")(_markdown)
-register("compare", "csv", "csv", "one row per goal and method")(_csv)
-register("compare", "json", "json", "solve-shaped results, each with valid")(_json)
-
-
-def _jsonl(problem: Problem, rows) -> str:
-    if isinstance(rows, MealRow):
-        return json.dumps(meal_json(problem, rows)) + "\n"
+def _jsonl(problem: Problem, rows: list[Row]) -> str:
     return "".join(json.dumps(tree_json(problem, t)) + "\n" for r in rows for t in r.trees.values())
 
 
-register("compare", "jsonl", "jsonl", "JSON lines: one solve-shaped result with valid per goal and method")(_jsonl)
+def _register(name: str, ext: str, what: str, table: Callable[..., str], meal: Callable[..., str]) -> None:
+    """Register format ``name`` of ``compare``: ``table`` renders rows of goals, ``meal`` a meal's row."""
+    register("compare", name, ext, what)(
+        lambda problem, rows: meal(problem, rows) if isinstance(rows, MealRow) else table(problem, rows)
+    )
+
+
+_BOTH = "goals x methods (a meal: beside the single optima)"
+_register("text", "txt", f"aligned table, {_BOTH}", render_table, render_meal)
+_register(
+    "markdown",
+    "md",
+    f"Markdown table, {_BOTH}",
+    lambda problem, rows: render_table(problem, rows, True),
+    lambda problem, row: render_meal(problem, row, True),
+)
+_register("csv", "csv", "one row per goal and method", render_csv, meal_csv)
+_register(
+    "json",
+    "json",
+    "solve-shaped results, each with valid",
+    lambda problem, rows: json_list([tree_json(problem, t) for r in rows for t in r.trees.values()]) + "\n",
+    meal_json,
+)
+_register("jsonl", "jsonl", "JSON lines: one solve-shaped result with valid per goal and method", _jsonl, meal_json)
 
 
 def render(problem: Problem, rows: list[Row], fmt: str) -> str:
     return registry.render("compare", fmt, problem, rows)
+
+
+# ---------------------------------------------------------------- the summary of a batch
+
+SUMMARY_COLUMNS = (
+    "method results statuses trees valid units_min units_median units_mean units_max time_total_s time_median_ms"
+).split()
+
+
+def summary_cell(value) -> str:
+    if value is None:
+        return "-"
+    if isinstance(value, dict):
+        return " ".join(f"{k}={v}" for k, v in value.items())
+    return str(value)
+
+
+def render_summary(rows: list[dict], fmt: str = "text", report: BatchReport | None = None) -> str:
+    """The summary as aligned text, a Markdown table or CSV."""
+    table = [[summary_cell(row[c]) for c in SUMMARY_COLUMNS] for row in rows]
+    if fmt == "csv":
+        return csv_text([SUMMARY_COLUMNS] + table)
+    head = ""
+    if report is not None:
+        head = (
+            f"{report.done} new result(s), {report.skipped} already done, "
+            f"{report.elapsed_s:.2f} s with {report.workers} worker(s)"
+            + (f"; results in {report.output}" if report.output else "")
+            + (f"\ngrounding: {report.grounding}" if report.grounding else "")
+            + (f" (auto: {report.grounding_reason})" if report.grounding_reason else "")
+            + "\n"
+        )
+    lines = grid(SUMMARY_COLUMNS, table, fmt == "markdown", rule=False, right=False)
+    return (head + "\n" if head and fmt == "markdown" else head) + "\n".join(lines) + "\n"
+
+
+for _fmt, _ext, _what in (
+    ("text", "txt", "aligned table"),
+    ("markdown", "md", "Markdown table"),
+    ("csv", "csv", "CSV"),
+):
+    register("summary", _fmt, _ext, f"per-method counts and sizes as {_what}")(
+        lambda rows, report=None, _f=_fmt: render_summary(rows, _f, report)
+    )

@@ -14,7 +14,7 @@ import time
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.unitlist import dumps_trees
 from foon2asp.report import draw
-from foon2asp.report.html import esc, figure, page, time_line
+from foon2asp.report.html import esc, figure, page, table, time_line
 from foon2asp.report.registry import register
 from foon2asp.tree.results import CandidateVerdict, Consolidation
 from foon2asp.tree.serialize import number, tree_text
@@ -142,11 +142,8 @@ def result_graph(problem: Problem, c: Consolidation, fill: dict[str, str], prefi
     return draw.build_graph(units, marks, prefix=prefix)
 
 
-def _table(c: Consolidation, fill: dict[str, str]) -> list[str]:
-    rows = [
-        '<table class="candidates"><thead><tr><th>candidate</th><th>verdict</th><th>units</th><th>cost</th>'
-        "<th>steps the tree uses</th><th>why not executable on its own</th></tr></thead><tbody>"
-    ]
+def _table(c: Consolidation, fill: dict[str, str]) -> str:
+    rows = []
     for v in c.candidates:
         swatch = f'<span style="background:{fill[v.candidate.path]}">&nbsp;&nbsp;&nbsp;</span> '
         cls = "valid" if v.valid else "invalid"
@@ -156,7 +153,8 @@ def _table(c: Consolidation, fill: dict[str, str]) -> list[str]:
             f'<td class="num">{esc(v.cost.get("units"))}</td><td class="num">{esc(number(v.cost.get("cost", "-")))}</td>'
             f"<td>{esc(' '.join(map(str, v.used)) or '-')}</td><td>{esc(v.verdict.problem or '')}</td></tr>"
         )
-    return rows + ["</tbody></table>"]
+    head = ["candidate", "verdict", "units", "cost", "steps the tree uses", "why not executable on its own"]
+    return table('class="candidates"', head, rows)
 
 
 @register("consolidate", "html", "html", "HTML page: the candidates table and the drawing of the result by source")
@@ -173,7 +171,7 @@ def consolidate_html(problem: Problem, results: list[Consolidation]) -> str:
             + (f" ({esc(cost)})" if cost else "")
             + "</p>"
         )
-        body += _table(c, fill)
+        body.append(_table(c, fill))
         if c.missing is not None:
             added = "; ".join(str(problem.objects[o]) for o in c.missing.missing) or "nothing helps"
             body.append(f'<p class="problem">unreachable from this kitchen; to add: {esc(added)}</p>')

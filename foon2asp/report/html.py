@@ -15,9 +15,8 @@ import time
 from foon2asp.foon.foonjson import parse_json
 from foon2asp.foon.problem import Problem
 from foon2asp.report import draw, gantt
-from foon2asp.report.compare import method_header, summary, units_cell
+from foon2asp.report.compare import SUMMARY_COLUMNS, method_header, summary, summary_cell, units_cell
 from foon2asp.report.registry import register
-from foon2asp.report.summary import _COLUMNS, _cell
 from foon2asp.tree.results import BatchReport, Row
 
 _STYLE = """
@@ -62,6 +61,17 @@ def page(title: str, body: list[str]) -> str:
         f"<title>{esc(title)}</title>\n<style>{_STYLE}</style>\n</head>\n<body>\n"
         f"<h1>{esc(title)}</h1>\n" + "\n".join(body) + "\n</body>\n</html>\n"
     )
+
+
+def table(attrs: str, head: list[str], rows: list[str]) -> str:
+    """A table: ``head`` its column names, ``rows`` its ``<tr>`` elements."""
+    heading = "".join(f"<th>{esc(h)}</th>" for h in head)
+    return f"<table {attrs}><thead><tr>{heading}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>"
+
+
+def row(values: list[object]) -> str:
+    """A table row of text cells (None shown as ``-``)."""
+    return "<tr>" + "".join(f"<td>{esc('-' if v is None else v)}</td>" for v in values) + "</tr>"
 
 
 def _svg_width(svg: str) -> float:
@@ -118,14 +128,7 @@ def compare_html(problem: Problem, rows: list[Row]) -> str:
     """Table I and, per goal, the drawing of every tree."""
     draw.require_dot()
     names = list(rows[0].trees) if rows else []
-    body = [
-        "<p>Units per task tree. <b>invalid</b>: the tree is not derivable from the kitchen using only its own "
-        "units (see <code>foon2asp check</code>); the optimum is proven by the ASP solver.</p>",
-        f'<p class="legend">{esc(draw.LEGEND)}</p>',
-        '<table id="units">',
-        "<thead><tr><th>goal</th>" + "".join(f"<th>{esc(method_header(n))}</th>" for n in names) + "</tr></thead>",
-        "<tbody>",
-    ]
+    lines = []
     for k, r in enumerate(rows, 1):
         cells = []
         for n in names:
@@ -137,10 +140,15 @@ def compare_html(problem: Problem, rows: list[Row]) -> str:
                 cls.append("optimum")
             cells.append(f'<td class="{" ".join(cls)}">{esc(units_cell(t))}</td>')
         label = problem.objects[r.goal].label
-        body.append(f'<tr><td><a href="#goal-{k}">{esc(label)}</a></td>' + "".join(cells) + "</tr>")
-    body += ["</tbody>", "</table>", "<ul>" + "".join(f"<li>{esc(line)}</li>" for line in summary(rows)) + "</ul>"]
-    timing = len(body)
-    body.append("<h2>Task trees</h2>")
+        lines.append(f'<tr><td><a href="#goal-{k}">{esc(label)}</a></td>' + "".join(cells) + "</tr>")
+    top = [
+        "<p>Units per task tree. <b>invalid</b>: the tree is not derivable from the kitchen using only its own "
+        "units (see <code>foon2asp check</code>); the optimum is proven by the ASP solver.</p>",
+        f'<p class="legend">{esc(draw.LEGEND)}</p>',
+        table('id="units"', ["goal", *map(method_header, names)], lines),
+        "<ul>" + "".join(f"<li>{esc(line)}</li>" for line in summary(rows)) + "</ul>",
+    ]
+    body = ["<h2>Task trees</h2>"]
     started = time.perf_counter()
     for k, r in enumerate(rows, 1):
         body.append(f'<section class="goal" id="goal-{k}"><h3>{esc(problem.objects[r.goal])}</h3>')
@@ -159,14 +167,11 @@ def compare_html(problem: Problem, rows: list[Row]) -> str:
         body.append("</div></section>")
     solving = {n: sum(r.trees[n].time_s for r in rows) for n in names}
     each = ", ".join(f"{method_header(n)} {seconds:.2f} s" for n, seconds in solving.items())
-    body.insert(
-        timing,
-        time_line(
-            [("solving", sum(solving.values())), ("drawing this page", time.perf_counter() - started)],
-            f" (solving: each method's times per goal, summed: {each}; loading the data is not counted)",
-        ),
+    timing = time_line(
+        [("solving", sum(solving.values())), ("drawing this page", time.perf_counter() - started)],
+        f" (solving: each method's times per goal, summed: {each}; loading the data is not counted)",
     )
-    return page("foon2asp: task trees compared", body)
+    return page("foon2asp: task trees compared", top + [timing] + body)
 
 
 def schedules_body(records: list[dict], timed: bool = True) -> list[str]:
@@ -174,12 +179,9 @@ def schedules_body(records: list[dict], timed: bool = True) -> list[str]:
     ``timed``: then how long scheduling and drawing took."""
     draw.require_dot()
     started = time.perf_counter()
-    body = [
-        '<table id="schedules"><thead><tr><th>goal</th><th>status</th><th>makespan s</th>'
-        "<th>list scheduling s</th><th>lower bound s</th><th>agents</th></tr></thead><tbody>"
-    ]
-    for r in records:
-        cells = [
+    head = ["goal", "status", "makespan s", "list scheduling s", "lower bound s", "agents"]
+    cells = [
+        [
             gantt.goal_text(r),
             r.get("status"),
             r.get("makespan"),
@@ -187,8 +189,9 @@ def schedules_body(records: list[dict], timed: bool = True) -> list[str]:
             (r.get("bounds") or {}).get("lower"),
             ", ".join(map(str, r.get("agents", []))),
         ]
-        body.append("<tr>" + "".join(f"<td>{esc('-' if c is None else c)}</td>" for c in cells) + "</tr>")
-    body.append("</tbody></table>")
+        for r in records
+    ]
+    body = [table('id="schedules"', head, [row(c) for c in cells])]
     span = max((gantt.schedule_span(r) for r in records), default=0.0)
     nominal = gantt.chart_width(span, fill=True)
     for k, r in enumerate(records, 1):
@@ -223,20 +226,14 @@ def summary_html(
 ) -> str:
     """The batch summary table, the drawing of every tree in the results and the Gantt chart of
     each of ``schedules``; with ``problem`` the drawings show kitchen items and blocking cycles."""
-    body = []
+    top = []
     if report is not None:
-        body.append(
+        top.append(
             f"<p>{report.done} new result(s), {report.skipped} already done, with {report.workers} worker(s)"
             + (f"; results in {esc(report.output)}" if report.output else "")
             + "</p>"
         )
-    timing = len(body)
-    body.append(
-        '<table id="summary"><thead><tr>' + "".join(f"<th>{esc(c)}</th>" for c in _COLUMNS) + "</tr></thead><tbody>"
-    )
-    for row in rows:
-        body.append("<tr>" + "".join(f"<td>{esc(_cell(row[c]))}</td>" for c in _COLUMNS) + "</tr>")
-    body.append("</tbody></table>")
+    body = [table('id="summary"', SUMMARY_COLUMNS, [row([summary_cell(r[c]) for c in SUMMARY_COLUMNS]) for r in rows])]
     started = time.perf_counter()
     records = report.records if report is not None else []
     trees = [r for r in records if r.get("status") in ("optimal", "ranked", "feasible", "found") and r.get("units")]
@@ -266,16 +263,15 @@ def summary_html(
     if report is not None:
         parts = [("solving", report.elapsed_s)]
         parts += [("scheduling", scheduling)] if schedules else []
-        body.insert(
-            timing,
+        top.append(
             time_line(
                 parts + [("drawing this page", drawing)],
                 " (solving: the new results, wall clock"
                 + ("; scheduling: the schedules' own times, summed" if schedules else "")
                 + "; loading the data is not counted)",
-            ),
+            )
         )
-    return page("foon2asp: batch summary", body)
+    return page("foon2asp: batch summary", top + body)
 
 
 register("compare", "html", "html", "one self-contained HTML page: the table and a drawing of every tree")(compare_html)
