@@ -11,8 +11,8 @@ from __future__ import annotations
 import html
 import re
 import shutil
-from collections.abc import Callable, Iterable
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import graphviz
@@ -156,19 +156,11 @@ def build_graph(
             classes.append("cycle")
         tip = str(unit) + (f" -- {marks.unit_notes[k]}" if k in marks.unit_notes else "")
         g.node(node, text, tooltip=_clip(tip, MAX_TOOLTIP), **{"class": " ".join(classes)}, **attrs)
-        for obj in dict.fromkeys(unit.inputs):
-            red = (obj, k) in marks.cycle_needed
-            g.edge(ids[obj], node, **({"color": CYCLE, "penwidth": "2.5"} if red else {}))
-        for obj in dict.fromkeys(unit.outputs):
-            red = (k, obj) in marks.cycle_made
-            g.edge(node, ids[obj], **({"color": CYCLE, "penwidth": "2.5"} if red else {}))
+        edges = [(ids[o], node, (o, k) in marks.cycle_needed) for o in dict.fromkeys(unit.inputs)]
+        edges += [(node, ids[o], (k, o) in marks.cycle_made) for o in dict.fromkeys(unit.outputs)]
+        for tail, head, red in edges:
+            g.edge(tail, head, **({"color": CYCLE, "penwidth": "2.5"} if red else {}))
     return g
-
-
-def count_nodes(units: Iterable[Unit]) -> tuple[int, int]:
-    """(units, distinct objects) of a drawing of ``units``: its node count is their sum."""
-    units = list(units)
-    return len(units), len({o for u in units for o in u.inputs + u.outputs})
 
 
 # ---------------------------------------------------------------- marks from a problem
@@ -179,19 +171,13 @@ def cycle_marks(problem: Problem, finding: Finding | None, position: dict[int, i
     if finding is None or not finding.cycle:
         return {}
     cycle = finding.cycle
-    objs = [problem.objects[o] for o, _ in cycle]
-    units = [position[u] for _, u in cycle if u in position]
-    made = {(position[u], problem.objects[o]) for o, u in cycle if u in position}
-    needed = set()
-    for k, (_, u) in enumerate(cycle):
-        nxt = cycle[(k + 1) % len(cycle)][0]
-        if u in position:
-            needed.add((problem.objects[nxt], position[u]))
+    # (object, drawn position of the unit making it, the object that unit needs next on the cycle)
+    on = [(o, position[u], cycle[(k + 1) % len(cycle)][0]) for k, (o, u) in enumerate(cycle) if u in position]
     return {
-        "cycle_objects": frozenset(objs),
-        "cycle_units": frozenset(units),
-        "cycle_made": frozenset(made),
-        "cycle_needed": frozenset(needed),
+        "cycle_objects": frozenset(problem.objects[o] for o, _ in cycle),
+        "cycle_units": frozenset(k for _, k, _ in on),
+        "cycle_made": frozenset((k, problem.objects[o]) for o, k, _ in on),
+        "cycle_needed": frozenset((problem.objects[n], k) for _, k, n in on),
     }
 
 
@@ -200,18 +186,15 @@ def kitchen_items(problem: Problem, units: list[Unit]) -> frozenset[FoonObject]:
     return frozenset(o for u in units for o in u.inputs if problem.foon.object_ids.get(o) in problem.kitchen)
 
 
-def tree_marks(problem: Problem, tree: TaskTree, finding: Finding | None = None, judge: bool = True) -> Marks:
-    """Marks of a solved tree: goal, kitchen items, human steps, and (``judge``) its blocking cycle."""
+def tree_marks(problem: Problem, tree: TaskTree) -> Marks:
+    """Marks of a solved tree: goal, kitchen items, human steps, and its blocking cycle."""
     position = {u: k for k, u in enumerate(tree.units)}
-    valid = True
-    if judge and finding is None and tree.units:
-        for goal in tree.meal:  # a meal is valid when every dish is made
-            validation, finding = check_units(problem, goal, tree.units)
-            valid = validation.valid
-            if not valid:
-                break
-    elif finding is not None:
-        valid = False
+    valid, finding = True, None
+    for goal in tree.meal if tree.units else ():  # a meal is valid when every dish is made
+        validation, finding = check_units(problem, goal, tree.units)
+        valid = validation.valid
+        if not valid:
+            break
     human = frozenset(position[u] for u in tree.extra.get("human_steps", []) if u in position)
     title = f"{problem.objects[tree.goal]} -- {tree.method}, {tree.status}, {len(tree.units)} units"
     if not valid:
@@ -227,17 +210,20 @@ def tree_marks(problem: Problem, tree: TaskTree, finding: Finding | None = None,
     )
 
 
-def trees_graph(problem: Problem, trees: list[TaskTree]) -> graphviz.Digraph:
-    """One tree as a graph; several as one graph with a cluster per tree."""
-    if len(trees) == 1:
-        t = trees[0]
-        return build_graph([problem.units[u] for u in t.units], tree_marks(problem, t))
+def _graph(drawings: list[tuple[list[Unit], Marks]]) -> graphviz.Digraph:
+    """One drawing (units, marks) as a graph; several as one graph with a cluster each."""
+    if len(drawings) == 1:
+        return build_graph(*drawings[0])
     g = graphviz.Digraph("task_trees")
     g.attr(fontname="Helvetica")
-    for k, t in enumerate(trees, 1):
-        sub = build_graph([problem.units[u] for u in t.units], tree_marks(problem, t), f"cluster_{k}", f"t{k}_")
-        g.subgraph(sub)
+    for k, (units, marks) in enumerate(drawings, 1):
+        g.subgraph(build_graph(units, marks, f"cluster_{k}", f"t{k}_"))
     return g
+
+
+def trees_graph(problem: Problem, trees: list[TaskTree]) -> graphviz.Digraph:
+    """One tree as a graph; several as one graph with a cluster per tree."""
+    return _graph([([problem.units[u] for u in t.units], tree_marks(problem, t)) for t in trees])
 
 
 def _top_product(units: list[Unit]) -> FoonObject | None:
@@ -276,10 +262,7 @@ def record_marks(record: dict, units: list[Unit], problem: Problem | None = None
                 continue
             validation, finding = check_units(problem, oid[g], known)
             if finding is not None and finding.cycle:
-                position = {u: k for k, u in enumerate(known)}
-                for key, value in cycle_marks(problem, finding, position).items():
-                    setattr(marks, key, value)
-                break
+                return replace(marks, **cycle_marks(problem, finding, {u: k for k, u in enumerate(known)}))
     return marks
 
 
@@ -320,13 +303,12 @@ def file_graph(
 ) -> graphviz.Digraph:
     """The drawing of the trees of a tree file (a cluster per tree when there are several), with
     their verdicts when ``reports`` are given."""
-    marks = [tree_file_marks(t, problem, reports[k] if reports else None) for k, t in enumerate(trees)]
-    if len(trees) == 1:
-        return build_graph([tu.unit for tu in trees[0].units], marks[0])
-    g = graphviz.Digraph("task_trees")
-    for k, t in enumerate(trees, 1):
-        g.subgraph(build_graph([tu.unit for tu in t.units], marks[k - 1], f"cluster_{k}", f"t{k}_"))
-    return g
+    return _graph(
+        [
+            ([tu.unit for tu in t.units], tree_file_marks(t, problem, reports[k] if reports else None))
+            for k, t in enumerate(trees)
+        ]
+    )
 
 
 # ---------------------------------------------------------------- rendering
