@@ -70,7 +70,7 @@ def report_text(problem: Problem, report: Report) -> str:
         lines.append(f"Verdict: {report.finding.message}")
     else:
         lines.append(f"Verdict: {'VALID' if report.valid else 'INVALID'}")
-    lines += substitution_lines(report.substitutions or [])
+    lines += [f"uses {s['used']} for {s['needed']}" for s in report.substitutions or []]
     if report.finding and not unreachable(report):
         f = report.finding
         if f.kind == "cycle":
@@ -103,11 +103,6 @@ def report_text(problem: Problem, report: Report) -> str:
             why = ": no well-founded tree exists for this goal" if opt.status == "unreachable" else ""
             lines.append(f"ASP optimum: none ({opt.status}{why})")
     return "\n".join(lines) + "\n"
-
-
-def substitution_lines(substitutions: list[dict]) -> list[str]:
-    """``uses USED for NEEDED``, one line per substitution."""
-    return [f"uses {s['used']} for {s['needed']}" for s in substitutions]
 
 
 def _steps(units: list[int], ids: list[int | None]) -> list[str]:
@@ -248,28 +243,20 @@ def summary_line(reports: list[Report | AloneReport]) -> str:
     return line + (f", {gone} unreachable (no tree to check)" if gone else "")
 
 
+def _one(problem: Problem | None, report: Report | AloneReport, as_json: bool = False):
+    """One report as ``check`` prints it (``as_json``: as ``check --format json`` lists it)."""
+    if isinstance(report, AloneReport):
+        return alone_json(report) if as_json else alone_text(report)
+    assert problem is not None
+    return report_json(problem, report) if as_json else report_text(problem, report)
+
+
 @register("check", "text", "txt", "readable report per tree; with several, a last line counting them")
 def check_text(problem: Problem | None, reports: list[Report | AloneReport]) -> str:
-    out = "\n".join(one_text(problem, r) for r in reports)
+    out = "\n".join(_one(problem, r) for r in reports)
     return out + (f"\n{summary_line(reports)}\n" if len(reports) > 1 else "")
-
-
-def one_text(problem: Problem | None, report: Report | AloneReport) -> str:
-    """One report as ``check`` prints it."""
-    if isinstance(report, AloneReport):
-        return alone_text(report)
-    assert problem is not None
-    return report_text(problem, report)
-
-
-def one_json(problem: Problem | None, report: Report | AloneReport) -> dict:
-    """One report as ``check --format json`` lists it."""
-    if isinstance(report, AloneReport):
-        return alone_json(report)
-    assert problem is not None
-    return report_json(problem, report)
 
 
 @register("check", "json", "json", "a list of reports")
 def check_json(problem: Problem | None, reports: list[Report | AloneReport]) -> str:
-    return json.dumps([one_json(problem, r) for r in reports], indent=2) + "\n"
+    return json.dumps([_one(problem, r, as_json=True) for r in reports], indent=2) + "\n"

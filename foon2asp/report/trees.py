@@ -7,8 +7,8 @@ import json
 
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.unitlist import dumps_trees
-from foon2asp.report import draw
-from foon2asp.report.registry import get, register
+from foon2asp.report import draw, registry
+from foon2asp.report.registry import register
 from foon2asp.tree.serialize import to_json, tree_foon, tree_foon_json, tree_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
 
@@ -66,13 +66,9 @@ def trees_jsonl(problem: Problem, trees: list[TaskTree]) -> str:
 
 def render(problem: Problem, trees: list[TaskTree], fmt: str) -> str:
     """``trees`` in the text format ``fmt`` (a name of :func:`foon2asp.report.names` ``("trees")``)."""
-    out = get("trees", fmt).render(problem, trees)
-    if not isinstance(out, str):
-        raise TypeError(f"trees format {fmt!r} is binary; use render_bytes")
-    return out
+    return registry.render("trees", fmt, problem, trees)
 
 
 def render_bytes(problem: Problem, trees: list[TaskTree], fmt: str) -> bytes:
     """``trees`` in format ``fmt`` as bytes (text formats as UTF-8)."""
-    out = get("trees", fmt).render(problem, trees)
-    return out.encode("utf-8") if isinstance(out, str) else out
+    return registry.render_bytes("trees", fmt, problem, trees)
