@@ -183,7 +183,7 @@ def test_user_rule_and_file(tmp_path):
     g = goal_id(p, "chopped")
     f = tmp_path / "no-chop.lp"
     f.write_text('% my rules\n:- use(U), motion(U,"chop").\n')
-    progs = constraints.programs(files=[str(f)], rules=[":- #count { U : use(U) } > 5."])
+    progs = constraints.ConstraintSpec(files=(str(f),), rules=(":- #count { U : use(U) } > 5.",)).programs()
     assert [name for name, _ in progs] == [str(f), "--rule #1"]
     tree = solve_with(p, g, progs)
     assert [p.units[u].motion for u in tree.units] == ["slice", "dice"]
@@ -201,7 +201,7 @@ def test_errors_in_user_files_are_located(tmp_path, text, line, words):
     f = tmp_path / "mine.lp"
     f.write_text(text)
     with pytest.raises(InputError) as err:
-        constraints.programs(files=[str(f)])
+        constraints.ConstraintSpec(files=(str(f),)).programs()
     message = str(err.value)
     assert message.startswith(f"{f}:{line}: ")
     assert words in message and "\n" not in message and "<block>" not in message
@@ -209,7 +209,7 @@ def test_errors_in_user_files_are_located(tmp_path, text, line, words):
 
 def test_rule_error_names_the_rule():
     with pytest.raises(InputError) as err:
-        constraints.programs(rules=["a.", "b :- c("])
+        constraints.ConstraintSpec(rules=("a.", "b :- c(")).programs()
     assert str(err.value).startswith("--rule #2:1: syntax error")
 
 
@@ -225,7 +225,7 @@ def test_session_locates_errors_of_unchecked_programs():
 
 def test_missing_file_and_bad_max_units():
     with pytest.raises(InputError, match="constraint file not found"):
-        constraints.programs(files=["/nonexistent/rules.lp"])
+        constraints.ConstraintSpec(files=("/nonexistent/rules.lp",)).programs()
     with pytest.raises(InputError):
         constraints.max_units(-1)
 

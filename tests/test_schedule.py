@@ -395,7 +395,9 @@ def test_joint_under_forbidding_constraints_equals_brute_force(seed, monkeypatch
     """--forbid-motion and --max-units: tree by tree and the one encoding (the constraints as
     programs) agree with brute force over the allowed trees."""
     problem, g, spec, motion, most, allowed, want, _ = forbidding_case(seed)
-    options = AspOptions(programs=constraints.programs(forbid_motions=[motion.upper()], max_unit_count=most))
+    options = AspOptions(
+        programs=constraints.ConstraintSpec(forbid_motion=(motion.upper(),), max_units=most).programs()
+    )
     tree = given(problem, g, list(min(allowed, key=len)))
     for way in ("tree by tree", "one encoding"):
         with monkeypatch.context() as mp:
@@ -418,11 +420,11 @@ def test_joint_with_a_forbidden_object_or_a_required_motion():
     spec = ScheduleSpec((("arm", 3),))
     free = schedule(problem, tree, spec, joint=True, shortcut=False)
     assert free.makespan == 2000 and sorted(free.tree.units) == [3, 4, 5, 6]
-    no_b2 = AspOptions(programs=constraints.programs(forbid_objects=["B2"]))
+    no_b2 = AspOptions(programs=constraints.ConstraintSpec(forbid_object=("B2",)).programs())
     r = schedule(problem, tree, spec, joint=True, shortcut=False, options=no_b2)
     assert r.status == "optimal" and r.makespan == 3000 and sorted(r.tree.units) == [0, 1, 2]
     assert r.stats["joint"] == "tree by tree"
-    need_m = AspOptions(programs=constraints.programs(require_motions=["m"]))
+    need_m = AspOptions(programs=constraints.ConstraintSpec(require_motion=("m",)).programs())
     r = schedule(problem, tree, spec, joint=True, shortcut=False, options=need_m)
     assert r.status == "optimal" and r.makespan == 2000 and r.stats["joint"].startswith("tree by tree")
 

@@ -127,6 +127,15 @@ def check_syntax(name: str, text: str) -> None:
         raise err from None
 
 
+#: the convenience flags: (ConstraintSpec field, flag, the program of one value)
+_FLAGS = (
+    ("forbid_motion", "--forbid-motion", forbid_motion),
+    ("forbid_object", "--forbid-object", forbid_object),
+    ("require_motion", "--require-motion", require_motion),
+    ("require_object", "--require-object", require_object),
+)
+
+
 @dataclass
 class ConstraintSpec:
     """The values of the constraint options of a command."""
@@ -142,28 +151,23 @@ class ConstraintSpec:
     extra: list[tuple[str, str]] = field(default_factory=list)
 
     def __bool__(self) -> bool:
-        return bool(
-            self.files
-            or self.rules
-            or self.forbid_motion
-            or self.forbid_object
-            or self.require_motion
-            or self.require_object
-            or self.max_units is not None
-            or self.extra
-        )
+        return any(value not in ((), [], None) for value in vars(self).values())
 
     def programs(self) -> list[tuple[str, str]]:
-        """The (name, text) programs, user files and rules checked for errors."""
-        return programs(
-            self.files,
-            self.rules,
-            self.forbid_motion,
-            self.forbid_object,
-            self.require_motion,
-            self.require_object,
-            self.max_units,
-        ) + list(self.extra)
+        """All constraints as (name, text) programs for ``AspOptions.programs``: user files named
+        by their path and rules ``--rule #N`` (from 1), checked for errors, then the generated
+        programs named after their flag."""
+        out = user_programs(self.files, self.rules)
+        for name, text in out:
+            check_syntax(name, text)
+        for key, flag, make in _FLAGS:
+            for value in getattr(self, key):
+                if not normalise(value):
+                    raise InputError(f"{flag} needs a non-empty name")
+                out.append((f"{flag} {value}", make(value)))
+        if self.max_units is not None:
+            out.append(("--max-units", max_units(self.max_units)))
+        return out + list(self.extra)
 
     def names(self) -> tuple[list[str], list[str]]:
         """Motions and object labels the convenience flags mention (normalised)."""
@@ -189,39 +193,6 @@ def user_programs(files: Iterable[str] = (), rules: Iterable[str] = ()) -> list[
     """The user's files (named by their path) and rules (``--rule #N``, from 1) as (name, text), unchecked."""
     out = [(str(path), read_file(path)) for path in files]
     return out + [(f"--rule #{n}", rule) for n, rule in enumerate(rules, 1)]
-
-
-def programs(
-    files: Iterable[str] = (),
-    rules: Iterable[str] = (),
-    forbid_motions: Iterable[str] = (),
-    forbid_objects: Iterable[str] = (),
-    require_motions: Iterable[str] = (),
-    require_objects: Iterable[str] = (),
-    max_unit_count: int | None = None,
-) -> list[tuple[str, str]]:
-    """All constraints as (name, text) programs for ``AspOptions.programs``.
-
-    User files are named by their path and rules ``--rule #N`` (from 1), so
-    errors point at them; generated programs are named after their flag.
-    """
-    out = user_programs(files, rules)
-    for name, text in out:
-        check_syntax(name, text)
-    generated = [
-        ("--forbid-motion", forbid_motion, forbid_motions),
-        ("--forbid-object", forbid_object, forbid_objects),
-        ("--require-motion", require_motion, require_motions),
-        ("--require-object", require_object, require_objects),
-    ]
-    for flag, make, values in generated:
-        for value in values:
-            if not normalise(value):
-                raise InputError(f"{flag} needs a non-empty name")
-            out.append((f"{flag} {value}", make(value)))
-    if max_unit_count is not None:
-        out.append(("--max-units", max_units(max_unit_count)))
-    return out
 
 
 def unknown_names(problem, spec: ConstraintSpec) -> list[str]:
