@@ -7,19 +7,17 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 from decimal import Decimal
 
-from foon2asp.foon.motioncost import MotionCosts, as_number
+from foon2asp.foon.motioncost import as_number
 from foon2asp.foon.problem import Problem
-
-STATUSES = ("optimal", "ranked", "feasible", "unreachable", "infeasible", "unknown", "found", "not-found")
 
 
 @dataclass
 class TaskTree:
     """The answer for one goal (or one meal: several goals at once) by one method.
 
-    ``units``: unit ids in executable order (empty: no tree).  ``status``: one of
-    :data:`STATUSES` (``infeasible``: the user's constraints rule out every tree;
-    ``found``/``not-found``: the search baselines).  ``goals``: every goal of a meal
+    ``units``: unit ids in executable order (empty: no tree).  ``status``: optimal, ranked,
+    feasible, unreachable, infeasible (the user's constraints rule out every tree), unknown,
+    or found/not-found (the search baselines).  ``goals``: every goal of a meal
     (``goal`` the first), empty for one goal.  ``alternatives``: further trees found with
     this one, best first, not part of its JSON.
     """
@@ -101,10 +99,6 @@ def measures(problem: Problem, goal: int | Iterable[int], units: list[int]) -> d
         "depth": depth,
     }
     if problem.motion_costs is not None:
-        out["cost"] = tree_cost(problem.motion_costs, (problem.units[u].motion for u in units))
+        table = problem.motion_costs
+        out["cost"] = as_number(sum((table.cost(problem.units[u].motion) for u in units), Decimal(0)))
     return out
-
-
-def tree_cost(table: MotionCosts, motions: Iterable[str]) -> int | float:
-    """The summed cost of ``motions`` in ``table``, exact (a motion not listed costs 1)."""
-    return as_number(sum((table.cost(m) for m in motions), Decimal(0)))

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
+from typing import Any
 
 from foon2asp.foon.leaves import leaves
 from foon2asp.foon.model import FoonObject, Unit
@@ -73,6 +74,44 @@ def circular_support(cycle: Iterable[tuple[object, int]], name: Callable[[int], 
         nxt = pairs[(k + 1) % len(pairs)][0]
         steps.append(f"[{o}] is made by {name(u)}, which needs [{nxt}]")
     return "circular support: " + "; ".join(steps)
+
+
+def walk_back(
+    roots: Iterable[tuple[Any, Any]], makers: dict[Any, list[Any]], lacking: Callable[[Any], list[Any]]
+) -> tuple[str, Any] | None:
+    """Walk back from each (object not had, unit that needs it) of ``roots``, depth first, through
+    the makers of an object and their inputs not had (``lacking``): ``("missing", (object, unit))``
+    for an object no unit makes, ``("cycle", [(object, unit that makes it), ...])`` for an object
+    met again on the path; None when neither is found (docs/proofs/preparation.md, "Diagnosis")."""
+    done: set = set()
+    for root, needed_by in roots:
+        if root in done:
+            continue
+        if not makers.get(root):
+            return "missing", (root, needed_by)
+        path: list[list] = [[root, None]]  # [object, unit being tried for it]
+        on_path = {root: 0}
+        stack = [iter([(u, i) for u in makers[root] for i in lacking(u)])]
+        while stack:
+            step = next(stack[-1], None)
+            if step is None:
+                obj = path.pop()[0]
+                stack.pop()
+                del on_path[obj]
+                done.add(obj)
+                continue
+            u, nxt = step
+            path[-1][1] = u
+            if nxt in on_path:
+                return "cycle", [(o, m) for o, m in path[on_path[nxt] :]]
+            if nxt in done:
+                continue
+            if not makers.get(nxt):
+                return "missing", (nxt, u)
+            on_path[nxt] = len(path)
+            path.append([nxt, None])
+            stack.append(iter([(m, i) for m in makers[nxt] for i in lacking(m)]))
+    return None
 
 
 def validate(problem: Problem, goal: FoonObject | int, units: list[int]) -> Validation:
@@ -247,32 +286,15 @@ def judge_alone(
     verdict.unmade = [g for g in goals if g not in have]
     verdict.valid = bool(goals) and not pending and not verdict.unmade
     if pending:
-        _explain_stuck(need, have, makers, pending[0], verdict)
+        k = pending[0]
+        first = [(o, k) for o in need[k] if o not in have][:1]
+        found = walk_back(first, makers, lambda m: [o for o in need[m] if o not in have])
+        if found is not None and found[0] == "cycle":
+            verdict.cycle = [(o, m + 1) for o, m in found[1]]
+        elif found is not None:
+            verdict.missing, verdict.needed_by = found[1][0], found[1][1] + 1
     verdict.problem = _alone_problem(units, verdict)
     return verdict
-
-
-def _explain_stuck(
-    need: list[list[FoonObject]],
-    have: set[FoonObject],
-    makers: dict[FoonObject, list[int]],
-    k: int,
-    verdict: AloneVerdict,
-) -> None:
-    """Walk back from stuck unit ``k`` to an object no unit makes, or around a cycle."""
-    path: list[tuple[FoonObject, int]] = []
-    seen: dict[FoonObject, int] = {}
-    while True:
-        obj = next(o for o in need[k] if o not in have)
-        if obj in seen:
-            verdict.cycle = [(o, m + 1) for o, m in path[seen[obj] :]]
-            return
-        if not makers.get(obj):
-            verdict.missing, verdict.needed_by = obj, k + 1
-            return
-        seen[obj] = len(path)
-        k = makers[obj][0]
-        path.append((obj, k))
 
 
 def _alone_problem(units: list[Unit], v: AloneVerdict) -> str | None:
