@@ -1,12 +1,8 @@
 """The one wrapper around :class:`clingo.Control` that solving and queries share.
 
-:class:`Control` adds named programs to named parts and grounds them, turning a syntax or
-grounding error into one :class:`~foon2asp.errors.InputError` naming the program; it sets
-the solve mode, adds guarded nogoods, and solves with an optional time limit through the
-solve handle.  While a clingo call runs, SIGINT and SIGTERM are deferred
-(:func:`~foon2asp.asp.interrupts.deferred_signals`) until the call has returned.  Why a
-control is never left in the middle of a call: docs/proofs/solving.md, "The watchdog and
-signals".
+Named programs whose errors are one :class:`~foon2asp.errors.InputError`, solve modes,
+guarded nogoods and time-limited solving; signals wait until a clingo call has returned
+(docs/proofs/solving.md, "The watchdog and signals").
 """
 
 from __future__ import annotations
@@ -41,14 +37,9 @@ MODES: dict[str, tuple[str, str | None, str]] = {
 Part = tuple[str, Sequence[int | clingo.Symbol]]
 
 
-def _symbol(value: int | clingo.Symbol) -> clingo.Symbol:
-    return clingo.Number(value) if isinstance(value, int) else value
-
-
 @dataclass
 class Answer:
-    """One model as foon2asp reads it: the tree's units (sorted), the cost vector,
-    whether the optimum is proven, human steps, and the shown symbols."""
+    """One model as foon2asp reads it: units (sorted), cost vector, proven, human steps, shown symbols."""
 
     units: tuple[int, ...] = ()
     cost: tuple[int, ...] = ()
@@ -82,29 +73,15 @@ class SolveResult:
     exhausted: bool
     interrupted: bool
     time_s: float
-    #: the best lower bound the solver proved (core-guided optimisation), one value per
-    #: priority level from the highest, possibly fewer than there are levels; None: none
+    #: the best lower bound the solver proved, per priority level from the highest (maybe fewer); None: none
     lower: tuple[int, ...] | None = None
     #: the search was stopped because ``stop`` said so (e.g. the gap was small enough)
     stopped: bool = False
 
 
-def _theory_first(theory, on_model: Callable[[clingo.Model], bool | None] | None):
-    """``on_model`` after ``theory`` has seen the model (it reads the theory's assignment)."""
-
-    def both(model: clingo.Model) -> bool | None:
-        theory.on_model(model)
-        return on_model(model) if on_model is not None else None
-
-    return both
-
-
 class Control:
-    """A clingo control with named programs, one-line errors and time-limited solving.
-
-    ``theory``: a clingo theory (e.g. clingo-dl's ``ClingoDLTheory``) that programs are
-    rewritten for, that is prepared after each grounding and sees every model first.
-    """
+    """A clingo control with named programs, one-line errors and time-limited solving; ``theory``:
+    a clingo theory (clingo-dl's) that rewrites the programs and sees every model first."""
 
     def __init__(self, args: Sequence[str] = (), message_limit: int = 20, theory=None) -> None:
         self.messages: list[str] = []
@@ -140,8 +117,7 @@ class Control:
             raise clingo_error(self.messages, name) from None
 
     def add_all(self, parts: Iterable[tuple[str, str]], user: Iterable[str] = ()) -> None:
-        """Add ``parts``; consecutive shipped (not user) parts go in one call, which is cheaper
-        per session (they are generated or shipped, so they hold no error to name)."""
+        """Add ``parts``; consecutive parts not named in ``user`` go in one call (cheaper; they hold no error to name)."""
         users = set(user)
         shipped: list[str] = []
         for name, text in parts:
@@ -156,15 +132,14 @@ class Control:
             self.add("program", _JOIN.join(shipped))
 
     def ground(self, parts: Sequence[Part] = (("base", ()),), what: str | None = None) -> None:
-        """Ground ``parts``: each a part's name and its arguments (numbers or symbols).
-
-        On an error the user programs are checked one by one to name the culprit; else the
-        error is clingo's first message, said to be about ``what`` (e.g. "grounding the depth rounds").
-        """
+        """Ground ``parts`` (a part's name and its arguments, numbers or symbols); an error names the
+        user program at fault, else it is clingo's first message about ``what``."""
         self.messages.clear()
         try:
             with deferred_signals():  # grounding cannot be interrupted: a signal waits for its end
-                self.ctl.ground([(name, [_symbol(a) for a in args]) for name, args in parts])
+                self.ctl.ground(
+                    [(name, [clingo.Number(a) if isinstance(a, int) else a for a in args]) for name, args in parts]
+                )
                 if self.theory is not None:
                     self.theory.prepare(self.ctl)
         except RuntimeError:
@@ -174,8 +149,7 @@ class Control:
             raise InputError(msg.replace("<block>", "program"), what) from None
 
     def extend(self, name: str, text: str, parts: Sequence[Part] = (), what: str | None = None) -> None:
-        """Add ``text`` as a part of its own, ``name``, and ground it together with ``parts``
-        (multi-shot: facts and parts grounded after the first grounding)."""
+        """Add ``text`` as the part ``name`` and ground it with ``parts`` (multi-shot)."""
         with deferred_signals():  # one section: the part is never left added but not grounded
             self.add(name, text, part=name)
             self.ground([(name, ()), *parts], what)
@@ -183,9 +157,8 @@ class Control:
     @contextmanager
     def solving(self, mode: str = "opt", count: int = 1, bound: Sequence[int] | None = None) -> Iterator[None]:
         """Solve in ``mode`` inside the body: "opt" (the best model), "optN" (up to ``count``
-        distinct optimal models, projected on the shown atoms) or "first" (the first model,
-        no optimisation; with ``bound``, the first whose cost vector is at most ``bound``).
-        The previous configuration is restored afterwards."""
+        distinct optimal models, projected) or "first" (the first model; with ``bound``, the
+        first whose cost vector is at most ``bound``)."""
         conf: Any = self.ctl.configuration.solve
         saved = (conf.opt_mode, conf.models, conf.project)
         opt_mode, models, project = MODES[mode]
@@ -200,8 +173,7 @@ class Control:
             self._decision = False
 
     def stop_soon(self) -> None:
-        """End the running solve call from another thread, as a time limit does; the call
-        then reports its search as finished."""
+        """End the running solve call, which then reports its search as finished."""
         self._stopping = True
         WATCHDOG.interrupt(self.ctl)
 
@@ -213,16 +185,17 @@ class Control:
         on_lower: Callable[[tuple[int, ...]], None] | None = None,
         stop: Callable[[], bool] | None = None,
     ) -> SolveResult:
-        """Solve, stopping after ``time_limit`` seconds (None: no limit) or as soon as ``stop()``
-        is true (asked every :data:`POLL_S` seconds); :meth:`stop_soon` ends the call too.
-
-        Every lower bound the solver proves is kept for the result and passed to
-        ``on_lower``.  A signal while solving cancels the search and is raised afterwards.
-        """
+        """Solve for at most ``time_limit`` seconds (None: no limit) or until ``stop()`` is true;
+        ``on_lower`` sees each proven lower bound.  A signal cancels the search and is raised afterwards."""
         t0 = time.perf_counter()
         deadline = None if time_limit is None else t0 + max(0.0, time_limit)
         if self.theory is not None:
-            on_model = _theory_first(self.theory, on_model)
+            theory, user = self.theory, on_model
+
+            def on_model(model: clingo.Model) -> bool | None:  # the theory reads each model first
+                theory.on_model(model)
+                return user(model) if user is not None else None
+
         lower: list[tuple[int, ...]] = []
 
         def on_unsat(bound: Sequence[int]) -> None:
@@ -272,8 +245,7 @@ class Control:
     def _result(
         self, result: clingo.SolveResult, finished: bool, stopped: bool, t0: float, lower: list[tuple[int, ...]]
     ) -> SolveResult:
-        """The :class:`SolveResult` of a call started at ``t0`` (a stop asked by
-        :meth:`stop_soon` counts as the end of the search)."""
+        """The :class:`SolveResult` of a call started at ``t0``."""
         return SolveResult(
             finished and (not result.interrupted or self._stopping),
             result.satisfiable,
@@ -286,8 +258,7 @@ class Control:
         )
 
     def _stopped(self, result: clingo.SolveResult) -> None:
-        """After a solve call: no interrupt of :meth:`stop_soon` is left to come, and one that
-        came after the call's end is taken by the next call."""
+        """After a solve call: an interrupt of :meth:`stop_soon` still to come is dropped or absorbed."""
         if self._stopping:
             WATCHDOG.forget(self.ctl)
             self._absorb = self._absorb or not result.interrupted
@@ -299,8 +270,7 @@ class Control:
         assumptions: Sequence[tuple[clingo.Symbol, bool]],
         seconds: float,
     ) -> clingo.SolveResult | None:
-        """Solve in this thread for at most ``seconds``: the result when the search ended by
-        itself, else None."""
+        """Solve in this thread for at most ``seconds``: the result, None when that was not enough."""
         with WATCHDOG.limit(self.ctl, seconds):
             result = self.ctl.solve(
                 on_model=on_model,
@@ -321,8 +291,7 @@ class Control:
         return self.ctl.symbolic_atoms[atom] is not None
 
     def guard(self, atoms: Iterable[clingo.Symbol]) -> int:
-        """A nogood forbidding ``atoms`` together, behind a fresh external that is off: the
-        guard's literal (switch it on to enforce the nogood; :meth:`release` removes it)."""
+        """A nogood forbidding ``atoms`` together behind a fresh external guard (off): its literal."""
         body = []
         for atom in atoms:
             grounded = self.ctl.symbolic_atoms[atom]
@@ -346,12 +315,11 @@ class Control:
         return {a.symbol for a in self.ctl.symbolic_atoms.by_signature(name, arity) if a.is_fact}
 
     def _record_stats(self, step, accumulated) -> None:
-        """Keep the few numbers :meth:`stats` reports (cheaper than reading them afterwards)."""
+        """Keep the few numbers :meth:`stats` reports."""
         self._last_stats = _summary(step)
 
     def stats(self) -> dict:
-        """Choices, conflicts, models and solve time of the last solve call (none when
-        :attr:`statistics` is off)."""
+        """Choices, conflicts, models and solve time of the last solve call (none without :attr:`statistics`)."""
         if not self.statistics:
             return {}
         if getattr(self, "_last_stats", None):

@@ -23,24 +23,9 @@ Signature = tuple[str, int]
 
 #: the facts :func:`foon2asp.asp.facts.facts` writes (docs/vocabulary.md, "Facts")
 FACTS: frozenset[Signature] = frozenset(
-    {
-        ("object", 1),
-        ("label", 2),
-        ("state", 2),
-        ("ingredient", 2),
-        ("container", 2),
-        ("unit", 1),
-        ("motion", 2),
-        ("success", 2),
-        ("neglog", 2),
-        ("input", 2),
-        ("required", 2),
-        ("output", 2),
-        ("product", 2),
-        ("kitchen", 1),
-        ("goal_node", 2),
-        ("goal", 1),
-    }
+    (s[:-2], int(s[-1]))
+    for s in "object/1 label/2 state/2 ingredient/2 container/2 unit/1 motion/2 success/2 neglog/2 input/2"
+    " required/2 output/2 product/2 kitchen/1 goal_node/2 goal/1".split()
 )
 
 

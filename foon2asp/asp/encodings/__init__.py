@@ -44,17 +44,9 @@ def encoding(name: str) -> str:
 
 #: the shipped encodings each encoding needs loaded beside it (tree.lp defines use/1, reach/1, ...;
 #: the objectives are loaded with closed.lp or prepared.lp too, so they cannot include it)
-DEPENDS: dict[str, tuple[str, ...]] = {
-    "reachable": ("tree",),
-    "dominance": ("tree",),
-    "units": ("tree",),
-    "success": ("tree",),
-    "inputs": ("tree",),
-    "cost": ("tree",),
-    "human": ("tree",),
-    "greedy": ("tree",),
-    "substitutes": ("tree",),
-}
+DEPENDS: dict[str, tuple[str, ...]] = dict.fromkeys(
+    ("reachable", "dominance", "units", "success", "inputs", "cost", "human", "greedy", "substitutes"), ("tree",)
+)
 
 
 def with_dependencies(wanted: list[str] | tuple[str, ...]) -> list[str]:
