@@ -18,7 +18,7 @@ from foon2asp.schedule.bounds import bounds, energy_bound, energy_over, kind_ene
 from foon2asp.schedule.check import check_schedule
 from foon2asp.schedule.model import divisor, earliest, instance, makespan, tails
 from foon2asp.schedule.spec import Durations
-from test_schedule import AGENT_SETS, brute_schedule, given, random_spec, random_tree
+from test_schedule_solve import AGENT_SETS, brute_schedule, given, random_spec, random_tree
 
 
 def _window_length(c: list[float], m: int) -> float:

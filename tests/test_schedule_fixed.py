@@ -22,7 +22,7 @@ from foon2asp.schedule.result import ScheduleResult
 from foon2asp.schedule.spec import Durations
 from helpers import build, goal_id
 from test_cli import run
-from test_schedule import AGENT_SETS, ENCODINGS, brute_schedule, given, random_spec, random_tree
+from test_schedule_solve import AGENT_SETS, ENCODINGS, brute_schedule, given, random_spec, random_tree
 
 TABLE = REPO / "bench" / "durations.json"
 
