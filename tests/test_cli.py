@@ -14,6 +14,11 @@ from foon2asp.cli.main import main
 from foon2asp.foon.parser import parse_text
 
 OBJ_KEYS = {"label", "states", "ingredients", "container"}
+SMOOTHIE = DEMO / "llm" / "smoothie-2.json"
+CAVEAT = (
+    "Note: a missing step cannot be detected without a kitchen: whatever no unit of the tree makes is"
+    " assumed to be in the kitchen (give --kitchen FILE, or --data or --foon to check against a FOON)"
+)
 
 
 def run(*args, ok=True):
@@ -176,3 +181,92 @@ def test_strict_turns_warnings_into_errors(tmp_path, shared_111_dir):
     res = run("merge", bad, "-o", tmp_path / "m.txt")
     assert "warning" in res.stderr and ":517:" in res.stderr
     assert_one_line_error(run("merge", "--strict", bad, "-o", tmp_path / "m2.txt", ok=False), ":517:")
+
+
+# ---------------------------------------------------------------- check without a kitchen
+
+
+def test_a_tree_alone_lists_the_leaves_it_assumed_and_says_what_it_cannot_see():
+    res = run("check", SMOOTHIE, ok=False)
+    assert res.exit_code == 1  # step 3 cannot fire in the order written
+    lines = res.stdout.splitlines()
+    assert lines[1] == "Judged on its own: kitchen = its leaves (7 objects)"
+    assert lines[2] == (
+        "Assumed in the kitchen (its leaves): banana, whole; knife; cutting board; blueberries, fresh;"
+        " blender, empty; milk, in [carton]; glass, empty"
+    )
+    assert lines[3] == CAVEAT
+    (report,) = json.loads(run("check", SMOOTHIE, "--format", "json", ok=False).stdout)
+    assert report["kitchen_assumed"] is True and report["note"] == CAVEAT.removeprefix("Note: ")
+    assert len(report["kitchen"]) == 7
+
+
+def test_a_missing_step_passes_unseen_without_a_kitchen_and_is_caught_with_one(tmp_path):
+    smoothie = DEMO / "llm" / "smoothie-1.json"  # valid on its own
+    full = json.loads(run("check", smoothie, "--format", "json", ok=False).stdout)[0]
+    assert full["valid"] is True
+    kitchen = tmp_path / "kitchen.json"
+    kitchen.write_text(json.dumps(full["kitchen"]))  # its leaves, as a kitchen of its own
+    # drop the first unit (peel): the peeled banana becomes a leaf, so it is taken to be in the kitchen
+    path = tmp_path / "no-peel.json"
+    path.write_text(json.dumps(json.loads(smoothie.read_text())[1:]))
+    (alone,) = json.loads(run("check", path, "--format", "json", ok=False).stdout)
+    assert alone["valid"] is True  # the missing step is not seen...
+    assert {"label": "banana", "states": ["peeled"], "ingredients": [], "container": None} in alone["kitchen"]
+    assert alone["kitchen_assumed"] is True and alone["note"] == CAVEAT.removeprefix("Note: ")  # ...and it says so
+    given = run("check", path, "--kitchen", kitchen, "--format", "json", ok=False)
+    assert given.exit_code == 1
+    (report,) = json.loads(given.stdout)
+    assert report["problem"] == "missing-input" and "banana, peeled" in report["message"]
+    assert report["kitchen_assumed"] is False and report["note"] is None
+    assert "Note:" not in run("check", path, "--kitchen", kitchen, ok=False).stdout
+
+
+# ---------------------------------------------------------------- objects: made by
+
+
+def test_a_unit_that_needs_the_object_does_not_make_it():
+    # the demo's only unit that outputs "stove, on" (heat) also needs it
+    res = run("objects", "stove", "--data", "demo", ok=False)
+    assert res.exit_code == 0, res.output
+    assert res.stdout == "#19  stove, on   (kitchen, only output by 1 unit that needs it)\n"
+    (info,) = json.loads(run("objects", "stove", "--data", "demo", "--format", "json", ok=False).stdout)
+    assert info["producers"] == 0
+    made = json.loads(run("objects", "--data", "demo", "--produced", "--format", "json", ok=False).stdout)
+    assert 19 not in {o["id"] for o in made} and all(o["producers"] > 0 for o in made)
+    tomato = run("objects", "tomato", "--data", "demo", ok=False).stdout.splitlines()
+    assert tomato[1] == "#2  tomato, chopped   (made by 2 units)"
+
+
+def test_the_fried_rice_packet_is_made_by_no_unit(shared_foon_dir):
+    res = run("objects", "packet, contains {carrot,corn,green pea}", "--data", shared_foon_dir, ok=False)
+    assert res.stdout.endswith("packet, contains {carrot,corn,green pea}   (only output by 1 unit that needs it)\n")
+
+
+# ---------------------------------------------------------------- solve -o DIR
+
+
+def test_solve_into_a_folder_prints_one_line_per_file(tmp_path):
+    out = tmp_path / "svg"
+    res = run("solve", "--data", "demo", "--goals", "all", "--format", "svg", "-o", out, ok=False)
+    assert res.exit_code == 0, res.output
+    assert res.stdout.splitlines() == [
+        f"wrote {out / '001-tomato_salad.svg'} (optimal)",
+        f"wrote {out / '002-scrambled_egg.svg'} (optimal)",
+        f"wrote {out / '003-whipped_cream.svg'} (unreachable)",
+        f"wrote {out / '004-pancake.svg'} (unreachable)",
+    ]
+    assert (out / "001-tomato_salad.svg").read_text().lstrip().startswith("<?xml")
+
+
+def test_solve_into_a_folder_with_several_methods_and_formats(tmp_path):
+    for fmt, ext in (("text", "txt"), ("json", "json"), ("png", "png")):
+        out = tmp_path / fmt
+        args = ("--data", "demo", "--goal", "scrambled egg", "--methods", "asp,gbfs-h1", "--format", fmt, "-o", out)
+        res = run("solve", *args, ok=False)
+        assert res.exit_code == 1  # the greedy tree is invalid
+        assert res.stdout.splitlines() == [
+            f"wrote {out / f'001-scrambled_egg-asp.{ext}'} (optimal)",
+            f"wrote {out / f'001-scrambled_egg-gbfs-h1.{ext}'} (found, INVALID)",
+        ]
+        assert len(list(out.iterdir())) == 2
