@@ -17,23 +17,6 @@ from foon2asp.schedule.spec import HUMAN
 TRIES = 48
 
 
-def perturbed_schedule(inst: Instance, target: int, tries: int = TRIES, seed: int = 0) -> list[Entry]:
-    """The shortest of :func:`list_schedule` under ``tries`` seeded random perturbations (up to
-    30 %) of its longest-remaining-chain priorities, stopping at one that reaches ``target``
-    (a lower bound); the first run is the unperturbed baseline.  The same answer every time."""
-    base = tails(inst)
-    rng = random.Random(seed)
-    best = list_schedule(inst)
-    for _ in range(tries):
-        if makespan(best) <= target:
-            break
-        noisy = {u: base[u] * (1 + rng.uniform(-0.3, 0.3)) for u in inst.units}
-        run = list_schedule(inst, noisy)
-        if makespan(run) < makespan(best):
-            best = run
-    return best
-
-
 def _waiting(inst: Instance) -> tuple[dict[int, set[int]], dict[int, list[tuple[int, int]]], set[int]]:
     """``(waiting, users, ready)``: the objects each unit waits for, the (unit, object) pairs
     each maker supplies, and the units that wait for nothing."""

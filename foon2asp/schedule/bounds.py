@@ -25,18 +25,12 @@ class Bounds:
     chain: int
     #: total minimum work over the number of agents, rounded up
     work: int
-    #: energetic reasoning over windows (:func:`energy_bound`); at least the other two
+    #: energetic reasoning over windows (:func:`energy_over`, :func:`kind_energy`); at least the other two
     energy: int = 0
 
     @property
     def lower(self) -> int:
         return max(self.chain, self.work, self.energy)
-
-
-def energy_bound(inst: Instance, start: dict[int, int], tail: dict[int, int], floor: int, step: int) -> int:
-    """Energetic reasoning over every unit of ``inst`` on its agents (:func:`energy_over`)."""
-    d = {u: inst.min_duration(u) for u in inst.units}
-    return energy_over([[u] for u in inst.units], d, start, tail, len(inst.agents), floor, step)
 
 
 def energy_over(
@@ -90,11 +84,6 @@ def window_length(c: Sequence[float], m: int) -> float:
         if j < n:
             prefix += c[j]
     return math.inf
-
-
-def window_lengths(rows: Sequence[Sequence[float]], m: int) -> list[float]:
-    """:func:`window_length` of each row of parts."""
-    return [window_length(row, m) for row in rows]
 
 
 Gaps = list[tuple[float, float]]
