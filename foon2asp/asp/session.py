@@ -1,10 +1,8 @@
 """Ground and solve with the clingo Python API, one grounding for many goals.
 
-A :class:`Session` grounds the facts with the encodings once; each :meth:`Session.solve`
-switches the external ``goal(G)`` on for one goal, or for every goal of a meal (one tree
-that makes all of them).  A solve is one plain optimisation, the prepared part's search
-(:mod:`foon2asp.asp.prepared`), or the :class:`~foon2asp.asp.multishot.driver.Driver`
-when the options ask for more.
+Each :meth:`Session.solve` switches ``goal(G)`` on for one goal or a meal and runs one
+plain optimisation, the prepared part's search (:mod:`foon2asp.asp.prepared`) or the
+:class:`~foon2asp.asp.multishot.driver.Driver` when the options ask for more.
 """
 
 from __future__ import annotations
@@ -47,14 +45,8 @@ _OPTIONAL_FACTS = re.compile(r"\b(" + "|".join((*OPTIONAL, "input_nodes")) + r")
 
 @lru_cache(maxsize=256)
 def _mentions(text: str) -> frozenset[str]:
-    """The optional fact predicates (facts.OPTIONAL, input_nodes) ``text`` mentions."""
+    """The optional fact predicates (facts.OPTIONAL, input_nodes) ``text`` mentions (comments too)."""
     return frozenset(m.group(1) for m in _OPTIONAL_FACTS.finditer(text))
-
-
-def _read_predicates(parts: list[tuple[str, str]]) -> set[str]:
-    """The optional fact predicates (facts.OPTIONAL, input_nodes) some program mentions
-    outside the part that defines them (a mention in a comment counts too: harmless)."""
-    return set().union(*(_mentions(text) for name, text in parts if name != "input nodes"))
 
 
 #: the statistics of a goal decided without a solve call
@@ -75,18 +67,15 @@ class Session:
     ):
         """``units``: ground only these (default ``options.units``, else the viable units);
         ``require``: units every tree must use; ``goal``: a session for this goal (or meal)
-        alone, grounded with the goal as a fact; ``prepared``: a session for one goal's
-        prepared part (foon2asp.asp.prepared), grounded over its candidates."""
-        #: what preparation knows of the goal (None: the encoding derives the part itself)
+        alone; ``prepared``: a session for one goal's prepared part."""
         self.prepared = prepared
-        #: the prepared part is searched as closed sets with loop cuts (foon2asp.asp.prepared)
+        #: the prepared part is searched as closed sets with loop cuts
         self._closed = prepared is not None and not (options and (options.programs or options.threads > 1))
         if prepared is not None:
             goal, units = prepared.goal, prepared.candidates
-        #: the goal (as a meal) this session was grounded for, None: any goal, switched per solve
+        #: the goal (as a meal) this session was grounded for; None: any goal
         self.goal = None if goal is None else meal_of(goal)
         self.options = options or AspOptions()
-        # with substitutes, what they stand in for counts as available (foon2asp.asp.substitutes)
         problem = self.problem = substitutes.prepare(problem, self.options)
         args = self.options.args()
         if (
@@ -94,25 +83,21 @@ class Session:
             and prepared.hint
             and (prepared.bound is not None or (self.options.opt_strategy or "").startswith("bb"))
         ):
-            # the hint is a domain heuristic for a decision or a search from above; core-guided
-            # search climbs from below, and a first model it is steered to only slows it down
+            # the hint steers a decision or a search from above (core-guided search climbs from below)
             args.append("--heuristic=Domain")
         self.control = Control(args)
-        # a prepared part is solved once: its statistics would cost more than its search
         self.control.statistics = prepared is None
         self.ctl = self.control.ctl
         if units is None:
             units = self.options.units
         if units is None:
-            # a unit that never fires in the kitchen's fixpoint is never a candidate
             units = sorted(problem.viable_units)
         self.units = tuple(units)
         self.required = tuple(sorted(set(require)))
-        #: no solve has run yet: the solver state is the same as in any fresh session of the same grounding
+        #: no solve has run yet (the solver state of any fresh session of the same grounding)
         self._fresh = True
-        #: the multi-shot driver (depth bounds, alternatives, ...), made at the first driven solve
         self._driver: Driver | None = None
-        #: the lower bound the last solve proved (solver weights per level), None: none
+        #: the lower bound the last solve proved (solver weights per level)
         self._lower: tuple[int, ...] | None = None
         self.control.add_all(self._parts(), user=[name for name, _ in self.options.programs])
         self.control.ground()
@@ -123,13 +108,11 @@ class Session:
         options, units = self.options, list(self.units)
         names = objectives.encoding_names(options, OBJECTIVES) + options.encodings
         if self.prepared is not None:
-            # dominated units are left out of the candidates already
             names = ["closed" if self._closed else "prepared"] + [n for n in names if n != "dominance"]
         else:
             names = ["tree"] + names
         rules = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(names)]
         rules.append(("objective", _objective_facts(objectives.ranked(options))))
-        # the candidates of a prepared part hold no dominated unit
         rules += objectives.extra_parts(self.problem, options, units, dominated=self.prepared is None)
         if self.goal is None:
             rules.append(("goal", "#external goal(O) : object(O).\n"))
@@ -143,8 +126,8 @@ class Session:
         if self.required:
             rules.append(("required units", "".join(f":- not use({u}).\n" for u in self.required)))
         rules += list(options.programs)
-        # facts nobody reads are left out (the strings, input/2, ...: user constraints read them)
-        read = _read_predicates(rules)
+        # facts nobody reads are left out
+        read = set().union(*(_mentions(text) for name, text in rules if name != "input nodes"))
         rules = [(name, text) for name, text in rules if name != "input nodes" or "input_nodes" in read]
         leave_out = [p for p in OPTIONAL if p not in read]
         whole = self.prepared is None
@@ -155,13 +138,11 @@ class Session:
     def _goal_atoms(self) -> set[int]:
         """The objects a solve may switch on as goals."""
         if self.goal is not None:
-            return set(self.goal)  # the goal is a fact: the solver decides
-        if self.options.programs:
-            # a user program may add objects: ask the grounder
+            return set(self.goal)
+        if self.options.programs:  # a user program may add objects
             return {
                 a.symbol.arguments[0].number for a in self.ctl.symbolic_atoms.by_signature("goal", 1) if a.is_external
             }
-        # the goal externals: one per object of the facts (no scan of the grounded atoms)
         return fact_objects(self.problem, list(self.units))
 
     @contextmanager
@@ -177,26 +158,22 @@ class Session:
     def solve(
         self,
         goal: Goals,
-        on_model: Callable[[clingo.Model], None] | None = None,
+        on_model: Callable[[clingo.Model], bool | None] | None = None,
         time_limit: float | None = None,
         known: tuple[Sequence[int], Sequence[int]] | None = None,
         floor: int | None = None,
     ) -> TaskTree:
-        """The best tree for ``goal`` (an object id, or a tuple of them: a meal, one tree
-        that makes every goal), proven optimal unless time runs out (or the gap of
-        ``options.gap`` is reached); an unproven answer carries the best lower bound
-        proven and its gap (:mod:`foon2asp.tree.gap`).
+        """The best tree for ``goal`` (an object id, or a tuple of them: a meal), proven optimal
+        unless time runs out or ``options.gap`` is reached (then with its lower bound and gap).
 
-        ``known``: a valid tree the caller has, with its cost vector as the solver reports
-        it (the answer when its cost is the proven optimum); ``floor``: a lower bound on
-        the first objective's weight the caller knows (the landmarks).
+        ``known``: a valid tree the caller has and its solver cost vector; ``floor``: a lower
+        bound on the first objective's weight (the landmarks).
         """
         meal = meal_of(goal)
         self._lower = None
         tree = self._solve(meal, on_model, time_limit, known, floor)
         if self.options.driven and self._driver is not None:
-            # the depth bound when depth ranks first (the driver's solves weigh other levels
-            # than the session's: their cores are not bounds of these levels)
+            # the driver's solves weigh other levels: only the depth bound counts
             self._lower = None
             depth = self._driver.depth_floor()
             if depth is not None:
@@ -213,7 +190,7 @@ class Session:
 
     @property
     def levels(self) -> tuple[str, ...]:
-        """The names of the solver's priority levels, highest first (foon2asp.tree.gap)."""
+        """The names of the solver's priority levels, highest first."""
         o = self.options
         return levels(objectives.ranked(o), substitutes.applies(o), o.human_steps is not None)
 
@@ -232,8 +209,7 @@ class Session:
         )
 
     def _fallback(self, meal: tuple[int, ...], tree: TaskTree) -> None:
-        """No tree within the time limit (core-guided search finds none before its proof):
-        report a cheapest-first tree (foon2asp.tree.upper) as ``feasible``."""
+        """No tree within the time limit: a cheapest-first tree as ``feasible``."""
         t0 = time.perf_counter()
         units = cheapest_tree(self.problem, meal, self.units, objectives.ranked(self.options)[0])
         if units is None:
@@ -257,58 +233,48 @@ class Session:
     def _solve(
         self,
         meal: tuple[int, ...],
-        on_model: Callable[[clingo.Model], None] | None,
+        on_model: Callable[[clingo.Model], bool | None] | None,
         time_limit: float | None,
         known: tuple[Sequence[int], Sequence[int]] | None = None,
         floor: int | None = None,
     ) -> TaskTree:
-        """One plain optimisation for ``meal`` (the driver when the options need more), then
-        the canonical tree: here, or in the meal's canonical session.  The proven lower
-        bound is kept in ``_lower``."""
+        """One plain optimisation for ``meal`` (the driver or the prepared search when those
+        apply), then the canonical tree; the proven lower bound goes to ``_lower``."""
         if self.prepared is not None:
             return self._solve_prepared(meal, on_model, time_limit)
         if self.options.driven:
-            # depth bounds, human steps, alternatives, greedy: see foon2asp.asp.multishot.driver
             if self._driver is None:
                 self._driver = Driver(self)
             return self._driver.solve(meal if len(meal) > 1 else meal[0], on_model, time_limit)
         time_limit = self.options.time_limit if time_limit is None else time_limit
         t0 = time.perf_counter()
         if any(g not in self.goal_atoms for g in meal):
-            # a goal is not an object of the grounded facts: nothing makes it (no solve call)
             return self._tree(meal, None, "unreachable", t0, dict(NO_SOLVE))
         here = self._canonical_here(meal)
-        # with a known tree one plain optimisation decides whether it is optimal
+        # with a known tree, one plain optimisation decides whether it is optimal
         plain = known is not None and self.options.canonical and not here
         mode, count = ("optN", 2) if self.options.canonical and not plain else ("opt", 1)
         watch = Watch(first_level(self.levels), self.options.gap, floor, self.options.progress)
         if known is not None:
             watch.cost = tuple(known[1])
-        watching = self.options.gap or self.options.progress is not None
 
-        def seen(model: clingo.Model) -> None:
+        def seen(model: clingo.Model) -> bool | None:
             watch.on_model(model)
-            if on_model is not None:
-                on_model(model)
+            return on_model(model) if on_model is not None else None
 
         with self._goals_on(meal):
-            if watching:
-                shot = solve_shot(self.control, mode, count, seen, time_limit or None, watch.on_lower, watch.stop)
-            else:
-                shot = solve_shot(self.control, mode, count, on_model, time_limit or None)
+            shot = solve_shot(self.control, mode, count, seen, time_limit or None, watch.on_lower, watch.stop)
             self._lower = shot.lower
             if shot.last is not None and shot.finished and shot.last.proven:
                 self._lower = shot.last.cost
             stats = self.stats()
             answer, start = self._choose(shot, known, plain)
             if not shot.finished and known is not None and (answer is None or tuple(known[1]) < answer.cost):
-                # cut short (time, gap) before a tree better than the caller's: the caller's tree
                 answer = Answer(tuple(sorted(known[0])), tuple(known[1]), False)
                 stats["answer"] = "known"
             if start is not None and here:
                 answer = self._canonicalise(start, t0, time_limit, stats)
         if start is not None and not here:
-            # the canonical tree comes from the goal's canonical session, whatever this session's history
             left = None if not time_limit else max(0.0, time_limit - (time.perf_counter() - t0))
             if left is None or left > 0:
                 return self._canonical_session(meal, known, left, t0)
@@ -318,13 +284,11 @@ class Session:
     def _solve_prepared(
         self,
         meal: tuple[int, ...],
-        on_model: Callable[[clingo.Model], None] | None,
+        on_model: Callable[[clingo.Model], bool | None] | None,
         time_limit: float | None,
     ) -> TaskTree:
-        """The search over the prepared part (:func:`foon2asp.asp.prepared.search`), stopped as
-        soon as a tree meets the preparation's lower bound.  Among equal optima the answer is
-        the hint when its cost is the optimum, else clingo's first optimum; with several
-        threads, the smallest optimal tree."""
+        """The search over the prepared part, stopped once a tree meets the lower bound; the hint
+        when its cost is the optimum (with several threads, the smallest optimal tree)."""
         prep = self.prepared
         assert prep is not None
         time_limit = self.options.time_limit if time_limit is None else time_limit
@@ -340,7 +304,7 @@ class Session:
                 on_model(model)
             if prep.meets is not None and prep.meets(tuple(model.cost)):
                 met.append(True)
-                return False  # the lower bound is met: nothing better exists
+                return False
             return True
 
         shot, answer, lower, cuts = search(self.control, prep, self.problem, self._closed, seen, deadline, watch)
@@ -364,8 +328,8 @@ class Session:
         return task_tree(self.problem, self.options.method, meal, status, answer, time.perf_counter() - t0, stats)
 
     def _canonical_here(self, meal: tuple[int, ...]) -> bool:
-        """Is this session ``meal``'s canonical session (foon2asp.asp.canonical): fresh, grounded
-        for the meal's own part and nothing required?  The session is no longer fresh afterwards."""
+        """Is this session ``meal``'s canonical session (fresh, grounded for the meal's part, nothing
+        required)?  It is no longer fresh afterwards."""
         if self.goal is not None and meal != self.goal:
             raise ValueError(f"a session grounded for {self.goal} cannot solve {meal}")
         here = False
@@ -378,25 +342,21 @@ class Session:
     def _choose(
         self, shot: Shot, known: tuple[Sequence[int], Sequence[int]] | None, plain: bool
     ) -> tuple[Answer | None, Answer | None]:
-        """The answer of ``shot``, and an optimal tree to start the search for the canonical
-        tree from (None: none is needed)."""
+        """The answer of ``shot``, and an optimal tree to search the canonical tree from (None: none)."""
         answer = shot.last
         if answer is None or not shot.finished:
             return answer, None
         if known is not None and self.options.canonical and answer.cost == tuple(known[1]):
-            # the known tree is optimal: it is the answer
             return Answer(tuple(sorted(known[0])), answer.cost, answer.proven, answer.human), None
         if plain:
             return answer, Answer(answer.units, answer.cost, True)
         if len(shot.answers) > 1:
-            # several optimal trees: return the smallest one, which depends only on the input
             smallest = shot.answers[0]
             return answer, Answer(smallest.units, smallest.cost, True)
         return answer, None
 
     def _canonicalise(self, start: Answer, t0: float, time_limit: float | None, stats: dict) -> Answer:
-        """The smallest optimal tree, searched from ``start`` on this session (its canonical
-        session); a search its budget or the time limit ended is noted in ``stats``."""
+        """The smallest optimal tree, searched from ``start`` here; a search cut short is noted in ``stats``."""
         deadline = None if not time_limit else t0 + time_limit
         answer, complete = canonicalise(self.control, start, deadline)
         if not complete:
@@ -419,5 +379,4 @@ class Session:
         return tree
 
     def stats(self) -> dict:
-        """Choices, conflicts, models and solve time of the last solve call."""
         return self.control.stats()
