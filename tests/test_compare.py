@@ -11,7 +11,7 @@ import pytest
 from click.testing import CliRunner
 
 from foon2asp import methods
-from foon2asp.analysis.compare import DEFAULT_METHODS, compare
+from foon2asp.analysis.compare import DEFAULT_METHODS, compare_iter
 from foon2asp.asp.session import Session
 from foon2asp.cli.main import main
 from foon2asp.report.compare import render
@@ -36,7 +36,7 @@ def trap():
 def test_rows_mark_validity():
     p = trap()
     g = goal_id(p, "g")
-    (row,) = compare(p, [g])
+    (row,) = compare_iter(p, [g])
     assert list(row.trees) == list(DEFAULT_METHODS)
     for name, tree in row.trees.items():
         assert tree.method == name
@@ -59,7 +59,7 @@ def test_asp_column_is_the_brute_force_optimum(seed):
     if not any(o.label == "g" for o in p.objects):
         return
     g = goal_id(p, "g")
-    (row,) = compare(p, [g])
+    (row,) = compare_iter(p, [g])
     smallest, _ = best(p, g, lambda m: m["units"])
     asp = row.trees["asp"]
     if smallest == float("inf"):
@@ -78,7 +78,7 @@ def test_later_registered_methods_just_work():
 
     try:
         p = trap()
-        (row,) = compare(p, [goal_id(p, "g")], ["ids", "test-nothing"])
+        (row,) = compare_iter(p, [goal_id(p, "g")], ["ids", "test-nothing"])
         assert list(row.trees) == ["ids", "test-nothing"]
         assert row.trees["test-nothing"].extra["valid"] is False
         assert "not-found" in render(p, [row], "text")

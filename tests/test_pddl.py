@@ -21,6 +21,7 @@ from foon2asp.cli import main
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.plans import action_name, looks_like_plan, parse_plan, unit_of_action
+from foon2asp.foon.treefiles import read_trees
 from foon2asp.report import pddl
 
 
@@ -98,9 +99,10 @@ def test_export_parses_as_pddl_and_maps_to_units(shared_problem, tmp_path):
         assert set(tree.units) <= {unit_of_action(n) for n in names}
         plan = "".join(f"({action_name(p, u)})\n" for u in tree.units) + f"; cost = {len(tree.units)} (unit cost)\n"
         (tmp_path / "plan").write_text(plan)
-        (report,) = check_mod.check_file(data, p, tmp_path / "plan", ("carrot salad", "coleslaw"))
+        plans = read_trees(tmp_path / "plan", p)
+        (report,) = check_mod.check_trees(data, p, plans, ("carrot salad", "coleslaw"))
         assert report.valid and report.goals == meal
-        assert report.cost["units"] == report.optimum.cost["units"] == 33
+        assert report.cost["units"] == len(tree.units) == 33
 
 
 def test_forbid_filters_actions(shared_problem):

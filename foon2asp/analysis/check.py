@@ -1,28 +1,24 @@
 """Checking a task tree from a file: does it exist in the FOON, is it well-founded?
 
-Each unit of a tree file is matched to a FOON unit by :meth:`Unit.key`; the independent
-validator (:mod:`foon2asp.tree.validate`) gives the verdict and the first problem is named.
-A file with no units for a goal is an answer when the FOON confirms the goal unreachable.
-Without a FOON, :func:`check_alone` judges each tree on its own.
+Each unit of a tree file is matched to a FOON unit by :meth:`Unit.key` and judged by the
+independent validator (:mod:`foon2asp.tree.validate`); :func:`check_alone` judges a tree
+without a FOON.
 """
 
 from __future__ import annotations
 
+from functools import cached_property
 from pathlib import Path
 
-from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem, required_flags
 from foon2asp.foon.treefiles import TreeFile, read_trees
-from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.diagnose import Finding, check_units, describe_unit
 from foon2asp.tree.results import AloneReport, Report
 from foon2asp.tree.tasktree import Goals, meal_of, measures
 from foon2asp.tree.validate import check_order, derivable_objects, judge_alone, validate
-
-# ---------------------------------------------------------------- matching
 
 
 def unit_index(problem: Problem) -> dict[tuple, int]:
@@ -90,20 +86,18 @@ def infer_goal(problem: Problem, tree: TreeFile, goal_objects: list[FoonObject])
     )
 
 
-# ---------------------------------------------------------------- checking
-
-
 class Derivable:
     """The objects derivable from the kitchen with any units of the FOON, computed when first asked."""
 
     def __init__(self, problem: Problem) -> None:
         self.problem = problem
-        self._objects: set[FoonObject] | None = None
+
+    @cached_property
+    def objects(self) -> set[FoonObject]:
+        return derivable_objects(self.problem)
 
     def __contains__(self, obj: object) -> bool:
-        if self._objects is None:
-            self._objects = derivable_objects(self.problem)
-        return obj in self._objects
+        return obj in self.objects
 
 
 def no_tree(
@@ -179,9 +173,6 @@ def check_tree(
     return Report(tree, goal, ids, validation.valid, found, validation, order_problem, measures(problem, goal, known))
 
 
-# ---------------------------------------------------------------- a whole file
-
-
 def tree_goal(
     data,
     problem: Problem,
@@ -239,36 +230,12 @@ def check_trees(
     return reports
 
 
-def check_file(
-    data,
-    problem: Problem,
-    path: str | Path,
-    goal_label: str | tuple[str, ...] | None = None,
-    optimum: bool = True,
-    among: list[int] | None = None,
-    strict: bool = False,
-    options: AspOptions | None = None,
-) -> list[Report]:
-    """Check every tree (or plan) in ``path`` for its goal (:func:`tree_goal`); with ``optimum``
-    also solve each goal's (or meal's) ASP optimum.  ``strict``: a unit a unit list would skip is an error."""
-    reports = check_trees(data, problem, read_trees(path, problem, strict), goal_label, among)
-    if optimum and reports:
-        meals = list(dict.fromkeys(r.meal for r in reports))
-        best = dict(zip(meals, solve_goals(problem, meals, "asp", options or AspOptions())))
-        for r in reports:
-            r.optimum = best[r.meal]
-    return reports
-
-
 def read_and_check(
     path: str | Path, data=None, problem: Problem | None = None, goal: str | None = None, strict: bool = False
 ) -> tuple[list[TreeFile], list[Report] | None]:
     """The trees of a tree file and, with ``problem``, their reports (no optimum); else None."""
     trees = read_trees(path, strict=strict)
     return trees, check_trees(data, problem, trees, goal) if problem is not None else None
-
-
-# ---------------------------------------------------------------- a tree on its own
 
 
 def alone_goal(tree: TreeFile, text: str) -> FoonObject:

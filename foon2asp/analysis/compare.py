@@ -1,8 +1,4 @@
-"""Comparing methods goal by goal: tree size, validity, success product, depth.
-
-:func:`compare` runs every registered method on every goal and marks each tree valid or
-not with the independent validator; :mod:`foon2asp.report.compare` prints the table.
-"""
+"""Comparing methods goal by goal: tree size, validity, success product, depth."""
 
 from __future__ import annotations
 
@@ -15,6 +11,7 @@ from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.diagnose import check_units
 from foon2asp.tree.results import MealRow, Row
 from foon2asp.tree.tasktree import TaskTree
+from foon2asp.tree.validate import validate
 
 DEFAULT_METHODS = ("ids", "gbfs-h1", "gbfs-h2", "asp")
 Methods = tuple[str, ...] | list[str]
@@ -34,17 +31,11 @@ def judge(problem: Problem, tree: TaskTree, substitutes: Iterable[Substitute] = 
     return tree
 
 
-def compare(
-    problem: Problem, goals: list[int], method_names: Methods = DEFAULT_METHODS, options: AspOptions | None = None
-) -> list[Row]:
-    """Run each method on each goal; every tree is judged by the validator."""
-    return list(compare_iter(problem, goals, method_names, options))
-
-
 def compare_iter(
     problem: Problem, goals: list[int], method_names: Methods = DEFAULT_METHODS, options: AspOptions | None = None
 ) -> Iterator[Row]:
-    """:func:`compare` one goal at a time: each row as soon as every method has its goal's tree."""
+    """Run each method on each goal, judging every tree by the validator: each row as soon as
+    every method has its goal's tree."""
     options = options or AspOptions()
     answers = {name: solve_goals(problem, goals, name, options) for name in dict.fromkeys(method_names)}
     for g in goals:
@@ -60,11 +51,7 @@ def compare_meal(problem: Problem, goals: list[int], method: str = "asp", option
     options = options or AspOptions()
     trees = solve_goals(problem, [meal, *meal], method, options)
     tree = next(trees)
-    if tree.has_tree:
-        seen = judged_on(problem, options.substitutes, meal)
-        validations = [check_units(seen, g, tree.units)[0] for g in meal]
-        tree.extra["valid"] = all(v.valid for v in validations)
-    else:
-        tree.extra["valid"] = False
+    seen = judged_on(problem, options.substitutes, meal) if tree.has_tree else problem
+    tree.extra["valid"] = tree.has_tree and all(validate(seen, g, tree.units).valid for g in meal)
     singles = [judge(problem, single, options.substitutes) for single in trees]
     return MealRow(meal, tree, singles)

@@ -1,10 +1,7 @@
 """Consolidating candidate trees of one recipe into one proven-best tree.
 
-:func:`read_candidates` reads the candidate files, :func:`merge` puts their units into one
-FOON (each unit remembering its files), and :func:`consolidate` gives, per goal, the best tree
-of the merged FOON, every candidate's verdict on its own units, and, when the goal is
-unreachable, the fewest objects to add to the kitchen.  A candidate executable on its own is
-a tree of the merged FOON, so the optimum is never worse than it.
+A candidate executable on its own is a tree of the merged FOON (:func:`merge`), so the
+optimum :func:`consolidate` gives is never worse than it.
 """
 
 from __future__ import annotations
@@ -15,6 +12,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from foon2asp.analysis import queries
+from foon2asp.analysis.check import unit_index
 from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject
@@ -33,13 +31,10 @@ def read_candidates(paths: Iterable[str | Path], strict: bool = False) -> list[C
     out = []
     for path in paths:
         trees = read_trees(path, strict=strict)
-        seen: set[tuple] = set()
-        units: list[TreeUnit] = []
-        for tree in trees:
-            for tu in tree.units:
-                if tu.unit.key() not in seen:
-                    seen.add(tu.unit.key())
-                    units.append(tu)
+        first: dict[tuple, TreeUnit] = {}
+        for tu in (tu for tree in trees for tu in tree.units):
+            first.setdefault(tu.unit.key(), tu)
+        units = list(first.values())
         warnings = [w for tree in trees for w in tree.warnings]
         out.append(Candidate(str(path), units, warnings))
     if not out:
@@ -82,7 +77,7 @@ def shared_goal(candidates: Sequence[Candidate]) -> tuple[FoonObject, str]:
 def judge(problem: Problem, goals: tuple[int, ...], cand: Candidate, tree_units: Iterable[int]) -> CandidateVerdict:
     """``cand`` for ``goals``: on its own units, in file order, from the problem's kitchen."""
     units = [tu.unit for tu in cand.units]
-    index = {u.key(): i for i, u in enumerate(problem.units)}
+    index = unit_index(problem)
     ids = [index[u.key()] for u in units]
     objects = tuple(problem.objects[g] for g in goals)
     numbers = [tu.step for tu in cand.units]

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Iterable
-from dataclasses import dataclass, field
 
 import clingo
 import clingo.ast
@@ -34,38 +33,20 @@ from foon2asp.tree.results import MissingResult, QueryResult
 from foon2asp.tree.tasktree import Goals, executable_order, meal_of, measures
 from foon2asp.tree.weights import unit_weight
 
-# --------------------------------------------------------------------------- running
-
-
-@dataclass
-class Outcome:
-    """The result of one solve call."""
-
-    #: optimal, satisfiable (no objective), feasible (stopped early), unsatisfiable or unknown
-    status: str
-    answers: list[Answer]
-    time_s: float
-    #: facts the grounder derived, by predicate name (for signatures asked for)
-    derived: dict[str, set[clingo.Symbol]] = field(default_factory=dict)
-
 
 class Program:
     """One :class:`~foon2asp.asp.control.Control`: add named parts, ground once, solve once."""
 
     def __init__(self, parts: Iterable[tuple[str, str]], args: Iterable[str] = ()) -> None:
         self.control = Control(list(args))
-        self.ctl = self.control.ctl
-        self.parts = list(parts)
-        self.control.add_all(self.parts, user=[name for name, _ in self.parts if name != "facts"])
+        parts = list(parts)
+        self.control.add_all(parts, user=[name for name, _ in parts if name != "facts"])
         self.control.ground()
 
-    def facts_of(self, name: str, arity: int) -> set[clingo.Symbol]:
-        """Atoms of ``name/arity`` the grounder derived as facts."""
-        return self.control.facts_of(name, arity)
-
-    def solve(self, time_limit: float | None = None, limit: int = 1) -> Outcome:
+    def solve(self, time_limit: float | None = None, limit: int = 1) -> QueryResult:
         """Solve: when optimising keep the best model, else stop after ``limit`` models (0 = all).
-        The control must run with ``--models=0``."""
+        The status is optimal, satisfiable (no objective), feasible (stopped early), unsatisfiable
+        or unknown.  The control must run with ``--models=0``."""
         answers: list[Answer] = []
         proven = [False]
 
@@ -79,19 +60,14 @@ class Program:
             return not (limit and len(answers) >= limit)
 
         result = self.control.solve(on_model, time_limit or None)
-        finished, elapsed = result.finished, result.time_s
-        optimising = any(a.cost for a in answers)
         if not answers:
-            status = "unsatisfiable" if result.unsatisfiable and finished else "unknown"
-        elif optimising:
-            done = (result.exhausted and not result.interrupted and finished) or proven[0]
+            status = "unsatisfiable" if result.unsatisfiable and result.finished else "unknown"
+        elif any(a.cost for a in answers):
+            done = (result.exhausted and not result.interrupted and result.finished) or proven[0]
             status = "optimal" if done else "feasible"
         else:
             status = "satisfiable"
-        return Outcome(status, answers, round(elapsed, 6))
-
-
-# --------------------------------------------------------------------------- reachable
+        return QueryResult(status, answers, round(result.time_s, 6))
 
 
 def reachable(problem: Problem, objects: Iterable[int]) -> dict[int, bool]:
@@ -112,9 +88,6 @@ def reachable(problem: Problem, objects: Iterable[int]) -> dict[int, bool]:
         raise RuntimeError("reachability program has no model")
     yes = {s.arguments[0].number for s in outcome.answers[-1].symbols if s.name == "reachable"}
     return {o: o in yes for o in objects}
-
-
-# --------------------------------------------------------------------------- missing
 
 
 def with_kitchen(problem: Problem, extra: Iterable[int]) -> Problem:
@@ -163,7 +136,7 @@ def missing(problem: Problem, goal: Goals, options: AspOptions | None = None) ->
         ],
         ["--opt-mode=opt", "--models=0", *solver_args(options.opt_strategy, options.threads)],
     )
-    buyable = sorted(s.arguments[0].number for s in prog.facts_of("buyable", 1))
+    buyable = sorted(s.arguments[0].number for s in prog.control.facts_of("buyable", 1))
     goals = meal if len(meal) > 1 else ()
     if all(g in problem.derivable for g in meal):
         (tree,) = solve_goals(problem, [goal], "asp", options)
@@ -203,7 +176,7 @@ def missing(problem: Problem, goal: Goals, options: AspOptions | None = None) ->
             result.status = "infeasible"
         return result
     goal = meal[0]
-    reach = {s.arguments[0].number for s in prog.facts_of("reach", 1)}
+    reach = {s.arguments[0].number for s in prog.control.facts_of("reach", 1)}
     if goal in reach:
         result.status = "infeasible"
         result.reason = "the constraints rule out every tree"
@@ -251,9 +224,6 @@ def blocking_cycle(problem: Problem, goal: int, reach: set[int]) -> tuple[list[t
     return [], []
 
 
-# --------------------------------------------------------------------------- query
-
-
 def shows(name: str, text: str) -> bool:
     """Does the program ``text`` have a ``#show`` statement of its own?"""
     found = [False]
@@ -277,7 +247,7 @@ def _hide_shows(text: str) -> str:
 
 def _loaded(prog: Program) -> set[Signature]:
     """The predicates with atoms after grounding ``prog``: the facts, and what was derived."""
-    atoms = prog.ctl.symbolic_atoms
+    atoms = prog.control.ctl.symbolic_atoms
     return {(n, a) for n, a, _ in atoms.signatures if next(iter(atoms.by_signature(n, a)), None) is not None}
 
 
@@ -345,5 +315,6 @@ def query(
     parts.append((name, text))
     prog = Program(parts, ["--opt-mode=opt", "--models=0"])
     warnings = query_warnings(prog, (name, text), names)
-    outcome = prog.solve(time_limit, max(models, 0))
-    return QueryResult(outcome.status, outcome.answers, outcome.time_s, warnings, names)
+    result = prog.solve(time_limit, max(models, 0))
+    result.warnings, result.encodings = warnings, names
+    return result
