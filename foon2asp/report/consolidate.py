@@ -8,7 +8,6 @@ The JSON is a list with one object per goal (or meal): ``{"goal", "status", "cos
 
 from __future__ import annotations
 
-import json
 import time
 
 from foon2asp.foon.problem import Problem
@@ -17,7 +16,7 @@ from foon2asp.report import draw
 from foon2asp.report.html import esc, figure, page, table, time_line
 from foon2asp.report.registry import register
 from foon2asp.tree.results import CandidateVerdict, Consolidation
-from foon2asp.tree.serialize import number, tree_text
+from foon2asp.tree.serialize import json_list, number, tree_text
 
 #: fill colours of the candidate files, in the order given (repeated after the last)
 PALETTE = ("#9fc5e8", "#f6b26b", "#b6d7a8", "#d5a6bd", "#ffe599", "#a2c4c9", "#ea9999", "#b4a7d6")
@@ -113,7 +112,7 @@ def consolidate_text(problem: Problem, results: list[Consolidation]) -> str:
 
 @register("consolidate", "json", "json", "a list with one object per goal (see foon2asp.report.consolidate)")
 def consolidate_json(problem: Problem, results: list[Consolidation]) -> str:
-    return "[\n" + ",\n".join(json.dumps(consolidation_json(problem, c)) for c in results) + "\n]\n"
+    return json_list([consolidation_json(problem, c) for c in results]) + "\n"
 
 
 @register("consolidate", "units-json", "json", "the tree of each goal in the unit-list form of generated trees")

@@ -357,7 +357,7 @@ def register_pictures(kind: str, picture: Callable[..., bytes], source: str, wha
         register(kind, fmt, fmt, text, binary=fmt in BINARY)(render_picture)
 
 
-def svg_text(graph: graphviz.Digraph) -> str:
+def svg_text(graph: graphviz.Graph | graphviz.Digraph) -> str:
     return render(graph, "svg").decode("utf-8")
 
 

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import graphviz
 
-from foon2asp.report.draw import HUMAN_FILL, UNIT_FILL, format_of, register_pictures, render
+from foon2asp.report.draw import HUMAN_FILL, UNIT_FILL, format_of, register_pictures, render, svg_text
 
 #: points per second of schedule at most, and the widest chart (points) a long schedule is scaled to
 POINTS_PER_SECOND = 40.0
@@ -247,7 +247,7 @@ def charts(records: Sequence[Mapping]) -> graphviz.Graph:
 
 def gantt_svg(record: Mapping, span: float | None = None, fill: bool = False) -> str:
     """The chart of one schedule as an SVG document (``span``, ``fill``: as :func:`add_chart`)."""
-    return render(gantt_graph(record, span, fill), "svg").decode("utf-8")
+    return svg_text(gantt_graph(record, span, fill))
 
 
 def draw_gantt(record: Mapping, path: str | Path) -> Path:

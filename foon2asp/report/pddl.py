@@ -33,7 +33,6 @@ class PddlTask:
     #: constant name -> FOON object id
     objects: dict[str, int] = field(default_factory=dict)
     goals: tuple[int, ...] = ()
-    objective: str = "units"
 
 
 def refuse_general(spec: ConstraintSpec | None) -> None:
@@ -101,16 +100,11 @@ def export(
         )
     units = exported_units(problem, goals, spec)
     costs = objective != "units"
-    objs: list[int] = list(goals)
-    for u in units:
-        objs += problem.required[u]
-        objs += problem.products[u]
-    objs = sorted(set(objs))
+    objs = sorted({*goals, *(o for u in units for o in (*problem.required[u], *problem.products[u]))})
     const = {o: f"o{o}" for o in objs}
     actions = {action_name(problem, u): u for u in units}
 
     cost_of = unit_weight(problem, objective)
-
     goal_lines = [f"; goal {const[g]}: {_comment(problem.objects[g])}" for g in goals]
     table = [f";   {const[o]:<8} {_comment(problem.objects[o])}" for o in objs]
     what = {
@@ -166,6 +160,4 @@ def export(
     if costs:
         prob.append("  (:metric minimize (total-cost))")
     prob.append(")")
-    return PddlTask(
-        "\n".join(dom) + "\n", "\n".join(prob) + "\n", actions, {c: o for o, c in const.items()}, goals, objective
-    )
+    return PddlTask("\n".join(dom) + "\n", "\n".join(prob) + "\n", actions, {c: o for o, c in const.items()}, goals)

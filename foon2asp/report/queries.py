@@ -63,7 +63,7 @@ def _text(problem: Problem, value) -> str:
     if isinstance(value, dict) and "unit" in value:
         return f"<{problem.units[value['unit']]}>"
     if isinstance(value, str):
-        return clingo.String(value).__str__()
+        return str(clingo.String(value))
     return str(value)
 
 
