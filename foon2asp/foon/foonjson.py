@@ -20,11 +20,12 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable, Iterable
+from functools import partial
 from pathlib import Path
 from typing import Protocol
 
 from foon2asp.errors import InputError
-from foon2asp.foon.model import Foon, FoonObject, Unit, norm
+from foon2asp.foon.model import Foon, FoonObject, Unit, motion_key, norm
 
 #: what the official tools write for times and the in-motion flag
 ASSUMED = "Assumed"
@@ -98,46 +99,38 @@ def dumps(units: Iterable[Unit], ids: Ids, header: str | None = None) -> str:
 # ---------------------------------------------------------------- reading
 
 
-def _need(cond: bool, message: str, path: str, where: str) -> None:
-    if not cond:
-        raise InputError(f"{where}: {message}", path)
+def _keep_id(foon: Foon, kind: str, text: str, value: object) -> None:
+    """Keep the id ``value`` of an official file for ``text`` (the first id seen wins)."""
+    if isinstance(value, int | str) and str(value).strip().lstrip("-").isdigit():
+        foon.ids[kind].setdefault(norm(text), int(value))
 
 
-def _read_node(node: object, path: str, where: str, foon: Foon) -> FoonObject:
-    _need(isinstance(node, dict), "expected an object node {object_label, object_states, ingredients}", path, where)
-    assert isinstance(node, dict)
+def _node(node: object, path: str, where: str, foon: Foon) -> FoonObject:
+    """One object node of foon_api's schema."""
+    if not isinstance(node, dict):
+        raise InputError(f"{where}: expected an object node {{object_label, object_states, ingredients}}", path)
     label = node.get("object_label")
-    _need(isinstance(label, str) and bool(label.strip()), "object node without an 'object_label' string", path, where)
-    assert isinstance(label, str)
-    if isinstance(node.get("object_id"), int | str) and str(node["object_id"]).strip().lstrip("-").isdigit():
-        foon.ids["O"].setdefault(norm(label), int(node["object_id"]))
+    if not isinstance(label, str) or not label.strip():
+        raise InputError(f"{where}: object node without an 'object_label' string", path)
+    _keep_id(foon, "O", label, node.get("object_id"))
+    raw_states = node.get("object_states", [])
+    ingredients = node.get("ingredients", [])
+    if not isinstance(raw_states, list):
+        raise InputError(f"{where}: 'object_states' of {label!r} must be a list", path)
+    if not isinstance(ingredients, list) or not all(isinstance(i, str) for i in ingredients):
+        raise InputError(f"{where}: 'ingredients' of {label!r} must be a list of strings", path)
     states: list[str] = []
     container: str | None = None
-    raw_states = node.get("object_states", [])
-    _need(isinstance(raw_states, list), f"'object_states' of {label!r} must be a list", path, where)
-    ingredients = node.get("ingredients", [])
-    _need(
-        isinstance(ingredients, list) and all(isinstance(i, str) for i in ingredients),
-        f"'ingredients' of {label!r} must be a list of strings",
-        path,
-        where,
-    )
     has_contents = bool(ingredients)
     for st in raw_states:
-        _need(
-            isinstance(st, dict) and isinstance(st.get("state_label"), str),
-            f"a state of {label!r} has no 'state_label'",
-            path,
-            where,
-        )
+        if not isinstance(st, dict) or not isinstance(st.get("state_label"), str):
+            raise InputError(f"{where}: a state of {label!r} has no 'state_label'", path)
         name = st["state_label"].strip()
-        if isinstance(st.get("state_id"), int | str) and str(st["state_id"]).strip().lstrip("-").isdigit():
-            foon.ids["S"].setdefault(norm(name), int(st["state_id"]))
+        _keep_id(foon, "S", name, st.get("state_id"))
         rel = st.get("relative_object")
         if name.lower() in ("contains", "ingredients") and rel is None and has_contents:
             has_contents = False  # the list 'ingredients' holds them
-            continue
-        if rel is None:
+        elif rel is None:
             states.append(name)
         elif not isinstance(rel, str):
             raise InputError(f"{where}: 'relative_object' of {label!r} must be a string", path)
@@ -153,67 +146,79 @@ def _read_node(node: object, path: str, where: str, foon: Foon) -> FoonObject:
     return FoonObject.make(label, states, ingredients, container)
 
 
-def _read_official(data: dict, path: str, foon: Foon) -> Foon:
-    units = data["functional_units"]
-    _need(isinstance(units, list), "'functional_units' must be a list", path, "file")
-    for k, fu in enumerate(units, 1):
-        where = f"functional unit {k}"
-        _need(isinstance(fu, dict), "expected an object with input_nodes, motion_node, output_nodes", path, where)
-        motion = fu.get("motion_node")
-        _need(
-            isinstance(motion, dict) and isinstance(motion.get("motion_label"), str),
-            "no 'motion_node' with a 'motion_label'",
-            path,
-            where,
-        )
-        label = norm(motion["motion_label"]).rstrip("*").strip()
-        _need(bool(label), "empty motion label", path, where)
-        if str(motion.get("motion_id", "")).strip().lstrip("-").isdigit():
-            foon.ids["M"].setdefault(label, int(motion["motion_id"]))
-        sides = _sides(fu, ("input_nodes", "output_nodes"), lambda n, p, w: _read_node(n, p, w, foon), path, where)
-        _need(bool(sides[0]), "a functional unit without input nodes", path, where)
-        foon.add_unit(Unit(label, sides[0], sides[1]), (path, k))
-    return foon
-
-
 def _sides(
-    unit: dict, keys: tuple[str, str], read: Callable[[object, str, str], FoonObject], path: str, where: str
+    unit: dict, keys: tuple[str, str], read: Callable[[object], FoonObject], path: str, line: int | None, where: str
 ) -> list[tuple[FoonObject, ...]]:
-    """The objects of the two lists ``keys`` of ``unit`` (inputs, outputs), each read by
-    ``read(value, path, where)``."""
+    """The objects of the two lists ``keys`` of ``unit`` (inputs, outputs), each read by ``read``."""
     sides = []
     for side in keys:
         items = unit.get(side)
-        _need(isinstance(items, list), f"no '{side}' list", path, where)
-        assert isinstance(items, list)
-        sides.append(tuple(read(o, path, where) for o in items))
+        if not isinstance(items, list):
+            raise InputError(f"{where}: no '{side}' list", path, line)
+        sides.append(tuple(read(o) for o in items))
     return sides
 
 
-def _lab_object(value: object, path: str, where: str) -> FoonObject:
-    _need(
-        isinstance(value, dict) and isinstance(value.get("label"), str),
-        "expected an object {label, states, ingredients, container}",
-        path,
-        where,
-    )
-    assert isinstance(value, dict)
+def is_foon_json(data: object) -> bool:
+    """Is ``data`` (parsed JSON) one FOON JSON document?"""
+    return isinstance(data, dict) and "functional_units" in data
+
+
+def read_official(data: dict, path: str, foon: Foon | None = None) -> Foon:
+    """The units of one FOON JSON document added to ``foon`` (a new one by default)."""
+    foon = foon if foon is not None else Foon()
+    units = data["functional_units"]
+    if not isinstance(units, list):
+        raise InputError("file: 'functional_units' must be a list", path)
+    for k, fu in enumerate(units, 1):
+        where = f"functional unit {k}"
+        if not isinstance(fu, dict):
+            raise InputError(f"{where}: expected an object with input_nodes, motion_node, output_nodes", path)
+        motion = fu.get("motion_node")
+        if not isinstance(motion, dict) or not isinstance(motion.get("motion_label"), str):
+            raise InputError(f"{where}: no 'motion_node' with a 'motion_label'", path)
+        label = motion_key(motion["motion_label"])
+        if not label:
+            raise InputError(f"{where}: empty motion label", path)
+        _keep_id(foon, "M", label, motion.get("motion_id"))
+        read = partial(_node, path=path, where=where, foon=foon)
+        inputs, outputs = _sides(fu, ("input_nodes", "output_nodes"), read, path, None, where)
+        if not inputs:
+            raise InputError(f"{where}: a functional unit without input nodes", path)
+        foon.add_unit(Unit(label, inputs, outputs), (path, k))
+    return foon
+
+
+def object_from_json(value: object, path: str, line: int | None = None, where: str | None = None) -> FoonObject:
+    """An object from ``{label, states, ingredients, container}``; ``where`` starts the messages."""
+    at = f"{where}: " if where else ""
+    if not isinstance(value, dict):
+        raise InputError(f"{at}expected an object {{label, states, ingredients, container}}", path, line)
+    label = value.get("label")
+    if not isinstance(label, str) or not label.strip():
+        raise InputError(f"{at}object without a 'label' string", path, line)
     states = value.get("states") or []
     ingredients = value.get("ingredients") or []
-    container = value.get("container")
     for name, items in (("states", states), ("ingredients", ingredients)):
-        _need(
-            isinstance(items, list) and all(isinstance(x, str) for x in items),
-            f"'{name}' of {value['label']!r} must be a list of strings",
-            path,
-            where,
-        )
-    _need(container is None or isinstance(container, str), "'container' must be a string or null", path, where)
-    return FoonObject.make(value["label"], states, ingredients, container)
+        if not isinstance(items, list) or not all(isinstance(x, str) for x in items):
+            raise InputError(f"{at}'{name}' of {label!r} must be a list of strings", path, line)
+    container = value.get("container")
+    if container is not None and not isinstance(container, str):
+        raise InputError(f"{at}'container' of {label!r} must be a string or null", path, line)
+    return FoonObject.make(label, states, ingredients, container)
+
+
+def unit_from_json(value: object, path: str, where: str, line: int | None = None) -> Unit:
+    """A unit ``{motion, inputs, outputs}`` as foon2asp writes it; ``where`` starts the messages."""
+    if not isinstance(value, dict) or not isinstance(value.get("motion"), str):
+        raise InputError(f"{where}: no 'motion' string", path, line)
+    read = partial(object_from_json, path=path, line=line, where=where)
+    inputs, outputs = _sides(value, ("inputs", "outputs"), read, path, line, where)
+    return Unit(motion_key(value["motion"]), inputs, outputs)
 
 
 def _lab_units(data: object) -> list | None:
-    """The units of the lab's JSON: a list of units, one result, or a list of results."""
+    """The units of foon2asp's JSON: a list of units, one result, or a list of results."""
     if isinstance(data, dict) and isinstance(data.get("units"), list):
         return data["units"]
     if isinstance(data, list):
@@ -225,17 +230,16 @@ def _lab_units(data: object) -> list | None:
 
 
 def parse_json(text: str, path: str = "<string>", foon: Foon | None = None) -> Foon:
-    """FOON JSON (foon_api's schema, or the lab's units) into ``foon`` (a new one by default)."""
+    """FOON JSON (one document or a list of them) or foon2asp's units into ``foon`` (a new one by default)."""
     foon = foon if foon is not None else Foon()
     try:
         data = json.loads(text)
     except json.JSONDecodeError as exc:
         raise InputError(f"bad JSON: {exc.msg}", path, exc.lineno) from None
-    if isinstance(data, dict) and "functional_units" in data:
-        return _read_official(data, path, foon)
-    if isinstance(data, list) and data and all(isinstance(d, dict) and "functional_units" in d for d in data):
-        for doc in data:  # several trees (solve --format foon-json with several goals)
-            _read_official(doc, path, foon)
+    docs = data if isinstance(data, list) and data else [data]
+    if all(is_foon_json(d) for d in docs):
+        for doc in docs:
+            read_official(doc, path, foon)
         return foon
     units = _lab_units(data)
     if units is None:
@@ -245,11 +249,10 @@ def parse_json(text: str, path: str = "<string>", foon: Foon | None = None) -> F
             path,
         )
     for k, u in enumerate(units, 1):
-        where = f"unit {k}"
-        _need(isinstance(u, dict) and isinstance(u.get("motion"), str), "no 'motion' string", path, where)
-        sides = _sides(u, ("inputs", "outputs"), _lab_object, path, where)
-        _need(bool(sides[0]), "a unit without inputs", path, where)
-        foon.add_unit(Unit(norm(u["motion"]).rstrip("*").strip(), sides[0], sides[1]), (path, k))
+        unit = unit_from_json(u, path, f"unit {k}")
+        if not unit.inputs:
+            raise InputError(f"unit {k}: a unit without inputs", path)
+        foon.add_unit(unit, (path, k))
     return foon
 
 

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from foon2asp.errors import InputError
+from foon2asp.foon.foonjson import object_from_json
 from foon2asp.foon.leaves import LEAVES, leaves
 from foon2asp.foon.model import Foon, FoonObject, norm
 from foon2asp.foon.parser import read_foons
@@ -58,24 +59,6 @@ def read_foon_files(paths: list[str], strict: bool = False) -> Foon:
 def _json_elements(text: str, path: str) -> list[tuple[object, int]]:
     """Elements of a top-level JSON list, each with the line it starts on."""
     return [(value, line) for value, line, _ in list_elements(text, path)]
-
-
-def object_from_json(value: object, path: str, line: int) -> FoonObject:
-    """An object from ``{label, states, ingredients, container}``."""
-    if not isinstance(value, dict):
-        raise InputError("expected an object {label, states, ingredients, container}", path, line)
-    label = value.get("label")
-    if not isinstance(label, str) or not label.strip():
-        raise InputError("object without a 'label' string", path, line)
-    states = value.get("states") or []
-    ingredients = value.get("ingredients") or []
-    container = value.get("container")
-    for name, items in (("states", states), ("ingredients", ingredients)):
-        if not isinstance(items, list) or not all(isinstance(x, str) for x in items):
-            raise InputError(f"'{name}' of {label!r} must be a list of strings", path, line)
-    if container is not None and not isinstance(container, str):
-        raise InputError(f"'container' of {label!r} must be a string or null", path, line)
-    return FoonObject.make(label, states, ingredients, container)
 
 
 def read_objects(path: str | Path, what: str) -> list[FoonObject]:

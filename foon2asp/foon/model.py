@@ -16,6 +16,11 @@ def norm(text: str) -> str:
     return " ".join(str(text).split()).lower()
 
 
+def motion_key(text: str) -> str:
+    """A motion as units hold it: normalised, a trailing ``*`` dropped."""
+    return norm(text).rstrip("*").strip()
+
+
 @dataclass(frozen=True, order=True)
 class FoonObject:
     """An object node; fields are normalised and sorted, so ``==`` is identity."""

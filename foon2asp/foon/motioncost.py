@@ -15,7 +15,7 @@ from decimal import Decimal, InvalidOperation
 from pathlib import Path
 
 from foon2asp.errors import InputError
-from foon2asp.foon.model import norm
+from foon2asp.foon.model import motion_key
 from foon2asp.foon.reading import MAX_NUMBER_CHARS, content_lines, name_and_value, read_text
 from foon2asp.foon.reading import loads as safe_loads
 
@@ -33,11 +33,6 @@ PRECISION_TEXT = (
     f"costs are exact to {PRECISION} (the solver minimises the sum of cost*{SCALE} as integers); "
     f"a finer value is an error, a motion not in the table costs {DEFAULT_COST}"
 )
-
-
-def motion_key(text: str) -> str:
-    """A motion as units hold it."""
-    return norm(text).rstrip("*").strip()
 
 
 @dataclass

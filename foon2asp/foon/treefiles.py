@@ -8,16 +8,15 @@ tree's units as written, with file, line and step, and the goal and method when 
 
 from __future__ import annotations
 
-import json
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from foon2asp.errors import InputError
 from foon2asp.foon import foonjson, plans, unitlist
+from foon2asp.foon.foonjson import object_from_json, unit_from_json
 from foon2asp.foon.goals import parse_object_text
-from foon2asp.foon.loaders import object_from_json
-from foon2asp.foon.model import FoonObject, Unit, norm
+from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.parser import parse_lines
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.reading import lines_of, list_elements, read_text
@@ -88,31 +87,14 @@ def _read_foon_tree(text: str, path: str) -> list[TreeFile]:
     return trees
 
 
-def _json_unit(value: object, path: str, line: int, step: int) -> Unit:
-    if not isinstance(value, dict) or not isinstance(value.get("motion"), str):
-        raise InputError(f"unit {step} is not an object with a 'motion' string", path, line)
-    parts = []
-    for side in ("inputs", "outputs"):
-        items = value.get(side)
-        if not isinstance(items, list):
-            raise InputError(f"unit {step} has no '{side}' list", path, line)
-        parts.append(tuple(object_from_json(o, path, line) for o in items))
-    return Unit(norm(value["motion"]).rstrip("*").strip(), parts[0], parts[1])
-
-
-def _is_foon_json(data: object) -> bool:
-    return isinstance(data, dict) and "functional_units" in data
-
-
-def _read_foon_json_trees(data: object, path: str) -> list[TreeFile]:
-    """FOON JSON (foon_api's schema): one tree, or a list of trees."""
+def _read_foon_json_trees(docs: list, path: str) -> list[TreeFile]:
+    """FOON JSON (foon_api's schema): one tree per document."""
     trees = []
-    for doc in data if isinstance(data, list) else [data]:
-        foon = foonjson.parse_json(json.dumps(doc), path)
+    for doc in docs:
+        foon = foonjson.read_official(doc, path)
         if not foon.units:
             raise InputError("no functional units in the tree file", path)
-        units = [TreeUnit(u, step, None) for step, u in enumerate(foon.units, 1)]
-        trees.append(TreeFile(path, units))
+        trees.append(TreeFile(path, [TreeUnit(u, step, None) for step, u in enumerate(foon.units, 1)]))
     return trees
 
 
@@ -131,9 +113,9 @@ def _read_json_tree(text: str, path: str, strict: bool = False) -> list[TreeFile
     data = safe_loads(text, path, checked=True)
     if unitlist.is_unit_list(data) or unitlist.is_unit_lists(data):
         return _read_unit_list_trees(text, path, strict)
-    if _is_foon_json(data) or (isinstance(data, list) and data and all(_is_foon_json(d) for d in data)):
-        return _read_foon_json_trees(data, path)
     results = data if isinstance(data, list) else [data]
+    if results and all(foonjson.is_foon_json(d) for d in results):
+        return _read_foon_json_trees(results, path)
     start = len(text) - len(text.lstrip())
     if isinstance(data, list):  # the line each top-level result starts on, for messages
         starts = [line for _, line, _ in list_elements(text, path, start)]
@@ -149,7 +131,9 @@ def _read_json_tree(text: str, path: str, strict: bool = False) -> list[TreeFile
                 line,
             )
         goal = object_from_json(result["goal"], path, line) if result.get("goal") is not None else None
-        units = [TreeUnit(_json_unit(u, path, line, i), i, None) for i, u in enumerate(result["units"], 1)]
+        units = [
+            TreeUnit(unit_from_json(u, path, f"unit {i}", line), i, None) for i, u in enumerate(result["units"], 1)
+        ]
         method = result.get("method") if isinstance(result.get("method"), str) else None
         trees.append(TreeFile(path, units, goal, method, line))
     if not trees:

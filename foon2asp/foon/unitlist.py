@@ -25,8 +25,7 @@ from pathlib import Path
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject, Unit, norm
-from foon2asp.foon.reading import check_text, list_elements, read_text
-from foon2asp.foon.reading import loads as safe_loads
+from foon2asp.foon.reading import list_elements, loads, read_text
 
 #: the keys of one unit, in the order generators write them
 KEYS = ("input_nodes", "motion_node", "output_nodes")
@@ -141,42 +140,32 @@ def _where(k: int, tree: int | None) -> str:
     return f"tree {tree}, unit {k}" if tree is not None else f"unit {k}"
 
 
-def _elements(value_or_text: object, path: str) -> list[tuple[object, int | None]]:
-    """The top-level entries, each with the line it starts on (None when given a value)."""
-    if isinstance(value_or_text, str):
-        check_text(value_or_text, path)
-        return [(v, line) for v, line, _ in list_elements(value_or_text, path)]
-    if not isinstance(value_or_text, list):
-        raise InputError("expected a JSON list of units {input_nodes, motion_node, output_nodes}", path)
-    return [(v, None) for v in value_or_text]
-
-
 #: a unit read: (unit, its number in the list from 1, the line it starts on or None)
 Located = tuple[Unit, int, int | None]
+#: the entries of one list, each with the line it starts on (None when given a value), and the list's first line
+_Entries = tuple[list[tuple[object, int | None]], int | None]
 
 
 def _read(
-    elements: list[tuple[object, int | None]], path: str, strict: bool, tree: int | None = None
+    entries: list[tuple[object, int | None]], path: str, strict: bool, tree: int | None
 ) -> tuple[list[Located], list[str]]:
-    """The distinct usable units of one list's ``elements``, and the warnings."""
+    """The distinct usable units of one list's ``entries``, and the warnings."""
     warnings: list[str] = []
     out: list[Located] = []
     first: dict[tuple, int] = {}
     repeats: list[tuple[int, int]] = []
-    for k, (value, line) in enumerate(elements, 1):
+    for k, (value, line) in enumerate(entries, 1):
         unit, why = read_unit(value, path, line, k, tree)
         if unit is None:
             where = _where(k, tree)
             if strict:
                 raise InputError(f"{where} cannot be used: {why}", path, line)
             warnings.append(str(InputError(f"{where} cannot be used: {why} (skipped)", path, line)))
-            continue
-        key = unit.key()
-        if key in first:
-            repeats.append((k, first[key]))
-            continue
-        first[key] = k
-        out.append((unit, k, line))
+        elif unit.key() in first:
+            repeats.append((k, first[unit.key()]))
+        else:
+            first[unit.key()] = k
+            out.append((unit, k, line))
     if repeats:
         shown = ", ".join(f"unit {k} repeats unit {j}" for k, j in repeats[:5])
         more = f", ... ({len(repeats) - 5} more)" if len(repeats) > 5 else ""
@@ -186,50 +175,48 @@ def _read(
     return out, warnings
 
 
-def read_units(value_or_text: object, path: str, strict: bool = False) -> tuple[list[Located], list[str]]:
-    """``(unit, k, line)`` per distinct unit in file order (``k`` from 1), and the warnings."""
-    return _read(_elements(value_or_text, path), path, strict)
+def _lists(value_or_text: object, path: str) -> tuple[list[_Entries], bool]:
+    """The lists of a unit list (one) or of a list of unit lists (JSON text or its parsed
+    value), and whether there are several."""
+    if not isinstance(value_or_text, str):
+        if is_unit_lists(value_or_text):
+            assert isinstance(value_or_text, list)
+            return [([(v, None) for v in entries], None) for entries in value_or_text], True
+        if not isinstance(value_or_text, list):
+            raise InputError("expected a JSON list of units {input_nodes, motion_node, output_nodes}", path)
+        return [([(v, None) for v in value_or_text], None)], False
+    text = value_or_text
+    value = loads(text, path)
+    start = len(text) - len(text.lstrip())
+    first = text.count("\n", 0, start) + 1
+    if not isinstance(value, list):
+        raise InputError("expected a JSON list of objects", path, first)
+    top = list_elements(text, path, start)
+    if not is_unit_lists(value):
+        return [([(v, line) for v, line, _ in top], first)], False
+    return [([(v, at) for v, at, _ in list_elements(text, path, pos)], line) for _, line, pos in top], True
 
 
 def read_unit_lists(
     value_or_text: object, path: str, strict: bool = False
 ) -> tuple[list[tuple[list[Located], int | None]], list[str]]:
-    """The trees of a unit list (one tree) or of a list of unit lists (one each): per tree
-    its units as :func:`read_units` gives them and its first line (None when given a
-    value); and all the warnings."""
-    if not isinstance(value_or_text, str):
-        if not is_unit_lists(value_or_text):
-            units, warnings = read_units(value_or_text, path, strict)
-            return [(units, None)], warnings
-        assert isinstance(value_or_text, list)
-        located: list[tuple[list[tuple[object, int | None]], int | None]] = [
-            ([(v, None) for v in entries], None) for entries in value_or_text
-        ]
-    else:
-        text = value_or_text
-        value = safe_loads(text, path)
-        start = len(text) - len(text.lstrip())
-        first = text.count("\n", 0, start) + 1
-        if not isinstance(value, list):
-            raise InputError("expected a JSON list of objects", path, first)
-        top = list_elements(text, path, start)
-        if not is_unit_lists(value):
-            units, warnings = _read([(v, line) for v, line, _ in top], path, strict)
-            return [(units, first)], warnings
-        located = [([(v, at) for v, at, _ in list_elements(text, path, pos)], line) for _, line, pos in top]
+    """The trees of a unit list (one tree) or of a list of unit lists (one each), JSON text or
+    its parsed value: per tree its distinct usable units ``(unit, k, line)`` in file order
+    (``k`` from 1) and its first line (None when given a value); and all the warnings."""
+    lists, several = _lists(value_or_text, path)
     trees: list[tuple[list[Located], int | None]] = []
-    warnings = []
-    for t, (entries, line) in enumerate(located, 1):
-        units, more = _read(entries, path, strict, t)
+    warnings: list[str] = []
+    for t, (entries, line) in enumerate(lists, 1):
+        units, more = _read(entries, path, strict, t if several else None)
         trees.append((units, line))
         warnings += more
     return trees, warnings
 
 
 def read_unit_list(value_or_text: object, path: str, strict: bool = False) -> tuple[list[Unit], list[str]]:
-    """The distinct usable units of a unit list (JSON text or its parsed value) and the warnings."""
-    units, warnings = read_units(value_or_text, path, strict)
-    return [u for u, _, _ in units], warnings
+    """The distinct usable units of a unit list (of every list of a list of them) and the warnings."""
+    trees, warnings = read_unit_lists(value_or_text, path, strict)
+    return [u for units, _ in trees for u, _, _ in units], warnings
 
 
 def read_unit_list_file(path: str | Path, strict: bool = False) -> tuple[list[Unit], list[str]]:
@@ -253,17 +240,16 @@ def unit_list_foon(value_or_text: object, path: str, strict: bool = False, foon:
 # ---------------------------------------------------------------- writing
 
 
-def unit_entry(unit: Unit) -> dict:
-    """One unit in the unit-list form."""
-    return {
-        "input_nodes": [o.to_json() for o in unit.inputs],
-        "motion_node": unit.motion,
-        "output_nodes": [o.to_json() for o in unit.outputs],
-    }
-
-
 def to_unit_list(units: Iterable[Unit]) -> list[dict]:
-    return [unit_entry(u) for u in units]
+    """``units`` in the unit-list form."""
+    return [
+        {
+            "input_nodes": [o.to_json() for o in u.inputs],
+            "motion_node": u.motion,
+            "output_nodes": [o.to_json() for o in u.outputs],
+        }
+        for u in units
+    ]
 
 
 def _block(lines: list[str]) -> str:
