@@ -1,16 +1,12 @@
 """The goal runner: the one place that decides how a goal is answered.
 
-:class:`GoalRunner` answers goal after goal for one method of
-:mod:`foon2asp.methods.registry`; :func:`solve_goals` is the entry point that
-``solve``, ``compare``, ``check``, ``batch`` and the library take, and
-:func:`runner` the runner of one method for a caller that asks goal by goal.
-
-Each goal takes one route (:meth:`GoalRunner.route`, a key of :data:`PROVEN_BY`):
-``search`` (a search baseline), ``fixpoint`` (not derivable, or a kitchen item),
-``only-tree`` (the relevant part has no choice), ``prepared`` (clingo on the goal's
-prepared part, :mod:`foon2asp.asp.prepared`) or ``clingo`` (the whole grounding or the
-goal's part: meals, depth rounds, alternatives, ...).  The table of routes and why each
-answer is proven: docs/proofs/solving.md, "The routes".
+:class:`GoalRunner` answers goal after goal for one method; :func:`solve_goals` is what
+``solve``, ``compare``, ``check``, ``batch`` and the library call.  Each goal takes one
+route (:meth:`GoalRunner.route`): ``search`` (a search baseline), ``fixpoint`` (not
+derivable, or a kitchen item), ``only-tree`` (the relevant part has no choice),
+``prepared`` (clingo on the goal's prepared part) or ``clingo`` (the whole grounding or
+the goal's part: meals, depth rounds, alternatives, ...).  Why each answer is proven:
+docs/proofs/solving.md, "The routes".
 """
 
 from __future__ import annotations
@@ -54,8 +50,7 @@ PROVEN = ("optimal", "ranked", "unreachable", "infeasible")
 
 
 def plain(options: AspOptions) -> bool:
-    """Is this plain optimisation of monotone objectives (no user programs, extra encodings,
-    depth rounds, human steps, alternatives, greedy heuristics or substitutes)?"""
+    """Is this plain optimisation of monotone objectives (nothing but the objectives asked)?"""
     return (
         not options.driven
         and not options.programs
@@ -67,25 +62,21 @@ def plain(options: AspOptions) -> bool:
 
 
 def preparable(options: AspOptions) -> bool:
-    """May a goal take the prepared route: plain optimisation, or plain but for user programs
-    that only remove trees?"""
+    """May a goal take the prepared route (plain, perhaps with programs that only remove trees)?"""
     return plain(replace(options, programs=[])) and only_constraints(options.programs)
 
 
 def _view(problem: Problem, objects: set[int]) -> Problem:
-    """``problem`` with the kitchen cut down to ``objects`` (the goal's part)."""
+    """``problem`` with the kitchen cut down to ``objects``."""
     return problem.with_kitchen(o for o in objects if o in problem.kitchen)
 
 
 class GoalRunner:
     """The runner of one registered method for many goals.
 
-    ``options`` are the caller's (with the method's adjustments,
-    :func:`~foon2asp.methods.registry.effective_options`).  ``goals``: the goals the runner
-    will be asked, if known (the ``clingo`` route then grounds only the units a tree for one
-    of them can use).  ``parts``: the viable units and relevant parts of ``problem`` when
-    the caller has them.  ``shortcuts=False``: no ``only-tree`` route (clingo answers every
-    goal that can be made).
+    ``options``: the caller's (the method adjusts them); ``goals``: the goals it will be
+    asked, if known (the ``clingo`` route grounds only their units); ``parts``: the caller's
+    :class:`Parts` of ``problem``; ``shortcuts=False``: no ``only-tree`` route.
     """
 
     def __init__(
@@ -100,13 +91,12 @@ class GoalRunner:
     ):
         if grounding not in GROUNDINGS:
             raise ValueError(f"unknown grounding {grounding!r}")
-        check_substitutes(name, options)  # before anything is solved: a method that cannot honour them refuses
+        check_substitutes(name, options)
         problem = with_substitutes(problem, options)
         if options.substitutes:  # a goal's part would leave out the kitchen items that stand in
             grounding = "whole"
         method = get(name)
         if goals is not None and method.kind == "asp" and options.units is None:
-            # no tree for one of these goals can use another unit
             options = replace(options, units=problem.units_for({g for goal in goals for g in meal_of(goal)}))
         self.name = name
         self.problem = problem
@@ -117,25 +107,21 @@ class GoalRunner:
         #: how many goals took each route (:data:`PROVEN_BY`)
         self.counts = dict.fromkeys(PROVEN_BY, 0)
         self._whole: Runner | None = None
-        #: units the caller allows (options.units); a goal whose part lies inside them is answered exactly
+        #: units the caller allows (options.units)
         self._allowed = None if self.options.units is None else frozenset(self.options.units)
-        #: the options the method's sessions use, and the ranked objectives the bounds see
         self._effective = effective_options(name, self.options) if self.kind == "asp" else self.options
         self._ranked = ranked(self._effective) if self.kind == "asp" else ()
         self._label = self._effective.method if self.kind == "asp" else name
-        #: goals may be prepared: plain optimisation, perhaps with programs that only remove trees
         self._preparable = self.kind == "asp" and preparable(self._effective)
-        #: the depth objective with nothing else asked: clingo's rounds, but a goal that cannot be
-        #: made, or whose part is its only tree, is settled first
+        #: the depth objective with nothing else asked: a goal without choice is settled first
         depthless = replace(self._effective, objective=tuple(o for o in self._effective.objective if o != "depth"))
         self._depth_settles = (
             self.kind == "asp" and "depth" in self._ranked and plain(depthless) and self._effective.max_depth is None
         )
-        #: preparation may answer a goal whose part is its only tree
         self._settle = shortcuts
-        #: the user's programs only remove trees (the bounds tree is a hint only, nothing is pruned)
+        #: under user programs the bounds tree is a hint only and nothing is pruned
         self._constrained = bool(self._effective.programs)
-        #: a settled tree is the answer under the user's programs when it satisfies them (checked)
+        #: a tree can be checked against the user's programs
         self._checkable = self._constrained and checkable(self._effective.programs)
         self._check: ConstraintCheck | None = None
         #: the same method without the user's programs (their optimum, checked against them)
@@ -147,7 +133,7 @@ class GoalRunner:
             self._search = method.factory(problem, self.options)
 
     def route(self, goal: Goals) -> str:
-        """How ``goal`` is answered: a key of :data:`PROVEN_BY` (see the module docstring)."""
+        """How ``goal`` is answered: a key of :data:`PROVEN_BY`."""
         meal = meal_of(goal)
         if self.kind != "asp":
             return "search"
@@ -158,7 +144,7 @@ class GoalRunner:
             return "fixpoint"
         units, _, choice = self.parts.relevant(goal)
         if self._allowed is not None and not self._allowed.issuperset(units):
-            return "clingo"  # the caller's units cut into the part: clingo decides on them
+            return "clingo"  # the caller's units cut into the part
         if self._depth_settles:
             return "only-tree" if self._settle and not choice else "clingo"
         if self._settle and not choice and self._allows(units):
@@ -199,7 +185,7 @@ class GoalRunner:
         for answer in (tree, *tree.alternatives):
             if answer.status in PROVEN:
                 answer.proven_by = PROVEN_BY[how]
-        if self._effective.programs:  # the answer obeys these; a baseline's tree does not
+        if self._effective.programs:
             tree.extra["constraints"] = [name for name, _ in self._effective.programs]
         return tree
 
@@ -212,26 +198,20 @@ class GoalRunner:
     def _answer(self, goal: int, units: list[int], t0: float) -> TaskTree:
         """An optimal tree that preparation proved."""
         order = executable_order(self.problem, units)
-        depth = measures(self.problem, goal, order)["depth"] or 0
-        asp_cost = [depth if name == "depth" else total(self.problem, name, order) for name in self._ranked]
-        tree = TaskTree(
-            goal,
-            self._label,
-            "optimal",
-            order,
-            measures(self.problem, goal, order),
-            round(time.perf_counter() - t0, 6),
-            extra={"asp_cost": asp_cost},
-        )
+        cost = measures(self.problem, goal, order)
+        asp_cost = [
+            cost["depth"] or 0 if name == "depth" else total(self.problem, name, order) for name in self._ranked
+        ]
+        tree = TaskTree(goal, self._label, "optimal", order, cost, round(time.perf_counter() - t0, 6))
+        tree.extra["asp_cost"] = asp_cost
         return settle(self.problem, tree, self._ranked)
 
     def preparation(self, goal: int) -> Preparation:
         """What Python hands clingo for ``goal`` (a derivable goal that is no kitchen item)."""
         units, _, _ = self.parts.relevant(goal)
-        lm = self.parts.bounds_for(("units",), units) if not self._bounded else None
         if not self._bounded:
-            assert lm is not None
-            return Preparation(goal, tuple(units), tuple(sorted(lm.landmarks(goal))), floor=None)
+            landmarks = self.parts.bounds_for(("units",), units).landmarks(goal)
+            return Preparation(goal, tuple(units), tuple(sorted(landmarks)))
         bounds = self.parts.bounds_for(self._ranked, units)
         tree = bounds.tree(goal) or ()
         lower = bounds.lower(goal)
@@ -259,9 +239,8 @@ class GoalRunner:
         return replace(prep, candidates=tuple(units))
 
     def _prepared(self, goal: int, t0: float) -> TaskTree:
-        """clingo on the goal's prepared part.  Under user programs that a tree can be checked
-        against, the optimum without them first: the answer when it satisfies them, else
-        clingo searches again with them."""
+        """clingo on the goal's prepared part; under checkable user programs, the optimum without
+        them when it satisfies them."""
         if self._checkable:
             if self._free is None:
                 free = replace(self._effective, programs=[])
@@ -270,38 +249,28 @@ class GoalRunner:
             if tree.status == "optimal" and self._allows(tree.units):
                 return tree
         prep = self.preparation(goal)
-        with deferred_signals():  # one section for the grounding and the search (a search still stops at a signal)
+        with deferred_signals():  # one section for the grounding and the search
             session = Session(self.problem, self._effective, prepared=prep)
             tree = session.solve(goal, floor=prep.floor)
         tree.time_s = round(time.perf_counter() - t0, 6)
         tree.stats["candidates"] = len(prep.candidates)
         return tree
 
-    def _session(self, problem: Problem, units: tuple[int, ...]) -> Session:
-        """A session of the method grounding ``units`` of ``problem`` (a view, or the whole problem)."""
-        return Session(problem, replace(self._effective, units=units))
-
-    def _whole_runner(self) -> Runner:
-        """The one grounding of all viable (or allowed) units, built on first use."""
-        if self._whole is None:
-            units = self.options.units
-            if units is None:
-                units = tuple(sorted(self.parts.viable))
-            self._whole = self._session(self.problem, tuple(units)).solve
-        return self._whole
-
     def _solve(self, goal: Goals) -> TaskTree:
-        """clingo on the whole grounding or the goal's part."""
+        """clingo on the whole grounding (all viable or allowed units, grounded once) or the goal's part."""
         if self.grounding == "whole" or len(meal_of(goal)) > 1:
-            return self._whole_runner()(goal)
+            if self._whole is None:
+                units = self.options.units if self.options.units is not None else sorted(self.parts.viable)
+                self._whole = Session(self.problem, replace(self._effective, units=tuple(units))).solve
+            return self._whole(goal)
         units, objects, _ = self.parts.relevant(goal)
         if self._allowed is not None:
             units = [u for u in units if u in self._allowed]
-        return self._session(_view(self.problem, objects), tuple(units)).solve(goal)
+        return Session(_view(self.problem, objects), replace(self._effective, units=tuple(units))).solve(goal)
 
     def _infeasible(self, tree: TaskTree) -> None:
-        """Trees for the goal exist, but the user's programs rule them all out: ``infeasible``,
-        with the program named when one alone does it."""
+        """Trees exist but the user's programs rule them all out: ``infeasible``, naming each program
+        that alone does."""
         tree.status = "infeasible"
         programs = self._effective.programs
         alone = []
@@ -309,9 +278,9 @@ class GoalRunner:
             alone = [programs[0][0]]
         else:
             units, objects, _ = self.parts.relevant(tree.meal)
-            limit = self._effective.time_limit  # the caller's; none: each question runs to its end
+            limit = self._effective.time_limit
             for name, text in programs:
-                # does this program alone leave a tree?  A decision, unless depth rounds decide it
+                # does this program alone leave a tree?
                 one = replace(self._effective, programs=[(name, text)], units=tuple(units))
                 session = Session(_view(self.problem, objects), one, goal=tree.meal)
                 if one.driven:
@@ -338,11 +307,9 @@ def solve_goals(
     shortcuts: bool = True,
 ) -> Iterator[TaskTree]:
     """The trees of ``method`` for ``goals`` (object ids, or tuples of them: meals), in order,
-    each solved when it is asked for.  A bad method or grounding is an error at the call,
-    before any goal is solved.
-    """
+    each solved when it is asked for (a bad method or grounding fails at the call)."""
     goals = list(goals)
-    run = GoalRunner(method, problem, options, grounding, shortcuts, goals=goals)  # built now: errors come first
+    run = GoalRunner(method, problem, options, grounding, shortcuts, goals=goals)
     return map(run, goals)
 
 
