@@ -1,10 +1,7 @@
 """Run a batch on a Dask cluster (the optional extra ``dask``: ``pip install 'foon2asp[dask]'``).
 
-The batch spec (problem, methods, options) is scattered to every worker
-once; each worker process builds its runners once (cached per thread, since
-a clingo control is not shared between threads) and answers chunks of
-(goal, method) pairs.  Results come back as they finish and the client
-writes them exactly as a local batch does, so ``--resume`` works the same.
+The spec is scattered to every worker once; each builds its runners once per thread (a clingo
+control is not shared between threads) and answers chunks of (goal, method) pairs.
 """
 
 from __future__ import annotations
@@ -31,14 +28,9 @@ def _require():
 
 def _run_chunk(token: str, spec: BatchSpec, tasks: list[tuple[int, str]]) -> list[tuple[int, str, str]]:
     """On a Dask worker: the results of ``tasks`` (runners built once per thread and spec)."""
-    cache = getattr(_LOCAL, "workers", None)
-    if cache is None:
-        cache = _LOCAL.workers = {}
-    worker = cache.get(token)
-    if worker is None:
-        cache.clear()
-        worker = cache[token] = Worker(spec)
-    return worker.run_many(tasks)
+    if getattr(_LOCAL, "token", None) != token:
+        _LOCAL.token, _LOCAL.worker = token, Worker(spec)
+    return _LOCAL.worker.run_many(tasks)
 
 
 def executor(scheduler, chunk: int = 8) -> Callable[[BatchSpec, list[tuple[int, str]]], Iterator[tuple[int, str, str]]]:

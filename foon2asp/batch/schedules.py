@@ -1,13 +1,4 @@
-"""Schedules of a batch's trees (``batch --schedule``): one schedule per goal, written as one JSON list.
-
-The trees are the result records of one method (the first one asked for; ``asp`` by
-default), old and new alike (``--resume``): each record's units are found in the FOON
-by their motion, inputs and outputs, and the tree is scheduled by
-:func:`foon2asp.schedule.schedule`.  A goal without a tree gets its record's status
-(``unreachable``, or ``unknown`` when no tree was found in time).  The file
-(:func:`schedules_path`: ``results.jsonl`` -> ``results.schedules.json``) has the
-shape of ``schedule --format json``, so ``check`` judges it as it is.
-"""
+"""Schedules of a batch's trees (``batch --schedule``): one schedule per goal, written as one JSON list."""
 
 from __future__ import annotations
 
@@ -15,6 +6,7 @@ import json
 from collections.abc import Callable
 from pathlib import Path
 
+from foon2asp.analysis.check import unit_index
 from foon2asp.asp.options import AspOptions
 from foon2asp.batch.results import WITH_TREE, goal_key
 from foon2asp.errors import InputError
@@ -30,7 +22,8 @@ def schedules_path(output: str | Path) -> Path:
 
 
 def record_tree(problem: Problem, record: dict) -> TaskTree | None:
-    """The task tree of a result record (None: its goal is not an object of this FOON)."""
+    """The task tree of a result record, its units found in the FOON by motion, inputs and
+    outputs (None: its goal is not an object of this FOON; no tree: status unreachable or unknown)."""
     goal = goal_key(problem, record)
     if goal is None:
         return None
@@ -38,7 +31,7 @@ def record_tree(problem: Problem, record: dict) -> TaskTree | None:
     if status not in WITH_TREE or not record.get("units"):
         status = "unreachable" if status in ("unreachable", "not-found") else "unknown"
         return TaskTree(goal=goal, method=str(record.get("method", "?")), status=status)
-    ids = {u.key(): k for k, u in enumerate(problem.units)}
+    ids = unit_index(problem)
     units = []
     for unit in parse_json(json.dumps(record["units"]), "results").units:
         uid = ids.get(unit.key())

@@ -1,16 +1,7 @@
 """Lower bounds and gaps: how far an unproven answer may be from the optimum.
 
-:func:`settle` writes onto a tree the best of the solver's lower bounds (one per
-priority level, highest first) and the landmark bound on the first level:
-
-* ``bound``: ``{objective: value}`` per level, in the units of the tree's ``cost`` (for
-  ``success`` the greatest success product any tree can have); a level below one not
-  yet closed gets the trivial bound (0, or a success product of 1);
-* ``gap``: ``(U - L) / U`` on the solver's weights of the first objective (0 when U is 0).
-
-A proven answer has ``bound`` equal to its cost and ``gap`` 0; an unproven answer whose
-bound meets its cost on every level becomes ``optimal`` (docs/proofs/preparation.md,
-"Bounds and gaps").
+Why a level's bound is shown only once the levels above it are closed:
+docs/proofs/preparation.md, "Bounds and gaps".
 """
 
 from __future__ import annotations
@@ -87,11 +78,12 @@ def settle(
     lower: Sequence[int] | None = None,
     floor: int | None = None,
 ) -> TaskTree:
-    """Set ``tree.bound`` and ``tree.gap`` from the solver's lower bound ``lower`` (per level
-    of ``names``, highest first; possibly shorter) and ``floor`` (a lower bound on the first
-    objective's weight, from the landmarks).  A proven answer gets its own cost, a search
-    baseline's nothing; a ``feasible`` answer the bound meets on every level becomes
-    ``optimal`` (``stats["proof"]``)."""
+    """Set ``tree.bound`` (``{objective: value}`` per level, in the units of ``cost``) and
+    ``tree.gap`` (``(U - L) / U`` on the first objective's weights) from the solver's lower
+    bound ``lower`` (per level of ``names``, highest first; possibly shorter) and ``floor`` (a
+    lower bound on the first objective's weight, from the landmarks).  A proven answer gets its
+    own cost, a search baseline's nothing; a ``feasible`` answer the bound meets on every level
+    becomes ``optimal`` (``stats["proof"]``)."""
     shown = [n for n in names if n != HUMAN]
     if not shown or tree.status in ("found", "not-found", "unreachable", "infeasible"):
         return tree

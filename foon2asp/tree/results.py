@@ -1,7 +1,7 @@
 """The answers the commands give, as plain values the renderers of :mod:`foon2asp.report` print.
 
-They are made in :mod:`foon2asp.analysis` and :mod:`foon2asp.batch` and live here, below
-both, so that rendering them needs neither.
+They live below :mod:`foon2asp.analysis` and :mod:`foon2asp.batch`, which make them, so that
+rendering them needs neither.
 """
 
 from __future__ import annotations

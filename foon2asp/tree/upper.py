@@ -1,8 +1,6 @@
 """A cheap, valid tree for any derivable goal: an upper bound, not an optimum.
 
-:func:`cheapest_sets` gives each object a cheapest well-founded set of units;
-:func:`cheapest_tree` joins the goals' sets and drops redundant units, heaviest first
-(docs/proofs/preparation.md, "The cheapest-set tree").
+Why it is a tree: docs/proofs/preparation.md, "The cheapest-set tree".
 """
 
 from __future__ import annotations

@@ -1,9 +1,7 @@
 """An independent validator for task trees.
 
-It replays the units on plain objects, straight from the FOON, the kitchen and the
-utensil rule, without the encodings or the integer problem's fixpoint
-(docs/proofs/preparation.md, "The independent validator").  :func:`judge_alone` judges
-a list of units without a FOON.
+It replays the units on plain objects, without the encodings or the integer problem's
+fixpoint (docs/proofs/preparation.md, "The independent validator").
 """
 
 from __future__ import annotations

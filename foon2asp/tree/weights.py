@@ -1,9 +1,6 @@
 """What a unit weighs under each objective that sums weights of the used units.
 
-The one table (:data:`UNIT_WEIGHTS`) the facts, objectives, bounds and cheapest trees
-all read: ``units`` counts a unit once, ``success`` weighs it ``round(-SCALE ln p)``
-(:func:`neglog_weight`), ``inputs`` by its input nodes (docs/proofs/preparation.md,
-"Weights").
+The one table (:data:`UNIT_WEIGHTS`) the facts, objectives, bounds and cheapest trees all read.
 """
 
 from __future__ import annotations
