@@ -6,7 +6,7 @@ import pytest
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject
-from foon2asp.foon.parser import format_units, parse_text, read_foon, read_foons
+from foon2asp.foon.parser import format_units, parse_lines, parse_text, read_foon, read_foons
 
 IDLESS = """# a comment
 //
@@ -74,7 +74,9 @@ def test_duplicate_units_merged():
     # the second copy lists the inputs in another order: same unit
     assert len(foon.units) == 1
     other = parse_text(IDLESS.replace("chop", "slice"))
-    merged = Foon.merged([foon, other, foon])
+    merged = Foon()
+    for part in (foon, other, foon):  # the units of several FOONs in one
+        parse_lines(format_units(part.units).splitlines(), foon=merged)
     assert [u.motion for u in merged.units] == ["chop", "slice"]
 
 

@@ -31,7 +31,6 @@ class FoonObject:
     container: str | None = None
 
     def __post_init__(self) -> None:
-        # objects are dictionary keys everywhere: compute the hash once
         object.__setattr__(self, "_hash", hash((self.label, self.states, self.ingredients, self.container)))
 
     def __hash__(self) -> int:
@@ -45,12 +44,12 @@ class FoonObject:
         ingredients: Iterable[str] = (),
         container: str | None = None,
     ) -> FoonObject:
-        container = norm(container) if container not in (None, "") else None
+        """The object with these fields normalised (empty ones dropped) and sorted."""
         return cls(
             norm(label),
-            tuple(sorted({norm(s) for s in states if norm(s)})),
-            tuple(sorted({norm(i) for i in ingredients if norm(i)})),
-            container or None,
+            tuple(sorted({norm(s) for s in states} - {""})),
+            tuple(sorted({norm(i) for i in ingredients} - {""})),
+            norm(container or "") or None,
         )
 
     @property
@@ -99,9 +98,7 @@ class Unit:
         }
 
     def __str__(self) -> str:
-        ins = "; ".join(map(str, self.inputs))
-        outs = "; ".join(map(str, self.outputs))
-        return f"{self.motion}: {ins} -> {outs}"
+        return f"{self.motion}: {'; '.join(map(str, self.inputs))} -> {'; '.join(map(str, self.outputs))}"
 
 
 @dataclass
@@ -157,16 +154,3 @@ class Foon:
     def by_label(self, label: str) -> list[FoonObject]:
         label = norm(label)
         return [o for o in self.objects if o.label == label]
-
-    @classmethod
-    def merged(cls, foons: Iterable[Foon]) -> Foon:
-        out = cls()
-        for foon in foons:
-            for unit, origin in zip(foon.units, foon.origins):
-                out.add_unit(unit, origin)
-            out.warnings.extend(foon.warnings)
-            for kind, table in foon.ids.items():
-                mine = out.ids.setdefault(kind, {})
-                for text, i in table.items():
-                    mine.setdefault(text, i)
-        return out

@@ -1,19 +1,17 @@
 """Read and write FOON text files.
 
-Both dialects (ID-less and official, docs/formats.md) are read line by line, so files
-may mix them; a JSON file is FOON JSON (:mod:`foon2asp.foon.foonjson`) or a unit list
-(:mod:`foon2asp.foon.unitlist`).  ``in`` sets the container, ``contains`` the
-ingredients, any other relation is the state ``"rel [arg]"``; brackets must pair up.
-Bad lines are an :class:`InputError` naming ``FILE:LINE[:COLUMN]``.  The ids of official
-files are kept (:attr:`Foon.ids`) and reused when writing the official dialect.
+Both dialects (ID-less and official, docs/formats.md) are read line by line, so files may
+mix them; the ids of official files are kept (:attr:`Foon.ids`) and reused when writing.
 """
 
 from __future__ import annotations
 
 import gc
+import itertools
 import json
 import re
 from collections.abc import Iterable
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TextIO
 
@@ -68,12 +66,12 @@ def _check_brackets(line: str, tab: int, path: str, lineno: int) -> None:
     start = tab + 1
     raw = line[start:].split("\t")
     shown = " ".join(f.strip() for f in raw if f.strip())
-    for field in raw:
-        problem = _bracket_problem(field)
+    for part in raw:
+        problem = _bracket_problem(part)
         if problem is not None:
             what, at = problem
             raise InputError(f"{what} in the state {shown!r}", path, lineno, start + at + 1)
-        start += len(field) + 1
+        start += len(part) + 1
     name = raw[0].strip().lower()
     if len(raw) > 1 and name in ("in", "contains", "ingredients"):
         arg = raw[1]
@@ -90,22 +88,14 @@ def _check_brackets(line: str, tab: int, path: str, lineno: int) -> None:
             )
 
 
+@dataclass
 class _Obj:
     """An object being read (mutable until the unit ends)."""
 
-    def __init__(self, label: str):
-        self.label = label
-        self.states: list[str] = []
-        self.ingredients: list[str] = []
-        self.container: str | None = None
-
-    def freeze(self, memo: dict) -> FoonObject:
-        """The normalised object; ``memo`` maps raw fields to objects already made."""
-        key = (self.label, tuple(self.states), tuple(self.ingredients), self.container)
-        obj = memo.get(key)
-        if obj is None:
-            obj = memo[key] = FoonObject.make(self.label, self.states, self.ingredients, self.container)
-        return obj
+    label: str
+    states: list[str] = field(default_factory=list)
+    ingredients: list[str] = field(default_factory=list)
+    container: str | None = None
 
 
 def parse_lines(lines: Iterable[str], path: str = "<string>", foon: Foon | None = None, strict: bool = False) -> Foon:
@@ -122,29 +112,31 @@ def parse_lines(lines: Iterable[str], path: str = "<string>", foon: Foon | None 
 
 
 def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
-    memo: dict = {}
+    memo: dict[tuple, FoonObject] = {}  # raw fields -> the object made of them
     inputs: list[_Obj] = []
     outputs: list[_Obj] = []
     motion: str | None = None
     start = 0
     current: _Obj | None = None
-    ids = foon.ids
 
-    def finish(lineno: int) -> None:
-        nonlocal inputs, outputs, motion, current, start
-        if inputs or outputs or motion is not None:
-            if motion is None:
-                err = InputError("functional unit has no motion (M) line; unit skipped", path, start)
-                if strict:
-                    raise err
-                foon.warnings.append(str(err))
-                inputs, outputs, current = [], [], None
-                return
-            unit = Unit(motion, tuple(o.freeze(memo) for o in inputs), tuple(o.freeze(memo) for o in outputs))
-            foon.add_unit(unit, (path, start))
+    def freeze(o: _Obj) -> FoonObject:
+        key = (o.label, tuple(o.states), tuple(o.ingredients), o.container)
+        obj = memo.get(key)
+        if obj is None:
+            obj = memo[key] = FoonObject.make(o.label, o.states, o.ingredients, o.container)
+        return obj
+
+    def finish() -> None:
+        nonlocal inputs, outputs, motion, current
+        if motion is not None:
+            foon.add_unit(Unit(motion, tuple(map(freeze, inputs)), tuple(map(freeze, outputs))), (path, start))
+        elif inputs or outputs:
+            err = InputError("functional unit has no motion (M) line; unit skipped", path, start)
+            if strict:
+                raise err
+            foon.warnings.append(str(err))
         inputs, outputs, motion, current = [], [], None, None
 
-    lineno = 0
     for lineno, raw in enumerate(lines, 1):
         line = raw.rstrip("\r\n")
         if lineno == 1 and line.startswith("\ufeff"):
@@ -154,21 +146,17 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
         # O, S or M, optional digits, TAB: checked without a regular expression
         tab = line.find("\t") if kind in _KINDS else -1
         if tab < 0 or (tab > 1 and not line[1:tab].isdecimal()):
-            if not line.strip():
-                continue
             if line.startswith("//"):
-                finish(lineno)
-                continue
-            if line.startswith("#"):
-                continue
-            if kind in "OSM" and "\t" not in line:
-                raise InputError(f"expected a TAB after '{line.split()[0]}' in {line.strip()!r}", path, lineno)
-            raise InputError(f"unknown line type {line.strip()[:40]!r} (expected O, S, M, // or #)", path, lineno)
+                finish()
+            elif line.strip() and not line.startswith("#"):
+                if kind in _KINDS and "\t" not in line:
+                    raise InputError(f"expected a TAB after '{line.split()[0]}' in {line.strip()!r}", path, lineno)
+                raise InputError(f"unknown line type {line.strip()[:40]!r} (expected O, S, M, // or #)", path, lineno)
+            continue
         rest = line[tab + 1 :]
         fields = [f.strip() for f in rest.split("\t")] if "\t" in rest else [rest.strip()]
         if tab > 1 and fields[0]:  # an official line: keep the id of its label
-            name = fields[0].rstrip("*") if kind == "M" else fields[0]
-            ids[kind].setdefault(norm(name), int(line[1:tab]))
+            foon.ids[kind].setdefault(norm(fields[0].rstrip("*") if kind == "M" else fields[0]), int(line[1:tab]))
         if kind == "O":
             if not fields[0]:
                 raise InputError("object line with an empty label", path, lineno)
@@ -188,7 +176,7 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
             if arg is None:
                 current.states.append(name)
             elif name.lower() in ("contains", "ingredients"):
-                current.ingredients.extend(i for i in _strip_brackets(arg).split(","))
+                current.ingredients.extend(_strip_brackets(arg).split(","))
             elif name.lower() == "in":
                 container = _strip_brackets(arg)
                 if current.container is not None and current.container != container:
@@ -205,12 +193,11 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
                 raise InputError("second motion (M) line in one functional unit", path, lineno)
             if not inputs:
                 raise InputError("motion (M) line before any input object", path, lineno)
-            label = fields[0].rstrip("*").strip()
-            if not label:
+            motion = fields[0].rstrip("*").strip().lower()
+            if not motion:
                 raise InputError("motion line with an empty motion", path, lineno)
-            motion = label.lower()
             current = None
-    finish(lineno + 1)
+    finish()
     return foon
 
 
@@ -270,84 +257,59 @@ def object_fields(obj: FoonObject) -> list[tuple[str, str | None]]:
 
 class IdMap:
     """One id per object label, state name and motion, for the official dialect: the ids
-    read (first per label, unless another label holds it), then fresh ids above the largest
-    in sorted label order, so the same FOON always gets the same ids."""
+    ``known`` (first per label, unless another label holds it), then fresh ids above the
+    largest for the other ``labels`` in sorted order, so the same FOON always gets the same ids."""
 
     def __init__(self, known: dict[str, dict[str, int]], labels: dict[str, set[str]]):
         self.table: dict[str, dict[str, int]] = {}
         for kind in ("O", "S", "M"):
-            table: dict[str, int] = {}
+            table = self.table[kind] = {}
             taken: set[int] = set()
             for text, i in known.get(kind, {}).items():
                 if i not in taken and text not in table:
                     table[text] = i
                     taken.add(i)
-            nxt = max(taken, default=0) + 1
-            for text in sorted(labels.get(kind, set()) - table.keys()):
-                table[text] = nxt
-                nxt += 1
-            self.table[kind] = table
+            fresh = sorted(labels.get(kind, set()) - table.keys())
+            table.update(zip(fresh, itertools.count(max(table.values(), default=0) + 1)))
 
     def get(self, kind: str, text: str) -> int:
         """The id of ``text`` (a new one, above all others, for text not seen before)."""
-        table = self.table[kind]
-        text = norm(text)
-        i = table.get(text)
-        if i is None:
-            i = table[text] = max(table.values(), default=0) + 1
-        return i
-
-
-def foon_labels(foon: Foon) -> dict[str, set[str]]:
-    """The object labels, state names and motions of ``foon``."""
-    states: set[str] = set()
-    for obj in foon.objects:
-        states.update(name for name, _ in object_fields(obj))
-    return {"O": {o.label for o in foon.objects}, "S": states, "M": {u.motion for u in foon.units}}
+        table, text = self.table[kind], norm(text)
+        if text not in table:
+            table[text] = max(table.values(), default=0) + 1
+        return table[text]
 
 
 def id_map(foon: Foon) -> IdMap:
     """The ids of ``foon`` for the official dialect (cached until the FOON grows)."""
     key = (len(foon.units), len(foon.objects), sum(len(t) for t in foon.ids.values()))
-    cached = foon.id_cache
-    if cached is None or cached[0] != key:
-        cached = foon.id_cache = (key, IdMap(foon.ids, foon_labels(foon)))
-    return cached[1]
+    if foon.id_cache is None or foon.id_cache[0] != key:
+        states = {name for obj in foon.objects for name, _ in object_fields(obj)}
+        labels = {"O": {o.label for o in foon.objects}, "S": states, "M": {u.motion for u in foon.units}}
+        foon.id_cache = (key, IdMap(foon.ids, labels))
+    return foon.id_cache[1]
 
 
 def object_lines(obj: FoonObject, ids: IdMap | None = None) -> list[str]:
     """The O and S lines of ``obj``: official with ``ids``, else ID-less."""
-    if ids is None:
-        lines = [f"O\t{obj.label}"]
-        lines += [f"S\t{name}\t{arg}" if arg else f"S\t{name}" for name, arg in object_fields(obj)]
-        return lines
-    lines = [f"O{ids.get('O', obj.label)}\t{obj.label}\t0"]
+    lines = [f"O\t{obj.label}" if ids is None else f"O{ids.get('O', obj.label)}\t{obj.label}\t0"]
     for name, arg in object_fields(obj):
-        sid = ids.get("S", name)
-        lines.append(f"S{sid}\t{name}\t{arg}" if arg else f"S{sid}\t{name}")
+        kind = "S" if ids is None else f"S{ids.get('S', name)}"
+        lines.append(f"{kind}\t{name}\t{arg}" if arg else f"{kind}\t{name}")
     return lines
 
 
 def unit_lines(unit: Unit, ids: IdMap | None = None) -> list[str]:
     """The lines of ``unit``, closed by ``//`` (official with ``ids``, else ID-less)."""
-    lines: list[str] = []
-    for obj in unit.inputs:
-        lines += object_lines(obj, ids)
-    lines.append(
-        f"M\t{unit.motion}" if ids is None else f"M{ids.get('M', unit.motion)}\t{unit.motion}\tAssumed\tAssumed"
-    )
-    for obj in unit.outputs:
-        lines += object_lines(obj, ids)
-    lines.append("//")
-    return lines
+    motion = f"M\t{unit.motion}" if ids is None else f"M{ids.get('M', unit.motion)}\t{unit.motion}\tAssumed\tAssumed"
+    lines = [line for obj in unit.inputs for line in object_lines(obj, ids)] + [motion]
+    return lines + [line for obj in unit.outputs for line in object_lines(obj, ids)] + ["//"]
 
 
 def format_units(units: Iterable[Unit], header: str | None = None, ids: IdMap | None = None) -> str:
     """FOON text for ``units``, each closed by ``//``: the official dialect with ``ids``, else ID-less."""
-    lines = [f"# {header}"] if header else []
-    lines.append("//")
-    for unit in units:
-        lines += unit_lines(unit, ids)
+    lines = [f"# {header}", "//"] if header else ["//"]
+    lines += [line for unit in units for line in unit_lines(unit, ids)]
     return "\n".join(lines) + "\n"
 
 
