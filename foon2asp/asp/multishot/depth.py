@@ -1,12 +1,9 @@
 """Depth bounds by multi-shot solving on one clingo Control.
 
-``encodings/depth.lp`` has a ``#program bound(k,g,d)`` part: the rounds of the used units
-for goal ``g`` under depth bound ``d``, with externals ``query(k)`` (the goal must be had
-after ``d`` rounds) and ``within(k)`` (the rounds count towards the depth cost); a meal's
-bound adds a part ``meal(m,d)`` over its goals' blocks.  :class:`Rounds` grounds each block
-once, over the windows of :class:`Levels` (the rounds in which a unit can matter), and
-:func:`solve_depth` runs the loop over bounds: depth first, depth later in the objectives,
-or ``--max-depth`` alone.  Why each keeps the optimum: docs/proofs/solving.md, "Depth rounds".
+:class:`Rounds` grounds each block ``bound(k,g,d)`` of ``encodings/depth.lp`` (goal ``g``
+within ``d`` rounds, switched by ``query(k)`` and ``within(k)``; a meal's ``meal(m,d)``)
+once, over the windows of :class:`Levels`; :func:`solve_depth` runs the loop over bounds
+(docs/proofs/solving.md, "Depth rounds").
 """
 
 from __future__ import annotations
@@ -46,7 +43,8 @@ class Levels:
         for u, prods in self.products.items():
             for o in prods:
                 self.producers.setdefault(o, []).append(u)
-        self.object_level, self.unit_level = self._fixpoint()
+        # levels as in Problem.derivation_levels (kitchen items are level 0)
+        self.object_level, self.unit_level = least_fixpoint(kitchen, self.required, self.products, self.required)
 
     @classmethod
     def from_problem(cls, problem, units) -> Levels:
@@ -86,10 +84,6 @@ class Levels:
                     table[u].append(o)
         return cls(kitchen, required, products, required_any)
 
-    def _fixpoint(self) -> tuple[dict[int, int], dict[int, int]]:
-        """Levels as in :meth:`Problem.derivation_levels` (kitchen items are level 0)."""
-        return least_fixpoint(self.kitchen, self.required, self.products, self.required)
-
     def level(self, goal: int | tuple[int, ...]) -> int | None:
         """The least depth of any tree for ``goal`` (0 in the kitchen, None: no tree);
         for a meal, the greatest over its goals."""
@@ -99,8 +93,8 @@ class Levels:
         return 0 if goal in self.kitchen else self.object_level.get(goal)
 
     def windows(self, goal: int, bound: int) -> list[tuple[int, int, int]]:
-        """``(unit, first, last)``: the rounds in which a unit's firing can matter for
-        having ``goal`` within ``bound`` rounds (units that can fire only)."""
+        """``(unit, first, last)``: the rounds in which a unit's firing can matter for having
+        ``goal`` within ``bound`` rounds."""
         dist = {goal: 0}
         queue = deque([goal])
         unit_dist: dict[int, int] = {}
@@ -137,8 +131,7 @@ class DepthSearch:
 
 
 class Rounds:
-    """The depth blocks grounded on one session's Control, each once, and the session's
-    :class:`Levels` (owned by the session's :class:`~foon2asp.asp.multishot.driver.Driver`)."""
+    """The depth blocks grounded on one session's Control, each once, and the session's :class:`Levels`."""
 
     def __init__(self, control: Control, levels: Levels) -> None:
         self.control = control
@@ -150,8 +143,7 @@ class Rounds:
 
     @classmethod
     def of(cls, session) -> Rounds:
-        """For ``session`` (a :class:`~foon2asp.asp.session.Session`): its levels read from the
-        Problem, or from the grounded atoms when user programs may add facts."""
+        """For ``session``: its levels from the Problem, or from the grounded atoms when user programs may add facts."""
         control = session.control
         options = session.options
         if options.programs or options.encodings:
@@ -183,23 +175,15 @@ class Rounds:
         return m
 
     def externals(self, goal: int | tuple[int, ...], bound: int, count_depth: bool) -> dict[clingo.Symbol, bool]:
-        """The externals for depth bound ``bound`` of ``goal``: query(k), and within(k) when
-        the depth cost is counted (the block is grounded if need be); for a meal
-        meal_query(m) and meal_within(m)."""
-        if not isinstance(goal, int):
-            if len(goal) == 1:
-                goal = goal[0]
-            else:
-                m = clingo.Number(self.meal_block(tuple(goal), bound))
-                out_meal = {clingo.Function("meal_query", [m]): True}
-                if count_depth:
-                    out_meal[clingo.Function("meal_within", [m])] = True
-                return out_meal
-        k = clingo.Number(self.block(goal, bound))
-        out = {clingo.Function("query", [k]): True}
-        if count_depth:
-            out[clingo.Function("within", [k])] = True
-        return out
+        """The externals for depth bound ``bound`` of ``goal`` (its block grounded if need be):
+        query(k), and within(k) when the depth cost is counted; meal_query(m), meal_within(m) for a meal."""
+        if not isinstance(goal, int) and len(goal) == 1:
+            goal = goal[0]
+        if isinstance(goal, int):
+            k, names = self.block(goal, bound), ("query", "within")
+        else:
+            k, names = self.meal_block(tuple(goal), bound), ("meal_query", "meal_within")
+        return {clingo.Function(name, [clingo.Number(k)]): True for name in (names if count_depth else names[:1])}
 
 
 def depth_mode(options, ranked: tuple[str, ...]) -> str:
@@ -219,13 +203,11 @@ def solve_depth(
     max_depth: int | None,
     single: bool = True,
 ):
-    """Run the depth strategy ``mode`` for ``goal``; returns ``(result, bound)``.
+    """Run the depth strategy ``mode`` for ``goal``: ``(result, bound)``.
 
     ``shot(externals, solve_mode)`` solves once with the externals on (``solve_mode`` None:
-    as configured; "opt"; "first") and returns a result with ``answers``, ``unsat`` and
-    ``finished``; ``tree_depth(answer)`` is the depth of an answer's tree; ``state``
-    persists across calls for the same goal; ``max_depth``: the --max-depth bound (None:
-    none); ``single``: one optimum is wanted (not all trees of the optimal cost).
+    as configured); ``tree_depth(answer)``: the depth of an answer's tree; ``state`` persists
+    across calls for the same goal; ``single``: one optimum is wanted.
     """
     least = rounds.levels.level(goal)
     if mode == "bound":
@@ -235,14 +217,12 @@ def solve_depth(
     if max_depth is not None:
         limit = rounds.externals(goal, max_depth, False)
     if mode == "later":
-        # the tree optimal without the depth cost bounds the optimum's depth
         first = shot(limit, "opt")
         if not first.answers:
             return first, max_depth
         bound = tree_depth(first.answers[0])
         if single and (bound <= 1 or (least is not None and bound <= least)):
-            # no tree is shallower than the goal's level: a tree already that shallow is
-            # optimal for depth too (and for what follows)
+            # no tree is shallower than the goal's level
             state.shortcut = True
             return first, bound
         return shot(rounds.externals(goal, bound, True), None), bound
@@ -262,8 +242,7 @@ def solve_depth(
             return result, bound
         state.refuted.append((bound, "solver"))
         if ceiling is None or bound >= ceiling:
-            # constraints or excluded trees removed the shallow trees: any remaining
-            # tree bounds the search (none left: done)
+            # constraints or excluded trees removed the shallow trees: any remaining one bounds the search
             feasible = shot(limit, "first")
             if not feasible.answers:
                 return feasible, max_depth

@@ -1,12 +1,9 @@
 """Solving one goal on a grounded :class:`~foon2asp.asp.session.Session` with the
-features beyond a single optimisation: depth bounds (:mod:`foon2asp.asp.multishot.depth`),
-human steps, the K best trees, all optimal trees and greedy retrieval.
+features beyond a single optimisation: depth bounds, human steps, the K best trees, all
+optimal trees and greedy retrieval.
 
-Every solve sets the externals it needs (``goal(G)`` for each goal of a meal, the depth
-blocks' ``query(k)`` and ``within(k)``, exclusion guards) and switches them off again, so
-the next goal of the session starts clean.  For ``--models K`` each tree found is excluded
-with its supersets and the next cost level is solved; the further trees are the best
-tree's :attr:`~foon2asp.tree.tasktree.TaskTree.alternatives` (docs/proofs/solving.md,
+Every solve switches the externals it needs on and off again, so the next goal starts
+clean; the further trees are the best tree's ``alternatives`` (docs/proofs/solving.md,
 "Alternatives").
 """
 
@@ -39,12 +36,8 @@ class Driver:
         self.last_stats: dict = {}
         #: "budget" when a search for the smallest optimal tree of the current goal did not end
         self.canonical_search: str | None = None
-        #: the depth blocks grounded so far (made when a goal first needs one)
         self.rounds: depth_mod.Rounds | None = None
-        #: the depth search of the current goal
         self.depth = depth_mod.DepthSearch()
-
-    # -- one solve ---------------------------------------------------------
 
     def shot(
         self,
@@ -55,8 +48,7 @@ class Driver:
         count: int = 1,
         on_model: Callable[[clingo.Model], None] | None = None,
     ) -> Shot:
-        """Solve once with ``externals`` on.  ``mode``: None/"opt" (best model),
-        "optN" (up to ``count`` distinct optimal trees) or "first" (first model)."""
+        """Solve once in ``mode`` (None: "opt"; "optN" up to ``count`` trees; "first") with ``externals`` on."""
         mode = mode or "opt"
         switched = {clingo.Function("goal", [clingo.Number(g)]): True for g in meal_of(goal)}
         switched.update(externals)
@@ -68,32 +60,22 @@ class Driver:
             shot = solve_shot(control, mode, count, on_model, remaining)
             self.last_stats = control.stats()  # before the externals change: that resets them
             found = shot.answers
-            if found and mode == "opt" and shot.finished and shot.exhausted and self.options.canonical:
-                # several optimal trees: the one that depends only on the input
-                found[0], complete = canonicalise(control, found[0], deadline)
-                self._searched(complete)
-            elif found and mode == "optN" and shot.finished and found[0].proven and self.options.canonical:
-                # the first tree is the canonical one; the others follow in id order
+            settled = (mode == "opt" and shot.exhausted) or (mode == "optN" and bool(found) and found[0].proven)
+            if found and shot.finished and settled and self.options.canonical:
+                # the canonical tree first, the others in id order
                 first, complete = canonicalise(control, found[0], deadline)
-                self._searched(complete)
+                if not complete:
+                    self.canonical_search = "budget"
                 shot.answers = [first] + [a for a in found if a.units != first.units][: max(0, count - 1)]
         finally:
             control.assign(dict.fromkeys(switched, False))
         return shot
 
     def depth_floor(self) -> int | None:
-        """With depth the first objective: a lower bound on the depth of every tree for the
-        current goal (every shallower bound is refuted), None otherwise."""
+        """With depth the first objective: a lower bound on the depth of the current goal's trees."""
         if self.depth_mode != "first" or not self.depth.bound:
             return None
         return self.depth.bound
-
-    def _searched(self, complete: bool) -> None:
-        """Note a search for the smallest optimal tree that its budget (or time) ended."""
-        if not complete:
-            self.canonical_search = "budget"
-
-    # -- one cost level ----------------------------------------------------
 
     def level(self, goal: Goals, guards: dict, count: int, deadline, on_model) -> tuple[Shot, int | None]:
         """The best trees (up to ``count``, distinct) not yet excluded, with the depth bound used."""
@@ -117,7 +99,7 @@ class Driver:
         )
         if state.shortcut:
             state.shortcut = False
-            # the depth cost was off in that solve: fill in the depth the tree has
+            # the depth cost was off in that solve
             at = self.ranked.index("depth")
             levels = len(self.ranked) + (self.options.human_steps is not None)
             result.answers = [
@@ -126,15 +108,8 @@ class Driver:
             ]
         return result, bound
 
-    def exclude(self, answer: Answer) -> int:
-        """A nogood forbidding ``answer``'s units together (the tree and its supersets), behind
-        a fresh external guard."""
-        return self.control.guard(clingo.Function("use", [clingo.Number(u)]) for u in answer.units)
-
-    # -- a goal ------------------------------------------------------------
-
     def solve(self, goal: Goals, on_model=None, time_limit: float | None = None) -> TaskTree:
-        """The best tree for ``goal`` (the further ones as its alternatives), by the session's options."""
+        """The best tree for ``goal`` (the further ones as its alternatives)."""
         options = self.options
         time_limit = options.time_limit if time_limit is None else time_limit
         t0 = time.perf_counter()
@@ -149,8 +124,7 @@ class Driver:
         if all(g in self.problem.kitchen for g in meal):
             return self._tree(goal, Answer((), (), True), "optimal", t0)
         if not all(self.control.has_atom(clingo.Function("reach", [clingo.Number(g)])) for g in meal):
-            # the grounder's fixpoint (tree.lp) never derives a goal: no tree at all
-            return self._tree(goal, None, "unreachable", t0)
+            return self._tree(goal, None, "unreachable", t0)  # the grounder's fixpoint never derives a goal
         if options.heuristic:
             return self._greedy(goal, deadline, t0, on_model)
         self.depth = depth_mod.DepthSearch()
@@ -163,8 +137,6 @@ class Driver:
         best_cost = found[0][0].cost
         trees = []
         for rank, (answer, bound) in enumerate(found, 1):
-            # "ranked": proven best once the better trees (and their supersets) are excluded;
-            # "feasible" only when the time limit stopped that search
             tree = self._tree(goal, answer, status(answer, first, best_cost), t0, bound)
             if options.models > 1 or options.all_optimal:
                 tree.extra["rank"] = rank
@@ -176,8 +148,8 @@ class Driver:
         return best
 
     def _levels(self, goal: Goals, deadline, on_model) -> tuple[list[tuple[Answer, int | None]], Shot, bool]:
-        """The trees (with their depth bounds) level by level, each level's trees excluded from
-        the next, until enough are found; the first level's shot; whether --all-optimal's cap cut."""
+        """The trees (with their depth bounds) level by level, each level's trees excluded from the
+        next; the first level's shot; whether --all-optimal's cap cut."""
         options = self.options
         want = max(1, int(options.models))
         cap = int(options.all_optimal_cap)
@@ -197,8 +169,8 @@ class Driver:
                     break
                 if len(found) >= want or not shot.answers or not shot.finished:
                     break
-                for answer in shot.answers:
-                    guards[self.exclude(answer)] = True
+                for answer in shot.answers:  # the tree and its supersets
+                    guards[self.control.guard(clingo.Function("use", [clingo.Number(u)]) for u in answer.units)] = True
         finally:
             self.control.release(guards)
         assert first is not None  # the loop solves at least once
@@ -227,14 +199,12 @@ class Driver:
 
 
 def _with_depth(cost: tuple[int, ...], at: int, depth: int, levels: int) -> tuple[int, ...]:
-    """``cost`` with ``depth`` at priority slot ``at`` (clingo leaves out a level whose
-    literals were all switched off, so the slot may be missing)."""
+    """``cost`` with ``depth`` at priority slot ``at`` (which clingo may have left out)."""
     if len(cost) < levels:
         return cost[:at] + (depth,) + cost[at:]
     return cost[:at] + (depth,) + cost[at + 1 :]
 
 
 def alternatives(tree: TaskTree) -> list[TaskTree]:
-    """``tree`` and the further trees found with it (--models / --all-optimal), best first
-    (``[tree, *tree.alternatives]``)."""
+    """``tree`` and the further trees found with it (--models / --all-optimal), best first."""
     return [tree, *tree.alternatives]
