@@ -29,28 +29,25 @@ def unit_index(problem: Problem) -> dict[tuple, int]:
 def nearest_hint(problem: Problem, unit: Unit) -> str:
     """Which objects of ``unit`` the most similar FOON unit (same motion) lacks."""
     ins, outs = set(unit.inputs), set(unit.outputs)
-    best, best_score = None, 0
-    for i, other in enumerate(problem.units):
-        if other.motion != unit.motion:
-            continue
-        score = len(ins & set(other.inputs)) + len(outs & set(other.outputs))
-        if score > best_score:
-            best, best_score = i, score
-    if best is None:
-        known = any(u.motion == unit.motion for u in problem.units)
-        return "" if known else f"; no FOON unit has the motion {unit.motion!r}"
+    same = [i for i, other in enumerate(problem.units) if other.motion == unit.motion]
+    if not same:
+        return f"; no FOON unit has the motion {unit.motion!r}"
+
+    def shared(i: int) -> int:
+        return len(ins & set(problem.units[i].inputs)) + len(outs & set(problem.units[i].outputs))
+
+    best = max(same, key=shared)  # the first of the most similar
+    if not shared(best):
+        return ""
     other = problem.units[best]
-    extra = [f"input {o}" for o in unit.inputs if o not in set(other.inputs)]
-    extra += [f"output {o}" for o in unit.outputs if o not in set(other.outputs)]
-    lack = [f"input {o}" for o in other.inputs if o not in ins]
-    lack += [f"output {o}" for o in other.outputs if o not in outs]
+    extra = [f"input {o}" for o in unit.inputs if o not in other.inputs]
+    extra += [f"output {o}" for o in unit.outputs if o not in other.outputs]
+    lack = [f"input {o}" for o in other.inputs if o not in ins] + [
+        f"output {o}" for o in other.outputs if o not in outs
+    ]
     path, line = problem.foon.origins[best]
     where = f"{path}:{line}" if path else f"unit {best}"
-    parts = []
-    if extra:
-        parts.append("has " + " | ".join(extra))
-    if lack:
-        parts.append("lacks " + " | ".join(lack))
+    parts = (["has " + " | ".join(extra)] if extra else []) + (["lacks " + " | ".join(lack)] if lack else [])
     return f"; compared with the nearest FOON unit ({where}) it " + " and ".join(parts) if parts else ""
 
 
@@ -107,19 +104,15 @@ def no_tree(
     confirms no tree exists, else ``no-tree``; ``what`` names the goal in the message."""
     derivable = derivable if derivable is not None else Derivable(problem)
     if problem.objects[goal] not in derivable:
-        finding = Finding(
-            "unreachable",
+        kind = "unreachable"
+        words = (
             f"unreachable: no tree to check (confirmed: {what} is not derivable from the kitchen"
-            " with any units of the FOON)",
-            obj=goal,
+            " with any units of the FOON)"
         )
     else:
-        finding = Finding(
-            "no-tree",
-            f"no tree to check, but {what} is derivable from the kitchen: the file gives no units for it",
-            obj=goal,
-        )
-    return Report(tree, goal, [], False, finding, None, None, {})
+        kind = "no-tree"
+        words = f"no tree to check, but {what} is derivable from the kitchen: the file gives no units for it"
+    return Report(tree, goal, [], False, Finding(kind, words, obj=goal), None, None, {})
 
 
 def check_tree(
@@ -161,16 +154,17 @@ def check_tree(
     if unknown:
         tu = unknown[0]
         more = f" ({len(unknown)} units are unknown)" if len(unknown) > 1 else ""
-        finding = Finding(
+        found: Finding | None = Finding(
             "unknown-unit",
             f"unknown unit: step {tu.step} at {tree.where(tu)} ({tu.unit.motion}) is not in the FOON"
             f"{nearest_hint(problem, tu.unit)}{more}",
         )
-        validation = validate(problem, goal, known)
-        return Report(tree, goal, ids, False, finding, validation, None, measures(problem, goal, known))
-    validation, found = check_units(problem, goal, known, lambda u: describe_unit(problem, u, tree, ids))
-    order_problem = check_order(problem, goal, known)
-    return Report(tree, goal, ids, validation.valid, found, validation, order_problem, measures(problem, goal, known))
+        validation, order_problem = validate(problem, goal, known), None
+    else:
+        validation, found = check_units(problem, goal, known, lambda u: describe_unit(problem, u, tree, ids))
+        order_problem = check_order(problem, goal, known)
+    valid = validation.valid and not unknown
+    return Report(tree, goal, ids, valid, found, validation, order_problem, measures(problem, goal, known))
 
 
 def tree_goal(

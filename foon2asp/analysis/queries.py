@@ -138,33 +138,30 @@ def missing(problem: Problem, goal: Goals, options: AspOptions | None = None) ->
     )
     buyable = sorted(s.arguments[0].number for s in prog.control.facts_of("buyable", 1))
     goals = meal if len(meal) > 1 else ()
+    result = MissingResult(meal[0], "unreachable", buyable=buyable, goals=goals)
     if all(g in problem.derivable for g in meal):
         (tree,) = solve_goals(problem, [goal], "asp", options)
         if tree.status in ("optimal", "feasible"):
-            cost = dict(tree.cost, added=0)
-            elapsed = round(time.perf_counter() - t0, 6)
-            return MissingResult(
-                meal[0], tree.status, [], list(tree.units), cost, elapsed, buyable=buyable, goals=goals
-            )
+            result.status, result.units, result.cost = tree.status, list(tree.units), dict(tree.cost, added=0)
+            result.time_s = round(time.perf_counter() - t0, 6)
+            return result
     left = None
     if options.time_limit:
         left = max(options.time_limit - (time.perf_counter() - t0), 0.001)
     outcome = prog.solve(left)
-    elapsed = round(time.perf_counter() - t0, 6)
+    result.time_s = round(time.perf_counter() - t0, 6)
     if outcome.answers:
         shown = outcome.answers[-1].symbols
-        added = sorted(s.arguments[0].number for s in shown if s.name == "add")
-        used = [s.arguments[0].number for s in shown if s.name == "use"]
-        extended = with_kitchen(problem, added)
-        order = executable_order(extended, used)
-        cost = measures(extended, meal if goals else meal[0], order)
-        cost["added"] = len(added)
+        result.missing = sorted(s.arguments[0].number for s in shown if s.name == "add")
+        extended = with_kitchen(problem, result.missing)
+        result.units = executable_order(extended, [s.arguments[0].number for s in shown if s.name == "use"])
+        result.cost = dict(measures(extended, meal, result.units), added=len(result.missing))
         # "satisfiable": no weighted atom was grounded, so every model costs 0
-        status = "optimal" if outcome.status in ("optimal", "satisfiable") else "feasible"
-        return MissingResult(meal[0], status, added, order, cost, elapsed, buyable=buyable, goals=goals)
+        result.status = "optimal" if outcome.status in ("optimal", "satisfiable") else "feasible"
+        return result
     if outcome.status == "unknown":
-        return MissingResult(meal[0], "unknown", time_s=elapsed, reason="time ran out", buyable=buyable, goals=goals)
-    result = MissingResult(meal[0], "unreachable", time_s=elapsed, buyable=buyable, goals=goals)
+        result.status, result.reason = "unknown", "time ran out"
+        return result
     if goals:
         # which goals are blocked on their own
         blocked = [g for g in meal if not missing(problem, g, options).has_tree]
