@@ -11,17 +11,11 @@ from foon2asp.tree.gap import gap_text, number
 from foon2asp.tree.tasktree import TaskTree
 
 
-def _goal_json(problem: Problem, tree: TaskTree) -> dict:
-    """``{"goal": OBJ}``, or ``{"goals": [OBJ, ...]}`` for a meal."""
-    if tree.is_meal:
-        return {"goals": [problem.objects[g].to_json() for g in tree.goals]}
-    return {"goal": problem.objects[tree.goal].to_json()}
-
-
 def tree_json(problem: Problem, tree: TaskTree) -> dict:
     """The stable JSON shape of one result (a meal has ``"goals"`` instead of ``"goal"``)."""
+    goals = [problem.objects[g].to_json() for g in tree.meal]
     out = {
-        **_goal_json(problem, tree),
+        **({"goals": goals} if tree.is_meal else {"goal": goals[0]}),
         "method": tree.method,
         "status": tree.status,
         "cost": tree.cost,
@@ -40,22 +34,13 @@ def tree_json(problem: Problem, tree: TaskTree) -> dict:
     return out
 
 
-def json_list(records: list[dict], indent: int | None = 2) -> str:
-    """A JSON list with one record per line (``indent=None``: all on one line); each record
-    is encoded without indentation, by the C encoder."""
-    if indent is None:
-        return json.dumps(records)
-    if not records:
-        return "[]"
-    return "[\n" + ",\n".join(json.dumps(r) for r in records) + "\n]"
+def json_list(records: list[dict]) -> str:
+    """A JSON list with one record per line, each encoded without indentation (by the C encoder)."""
+    return "[\n" + ",\n".join(json.dumps(r) for r in records) + "\n]" if records else "[]"
 
 
-def to_json(problem: Problem, trees: list[TaskTree], indent: int | None = 2) -> str:
-    return json_list([tree_json(problem, t) for t in trees], indent)
-
-
-def _cost_text(cost: dict) -> str:
-    return ", ".join(f"{k} {number(v)}" for k, v in cost.items())
+def to_json(problem: Problem, trees: list[TaskTree]) -> str:
+    return json_list([tree_json(problem, t) for t in trees])
 
 
 def goal_heading(problem: Problem, tree: TaskTree) -> str:
@@ -71,7 +56,7 @@ def tree_text(problem: Problem, tree: TaskTree) -> str:
         status += f" (proven by {tree.proven_by})"
     head = f"{goal_heading(problem, tree)}\nMethod: {tree.method}  Status: {status}"
     if tree.cost:
-        head += f"  ({_cost_text(tree.cost)})"
+        head += "  (" + ", ".join(f"{k} {number(v)}" for k, v in tree.cost.items()) + ")"
     if "rank" in tree.extra:
         head += f"  Rank: {tree.extra['rank']}"
     if tree.extra.get("human_steps"):
@@ -89,7 +74,7 @@ def tree_text(problem: Problem, tree: TaskTree) -> str:
         lines.append(f"  {step:>3}. {unit.motion}{who}")
         lines.append(f"       in:  {'; '.join(map(str, unit.inputs))}")
         lines.append(f"       out: {'; '.join(map(str, unit.outputs))}")
-    if not tree.units and tree.status in ("optimal", "ranked", "feasible", "found"):
+    if not tree.units and tree.has_tree:
         lines.append("  (already in the kitchen: no steps)")
     return "\n".join(lines) + "\n"
 
