@@ -1,12 +1,9 @@
 """Bounds on the optimum without the solver: a valid tree (upper bound) and a lower bound.
 
-For the ranked objectives of :data:`SUPPORTED`, whose cost is one sum of non-negative unit
-weights (a lexicographic pair weighs a unit ``w(u) * M + 1``).  :class:`Bounds` gives each
-goal's *bounds tree* (the cheapest-set tree of :func:`foon2asp.tree.upper.cheapest_sets`,
-made irredundant: the upper bound), the landmarks and a lower bound, and prunes a goal's
-part to the units an optimal tree may use (:meth:`Bounds.keep`).  Plain Python, no clingo.
-Why the tree is valid and the bounds are bounds: docs/proofs/preparation.md ("Weights",
-"The cheapest-set tree", "Landmarks").
+For the ranked objectives of :data:`SUPPORTED` (one sum of non-negative unit weights),
+:class:`Bounds` gives each goal's *bounds tree*, its landmarks and a lower bound, and prunes
+a goal's part to the units an optimal tree may use (:meth:`Bounds.keep`).  Why these are
+bounds: docs/proofs/preparation.md ("Weights", "The cheapest-set tree", "Landmarks").
 """
 
 from __future__ import annotations
@@ -27,16 +24,10 @@ def supports(ranked: Iterable[str]) -> bool:
     return tuple(ranked) in SUPPORTED
 
 
-def weights(problem: Problem, ranked: tuple[str, ...]) -> list[int]:
-    """One non-negative weight per unit whose sum orders trees as ``ranked`` does."""
-    return lexicographic(problem, ranked[0])
-
-
 def landmarks(
     problem: Problem, units: Iterable[int] | None = None
 ) -> tuple[dict[int, frozenset[int]], dict[int, frozenset[int]]]:
-    """``(LM, ulm)``: object -> units every tree for it uses; viable unit -> units every
-    tree using it uses (a greatest fixpoint: docs/proofs/preparation.md, "Landmarks")."""
+    """``(LM, ulm)``: object -> units every tree for it uses; viable unit -> units every tree using it uses."""
     pool = list(range(len(problem.units))) if units is None else list(units)
     kitchen = problem.kitchen
     # the kitchen items the units need (not the whole kitchen: a large FOON's is large)
@@ -74,8 +65,7 @@ def landmarks(
 
 
 class Bounds:
-    """Upper bound (the bounds tree) and lower bound of every object for one ranked objective
-    list, built once per problem (or goal's part); the per-goal answers are cached."""
+    """Upper bound (the bounds tree) and lower bound of every object for one ranked objective list."""
 
     def __init__(
         self,
@@ -84,14 +74,14 @@ class Bounds:
         units: Iterable[int] | None = None,
         w: list[int] | None = None,
     ):
-        """``units``: the units to consider (a goal's relevant part; None: all); ``w``: the
-        unit weights of :func:`weights` when the caller has them (one list per problem)."""
+        """``units``: the units to consider (a goal's relevant part; None: all); ``w``: the unit
+        weights (:func:`~foon2asp.tree.weights.lexicographic` of the first objective) when the caller has them."""
         if not supports(ranked):
             raise ValueError(f"no bounds for the objectives {ranked!r}")
         pool = None if units is None else sorted(set(units))
         self.problem = problem
         self.ranked = tuple(ranked)
-        self.w = weights(problem, self.ranked) if w is None else w
+        self.w = lexicographic(problem, self.ranked[0]) if w is None else w
         self._sets = cheapest_sets(problem, self.w, pool)
         self.lm, self.ulm = landmarks(problem, pool)
         self._producers: dict[int, list[int]] = {}
@@ -155,8 +145,7 @@ class Bounds:
         return self.weight(units) + self._packing(groups)
 
     def _packing(self, groups: Iterable[tuple[int, ...]]) -> int:
-        """Pairwise disjoint producer groups (each sorted) need distinct units: the sum of
-        their lightest weights, the groups taken smallest first."""
+        """The summed lightest weights of pairwise disjoint producer groups, taken smallest first."""
         w = self.w
         sets = sorted((len(g), min(w[u] for u in g), g) for g in groups if g)
         used: set[int] = set()
@@ -168,8 +157,7 @@ class Bounds:
         return extra
 
     def lower(self, goal: int) -> int:
-        """A lower bound on the weight of every tree for ``goal`` (landmarks, closure, one more
-        producer and, for ``units`` alone, the goal's level)."""
+        """A lower bound on the weight of every tree for ``goal``."""
         if goal in self._lower:
             return self._lower[goal]
         kitchen = self.problem.kitchen
@@ -189,28 +177,9 @@ class Bounds:
         return lb
 
     def first_lower(self, goal: int) -> int:
-        """A lower bound on the first objective's weight (as the solver weighs it) of every
-        tree for ``goal``: :meth:`lower` with the tie-break on units taken out."""
-        return self.first(self.lower(goal))
-
-    def first(self, weight: int) -> int:
-        """A lower bound ``weight`` on the weights :attr:`w` as one on the first objective's."""
-        if self.ranked[0] == "units":
-            return weight
-        return weight // (len(self.problem.units) + 1)
-
-    def proven(self, goal: int) -> bool:
-        """Is the bounds tree of ``goal`` optimal (lower bound == upper bound)?"""
-        start = self._sets.get(goal)
-        if start is None:
-            return False
-        lower = self.lower(goal)
-        if lower >= self.weight(start):
-            # nothing can be trimmed from a set that weighs no more than the lower bound
-            self._trees.setdefault(goal, tuple(sorted(start)))
-            return True
-        ub = self.upper(goal)
-        return ub is not None and lower >= ub
+        """A lower bound on the first objective's solver weight of every tree for ``goal``."""
+        weight = self.lower(goal)
+        return weight if self.ranked[0] == "units" else weight // (len(self.problem.units) + 1)
 
     def landmarks(self, goal: int) -> frozenset[int]:
         """The units every tree for ``goal`` uses."""
@@ -230,7 +199,7 @@ class Bounds:
             elif u in self.ulm and base + self.weight(self.ulm[u] - LM) <= ub:
                 if self.closure(self.ulm[u] | LM) <= ub:
                     keep.append(u)
-        # only units still relevant to the goal through kept producers, and still viable among them
+        # only units still relevant and viable through kept producers
         producers: dict[int, list[int]] = {}
         for u in keep:
             for o in self.problem.products[u]:

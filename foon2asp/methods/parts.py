@@ -13,8 +13,9 @@ from functools import cached_property
 
 from foon2asp.asp.dominance import Dominators
 from foon2asp.foon.problem import Problem, walk_back
-from foon2asp.methods.bounds import Bounds, weights
+from foon2asp.methods.bounds import Bounds
 from foon2asp.tree.tasktree import Goals, meal_of
+from foon2asp.tree.weights import lexicographic
 
 GROUNDINGS = ("whole", "per-goal")
 
@@ -67,7 +68,7 @@ class Parts:
             if spent <= size:
                 self._part_bounds_spent[ranked_objectives] = spent
                 if ranked_objectives not in self._weights:
-                    self._weights[ranked_objectives] = weights(self.problem, ranked_objectives)
+                    self._weights[ranked_objectives] = lexicographic(self.problem, ranked_objectives[0])
                 return Bounds(self.problem, ranked_objectives, units, self._weights[ranked_objectives])
         return self.bounds(ranked_objectives)
 
