@@ -30,35 +30,25 @@ def goal_id(problem: Problem, obj, path: str | None = None, line: int | None = N
     return oid
 
 
-def _split_text(text: str) -> list[str]:
-    """Top-level comma-separated parts of an object's text (commas inside {} or [] stay)."""
-    parts: list[str] = []
-    cur: list[str] = []
-    depth = 0
-    for ch in text:
+def parse_object_text(text: str) -> FoonObject | None:
+    """The object an object's text names, as foon2asp prints it (``label, state, ...,
+    contains {a,b}, in [c]``; states in any order), or None when ``text`` has no comma."""
+    parts, depth, at = [], 0, 0
+    for k, ch in enumerate(text):  # split at the commas outside {} and []
         if ch in "{[":
             depth += 1
         elif ch in "}]":
             depth = max(0, depth - 1)
-        if ch == "," and depth == 0:
-            parts.append("".join(cur))
-            cur = []
-        else:
-            cur.append(ch)
-    parts.append("".join(cur))
-    return [p.strip() for p in parts]
-
-
-def parse_object_text(text: str) -> FoonObject | None:
-    """The object an object's text names, as foon2asp prints it (``label, state, ...,
-    contains {a,b}, in [c]``; states in any order), or None when ``text`` has no comma."""
-    parts = _split_text(text)
+        elif ch == "," and depth == 0:
+            parts.append(text[at:k].strip())
+            at = k + 1
+    parts.append(text[at:].strip())
     if len(parts) < 2:
         return None
     states, ingredients, container = [], [], None
     for part in parts[1:]:
         if part.startswith("contains {") and part.endswith("}"):
-            ingredients += [i for i in part[len("contains {") : -1].split(",")]
+            ingredients += part[len("contains {") : -1].split(",")
         elif part.startswith("in [") and part.endswith("]"):
             container = part[len("in [") : -1]
         elif part:
@@ -66,29 +56,22 @@ def parse_object_text(text: str) -> FoonObject | None:
     return FoonObject.make(parts[0], states, ingredients, container)
 
 
-def _object_number(problem: Problem, text: str) -> int | None:
-    """The id ``#ID`` names (an error when there is no such object); None for other text."""
-    if not (text.startswith("#") and text[1:].isdigit()):
-        return None
-    oid = int(text[1:])
-    if oid >= len(problem.objects):
-        raise InputError(f"no object #{oid}: ids run from #0 to #{len(problem.objects) - 1}")
-    return oid
+def _exact(problem: Problem, text: str) -> int | None:
+    """The id ``#ID`` or an object's text names (an error for ``#ID`` of no object); None for other text."""
+    if text.startswith("#") and text[1:].isdigit():
+        oid = int(text[1:])
+        if oid >= len(problem.objects):
+            raise InputError(f"no object #{oid}: ids run from #0 to #{len(problem.objects) - 1}")
+        return oid
+    obj = parse_object_text(text)
+    return problem.foon.object_ids.get(obj) if obj is not None else None
 
 
 def resolve_goal(data: Dataset, problem: Problem, text: str) -> int:
     """``--goal``: ``#ID`` (an object id as ``foon2asp objects`` lists it), an object's
     text as foon2asp prints it, or a label (see :func:`resolve_label`)."""
-    stripped = text.strip()
-    oid = _object_number(problem, stripped)
-    if oid is not None:
-        return oid
-    obj = parse_object_text(stripped)
-    if obj is not None:
-        found = problem.foon.object_ids.get(obj)
-        if found is not None:
-            return found
-    return resolve_label(data, problem, stripped)
+    oid = _exact(problem, text.strip())
+    return oid if oid is not None else resolve_label(data, problem, text.strip())
 
 
 def resolve_label(data: Dataset, problem: Problem, label: str) -> int:
@@ -118,10 +101,6 @@ def resolve_label(data: Dataset, problem: Problem, label: str) -> int:
     )
 
 
-def goals_from_file(problem: Problem, path: str) -> list[int]:
-    return [goal_id(problem, obj, path, line) for obj, line in read_goals(path)]
-
-
 def all_objects(problem: Problem) -> list[int]:
     """Every object some unit produces that is not in the kitchen."""
     return sorted(o for o in problem.producers if o not in problem.kitchen)
@@ -130,26 +109,20 @@ def all_objects(problem: Problem) -> list[int]:
 def resolve(data: Dataset, problem: Problem, goal: tuple[str, ...] | None, goals: str | None) -> list[int]:
     """Goal ids for ``--goal TEXT`` (repeatable) and ``--goals FILE|all|all-objects``;
     neither: :func:`default_goals`."""
-    out: list[int] = []
-    for label in goal or ():
-        out.append(resolve_goal(data, problem, label))
+    if not goal and not goals:
+        return default_goals(data, problem)
+    out = [resolve_goal(data, problem, label) for label in goal or ()]
     if goals == "all":
         need = "'all' needs a goals file (goal_nodes.json in the data folder, or one given)"
         out += _file_goals(data, problem, need, "goals-all")
     elif goals == "all-objects":
         out += all_objects(problem)
     elif goals:
-        out += goals_from_file(problem, goals)
-    if not out and not goal and not goals:
-        return default_goals(data, problem)
+        out += [goal_id(problem, obj, goals, line) for obj, line in read_goals(goals)]
+    if not out and goals == "all-objects":
+        raise InputError("no unit makes an object that is not in the kitchen: no goal")
     if not out:
-        if goals == "all":
-            raise InputError("the goals file lists no goal", data.paths.get("goals"))
-        if goals == "all-objects":
-            raise InputError("no unit makes an object that is not in the kitchen: no goal")
-        if goals:
-            raise InputError("the goals file lists no goal", goals)
-        raise InputError("no goal given", hint="no-goal")
+        raise InputError("the goals file lists no goal", data.paths.get("goals") if goals == "all" else goals)
     return out
 
 
@@ -192,33 +165,21 @@ def find_objects(problem: Problem, query: str | None = None, only: str | None = 
     :class:`InputError` with the closest labels."""
     if only is not None and only not in OBJECT_FILTERS:
         raise InputError(f"unknown object filter {only!r} (have {', '.join(OBJECT_FILTERS)})")
-    if query is None or not query.strip():
-        ids = list(range(len(problem.objects)))
-    else:
-        ids = _matching(problem, query.strip())
-    keep = {
-        None: lambda o: True,
-        "produced": lambda o: o in problem.producers,
-        "kitchen": lambda o: o in problem.kitchen,
-        "derivable": lambda o: o in problem.derivable,
-    }[only]
-    return [o for o in ids if keep(o)]
+    ids = _matching(problem, query.strip()) if query and query.strip() else list(range(len(problem.objects)))
+    if only is None:
+        return ids
+    pool = problem.producers if only == "produced" else problem.kitchen if only == "kitchen" else problem.derivable
+    return [o for o in ids if o in pool]
 
 
 def _matching(problem: Problem, query: str) -> list[int]:
-    oid = _object_number(problem, query)
+    oid = _exact(problem, query)
     if oid is not None:
         return [oid]
-    obj = parse_object_text(query)
-    if obj is not None and obj in problem.foon.object_ids:
-        return [problem.foon.object_ids[obj]]
     key = norm(query)
     ids = [problem.foon.object_ids[o] for o in problem.foon.by_label(key)]
-    if ids:
-        return ids
-    # the labels that contain the query as whole words ("egg" -> "scrambled egg")
-    words = f" {key} "
-    ids = [i for i, o in enumerate(problem.objects) if words in f" {o.label} "]
+    # else the labels that contain the query as whole words ("egg" -> "scrambled egg")
+    ids = ids or [i for i, o in enumerate(problem.objects) if f" {key} " in f" {o.label} "]
     if ids:
         return ids
     raise InputError(f"no object matches {query!r}{_closest(problem, key)}")
