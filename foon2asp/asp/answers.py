@@ -1,10 +1,6 @@
 """From models to task trees: one solve call's answers, their status and the tree they make.
 
-:func:`solve_shot` sets the solve mode, solves once and reads every model into a
-:class:`Shot`; :class:`Watch` follows the cost and lower bound of one goal (progress, the
-gap); :func:`status` says what an answer is worth; :func:`task_tree` turns an answer into
-the :class:`~foon2asp.tree.tasktree.TaskTree` every caller returns.  When an answer counts
-as proven: docs/proofs/solving.md, "Proven answers and the gap".
+When an answer counts as proven: docs/proofs/solving.md, "Proven answers and the gap".
 """
 
 from __future__ import annotations
@@ -25,17 +21,15 @@ from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, goal_field
 class Shot:
     """The outcome of one solve call."""
 
-    #: "opt", "first": the last model; "optN": the distinct optimal trees in an input-only
-    #: order (smallest unit ids first), or the last model when the search was cut short before one
+    #: "opt", "first": the last model; "optN": the distinct optimal trees, smallest unit ids
+    #: first (the last model when the search was cut short before one)
     answers: list[Answer] = field(default_factory=list)
     unsat: bool = False
-    #: the search ran to its end (not stopped by the time limit or an interrupt)
     finished: bool = True
-    #: the search space was exhausted (no model left to find)
     exhausted: bool = False
-    #: the last model the solver reported (None: none)
+    #: the last model the solver reported
     last: Answer | None = None
-    #: the best lower bound the solver proved, per priority level from the highest (None: none)
+    #: the best lower bound the solver proved, per priority level
     lower: tuple[int, ...] | None = None
 
 
@@ -57,11 +51,8 @@ def solve_shot(
     on_answer: Callable[[Answer, clingo.Model], bool | None] | None = None,
     bound: Sequence[int] | None = None,
 ) -> Shot:
-    """Solve once in ``mode`` (:meth:`Control.solving`: "opt", "optN" up to ``count`` trees,
-    "first") with the externals as they are, for at most ``time_limit`` seconds or until
-    ``stop()`` or ``on_model`` answers False; ``on_lower`` sees each proven lower bound;
-    ``on_answer`` is ``on_model`` with the model read as an :class:`Answer` first;
-    ``bound``: see :meth:`Control.solving`."""
+    """Solve once in ``mode`` (:meth:`Control.solving`) for at most ``time_limit`` seconds or until
+    ``stop()``, ``on_model`` or ``on_answer`` (the model read as an :class:`Answer`) answers False."""
     optimal: dict[tuple[int, ...], Answer] = {}
     last: list[Answer] = []
 
@@ -70,15 +61,12 @@ def solve_shot(
         last[:] = [answer]
         if mode == "optN" and answer.proven:
             optimal.setdefault(answer.units, answer)
-        # on_model and on_answer may end the search by answering False
         if (on_answer is not None and on_answer(answer, model) is False) or (
             on_model is not None and on_model(model) is False
         ):
             if mode != "opt":
                 return False
-            # an optimisation is stopped from outside the callback: answering False can break
-            # clasp's core-guided search while it shrinks a core
-            control.stop_soon()
+            control.stop_soon()  # answering False can break clasp's core shrinking
         return True
 
     with control.solving(mode, count, bound):
@@ -92,9 +80,8 @@ def solve_shot(
 
 
 class Watch:
-    """The best model's cost and the proven lower bound while one goal is solved: reported to
-    ``progress`` and, with a ``target`` gap, the signal to stop (:func:`foon2asp.tree.gap.gap_of`
-    on level ``first``, the lower bound raised to ``floor``; a target of 0 never stops)."""
+    """The best cost and proven lower bound while one goal is solved: reported to ``progress`` and,
+    with a ``target`` gap (on level ``first``, the lower bound raised to ``floor``), the signal to stop."""
 
     def __init__(
         self,
@@ -137,10 +124,8 @@ class Watch:
 
 
 def status(answer: Answer | None, shot: Shot, best: tuple[int, ...] | None = None) -> str:
-    """What ``answer`` of ``shot`` is: ``optimal`` (proven; of cost ``best`` when given),
-    ``ranked`` (proven best once the better trees are excluded, its cost above ``best``),
-    ``feasible`` (not proven), or without an answer ``unreachable`` (no tree at all) or
-    ``unknown`` (the search was cut short)."""
+    """``optimal``, ``ranked`` (proven best once the better trees are excluded, cost above ``best``),
+    ``feasible`` (not proven), or without an answer ``unreachable`` or ``unknown`` (cut short)."""
     if answer is None:
         return "unreachable" if shot.unsat else "unknown"
     if not answer.proven:
@@ -158,9 +143,8 @@ def task_tree(
     stats: dict,
     human_steps: bool = False,
 ) -> TaskTree:
-    """The tree of ``answer`` (None: no tree) for ``goal``: its units in executable order,
-    its measures and the solver's cost vector (``asp_cost``); ``human_steps``: also the
-    steps a person does and the success product with them."""
+    """The tree of ``answer`` (None: no tree) for ``goal``, with the solver's cost vector
+    (``asp_cost``); ``human_steps``: also the steps a person does."""
     fields = goal_fields(goal)
     if answer is None:
         return TaskTree(method=method, status=status, time_s=round(time_s, 6), stats=stats, **fields)

@@ -1,9 +1,7 @@
 """What preparation hands clingo for one goal: the part to search and what is known of it.
 
-A :class:`Preparation` carries a goal's candidates, landmarks, hint and lower bound to a
-:class:`~foon2asp.asp.session.Session`; :func:`search` runs clingo's optimisation over it,
-over closed sets with loop cuts (``encodings/closed.lp``) or in one round
-(``encodings/prepared.lp``).  Why this keeps every optimum: docs/proofs/solving.md.
+:func:`search` optimises over closed sets with loop cuts (``encodings/closed.lp``) or in one
+round (``encodings/prepared.lp``).  Why this keeps every optimum: docs/proofs/solving.md.
 """
 
 from __future__ import annotations
@@ -25,14 +23,13 @@ class Preparation:
     """The prepared part of one goal."""
 
     goal: int
-    #: the units clingo may use (sorted): every optimal tree's units are among them
+    #: the units clingo may use (sorted)
     candidates: tuple[int, ...]
     #: units every tree for the goal uses
     landmarks: tuple[int, ...] = ()
     #: a valid tree to try first (a hint only: clingo decides)
     hint: tuple[int, ...] = ()
-    #: the hint's cost vector as the solver weighs it, when the hint may be the answer:
-    #: an optimum of that cost is answered with the hint (None: the hint is a hint only)
+    #: the hint's solver cost vector when an optimum of that cost may be answered with the hint
     known: tuple[int, ...] | None = None
     #: a lower bound on the first objective's weight (the landmarks), for bounds and gaps
     floor: int | None = None
@@ -41,8 +38,7 @@ class Preparation:
 
     @property
     def bound(self) -> tuple[int, ...] | None:
-        """The hint's cost vector when it meets the lower bound (clingo then decides rather
-        than optimises), else None."""
+        """The hint's cost vector when it meets the lower bound (clingo then decides), else None."""
         if self.known is not None and self.meets is not None and self.meets(self.known):
             return self.known
         return None
@@ -55,9 +51,8 @@ class Preparation:
         return "\n".join(lines) + "\n"
 
     def cut(self, problem: Problem, units: Iterable[int]) -> tuple[list[int], list[int]] | None:
-        """The loop cut of a closed set of ``units``: the needed objects it does not derive,
-        and the candidates or landmarks that make one of them from inputs outside them;
-        None when ``units`` derive every needed object (a tree)."""
+        """The loop cut of a closed set of ``units`` (the needed objects it does not derive, and the
+        units that make one of them from inputs outside them); None for a tree."""
         units = list(units)
         kitchen = problem.kitchen
         derived, _ = least_fixpoint(kitchen, problem.required, problem.products, units)
@@ -83,13 +78,11 @@ def search(
     deadline: float | None,
     watch: Watch,
 ) -> tuple[Shot, Answer | None, tuple[int, ...] | None, int]:
-    """clingo's optimisation over the prepared part grounded on ``control``: with ``closed``
-    in rounds of loop cuts until the optimum is a tree, there is none, or ``deadline``
-    passes; else in one round.  ``on_tree`` sees each model that is a tree and may end the
-    search by answering False; ``watch`` sees the lower bounds and may stop the search.
+    """clingo's optimisation over the prepared part on ``control`` (with ``closed``, in rounds of loop
+    cuts); ``on_tree`` sees each model that is a tree and may end the search by answering False.
 
-    Returns the last round's shot, the answer (the optimum; when cut short, the best tree
-    found, unproven), the best lower bound proven, and the number of cuts."""
+    Returns the last round's shot, the answer (unproven when cut short), the best lower bound
+    proven, and the number of cuts."""
     best: list[Answer] = []
     cuts_of: dict[tuple[int, ...], tuple[list[int], list[int]] | None] = {}
 
@@ -101,7 +94,7 @@ def search(
     def seen(answer: Answer, model: clingo.Model) -> bool:
         if closed:
             if cut_of(answer.units) is not None:
-                return True  # a closed set that is no tree: the search goes on
+                return True
             best[:] = [answer]
         return on_tree(model)
 
@@ -116,14 +109,14 @@ def search(
             lower = shot.lower
         answer = shot.last
         if bound is not None and answer is None and shot.finished:
-            bound = None  # no tree within the bound (the hint is one): clingo optimises instead
+            bound = None  # no tree within the bound: optimise instead
             continue
         if not closed or answer is None or (best and best[0].units == answer.units):
             return shot, answer, lower, cuts
         cut = cut_of(answer.units)
         if cut is None:
             return shot, answer, lower, cuts
-        # the last model, optimal, is a closed set but no tree: its cost bounds every tree from below
+        # an optimal closed set that is no tree: its cost bounds every tree from below
         if bound is None and shot.finished and (lower is None or answer.cost > lower):
             lower = answer.cost
         if not shot.finished or (deadline is not None and time.perf_counter() >= deadline):

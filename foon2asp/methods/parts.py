@@ -1,9 +1,7 @@
 """A problem's viable units and each goal's relevant part, computed once, and the batch grounding.
 
-:class:`Parts` keeps what every route of :mod:`foon2asp.methods.runner` reads: the
-units that fire in the kitchen's least fixpoint, the goals' relevant parts, the bounds
-(:mod:`foon2asp.methods.bounds`) and the dominators (:mod:`foon2asp.asp.dominance`);
-:func:`choose_grounding` picks ``batch --grounding auto``.
+:class:`Parts` keeps what the routes of the goal runner read (viable units, relevant parts,
+bounds, dominators); :func:`choose_grounding` picks ``batch --grounding auto``.
 """
 
 from __future__ import annotations
@@ -33,34 +31,31 @@ class Parts:
 
     def __init__(self, problem: Problem):
         self.problem = problem
-        #: units that fire in the kitchen's least fixpoint
         self.viable: frozenset[int] = problem.viable_units
-        #: object -> its viable producers
         self.producers: dict[int, list[int]] = problem.viable_producers
         self._bounds: dict[tuple[str, ...], Bounds] = {}
-        #: units covered so far by bounds built on goals' parts (Parts.bounds_for)
+        #: units covered so far by bounds built on goals' parts
         self._part_bounds_spent: dict[tuple[str, ...], int] = {}
         self._weights: dict[tuple[str, ...], list[int]] = {}
         self._dominators: dict[tuple[str, ...], Dominators] = {}
-        #: the relevant parts of the goals asked lately (a goal's route and answer both need it)
+        #: the relevant parts of the goals asked lately
         self._relevant: dict[tuple[int, ...], tuple[list[int], set[int], bool]] = {}
 
     def dominators(self, ranked_objectives: tuple[str, ...]) -> Dominators:
-        """The dominated units' dominators (foon2asp.asp.dominance) for these objectives, kept."""
+        """The dominators for these objectives, built once."""
         if ranked_objectives not in self._dominators:
             self._dominators[ranked_objectives] = Dominators(self.problem, ranked_objectives)
         return self._dominators[ranked_objectives]
 
     def bounds(self, ranked_objectives: tuple[str, ...]) -> Bounds:
-        """The bounds (foon2asp.methods.bounds) for these ranked objectives, built once."""
+        """The bounds for these ranked objectives, built once."""
         if ranked_objectives not in self._bounds:
             self._bounds[ranked_objectives] = Bounds(self.problem, ranked_objectives)
         return self._bounds[ranked_objectives]
 
     def bounds_for(self, ranked_objectives: tuple[str, ...], units: list[int]) -> Bounds:
-        """The bounds for a goal whose relevant part is ``units``: built on the part alone while
-        that is cheaper than the whole FOON's, then the whole FOON's, built once (a goal's
-        bounds depend on its part only, so both give the same answers)."""
+        """The bounds for a goal whose relevant part is ``units``: on the part alone while that is
+        cheaper, then the whole FOON's (both give the same answers)."""
         whole = self._bounds.get(ranked_objectives)
         size = len(self.viable)
         if whole is None and size > PART_BOUNDS_MIN and PART_BOUNDS_SHARE * len(units) < size:
@@ -77,12 +72,8 @@ class Parts:
         return self.problem.derivable
 
     def relevant(self, goal: Goals) -> tuple[list[int], set[int], bool]:
-        """``(units, objects, choice)`` of the goal's relevant part (a meal's: all its goals').
-
-        ``units`` are the encoding's candidates for ``goal``, ``objects`` the
-        goal and the required inputs reached, ``choice`` whether some object
-        has more than one candidate producer.
-        """
+        """``(units, objects, choice)`` of the goal's (or meal's) relevant part: the candidate units,
+        the goal and the required inputs reached, whether some object has several producers."""
         key = meal_of(goal)
         if key not in self._relevant:
             if len(self._relevant) >= RELEVANT_KEPT:
@@ -104,10 +95,8 @@ AUTO_SAMPLE = 50
 
 
 def choose_grounding(problem: Problem, goals: list[int], parts: Parts | None = None) -> tuple[str, str]:
-    """``(grounding, reason)`` for ``--grounding auto``: ``per-goal`` when the FOON has more
-    than :data:`AUTO_MAX_WHOLE` viable units, or when the median relevant part of a sample
-    of the goals is under :data:`AUTO_PART_SHARE` of the viable units; ``whole`` otherwise.
-    """
+    """``(grounding, reason)`` for ``--grounding auto``: ``per-goal`` for a large FOON or small
+    parts (:data:`AUTO_MAX_WHOLE`, :data:`AUTO_PART_SHARE`), else ``whole``."""
     parts = parts if parts is not None else Parts(problem)
     viable = len(parts.viable)
     if viable > AUTO_MAX_WHOLE:
