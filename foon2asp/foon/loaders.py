@@ -1,7 +1,6 @@
 """Loaders for the files beside a FOON: kitchen, goals, motion rates, utensils.
 
-A data directory holds ``FOON.txt``, ``kitchen.json``, ``goal_nodes.json``,
-``motion.txt`` and ``utensils.txt``; :class:`Dataset` bundles what was read.
+A data directory holds the files :data:`FILE_NAMES` names; :class:`Dataset` bundles what was read.
 """
 
 from __future__ import annotations
@@ -15,8 +14,8 @@ from foon2asp.foon.leaves import LEAVES, leaves
 from foon2asp.foon.model import Foon, FoonObject, norm
 from foon2asp.foon.parser import read_foons
 from foon2asp.foon.reading import content_lines, lines_of, list_elements, name_and_value, read_text
-from foon2asp.foon.reading import loads as safe_loads
 
+#: the files of a data directory
 FILE_NAMES = {
     "foon": "FOON.txt",
     "kitchen": "kitchen.json",
@@ -24,8 +23,6 @@ FILE_NAMES = {
     "motion": "motion.txt",
     "utensils": "utensils.txt",
 }
-
-
 #: what a missing or empty motion file means
 DEFAULT_RATE_NOTE = "every motion gets the default success rate 0.5"
 
@@ -56,40 +53,23 @@ def read_foon_files(paths: list[str], strict: bool = False) -> Foon:
     return foon
 
 
-def _json_elements(text: str, path: str) -> list[tuple[object, int]]:
-    """Elements of a top-level JSON list, each with the line it starts on."""
-    return [(value, line) for value, line, _ in list_elements(text, path)]
-
-
-def read_objects(path: str | Path, what: str) -> list[FoonObject]:
-    """A JSON list of objects (kitchen.json, goal_nodes.json)."""
-    path = Path(path)
+def read_objects(path: str | Path, what: str) -> list[tuple[FoonObject, int]]:
+    """The objects of a JSON list (goal_nodes.json, kitchen.json), each with the line it starts on."""
     text = read_text(path, what)
-    values = safe_loads(text, str(path), checked=True)
-    if isinstance(values, list):
-        # one pass without line numbers; they are found only for a message
-        try:
-            return [object_from_json(v, str(path), 0) for v in values]
-        except InputError:
-            pass
-    return [object_from_json(v, str(path), line) for v, line in _json_elements(text, str(path))]
+    return [(object_from_json(v, str(path), line), line) for v, line, _ in list_elements(text, str(path))]
 
 
 def read_kitchen(path: str | Path) -> list[FoonObject]:
-    return read_objects(path, "kitchen")
+    return [obj for obj, _ in read_objects(path, "kitchen")]
 
 
 def read_goals(path: str | Path) -> list[tuple[FoonObject, int]]:
-    """Goals with the line each entry starts on (for messages)."""
-    path = Path(path)
-    text = read_text(path, "goals")
-    return [(object_from_json(v, str(path), line), line) for v, line in _json_elements(text, str(path))]
+    return read_objects(path, "goals")
 
 
 def read_motion(path: str | Path, warnings: list[str] | None = None) -> dict[str, float]:
     """``motion TAB success-rate`` per line, rates in (0, 1]; blank and ``#`` lines skipped.
     A file without any rate is warned about (into ``warnings``)."""
-    path = Path(path)
     rates: dict[str, float] = {}
     for lineno, line in content_lines(read_text(path, "motion")):
         parts = name_and_value(line)
@@ -110,14 +90,12 @@ def read_motion(path: str | Path, warnings: list[str] | None = None) -> dict[str
 def read_utensils(path: str | Path, warnings: list[str] | None = None) -> frozenset[str]:
     """One utensil label per line; blank and ``#`` lines skipped, and a comment that looks
     like a label (``#mixing bowl``) warned about (into ``warnings``)."""
-    path = Path(path)
     out: set[str] = set()
     for lineno, line in enumerate(lines_of(read_text(path, "utensils")), 1):
         if not line.strip():
             continue
         if line.lstrip().startswith("#"):
-            body = line.lstrip()[1:]
-            if body[:1].isalnum() and warnings is not None:
+            if line.lstrip()[1:2].isalnum() and warnings is not None:
                 warnings.append(
                     f"{path}:{lineno}: line ignored: '#' starts a comment (a utensil label cannot begin with '#')"
                 )
@@ -156,14 +134,12 @@ class Dataset:
         ``motion.txt`` is warned about); ``kitchen="leaves"`` takes the FOON's leaves."""
         base = Path(data_dir) if data_dir is not None else None
         given = {"foon": foon, "kitchen": kitchen, "goals": goals, "motion": motion, "utensils": utensils}
-        paths: dict[str, str | list] = {}
+        paths: dict[str, str] = {}
         for key, value in given.items():
             if value is not None:
-                paths[key] = value if isinstance(value, list) else str(value)
-            elif base is not None:
-                candidate = base / FILE_NAMES[key]
-                if candidate.exists() or key in ("foon", "kitchen"):
-                    paths[key] = str(candidate)
+                paths[key] = ",".join(map(str, value)) if isinstance(value, list) else str(value)
+            elif base is not None and (key in ("foon", "kitchen") or (base / FILE_NAMES[key]).exists()):
+                paths[key] = str(base / FILE_NAMES[key])
         if base is not None and not base.is_dir():
             raise InputError(
                 "data directory is a file, not a directory" if base.exists() else "data directory not found", str(base)
@@ -171,18 +147,16 @@ class Dataset:
         for key in ("foon", "kitchen"):
             if key not in paths:
                 raise InputError(f"no {FILE_NAMES[key]} given (use --data DIR or --{key} FILE)")
-        foon_paths = paths["foon"] if isinstance(paths["foon"], list) else [paths["foon"]]
-        one = {k: str(v) for k, v in paths.items() if k != "foon"}
+        units = read_foon_files([str(p) for p in foon] if isinstance(foon, list) else [paths["foon"]], strict)
         warnings: list[str] = []
-        units = read_foon_files([str(p) for p in foon_paths], strict)
         if base is not None and "motion" not in paths:
             warnings.append(f"{base / FILE_NAMES['motion']}: no such file in the data directory: {DEFAULT_RATE_NOTE}")
         return cls(
             foon=units,
-            kitchen=leaves(units) if one["kitchen"] == LEAVES else read_kitchen(one["kitchen"]),
-            goals=read_goals(one["goals"]) if "goals" in one else [],
-            motion=read_motion(one["motion"], warnings) if "motion" in one else {},
-            utensils=read_utensils(one["utensils"], warnings) if "utensils" in one else frozenset(),
-            paths={k: (",".join(v) if isinstance(v, list) else v) for k, v in paths.items()},
+            kitchen=leaves(units) if paths["kitchen"] == LEAVES else read_kitchen(paths["kitchen"]),
+            goals=read_goals(paths["goals"]) if "goals" in paths else [],
+            motion=read_motion(paths["motion"], warnings) if "motion" in paths else {},
+            utensils=read_utensils(paths["utensils"], warnings) if "utensils" in paths else frozenset(),
+            paths=paths,
             warnings=warnings,
         )
