@@ -221,20 +221,12 @@ def blocking_cycle(problem: Problem, goal: int, reach: set[int]) -> tuple[list[t
     return [], []
 
 
-def shows(name: str, text: str) -> bool:
-    """Does the program ``text`` have a ``#show`` statement of its own?"""
-    found = [False]
-
-    def visit(stm: clingo.ast.AST) -> None:
-        if stm.ast_type in (clingo.ast.ASTType.ShowSignature, clingo.ast.ASTType.ShowTerm):
-            found[0] = True
-
-    try:
-        clingo.ast.parse_string(text, visit)
-    except RuntimeError:
-        check_syntax(name, text)  # a syntax error: one line naming the program
-        raise
-    return found[0]
+def shows(text: str) -> bool:
+    """Does the program ``text`` (free of syntax errors) have a ``#show`` statement of its own?"""
+    kinds = (clingo.ast.ASTType.ShowSignature, clingo.ast.ASTType.ShowTerm)
+    found: list[bool] = []
+    clingo.ast.parse_string(text, lambda stm: found.append(stm.ast_type in kinds))
+    return any(found)
 
 
 def _hide_shows(text: str) -> str:
@@ -292,7 +284,7 @@ def query(
     model is returned, else up to ``models`` models (0 = all)."""
     name, text = program
     check_syntax(name, text)
-    own_show = shows(name, text)
+    own_show = shows(text)
     parts = [("facts", facts(problem, goal_nodes=goal_nodes, goal=goal))]
     asked = list(dict.fromkeys(with_encodings))
     ranked = [n for n in asked if n in OBJECTIVES]

@@ -58,23 +58,16 @@ def reruns_main() -> bool:
     return getattr(main, "__file__", None) is not None
 
 
-def _other_threads() -> list[threading.Thread]:
-    """The threads of this process but the current one, tqdm's monitor and the solve watchdog
-    (both wait holding no lock a forked worker could need)."""
-    here = threading.current_thread()
-    quiet = ("tqdm_monitor", SOLVE_WATCHDOG)
-    return [t for t in threading.enumerate() if t is not here and t.name not in quiet]
-
-
 def start_method() -> str:
     """The start method of a pool's workers: :data:`START_METHOD` if set; ``fork`` on Linux
     when a spawned worker would run the main script again and no other thread runs here;
     ``spawn`` otherwise."""
     if START_METHOD is not None:
         return START_METHOD
-    if sys.platform.startswith("linux") and reruns_main() and not _other_threads():
-        return "fork"
-    return "spawn"
+    # tqdm's monitor and the solve watchdog wait holding no lock a forked worker could need
+    here, quiet = threading.current_thread(), ("tqdm_monitor", SOLVE_WATCHDOG)
+    others = [t for t in threading.enumerate() if t is not here and t.name not in quiet]
+    return "fork" if sys.platform.startswith("linux") and reruns_main() and not others else "spawn"
 
 
 def refuse_while_starting() -> None:

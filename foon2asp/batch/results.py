@@ -127,16 +127,11 @@ def read_header(path: str | Path) -> dict | None:
     """The configuration recorded in the header line of a results file (None: no header)."""
     try:
         with open(path, "rb") as fh:
-            first = fh.readline()
-    except OSError:
+            value = json.loads(fh.readline().decode("utf-8"))
+    except (OSError, ValueError, UnicodeDecodeError):
         return None
-    try:
-        value = json.loads(first.decode("utf-8"))
-    except (ValueError, UnicodeDecodeError):
-        return None
-    if isinstance(value, dict) and HEADER_KEY in value and isinstance(value.get("config"), dict):
-        return value["config"]
-    return None
+    config = value.get("config") if isinstance(value, dict) and HEADER_KEY in value else None
+    return config if isinstance(config, dict) else None
 
 
 def config_differences(old: dict, new: dict) -> list[str]:
