@@ -64,20 +64,8 @@ class AloneReport:
 
     @property
     def kind(self) -> str | None:
-        """The kind of the first problem: ``no-goal``, ``cycle``, ``missing-input``, ``order``
-        (the units fire only in another order) or ``goal-not-made``; None when valid."""
-        v = self.verdict
-        if v.in_order:
-            return None
-        if not v.goals:
-            return "no-goal"
-        if v.cycle:
-            return "cycle"
-        if v.missing is not None:
-            return "missing-input"
-        if v.blocked is not None:
-            return "order"
-        return "goal-not-made"
+        """The kind of the first problem (:attr:`AloneVerdict.kind`); None when valid."""
+        return self.verdict.kind
 
 
 @dataclass

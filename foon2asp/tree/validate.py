@@ -218,18 +218,16 @@ class AloneVerdict:
     needed_by: int | None = None
     #: goals not made by the units as a set
     unmade: list[FoonObject] = field(default_factory=list)
-    #: the first problem in words (None when valid and executable in order)
+    #: the first problem in words (None when valid and executable in order) and its kind: ``no-goal``,
+    #: ``cycle``, ``missing-input``, ``order`` (the units fire only in another order) or ``goal-not-made``
     problem: str | None = None
+    kind: str | None = None
     #: the number each position has in the file (units skipped by a reader leave gaps); empty: the positions
     numbers: list[int] = field(default_factory=list)
 
     def step(self, position: int) -> int:
         """The number in the file of the unit at ``position`` (from 1), as messages name it."""
         return self.numbers[position - 1] if self.numbers else position
-
-
-def _name(step: int, unit: Unit, v: AloneVerdict | None = None) -> str:
-    return f"step {v.step(step) if v is not None else step} ({unit.motion})"
 
 
 def last_products(units: list[Unit]) -> tuple[FoonObject, ...]:
@@ -291,25 +289,29 @@ def judge_alone(
             verdict.cycle = [(o, m + 1) for o, m in found[1]]
         elif found is not None:
             verdict.missing, verdict.needed_by = found[1][0], found[1][1] + 1
-    verdict.problem = _alone_problem(units, verdict)
+    verdict.kind, verdict.problem = _alone_problem(units, verdict)
     return verdict
 
 
-def _alone_problem(units: list[Unit], v: AloneVerdict) -> str | None:
-    """The verdict's first problem in words."""
+def _alone_problem(units: list[Unit], v: AloneVerdict) -> tuple[str | None, str | None]:
+    """The kind of the verdict's first problem and the problem in words (None, None: none)."""
+
+    def name(position: int) -> str:
+        return f"step {v.step(position)} ({units[position - 1].motion})"
+
     if not v.goals:
-        return "no goal: no unit makes an object"
+        return "no-goal", "no goal: no unit makes an object"
     if v.cycle:
-        return circular_support(v.cycle, lambda step: _name(step, units[step - 1], v))
+        return "cycle", circular_support(v.cycle, name)
     if v.missing is not None and v.needed_by is not None:
-        return (
-            f"missing input: {v.missing} is needed by {_name(v.needed_by, units[v.needed_by - 1], v)} "
+        return "missing-input", (
+            f"missing input: {v.missing} is needed by {name(v.needed_by)} "
             "but is not in the kitchen and no unit makes it"
         )
     if v.blocked is not None:
         b = v.blocked
-        later = f"which only {_name(b.made_by, units[b.made_by - 1], v)} makes" if b.made_by else "which no unit makes"
-        return f"{_name(b.step, b.unit, v)} cannot fire in the order given: it waits for {b.waits_for}, {later}"
+        later = f"which only {name(b.made_by)} makes" if b.made_by else "which no unit makes"
+        return "order", f"{name(b.step)} cannot fire in the order given: it waits for {b.waits_for}, {later}"
     if v.unmade:
-        return f"goal {v.unmade[0]} is not made by these units"
-    return None
+        return "goal-not-made", f"goal {v.unmade[0]} is not made by these units"
+    return None, None
