@@ -1,29 +1,14 @@
 """The two schedule encodings and their solving: time steps (plain ASP) and clingo-dl.
 
-``steps`` (``asp/encodings/schedule_steps.lp``): time is cut into steps of the
-greatest common divisor of the durations, every unit chooses a start step and
-a kind of agent, and clasp minimises the number of late steps, then the human
-units (and, for joint scheduling, the tree objective) in one lexicographic
-optimisation.  Agents of a kind are not told apart (at most N of N agents busy
-per step), so there is no symmetry among them; they are dealt afterwards by
-:func:`foon2asp.schedule.model.assign_agents`.  A fixed tree without durations 0
-reads the same facts with ``asp/encodings/schedule_order.lp``: each start is a chain
-of "starts by step T" atoms (the order encoding).  A fixed tree with a person is
-solved in two phases (:func:`_steps_in_phases`): the makespan alone, down to its
-lower bound, then, grounded again within the makespan found, the human units down
-to :func:`foon2asp.schedule.bounds.human_lower` (docs/proofs/schedules.md).
-
-``dl`` (``asp/encodings/schedule_dl.lp``): start times are clingo-dl integer
-variables in milliseconds, each unit chooses an agent (symmetry broken by unit
-order) and every two units on one agent or one resource lane are ordered by a
-choice.  clingo-dl has no objective of its own, so the makespan is minimised by
-descending bounds: after each schedule of makespan M, a bound ``mk <= M - g``
-(g the divisor of the durations) is switched on through the part ``bound(b)``,
-until no schedule is left; then one more solve under the proven bound
-minimises the human units and the tree objective.
-
-Both read the same facts (:func:`schedule_facts`); labels and kinds enter as
-escaped strings (:func:`foon2asp.asp.facts.q`), so they never change the program.
+``steps`` (``schedule_steps.lp``; for a fixed tree without durations 0 ``schedule_order.lp``,
+whose starts are chains of "starts by step T" atoms): every unit chooses a kind of agent and a
+start step (steps of the durations' greatest common divisor), at most N units of a kind with N
+agents run at a step, and clasp minimises the late steps, then the human units (and, joint,
+the tree objective).  A fixed tree with a person is solved in two phases: the makespan, then
+the human units within it (docs/proofs/schedules.md).  ``dl`` (``schedule_dl.lp``): start
+times are clingo-dl variables, units on one agent or resource lane are ordered by choices,
+and the makespan is minimised by descending bounds switched on through the part ``bound(b)``.
+Both read the facts of :func:`schedule_facts`, labels and kinds as escaped strings.
 """
 
 from __future__ import annotations

@@ -1,17 +1,9 @@
 """The scheduling problem of a set of units, its bounds and the list-scheduling baseline.
 
-An :class:`Instance` holds, for the units of a tree (or every candidate unit
-of a goal, for joint scheduling), how long each takes on each kind of agent
-that can do it (whole milliseconds, :data:`~foon2asp.schedule.spec.TICKS` per
-second), which units must end before it starts, and the limited resources its
-inputs use.
-
-Precedence: unit V starts once each of its *required* inputs
-(:func:`foon2asp.foon.problem.required_flags`) that is not a kitchen item has been
-made by a unit of the set that has ended; with several makers in the set, the
-first to end supplies it (docs/proofs/schedules.md).  Times are integers
-throughout; an :class:`Entry` places one unit on one agent over ``[start, end)``.
-A unit of duration 0 occupies nobody.
+An :class:`Instance` holds, for the units of a tree (or every candidate unit of a goal), each
+unit's duration on each kind of agent that can do it (milliseconds), the units that must end
+before it starts, and the limited resources its inputs use; an :class:`Entry` places one unit
+on one agent over ``[start, end)``.  Precedence with several makers: docs/proofs/schedules.md.
 """
 
 from __future__ import annotations

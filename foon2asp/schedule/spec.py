@@ -1,29 +1,8 @@
 """What a schedule is for: the agents, how long each motion takes, who can do what, shared resources.
 
-* **Agents** (:func:`parse_agents`): ``KIND=N[,KIND=N...]``, default ``robot=1``;
-  agents are numbered per kind (``arm-1``, ``arm-2``, ``human-1``).  A kind is a
-  letter followed by letters, digits or ``_``; the kind ``human`` is a person.
-* **Durations** (:func:`load_durations`): JSON ``{motion: seconds}``, or
-  ``{KIND: {motion: seconds}}`` per kind; a key whose value is an object is a
-  kind, a key whose value is a number a motion (for every kind).  ``"*"`` is a
-  default: as a motion key, for the motions not listed; as a kind key (an
-  object), for the kinds not listed.  The duration of motion M for kind K is
-  the first of: K's table at M, K's table at ``"*"``, the top level at M, the
-  top level at ``"*"``, 1 second.  (K's table is the ``"*"`` kind's when K is
-  not listed.)  Without a file every unit takes 1 second.
-* **Precision**: durations are non-negative decimals, exact to :data:`PRECISION`
-  (0.001 s): they are read as decimals (never binary floats) and kept as whole
-  milliseconds; a finer value (``0.0005``) is an error, as is one above
-  :data:`MAX_SECONDS`.
-* **Capabilities** (:func:`load_capabilities`): JSON ``{KIND: [motion, ...]}``,
-  the motions each kind can do; a kind not listed can do every motion.
-* **Resources** (:func:`load_resources`): JSON ``{label: capacity}``: at most
-  ``capacity`` (a whole number >= 1) units whose inputs include an object with
-  that label run at the same time.
-
-Motions and labels are compared as objects hold them (case-folded, runs of
-white space as one space).  Every error is one :class:`~foon2asp.errors.InputError`
-naming the file (and line) and the entry.
+The file formats and the duration lookup are documented in docs/schedules.md.  Durations are
+read as decimals and kept as whole milliseconds (:data:`TICKS` per second); every error is one
+:class:`~foon2asp.errors.InputError` naming the file, line and entry.
 """
 
 from __future__ import annotations
