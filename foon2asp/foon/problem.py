@@ -1,14 +1,8 @@
 """The planning problem in integer form: required inputs, products, kitchen.
 
-The default semantics, stated once for facts, search methods and validator:
-
-* an object is *available* iff it equals a kitchen item on label, states,
-  ingredients and container;
-* utensil rule ``starter``: an input is not required when it is a utensil
-  holding exactly one ingredient and another input of the same unit is that
-  ingredient inside that utensil (``off`` makes every input required);
-* an output with no states, ingredients or container is not a product
-  (:func:`product_outputs`; at hierarchy levels 1 and 2 see foon2asp.foon.matching).
+The conventions of README.md hold here once for facts, search methods and validator: an
+object is available iff it equals a kitchen item; the utensil rule (:func:`required_flags`);
+an output that is bare is not a product (:func:`product_outputs`).
 """
 
 from __future__ import annotations
@@ -16,22 +10,16 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Protocol
+from typing import TYPE_CHECKING
 
 from foon2asp.foon.derive import Implied, least_fixpoint
 from foon2asp.foon.model import Foon, FoonObject, Unit
 from foon2asp.foon.motioncost import MotionCosts
 
+if TYPE_CHECKING:
+    from foon2asp.foon.loaders import Dataset
+
 UTENSIL_RULES = ("starter", "off")
-
-
-class DataLike(Protocol):
-    """What :meth:`Problem.from_dataset` reads (a :class:`foon2asp.foon.loaders.Dataset`)."""
-
-    foon: Foon
-    kitchen: list[FoonObject]
-    motion: dict[str, float]
-    utensils: frozenset[str]
 
 
 #: success rate of a motion that motion.txt does not list
@@ -131,7 +119,7 @@ class Problem:
         self.rates: list[float] = [self.motion_rates.get(u.motion, DEFAULT_RATE) for u in self.foon.units]
 
     @classmethod
-    def from_dataset(cls, data: DataLike, utensil_rule: str = "starter") -> Problem:
+    def from_dataset(cls, data: Dataset, utensil_rule: str = "starter") -> Problem:
         return cls(data.foon, data.kitchen, data.motion, data.utensils, utensil_rule)
 
     def with_kitchen(self, kitchen: Iterable[int]) -> Problem:

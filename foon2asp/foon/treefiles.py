@@ -48,10 +48,6 @@ class TreeFile:
         return f"{self.path}:{tu.line}" if tu.line else f"{self.path} step {tu.step}"
 
 
-def _looks_like_json(text: str) -> bool:
-    return text.lstrip()[:1] in ("[", "{")
-
-
 #: the line ``solve --format foon`` writes before each tree (serialize.tree_foon)
 _HEADER = re.compile(
     r"^#\s*task tree for (?P<goal>.+) \((?P<method>[^(),]+), (?P<status>[^(),]+), (?P<n>\d+) units?\)\s*$"
@@ -153,7 +149,7 @@ def read_trees(path: str | Path, problem: Problem | None = None, strict: bool = 
     or more), or (with ``problem``, whose unit ids the action names carry) a plan.  ``strict``: a
     unit of a unit list that would be skipped with a warning is an error."""
     text = read_text(path, "tree")
-    if _looks_like_json(text):
+    if text.lstrip()[:1] in ("[", "{"):
         return _read_json_tree(text, str(path), strict)
     if problem is not None and plans.looks_like_plan(text):
         return _read_plan(problem, text, str(path))

@@ -1,20 +1,9 @@
 """The unit-list JSON form of task trees, as tree generators write them.
 
-.. code-block:: text
-
-    [{"input_nodes": [{"label": "banana", "states": ["whole"], "ingredients": [], "container": null},
-                      {"label": "knife", "states": [], "ingredients": [], "container": null}],
-      "motion_node": "peel",
-      "output_nodes": [{"label": "banana", "states": ["peeled"], "ingredients": [], "container": null}]},
-     ...]
-
-``motion_node`` is a string or an object with ``label`` (or ``motion_label``); null or
-missing ``states``/``ingredients`` are empty, ``container`` none.  A unit without
-inputs, motion or outputs is skipped with a warning (an :class:`InputError` when
-``strict``); repeated units are merged into the first, with one warning.  Other
-problems and the limits (:data:`MAX_TEXT_CHARS`, :data:`MAX_ITEMS`) are an
-:class:`InputError` naming file, line, unit (from 1; ``tree 2, unit 3`` for several
-trees) and field.  :func:`dumps` and :func:`dumps_trees` write the form back.
+docs/llm-trees.md describes the form and its quirks.  A unit without inputs, motion or outputs
+is skipped with a warning (an :class:`InputError` when ``strict``); repeated units are merged
+into the first, with one warning; other problems and the limits (:data:`MAX_TEXT_CHARS`,
+:data:`MAX_ITEMS`) are an :class:`InputError` naming file, line, unit and field.
 """
 
 from __future__ import annotations
@@ -24,7 +13,7 @@ from collections.abc import Iterable, Sequence
 from pathlib import Path
 
 from foon2asp.errors import InputError
-from foon2asp.foon.model import Foon, FoonObject, Unit, norm
+from foon2asp.foon.model import Foon, FoonObject, Unit, motion_key
 from foon2asp.foon.reading import list_elements, loads, read_text
 
 #: the keys of one unit, in the order generators write them
@@ -110,7 +99,7 @@ def _motion(value: object, path: str, line: int | None, where: str) -> str:
         if inner is None:
             raise InputError(f"{where}: 'motion_node' is an object without a 'label'", path, line)
         value = inner
-    return norm(_text(value, path, line, where, "'motion_node'")).rstrip("*").strip()
+    return motion_key(_text(value, path, line, where, "'motion_node'"))
 
 
 def read_unit(
@@ -257,17 +246,13 @@ def _block(lines: list[str]) -> str:
     return "[\n" + ",\n".join(lines) + "\n]" if lines else "[]"
 
 
-def _list(units: Iterable[Unit]) -> str:
-    return _block([json.dumps(e, ensure_ascii=False) for e in to_unit_list(units)])
-
-
-def dumps(units: Sequence[Unit] | Iterable[Unit]) -> str:
+def dumps(units: Iterable[Unit]) -> str:
     """The unit-list JSON of ``units`` (one line per unit)."""
-    return _list(units) + "\n"
+    return _block([json.dumps(e, ensure_ascii=False) for e in to_unit_list(units)]) + "\n"
 
 
 def dumps_trees(trees: Sequence[Sequence[Unit]]) -> str:
     """One tree as :func:`dumps` writes it; several as a JSON list of unit lists (one line per unit)."""
     if len(trees) == 1:
         return dumps(trees[0])
-    return _block([_list(tree) for tree in trees]) + "\n"
+    return _block([dumps(tree).rstrip("\n") for tree in trees]) + "\n"
