@@ -46,22 +46,25 @@ def _required(problem: Problem, u: int) -> list[FoonObject]:
 
 
 def _fire_all(
-    todo: list[int], need: Callable[[int], list[FoonObject]], made: Callable[[int], list[FoonObject]], have: set | _Had
+    todo: Iterable[int],
+    need: Callable[[int], list[FoonObject]],
+    made: Callable[[int], list[FoonObject]],
+    have: set | _Had,
 ) -> tuple[list[int], list[int]]:
     """Fire the units of ``todo`` whose needs are in ``have`` (which grows), pass after pass,
     until none can: ``(order fired, units left)``."""
-    pending = list(todo)
-    order: list[int] = []
-    progress = True
-    while progress:
-        progress = False
-        for u in list(pending):
+    pending, order = list(todo), []
+    while True:
+        left = []
+        for u in pending:
             if all(o in have for o in need(u)):
-                pending.remove(u)
                 order.append(u)
                 have.update(made(u))
-                progress = True
-    return order, pending
+            else:
+                left.append(u)
+        if len(left) == len(pending):
+            return order, left
+        pending = left
 
 
 def circular_support(cycle: Iterable[tuple[object, int]], name: Callable[[int], str]) -> str:
@@ -145,26 +148,8 @@ def derivable_objects(problem: Problem) -> set[FoonObject]:
     """Every object derivable from the kitchen with any units of the FOON, replayed on plain
     objects: a goal outside it has no tree."""
     have = set(problem.kitchen_items)
-    waiting: dict[FoonObject, list[int]] = {}
-    lacking: list[int] = []
-    ready: list[int] = []
-    for u in range(len(problem.units)):
-        need = {o for o in _required(problem, u) if o not in have}
-        lacking.append(len(need))
-        for o in need:
-            waiting.setdefault(o, []).append(u)
-        if not need:
-            ready.append(u)
-    while ready:
-        u = ready.pop()
-        for o in product_outputs(problem.units[u]):
-            if o in have:
-                continue
-            have.add(o)
-            for v in waiting.pop(o, ()):
-                lacking[v] -= 1
-                if lacking[v] == 0:
-                    ready.append(v)
+    need = [_required(problem, u) for u in range(len(problem.units))]
+    _fire_all(range(len(need)), need.__getitem__, lambda u: product_outputs(problem.units[u]), have)
     return have
 
 
