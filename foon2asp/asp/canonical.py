@@ -1,9 +1,8 @@
 """The canonical optimal tree: among several optimal trees, one that depends only on the input.
 
-:func:`canonicalise` replaces an optimal tree by the lexicographically smallest optimal tree
-(units in FOON id order), searched with ``encodings/canonical.lp`` on the same grounding
-within a budget of clasp conflicts; :func:`canonical_problem` is what the goal's canonical
-session grounds.  Why the result depends only on the input: docs/proofs/solving.md.
+The lexicographically smallest optimal tree (units in FOON id order), searched with
+``encodings/canonical.lp`` on the same grounding within a budget of clasp conflicts
+(docs/proofs/solving.md).
 """
 
 from __future__ import annotations
@@ -25,9 +24,8 @@ CONFLICTS = 5000
 
 
 def canonical_problem(problem: Problem, goals: Iterable[int]) -> tuple[Problem, tuple[int, ...]]:
-    """What the canonical session of ``goals`` grounds: ``(view, units)``, the goals' part
-    (sorted) and the problem with the kitchen cut down to the goals and the part's required
-    inputs (so the facts are the same whichever view of the problem the caller holds)."""
+    """What the canonical session of ``goals`` grounds: the problem with the kitchen cut down to
+    the goals and the part's required inputs, and the goals' part (sorted)."""
     goals = list(goals)
     part = problem.units_for(goals)
     keep = set(goals).union(*(problem.required[u] for u in part))
@@ -54,14 +52,10 @@ def _cur(u: int) -> clingo.Symbol:
 def canonicalise(
     control: Control, answer: Answer, deadline: float | None = None, conflicts: int | None = None
 ) -> tuple[Answer, bool]:
-    """The smallest optimal tree (``answer`` has the proven optimum cost), and whether that is proven.
-
-    At most ``conflicts`` clasp conflicts in all (None: :data:`CONFLICTS`) and, with a
-    ``deadline``, no longer than that: the smallest tree found so far otherwise.  The
-    goal's externals must be on (they are left so); the solver configuration is restored.
-    """
+    """The smallest optimal tree (``answer`` has the proven optimum cost), and whether that is
+    proven within ``conflicts`` (None: :data:`CONFLICTS`) and the ``deadline``."""
     if not answer.cost:
-        return answer, True  # no cost terms: every tree is optimal
+        return answer, True
     if control.ctl.symbolic_atoms[LEX_ON] is None:
         return answer, False  # the session was grounded without encodings/canonical.lp
     conf: Any = control.ctl.configuration.solve

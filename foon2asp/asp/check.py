@@ -1,9 +1,6 @@
 """Does a given tree satisfy the user's constraints?  One grounding, one decision per tree.
 
-:class:`ConstraintCheck` grounds the user's programs once over the facts with ``use/1`` as
-externals and decides each tree by one solve with the tree's atoms on; :func:`checkable`
-says whether programs can be checked so (they read only the facts and ``use/1``).  Why a
-tree that passes is the answer: docs/proofs/solving.md, "The routes".
+The programs are grounded once with ``use/1`` as externals (docs/proofs/solving.md, "The routes").
 """
 
 from __future__ import annotations
@@ -45,8 +42,7 @@ class _Constraints(clingo.Observer):
 
 
 class ConstraintCheck:
-    """The user's ``programs`` grounded once over ``problem``'s units (all of them, or
-    ``units``), asked tree by tree."""
+    """The user's ``programs`` grounded once over ``problem``'s ``units`` (None: all), asked tree by tree."""
 
     def __init__(self, problem: Problem, programs: Sequence[tuple[str, str]], units: Iterable[int] | None = None):
         self.control = Control(["--opt-mode=ignore"])
@@ -56,7 +52,6 @@ class ConstraintCheck:
         seen = _Constraints()
         self.control.ctl.register_observer(seen)
         self.control.ground()
-        #: grounding left no constraint: every tree satisfies the programs
         self.vacuous = not seen.found
 
     def allows(self, tree: Iterable[int]) -> bool:

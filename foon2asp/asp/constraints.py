@@ -1,12 +1,8 @@
-"""User constraints: ASP files, rule texts and convenience flags as programs.
+"""User constraints: ASP files, rule texts and convenience flags as ``(name, text)`` programs.
 
-Everything here becomes a list of ``(name, text)`` programs for
-:attr:`foon2asp.asp.options.AspOptions.programs`.  The convenience flags
-(``--forbid-motion`` and friends) are generated ASP text in which every motion
-or label is a string constant written with :func:`foon2asp.asp.facts.q`, so it can
-never add code.  Files and ``--rule`` texts are the user's own code, checked on
-their own first, so an error is one line naming the file (or rule) and line;
-:func:`rule_warnings` names a predicate they use that nothing defines.
+In the flags' programs every motion or label is an escaped string constant, so it can never
+add code; files and ``--rule`` texts are checked on their own first, so an error is one line
+naming the file (or rule) and line.
 """
 
 from __future__ import annotations
@@ -86,12 +82,8 @@ def _entries(messages: list[str]) -> list[tuple[re.Match | None, str]]:
 
 
 def clingo_error(messages: list[str], name: str) -> InputError:
-    """One-line InputError for clingo's messages about program ``name``.
-
-    ``<block>:3:5-6: error: syntax error, unexpected .`` becomes
-    ``NAME:3: syntax error, unexpected . (column 5)``; notes such as
-    ``'X' is unsafe`` are appended.
-    """
+    """One-line InputError for clingo's messages about program ``name``:
+    ``NAME:3: syntax error, unexpected . (column 5)``, notes appended."""
     entries = _entries(messages)
     if not entries:
         return InputError("clingo rejected the program", name)
@@ -106,11 +98,7 @@ def clingo_error(messages: list[str], name: str) -> InputError:
 
 
 def check_syntax(name: str, text: str) -> None:
-    """Parse and ground ``text`` alone; raise a located InputError if clingo rejects it.
-
-    Grounding alone catches unsafe variables, which clingo reports only at
-    grounding time.  The user's rules meet no facts here, so this is cheap.
-    """
+    """Parse and ground ``text`` alone (grounding finds unsafe variables); a located InputError if clingo rejects it."""
     messages: list[str] = []
     ctl = clingo.Control(["--warn=none"], logger=lambda code, msg: messages.append(msg), message_limit=20)
     try:
@@ -196,8 +184,8 @@ def user_programs(files: Iterable[str] = (), rules: Iterable[str] = ()) -> list[
 
 
 def unknown_names(problem, spec: ConstraintSpec) -> list[str]:
-    """Warnings for flag values that match no motion or object label of the FOON, and for
-    predicates the user's files and rules use that are defined nowhere (:func:`rule_warnings`)."""
+    """Warnings for flag values that match no motion or label, and for predicates the user's files
+    and rules use that are defined nowhere."""
     motions, labels = spec.names()
     have_m = {u.motion for u in problem.units}
     have_l = problem.foon.labels()

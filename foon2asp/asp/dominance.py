@@ -2,8 +2,6 @@
 
 A unit ``V`` dominates ``U`` when it can replace ``U`` in any tree at no greater cost and
 comes first in FOON id order or costs less (docs/proofs/preparation.md, "Dominance").
-:class:`Dominators` lists the dominators of each unit, :func:`dominance_facts` writes them
-for ``encodings/dominance.lp``, and :func:`applies` says when forbidding them is sound.
 """
 
 from __future__ import annotations
@@ -31,17 +29,14 @@ def applies(options, ranked: Iterable[str]) -> bool:
 
 
 class Dominators:
-    """The units that dominate each unit, for one problem and ranked objectives: ``of(u)``
-    lists ``(V, extra)`` over ``producers`` (object -> its producers in id order; the
-    problem's viable producers when not given), computed once per unit.  The pairs among
-    any set of units are those whose ``V`` is in the set."""
+    """The units that dominate each unit, for one problem and ranked objectives, among
+    ``producers`` (object -> its producers in id order; default: the viable producers)."""
 
     def __init__(
         self, problem: Problem, ranked: Iterable[str] = ("units",), producers: dict[int, list[int]] | None = None
     ):
         self.problem = problem
         self.producers = problem.viable_producers if producers is None else producers
-        # the ranked objectives that weigh units differently (units weighs them all 1; depth is not a sum)
         self._weights = [UNIT_WEIGHTS[n] for n in sorted(set(ranked)) if n in UNIT_WEIGHTS]
         self._unit: dict[int, tuple[frozenset[int], frozenset[int], tuple[int, ...]]] = {}
         self._of: dict[int, list[tuple[int, tuple[int, ...]]]] = {}
@@ -89,8 +84,8 @@ class Dominators:
 def dominance_pairs(
     problem: Problem, units: Iterable[int], ranked: Iterable[str] = ("units",)
 ) -> list[tuple[int, int, tuple[int, ...]]]:
-    """``(V, U, extra)`` for each unit ``V`` of ``units`` that dominates a unit ``U`` of
-    ``units`` when none of the products ``extra`` (made by ``U``, not by ``V``) is relevant."""
+    """``(V, U, extra)``: among ``units``, ``V`` dominates ``U`` when none of the products
+    ``extra`` (made by ``U``, not by ``V``) is relevant."""
     kitchen = problem.kitchen
     pool = sorted(set(units))
     producers: dict[int, list[int]] = {}
@@ -103,7 +98,7 @@ def dominance_pairs(
 
 
 def dominance_facts(problem: Problem, units: Iterable[int], ranked: Iterable[str] = ("units",)) -> str:
-    """``dom(V,U).`` and ``dom_extra(V,U,O).`` for :func:`dominance_pairs` (read by dominance.lp)."""
+    """``dom(V,U).`` and ``dom_extra(V,U,O).`` for :func:`dominance_pairs`."""
     out = []
     for v, u, extra in dominance_pairs(problem, units, ranked):
         out.append(f"dom({v},{u}).\n")

@@ -1,10 +1,8 @@
 """ASP facts for a problem.
 
-Objects and units are integer ids; every piece of text (labels, states, ingredients,
-containers, motions) enters as an escaped string literal (:func:`q`), so no label can
-change the program.  The predicates (``object/1``, ``label/2``, ``unit/1``, ``input/2``,
-``required/2``, ``product/2``, ``kitchen/1``, ``goal/1``, ...) are the stable vocabulary of
-docs/vocabulary.md.
+Objects and units are integer ids; every text enters as an escaped string literal
+(:func:`q`), so no label can change the program.  The predicates are the stable vocabulary
+of docs/vocabulary.md.
 """
 
 from __future__ import annotations
@@ -83,14 +81,10 @@ def facts(
     whole_kitchen: bool = True,
     declare: bool = True,
 ) -> str:
-    """The facts as ASP text.
-
-    ``units`` restricts the FOON part to those units (and their objects);
-    ``goal_nodes`` are written as ``goal_node(N,O)``, ``goal`` as ``goal(O)``.
-    ``leave_out`` names predicates of :data:`OPTIONAL` not to write (ValueError for
-    others); ``whole_kitchen=False`` writes only the kitchen items among the units'
-    objects; ``declare=False`` leaves out ``unit/1`` and ``object/1``.
-    """
+    """The facts as ASP text: of ``units`` (None: all) and their objects, ``goal_node(N,O)``
+    and ``goal(O)``; ``leave_out``: predicates of :data:`OPTIONAL` not to write;
+    ``whole_kitchen=False``: only the kitchen items among the units' objects;
+    ``declare=False``: no ``unit/1`` and ``object/1``."""
     leave_out = frozenset(leave_out)
     unknown = leave_out - set(OPTIONAL)
     if unknown:

@@ -1,9 +1,7 @@
 """Stopping clingo calls safely: signals deferred while a call runs, and the solve watchdog.
 
-:func:`deferred_signals` records SIGINT and SIGTERM while its body runs and delivers the
-first one afterwards; :data:`WATCHDOG` is the one thread per process that interrupts solve
-calls running in their callers' threads once their time is up.  Why a control is never left
-in the middle of a call: docs/proofs/solving.md, "The watchdog and signals".
+Why a control is never left in the middle of a call: docs/proofs/solving.md, "The watchdog
+and signals".
 """
 
 from __future__ import annotations
@@ -29,7 +27,6 @@ class _Watchdog:
 
     def __init__(self) -> None:
         self.reset()
-        # a forked process starts with no thread and a fresh lock (the parent's may be held)
         os.register_at_fork(after_in_child=self.reset)
 
     def reset(self) -> None:

@@ -1,9 +1,7 @@
 """Objectives and solver features: which encodings and extra facts a session needs.
 
-Objectives (``--objective``, most important first) are lexicographic: the wrapper writes
-``objective(Name,Priority)`` and each ``encodings/NAME.lp`` minimises at that priority
-(docs/objectives.md).  ``units`` is always the last tie-breaker (added when it is not
-listed), so an optimal tree never carries a superfluous unit.
+Objectives are lexicographic (``objective(Name,Priority)``, docs/objectives.md), with
+``units`` always the last tie-breaker.
 """
 
 from __future__ import annotations
@@ -18,21 +16,13 @@ from foon2asp.foon.motioncost import DEFAULT_COST, motion_key, scaled
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.weights import UNIT_WEIGHTS, success_permille, total
 
-#: the tie-breaker appended to every objective list that lacks it
-TIE_BREAK = "units"
-
 
 def ranked(options) -> tuple[str, ...]:
     """The objective list the solver optimises: the user's, then ``units`` as tie-breaker."""
     if options.heuristic:
         return ()
     objective = tuple(dict.fromkeys(options.objective))
-    return objective if TIE_BREAK in objective else objective + (TIE_BREAK,)
-
-
-def uses_depth(options) -> bool:
-    """Does the session need the step-indexed depth encoding?"""
-    return options.max_depth is not None or "depth" in ranked(options)
+    return objective if "units" in objective else (*objective, "units")
 
 
 def encoding_names(options, registry: dict[str, str]) -> list[str]:
@@ -41,7 +31,7 @@ def encoding_names(options, registry: dict[str, str]) -> list[str]:
         names = [f"greedy_{options.heuristic}"]  # includes greedy.lp
     else:
         names = [registry[o] for o in ranked(options) if o in registry]
-    if uses_depth(options) and "depth" not in names:
+    if options.max_depth is not None and "depth" not in names:
         names.append("depth")
     if options.human_steps is not None:
         names.append("human")
@@ -53,14 +43,13 @@ def encoding_names(options, registry: dict[str, str]) -> list[str]:
 
 
 def input_node_facts(problem: Problem, units: Iterable[int] | None = None) -> str:
-    """``input_nodes(U,N).``: N input nodes as the FOON lists them (what measures() counts)."""
+    """``input_nodes(U,N).``: N input nodes as the FOON lists them."""
     ids = unit_ids(problem, units)
     return "".join(f"input_nodes({u},{len(problem.inputs[u])}).\n" for u in ids)
 
 
 def motion_cost_weights(problem: Problem, costs: dict[str, int], units: Iterable[int] | None = None) -> dict[int, int]:
-    """Unit -> the integer weight of its motion (``costs``: motion -> cost in hundredths; a
-    motion not listed weighs the default cost, 1)."""
+    """Unit -> the integer weight of its motion (``costs``: motion -> cost in hundredths; default 1)."""
     ids = unit_ids(problem, units)
     default = scaled(DEFAULT_COST)
     keyed = {motion_key(m): w for m, w in costs.items()}
@@ -68,7 +57,7 @@ def motion_cost_weights(problem: Problem, costs: dict[str, int], units: Iterable
 
 
 def motion_cost_facts(problem: Problem, options, units: Iterable[int] | None = None) -> str:
-    """``motion_cost(U,C).``: C is the cost of U's motion in hundredths (read by cost.lp)."""
+    """``motion_cost(U,C).``: C is the cost of U's motion in hundredths."""
     if options.motion_costs is None:
         raise InputError("the objective 'cost' needs a motion-cost table (--motion-cost FILE)")
     weights = motion_cost_weights(problem, options.motion_costs, units)
@@ -79,9 +68,8 @@ def motion_cost_facts(problem: Problem, options, units: Iterable[int] | None = N
 
 
 def greedy_key(problem: Problem, heuristic: str, unit: int) -> tuple[int, int]:
-    """The order of producers for greedy retrieval (smaller first): h1 the highest
-    success rate (in thousandths, as ``success/2``), h2 the fewest input nodes (as
-    ``input_nodes/2``); ties to the unit first in FOON file order."""
+    """The order of producers for greedy retrieval (smaller first): h1 the highest success rate,
+    h2 the fewest input nodes; ties in FOON file order."""
     if heuristic == "h1":
         return (-success_permille(problem.rates[unit]), unit)
     if heuristic == "h2":
@@ -90,8 +78,7 @@ def greedy_key(problem: Problem, heuristic: str, unit: int) -> tuple[int, int]:
 
 
 def rank_facts(problem: Problem, heuristic: str, units: Iterable[int] | None = None) -> str:
-    """``rank(O,U,R).``: U is the producer of O that greedy retrieval tries R-th (from 0),
-    among the producers in ``units`` (all units when None)."""
+    """``rank(O,U,R).``: U is the producer of O (among ``units``) that greedy retrieval tries R-th."""
     ids = unit_ids(problem, units)
     producers: dict[int, list[int]] = {}
     for u in ids:
@@ -105,8 +92,7 @@ def rank_facts(problem: Problem, heuristic: str, units: Iterable[int] | None = N
 
 
 def human_order_facts(problem: Problem, units: Iterable[int] | None = None) -> str:
-    """``human_unit(P,U).``: the units with a positive success weight, heaviest (least
-    likely) first, ties in FOON file order; a person does the first M used ones."""
+    """``human_unit(P,U).``: the units with a positive success weight, heaviest first."""
     ids = unit_ids(problem, units)
     weight = UNIT_WEIGHTS["success"]
     weighted = [(weight(problem, u), u) for u in ids]
@@ -118,7 +104,7 @@ def extra_parts(
     problem: Problem, options, units: Iterable[int] | None = None, dominated: bool = True
 ) -> list[tuple[str, str]]:
     """Facts and directives the encodings of ``options`` read, as (name, text) programs
-    (``dominated=False``: not the dominance facts, for units without dominated ones)."""
+    (``dominated=False``: without the dominance facts)."""
     parts = [("input nodes", input_node_facts(problem, units))]
     if "cost" in ranked(options):
         parts.append(("motion costs", motion_cost_facts(problem, options, units)))
@@ -133,7 +119,6 @@ def extra_parts(
     if substitutes.applies(options):
         facts = substitutes.substitute_facts(problem, options.substitutes, units, options.max_substitutions)
         parts.append(("substitutes", facts))
-    # distinct answers are distinct sets of units (used when enumerating)
     parts.append(("projection", "#project use/1.\n"))
     return parts
 

@@ -1,8 +1,7 @@
 """What a program defines and uses: the predicates of user rules, the shipped encodings and the facts.
 
-Read with clingo's parser (:func:`predicates`); :func:`rule_warnings` names a predicate
-a user program uses that nothing defines, with the closest defined ones, and
-:func:`only_constraints` says whether user programs only remove trees.
+Read with clingo's parser; :func:`rule_warnings` names a predicate a user program uses that
+nothing defines, and :func:`only_constraints` says whether user programs only remove trees.
 """
 
 from __future__ import annotations
@@ -33,10 +32,9 @@ FACTS: frozenset[Signature] = frozenset(
 class Predicates:
     """What one program defines and uses."""
 
-    #: predicates in a rule head (of a fact, a choice, a disjunction, a head aggregate), ``#external`` or ``#defined``
+    #: predicates in a rule head, ``#external`` or ``#defined``
     defined: set[Signature] = field(default_factory=set)
-    #: predicates in a body (conditions and aggregate elements too), ``#show``, ``#heuristic``, ``#project``,
-    #: with where each is first used (line, column)
+    #: predicates in a body, ``#show``, ``#heuristic`` or ``#project``, with their first use (line, column)
     used: dict[Signature, tuple[int, int]] = field(default_factory=dict)
 
 
@@ -137,8 +135,7 @@ def shipped_predicates() -> dict[str, Predicates]:
 
 @cache
 def known_predicates() -> frozenset[Signature]:
-    """Every predicate foon2asp defines or writes: the facts, the shipped encodings' heads,
-    and what the encodings read, which foon2asp writes as facts (``objective/2``, ``dom/2``, ...)."""
+    """Every predicate foon2asp defines or writes: the facts and what the shipped encodings define or read."""
     known = set(FACTS)
     for found in shipped_predicates().values():
         known |= found.defined | set(found.used)
@@ -150,8 +147,7 @@ def signature_text(sig: Signature) -> str:
 
 
 def closest(sig: Signature, defined: Iterable[Signature]) -> str:
-    """``; did you mean motion/2?``: the defined predicates whose names are closest to ``sig``'s
-    (difflib; those nearly as close as the closest), of its arity where the name has it; or ""."""
+    """``; did you mean motion/2?``: the defined predicates whose names are closest to ``sig``'s, or ""."""
     arities: dict[str, set[int]] = {}
     for name, arity in defined:
         arities.setdefault(name, set()).add(arity)
@@ -172,10 +168,8 @@ def undefined(name: str, sig: Signature, where: tuple[int, int], defined: Iterab
 
 
 def rule_warnings(programs: Iterable[tuple[str, str]], defined: Iterable[Signature] = ()) -> list[str]:
-    """One warning for each predicate a user program (name, text) uses that is defined nowhere:
-    not in :func:`known_predicates`, ``defined``, or the heads of any of ``programs``.
-    ``NAME:LINE:COLUMN: motoin/2 is defined nowhere; did you mean motion/2?``, at its first use
-    in each program.  Programs with a syntax error are left to :func:`check_syntax`."""
+    """``NAME:LINE:COLUMN: motoin/2 is defined nowhere; did you mean motion/2?`` for each predicate a
+    user program (name, text) uses that neither foon2asp, ``defined`` nor any of ``programs`` defines."""
     parsed = [(name, found) for name, text in programs if (found := _parsed(text)) is not None]
     known = set(known_predicates()) | set(defined)
     for _, found in parsed:
@@ -189,8 +183,7 @@ def rule_warnings(programs: Iterable[tuple[str, str]], defined: Iterable[Signatu
 
 
 def _changes_search(text: str) -> bool:
-    """Does ``text`` hold a statement that changes what is optimal or how it is searched
-    (``#minimize``, ``#heuristic``, ``#external``, ``#edge``, a weak constraint)?"""
+    """Does ``text`` hold ``#minimize``, ``#heuristic``, ``#external``, ``#edge`` or a weak constraint?"""
     T = clingo.ast.ASTType
     kinds = (T.Minimize, T.Heuristic, T.External, T.Edge)
     found: list[bool] = []
@@ -199,9 +192,8 @@ def _changes_search(text: str) -> bool:
 
 
 def only_constraints(programs: Iterable[tuple[str, str]]) -> bool:
-    """Do the user ``programs`` only remove trees: integrity constraints and rules whose heads
-    are predicates of their own (none that foon2asp defines or writes), nothing that changes
-    the objective or the search?"""
+    """Do the user ``programs`` only remove trees (constraints, rules with heads of their own, nothing
+    that changes the objective or the search)?"""
     known = known_predicates()
     for _, text in programs:
         try:

@@ -1,10 +1,7 @@
 """Substitutes in the solver: candidate facts, the problem a session solves, the report.
 
-Python lists the candidates (:func:`foon2asp.foon.substitutes.candidates`) as
-``substitute(N,K,C)`` facts (:func:`substitute_facts`); ``encodings/substitutes.lp``
-chooses among them, the least summed cost ranked above every objective (docs/vocabulary.md).
-:func:`prepare` gives the problem whose viable units count what substitutes stand in for as
-available, and :func:`report` reads which substitutions a tree uses.
+The candidates become ``substitute(N,K,C)`` facts; ``encodings/substitutes.lp`` chooses
+among them, the least summed cost ranked above every objective (docs/vocabulary.md).
 """
 
 from __future__ import annotations
@@ -38,8 +35,8 @@ def substitute_facts(
     limit: int | None = None,
     cands: list[Candidate] | None = None,
 ) -> str:
-    """``substitute(N,K,C).`` for the objects of the facts of ``units`` (all units when None),
-    and ``max_substitutions(M).`` with a ``limit``; ``cands``: the candidates, when known."""
+    """``substitute(N,K,C).`` for the objects of the facts of ``units`` (None: all), and
+    ``max_substitutions(M).`` with a ``limit``; ``cands``: the candidates, when known."""
     if cands is None:
         cands = candidates(problem, substitutes)
     objects = fact_objects(problem, unit_ids(problem, units))
@@ -56,9 +53,8 @@ def applies(options) -> bool:
 
 
 def prepare(problem: Problem, options) -> Problem:
-    """The problem a session with ``options`` solves: with substitutes, the one whose
-    viability counts what they stand in for (:func:`with_substitutes`), else ``problem``.
-    Substitutes need an optimising session without depth rounds or greedy retrieval."""
+    """The problem a session with ``options`` solves: with substitutes, the one whose viability
+    counts what they stand in for (InputError with depth rounds or greedy retrieval)."""
     if not applies(options):
         return problem
     if options.heuristic or options.max_depth is not None or "depth" in options.objective:
@@ -69,9 +65,8 @@ def prepare(problem: Problem, options) -> Problem:
 def report(
     problem: Problem, goals: Iterable[int], units: Iterable[int], substitutes: Iterable[Substitute]
 ) -> list[dict]:
-    """The substitutions the tree of ``units`` for ``goals`` uses, as ``{"needed", "used"}``
-    texts (in object id order): the cheapest ones that let exactly these units make the
-    goals, as substitutes.lp chooses them (empty when the tree needs none)."""
+    """The substitutions the tree of ``units`` for ``goals`` uses, as ``{"needed", "used"}`` texts
+    in object id order: the cheapest that let exactly these units make the goals."""
     substitutes = tuple(substitutes)
     units = sorted(set(units))
     goals = list(dict.fromkeys(goals))
