@@ -1,4 +1,4 @@
-"""User constraints: ASP files, rule texts and convenience flags as ``(name, text)`` programs.
+"""User constraints: ASP files, rule texts and convenience flags as programs.
 
 In the flags' programs every motion or label is an escaped string constant, so it can never
 add code; files and ``--rule`` texts are checked on their own first, so an error is one line
