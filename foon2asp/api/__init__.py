@@ -9,41 +9,28 @@
 Every command of ``foon2asp`` is a thin layer over these calls: :func:`load` reads the data,
 :class:`KnowledgeBase` answers with the settings of one request (:class:`Options`), and the
 answers render themselves in the formats of :mod:`foon2asp.report`.  The modules import each
-other one way: options, catalog, matching, files, schedules, results, batches, kb, load, trees.
+other one way: options, results, schedules, kb, load, trees.  Below: what the library knows by
+name, for front ends that offer it as choices.
 """
 
-from foon2asp.api.batches import BatchRun
-from foon2asp.api.catalog import (
-    COMPARE_METHODS,
-    GROUNDINGS,
-    MOTION_COST_PRECISION,
-    OBJECT_FILTERS,
-    OBJECTIVES,
-    UTENSIL_RULES,
-    method,
-    methods,
-)
-from foon2asp.api.files import (
-    FOON_FORMATS,
-    match_foon,
-    read_foons,
-    read_program,
+from foon2asp import methods as methods_mod
+from foon2asp.analysis.compare import DEFAULT_METHODS
+from foon2asp.api.kb import KnowledgeBase
+from foon2asp.api.load import FOON_FORMATS, load, match_foon, read_foons, read_program, write_foon
+from foon2asp.api.options import Constraints, Options
+from foon2asp.api.results import (
+    BatchRun,
+    CheckReport,
+    Comparison,
+    Missing,
+    Reachability,
+    Schedule,
+    Tree,
+    schedules_json,
     writable_dir,
     write_file,
-    write_foon,
 )
-from foon2asp.api.kb import GoalLike, KnowledgeBase
-from foon2asp.api.load import load
-from foon2asp.api.options import Constraints, Options, Settings
-from foon2asp.api.results import CheckReport, Comparison, Missing, Reachability, Schedule, Tree, schedules_json
-from foon2asp.api.schedules import (
-    DEFAULT_SCHEDULE_ENCODING,
-    SCHEDULE_ENCODINGS,
-    SCHEDULE_STATUSES,
-    ScheduleVerdict,
-    is_schedule_file,
-    verdicts_json,
-)
+from foon2asp.api.schedules import ScheduleVerdict, is_schedule_file, verdicts_json
 from foon2asp.api.trees import (
     CandidateReport,
     ConsolidatedGoal,
@@ -53,15 +40,47 @@ from foon2asp.api.trees import (
     consolidate,
     draw_file,
 )
+from foon2asp.asp.options import OBJECTIVES as _OBJECTIVES
 from foon2asp.batch.schedules import schedules_path
-from foon2asp.schedule import ScheduleSpec, parse_agents
+from foon2asp.foon.goals import OBJECT_FILTERS as _OBJECT_FILTERS
+from foon2asp.foon.motioncost import PRECISION_TEXT
+from foon2asp.foon.problem import UTENSIL_RULES as _UTENSIL_RULES
+from foon2asp.methods.parts import GROUNDING_CHOICES
+from foon2asp.methods.registry import Method
+from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec, parse_agents
+from foon2asp.schedule.encode import ENCODINGS
+
+#: objective names, for ``objective=`` (lexicographic lists of them)
+OBJECTIVES: tuple[str, ...] = tuple(_OBJECTIVES)
+#: how exact motion costs are (``motion_cost=``), in words
+MOTION_COST_PRECISION: str = PRECISION_TEXT
+#: ``utensil_rule=`` of :func:`load`: when a utensil holding one ingredient is not a required input
+UTENSIL_RULES: tuple[str, ...] = tuple(_UTENSIL_RULES)
+#: ``grounding=`` of a batch: ``auto`` chooses ``whole`` or ``per-goal``
+GROUNDINGS: tuple[str, ...] = tuple(GROUNDING_CHOICES)
+#: the methods :meth:`KnowledgeBase.compare` runs by default
+COMPARE_METHODS: tuple[str, ...] = tuple(DEFAULT_METHODS)
+#: ``only=`` of :meth:`KnowledgeBase.find_objects`
+OBJECT_FILTERS: tuple[str, ...] = tuple(_OBJECT_FILTERS)
+#: the schedule encodings (:mod:`foon2asp.schedule.encode`) and the default one
+SCHEDULE_ENCODINGS = ENCODINGS
+DEFAULT_SCHEDULE_ENCODING = DEFAULT_ENCODING
+
+
+def methods() -> list[Method]:
+    """Every registered method (``.name``, ``.kind``: ``asp`` or ``search``, ``.description``), in order."""
+    return [methods_mod.get(name) for name in methods_mod.names()]
+
+
+def method(name: str) -> Method:
+    """The registered method ``name`` (an unknown name is an InputError listing the known ones)."""
+    return methods_mod.get(name)
+
 
 __all__ = [
     "load",
     "KnowledgeBase",
-    "GoalLike",
     "Options",
-    "Settings",
     "Constraints",
     "Tree",
     "CheckReport",
@@ -72,7 +91,6 @@ __all__ = [
     "Schedule",
     "ScheduleSpec",
     "ScheduleVerdict",
-    "SCHEDULE_STATUSES",
     "SCHEDULE_ENCODINGS",
     "DEFAULT_SCHEDULE_ENCODING",
     "parse_agents",

@@ -1,18 +1,28 @@
-"""Reading a data folder, or FOON files with the files beside them, into a :class:`KnowledgeBase`."""
+"""Reading a data folder, or FOON files with the files beside them, into a :class:`KnowledgeBase`;
+FOON files read, merged, compared loosely and written, and ASP program files read."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+import io
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 
 from foon2asp.api.kb import KnowledgeBase
-from foon2asp.api.matching import projection
+from foon2asp.api.results import write_file
+from foon2asp.asp.constraints import read_file
 from foon2asp.errors import InputError
+from foon2asp.foon import foonjson, parser, unitlist
 from foon2asp.foon.demo import demo_dir
 from foon2asp.foon.leaves import LEAVES
 from foon2asp.foon.loaders import FILE_NAMES, Dataset, check_foon_file
-from foon2asp.foon.matching import Projection, project_dataset
+from foon2asp.foon.matching import Projection, Texts, parse_synonyms, project_dataset, read_synonyms
+from foon2asp.foon.model import Foon
 from foon2asp.foon.problem import Problem
+from foon2asp.foon.substitutes import LINE_BREAKS
+
+#: the formats :func:`write_foon` writes: the official dialect with ids, the dialect without ids, FOON JSON,
+#: the unit-list JSON of generated trees (:mod:`foon2asp.foon.unitlist`)
+FOON_FORMATS = ("foon", "foon-plain", "foon-json", "units-json")
 
 #: what is lost when a file is not beside the FOON
 _WITHOUT = {
@@ -20,27 +30,6 @@ _WITHOUT = {
     "motion": "every motion gets success rate 0.5",
     "utensils": "no object is treated as a utensil",
 }
-
-
-def _beside(foon: Path, given: dict, warnings: list[str]) -> dict:
-    """``given`` with the files not given taken from beside ``foon``; warnings for absent optional ones."""
-    out = dict(given)
-    for key, value in given.items():
-        if value is not None:
-            continue
-        candidate = foon.parent / FILE_NAMES[key]
-        if candidate.exists():  # a directory there is an error naming it when it is read
-            out[key] = str(candidate)
-        elif key == "kitchen":
-            raise InputError(
-                f"no {FILE_NAMES[key]} beside the FOON file (looked for {candidate});"
-                " give a kitchen file, kitchen='leaves' (every object no unit makes: merged generated"
-                " trees have no kitchen) or a data folder ('demo' for the demo data)",
-                hint=f"kitchen={candidate}",
-            )
-        else:
-            warnings.append(f"no {FILE_NAMES[key]} beside {foon}: {_WITHOUT[key]}")
-    return out
 
 
 def load(
@@ -67,27 +56,33 @@ def load(
         path = demo_dir()
     if path is None and foon is None:
         raise InputError("no data given: load(DIR), load('demo') or load(foon=FILE, kitchen=FILE, ...)")
-    foon_paths: str | list | None = (
-        [str(f) for f in foon] if isinstance(foon, list | tuple) else (None if foon is None else str(foon))
-    )
+    given = None if foon is None else [str(f) for f in foon] if isinstance(foon, list | tuple) else str(foon)
+    files = {"kitchen": kitchen, "goals": goals, "motion": motion, "utensils": utensils}
     beside: list[str] = []
-    if path is None and foon_paths:
-        for name in foon_paths if isinstance(foon_paths, list) else [foon_paths]:
+    if path is None and given:
+        foons = [given] if isinstance(given, str) else given
+        for name in foons:
             check_foon_file(name)  # a mistyped FOON path is named itself, not the files beside it
-        first = Path(foon_paths[0] if isinstance(foon_paths, list) else foon_paths)
-        found = _beside(first, {"kitchen": kitchen, "goals": goals, "motion": motion, "utensils": utensils}, beside)
-        kitchen, goals, motion, utensils = found["kitchen"], found["goals"], found["motion"], found["utensils"]
-    data = Dataset.load(
-        path, foon=foon_paths, kitchen=kitchen, goals=goals, motion=motion, utensils=utensils, strict=strict
-    )
+        first = Path(foons[0])
+        for key in [k for k, v in files.items() if v is None]:
+            candidate = first.parent / FILE_NAMES[key]
+            if candidate.exists():  # a directory there is an error naming it when it is read
+                files[key] = str(candidate)
+            elif key == "kitchen":
+                raise InputError(
+                    f"no {FILE_NAMES[key]} beside the FOON file (looked for {candidate});"
+                    " give a kitchen file, kitchen='leaves' (every object no unit makes: merged generated"
+                    " trees have no kitchen) or a data folder ('demo' for the demo data)",
+                    hint=f"kitchen={candidate}",
+                )
+            else:
+                beside.append(f"no {FILE_NAMES[key]} beside {first}: {_WITHOUT[key]}")
+    data = Dataset.load(path, foon=given, strict=strict, **files)
     return knowledge_base(data, utensil_rule, beside, seen_as)
 
 
 def knowledge_base(
-    data: Dataset,
-    utensil_rule: str = "starter",
-    warnings: Sequence[str] = (),
-    seen_as: Projection | None = None,
+    data: Dataset, utensil_rule: str = "starter", warnings: Sequence[str] = (), seen_as: Projection | None = None
 ) -> KnowledgeBase:
     """The knowledge base of data read already, with the warnings about it (and ``warnings``), as
     ``seen_as`` sees it (default: level 3, texts as spelled)."""
@@ -108,3 +103,61 @@ def knowledge_base(
         why = " (every object of the FOON is made by some unit)" if kitchen == LEAVES else ""
         found.append(f"{where}the kitchen is empty{why}: no unit can start, so every goal is unreachable")
     return KnowledgeBase(data, problem, tuple(found), seen_as)
+
+
+def projection(level: int, normalize: bool, synonyms: str | Path | Mapping[str, str] | None) -> Projection:
+    """How objects are compared for ``load``'s ``level``, ``normalize`` and ``synonyms`` (checked
+    before any FOON is read; :class:`foon2asp.foon.matching.Projection`)."""
+    if isinstance(level, bool) or level not in (1, 2, 3):
+        raise InputError(f"--level must be 1, 2 or 3, not {level!r}")
+    if synonyms is None:
+        table: dict[str, str] = {}
+    elif isinstance(synonyms, Mapping):
+        for text in (t for pair in synonyms.items() for t in pair):
+            if not isinstance(text, str) or any(c in LINE_BREAKS for c in text):
+                raise InputError(f"synonyms: a name must be a string without line breaks, not {text!r}")
+        text = "".join(f"{name} = {canonical}\n" for name, canonical in synonyms.items())
+        table = parse_synonyms(text, "synonyms", normalize)
+    else:
+        table = read_synonyms(synonyms, normalize)
+    return Projection(level, Texts(normalize, table))
+
+
+def read_foons(paths: Iterable[str | Path], strict: bool = False) -> Foon:
+    """FOON files (text, FOON JSON or unit-list JSON) merged into one FOON, duplicate units once,
+    with ``.warnings``; ``strict``: a unit skipped with a warning is an error."""
+    names = [str(p) for p in paths]
+    for name in names:
+        check_foon_file(name)
+    return parser.read_foons(names, strict)
+
+
+def match_foon(
+    foon: Foon, level: int = 3, normalize: bool = False, synonyms: str | Path | Mapping[str, str] | None = None
+) -> tuple[Foon, dict[str, list[str]]]:
+    """``foon`` as hierarchy ``level`` with ``normalize``/``synonyms`` sees it (see :func:`load`):
+    units equal there are one unit; and the spellings joined (first spelling -> every spelling)."""
+    found = projection(level, normalize, synonyms)
+    if found.identity:
+        return foon, {}
+    return found.foon(foon), {first: list(every) for first, every in found.texts_joined.items()}
+
+
+def write_foon(foon: Foon, path: str | Path, fmt: str = "foon", header: str | None = None) -> None:
+    """Write ``foon`` to ``path`` (its directory created) in a format of :data:`FOON_FORMATS`."""
+    if fmt not in FOON_FORMATS:
+        raise InputError(f"unknown FOON format {fmt!r} (have {', '.join(FOON_FORMATS)})")
+    if fmt == "foon-json":
+        text = foonjson.dumps(foon.units, parser.id_map(foon), header)
+    elif fmt == "units-json":
+        text = unitlist.dumps(foon.units)
+    else:
+        out = io.StringIO()
+        parser.write_foon(foon, out, header=header, dialect="plain" if fmt == "foon-plain" else "official")
+        text = out.getvalue()
+    write_file(path, text)
+
+
+def read_program(path: str | Path) -> str:
+    """The text of an ASP program file (for :meth:`KnowledgeBase.query`)."""
+    return read_file(str(path), "ASP program file")

@@ -1,7 +1,7 @@
 """One request's settings: what to optimise, the constraints, how to solve and for how long.
 
-The keyword arguments of the answers (:class:`Settings`) are mapped onto :class:`Options` by
-:meth:`Options.of`, the one place that knows them."""
+The keyword arguments of the answers are mapped onto :class:`Options` by :meth:`Options.of`,
+the one place that knows them."""
 
 from __future__ import annotations
 
@@ -11,60 +11,30 @@ import math
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
-from typing import TypedDict, Unpack, cast
+from typing import Any
 
 from foon2asp.asp.constraints import ConstraintSpec
 from foon2asp.asp.options import OBJECTIVES, AspOptions
+from foon2asp.batch.pool import AUTO
 from foon2asp.errors import InputError
+from foon2asp.foon.model import FoonObject
 from foon2asp.foon.motioncost import MotionCosts, parse_motion_costs, read_motion_costs
 from foon2asp.foon.substitutes import Substitute, parse_substitutes, read_substitutes
+from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec
 
 #: user constraints (an ASP file, rule texts, the forbid/require/max-units conveniences):
 #: the one value the command line fills from ``--constraint`` ... ``--max-units`` and the solver reads
 Constraints = ConstraintSpec
 
-
-#: a motion-cost table as a request takes it: a file (JSON object or motion<TAB>cost lines),
-#: a table read already, or a mapping motion -> cost
+#: a motion-cost table: a file (JSON object or motion<TAB>cost lines), a table read already, or motion -> cost
 MotionCostLike = str | Path | MotionCosts | Mapping[str, object]
 
-#: substitutes as a request takes them: a file (JSON ``{"onion": ["red onion", ...]}`` or
-#: ``onion: red onion, shallot =2`` lines), a mapping needed -> list of labels (or label -> cost),
-#: or :class:`~foon2asp.foon.substitutes.Substitute` values
+#: substitutes: a file (JSON ``{"onion": ["red onion", ...]}`` or ``onion: red onion, shallot =2``
+#: lines), a mapping needed -> list of labels (or label -> cost), or Substitute values
 SubstitutesLike = str | Path | Mapping[str, object] | Sequence[Substitute]
 
-
-class Settings(TypedDict, total=False):
-    """The keyword arguments every answer takes besides ``options=`` (see :class:`Options`)."""
-
-    objective: str | Sequence[str]
-    motion_cost: MotionCostLike | None
-    time_limit: float | None
-    gap: float | None
-    on_progress: Callable[[dict], None] | None
-    models: int
-    all_optimal: bool
-    max_depth: int | None
-    human_steps: int | None
-    opt_strategy: str | None
-    threads: int | None
-    grounding: str
-    shortcuts: bool
-    constraints: Constraints | None
-    #: the constraint conveniences, one by one (they change ``constraints``)
-    forbid_motions: Sequence[str]
-    forbid_objects: Sequence[str]
-    require_motions: Sequence[str]
-    require_objects: Sequence[str]
-    max_units: int | None
-    rules: Sequence[str]
-    constraint_files: Sequence[str]
-    substitutes: SubstitutesLike | None
-    max_substitutions: int | None
-
-
-#: keyword -> field of :data:`Constraints`
-_CONSTRAINT_KEYWORDS = {
+#: the constraint keywords of the answers -> field of :data:`Constraints`
+CONSTRAINT_KEYWORDS = {
     "constraint_files": "files",
     "rules": "rules",
     "forbid_motions": "forbid_motion",
@@ -74,6 +44,8 @@ _CONSTRAINT_KEYWORDS = {
     "max_units": "max_units",
 }
 
+#: the keywords of a schedule request that name its agents and tables (:func:`schedule_request`)
+SPEC_KEYWORDS = ("agents", "durations", "capabilities", "resources")
 
 #: why a value is not a time limit, in the words the command line's ``--time-limit`` uses too
 NOT_A_TIME_LIMIT = "is not a finite number of seconds > 0"
@@ -86,21 +58,11 @@ def check_keywords(given: Iterable[str], known: Collection[str], where: str = ""
     if not unknown:
         return
     names = sorted(known)
-    parts = []
-    guessed = True
-    for name in unknown:
-        close = difflib.get_close_matches(name, names, n=1)
-        parts.append(f"{name!r} (did you mean {close[0]!r}?)" if close else repr(name))
-        guessed = guessed and bool(close)
+    close = {name: difflib.get_close_matches(name, names, n=1) for name in unknown}
+    parts = [f"{name!r} (did you mean {found[0]!r}?)" if found else repr(name) for name, found in close.items()]
     word = "argument" if len(parts) == 1 else "arguments"
-    known_ones = "" if guessed else f"; the keywords are {', '.join(names)}"
+    known_ones = "" if all(close.values()) else f"; the keywords are {', '.join(names)}"
     raise TypeError(f"{where}unexpected keyword {word} {', '.join(parts)}{known_ones}")
-
-
-def split_objective(value: str | Sequence[str]) -> tuple[str, ...]:
-    """``"success,units"`` or ``["success", "units"]`` as a tuple of names (``("units",)`` when empty)."""
-    parts = [p.strip() for p in value.split(",")] if isinstance(value, str) else [str(p).strip() for p in value]
-    return tuple(p for p in parts if p) or ("units",)
 
 
 @dataclass(frozen=True)
@@ -116,9 +78,8 @@ class Options:
     constraints: Constraints = field(default_factory=Constraints)
     #: seconds per goal (a finite number > 0; None: no limit); the best tree so far is then ``feasible``
     time_limit: float | None = None
-    #: stop a goal once its relative gap (answer against the proven lower bound, first
-    #: objective; foon2asp.tree.gap) is at most this, e.g. 0.05; the answer is then
-    #: ``feasible`` with its bound.  None (and 0): prove every answer
+    #: stop a goal once its relative gap (first objective) is at most this, e.g. 0.05; the
+    #: answer is then ``feasible`` with its bound.  None (and 0): prove every answer
     gap: float | None = None
     #: called while a goal is solved, at each better tree and each better lower bound, with
     #: ``{"cost": [...], "lower": [...], "gap": g}`` (the solver's weights per objective level)
@@ -131,7 +92,7 @@ class Options:
     max_depth: int | None = None
     #: at most this many units done by a person (success 1.0)
     human_steps: int | None = None
-    #: clingo's optimisation strategy (``bb``, ``usc``, with refinements); None: foon2asp.asp.options'
+    #: clingo's optimisation strategy (``bb``, ``usc``, with refinements); None: foon2asp.asp.settings'
     opt_strategy: str | None = None
     #: clingo solver threads; None: one
     threads: int | None = None
@@ -139,11 +100,10 @@ class Options:
     grounding: str = "auto"
     #: batch: answer without the solver when the answer is forced
     shortcuts: bool = True
-    #: the motion-cost table (``--motion-cost FILE``; :data:`MotionCostLike`): the objective
-    #: ``cost`` needs it, and with it every tree's measures include its ``cost``
+    #: the motion-cost table: the objective ``cost`` needs it, and with it every tree's measures include ``cost``
     motion_cost: MotionCostLike | None = None
-    #: labels that may stand in for others (:data:`SubstitutesLike`): a tree uses the fewest
-    #: (cheapest) substitutions first, then the objective; each result names the ones it uses
+    #: labels that may stand in for others: a tree uses the fewest (cheapest) substitutions
+    #: first, then the objective; each result names the ones it uses
     substitutes: SubstitutesLike | None = None
     #: at most this many substitutions per tree
     max_substitutions: int | None = None
@@ -153,7 +113,9 @@ class Options:
         return super().__new__(cls)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "objective", split_objective(self.objective))
+        value = self.objective
+        parts = [p.strip() for p in value.split(",")] if isinstance(value, str) else [str(p).strip() for p in value]
+        object.__setattr__(self, "objective", tuple(p for p in parts if p) or ("units",))
         if self.constraints is None:
             object.__setattr__(self, "constraints", Constraints())
         limit = self.time_limit
@@ -163,33 +125,21 @@ class Options:
             raise InputError(f"time_limit: {limit!r} {NOT_A_TIME_LIMIT} (None: no limit)")
 
     @classmethod
-    def of(cls, options: Options | None = None, /, **settings: Unpack[Settings]) -> Options:
-        """``options`` (default: all defaults) with the keyword ``settings`` of :class:`Settings` applied."""
+    def of(cls, options: Options | None = None, /, **settings: Any) -> Options:
+        """``options`` (default: all defaults) with the keyword ``settings`` applied: its fields,
+        and the constraints one by one (``forbid_motions``, ..., ``max_units``, ``rules``, ``constraint_files``)."""
         base = options if options is not None else cls()
-        check_keywords(settings, Settings.__annotations__)
         own = {f.name for f in fields(cls)}
+        check_keywords(settings, own | set(CONSTRAINT_KEYWORDS))
         changes: dict = {k: v for k, v in settings.items() if k in own}
         spec = {
-            _CONSTRAINT_KEYWORDS[k]: v if k == "max_units" else tuple(str(x) for x in cast(Iterable[object], v))
+            CONSTRAINT_KEYWORDS[k]: v if k == "max_units" else tuple(str(x) for x in v)
             for k, v in settings.items()
-            if k in _CONSTRAINT_KEYWORDS
+            if k in CONSTRAINT_KEYWORDS
         }
         if spec:
             changes["constraints"] = replace(changes.get("constraints") or base.constraints, **spec)
         return replace(base, **changes) if changes else base
-
-    def ranked(self) -> tuple[str, ...]:
-        """The objective names, checked (``cost`` needs a motion-cost table)."""
-        for name in self.objective:
-            if name not in OBJECTIVES:
-                raise InputError(f"unknown objective {name!r} (have {', '.join(OBJECTIVES)})")
-        if "cost" in self.objective and self.motion_cost is None:
-            raise InputError(
-                "the objective 'cost' needs a motion-cost table: motion_cost=FILE (a JSON object motion -> cost,"
-                " or motion<TAB>cost lines)",
-                hint="motion-cost",
-            )
-        return self.objective
 
     def motion_table(self) -> MotionCosts | None:
         """The motion-cost table of the request, read and checked (None without one)."""
@@ -225,10 +175,18 @@ class Options:
         return given
 
     def solver(self) -> AspOptions:
-        """The solver's options: objective names, the human-steps rule and the constraint programs checked."""
-        ranked = self.ranked()
-        if self.human_steps is not None and "success" not in ranked:
-            suggestion = f"{','.join(ranked)},success"
+        """The solver's options: objective names, the human-steps rule, the gap and the constraint programs checked."""
+        for name in self.objective:
+            if name not in OBJECTIVES:
+                raise InputError(f"unknown objective {name!r} (have {', '.join(OBJECTIVES)})")
+        if "cost" in self.objective and self.motion_cost is None:
+            raise InputError(
+                "the objective 'cost' needs a motion-cost table: motion_cost=FILE (a JSON object motion -> cost,"
+                " or motion<TAB>cost lines)",
+                hint="motion-cost",
+            )
+        if self.human_steps is not None and "success" not in self.objective:
+            suggestion = f"{','.join(self.objective)},success"
             raise InputError(
                 "human steps only change the tree when 'success' is an objective (a person's step succeeds"
                 f" for sure); rank it among the objectives, e.g. {suggestion}",
@@ -240,7 +198,7 @@ class Options:
         if self.gap is not None and not (isinstance(self.gap, int | float) and 0 <= self.gap < math.inf):
             raise InputError(f"the gap must be a number >= 0 (0.05 stops at 5 %), not {self.gap!r}", hint="gap")
         return AspOptions(
-            objective=ranked,
+            objective=self.objective,
             time_limit=self.time_limit,
             gap=self.gap or None,
             progress=self.on_progress,
@@ -254,3 +212,37 @@ class Options:
             opt_strategy=self.opt_strategy,
             threads=1 if self.threads is None else self.threads,
         )
+
+
+def schedule_request(spec: ScheduleSpec | None, settings: dict[str, Any]) -> dict[str, Any]:
+    """The schedule keywords taken out of ``settings``: ``spec``, or the spec of ``agents``
+    (``"arm=2,human=1"`` or ``{"arm": 2, "human": 1}``; default ``robot=1``) and the ``durations``,
+    ``capabilities`` and ``resources`` files (each optional); ``joint`` and ``encoding``."""
+    agents, *files = (settings.pop(k, None) for k in SPEC_KEYWORDS)
+    how = {"joint": settings.pop("joint", False), "encoding": settings.pop("encoding", DEFAULT_ENCODING)}
+    if spec is not None:
+        if agents is not None or any(f is not None for f in files):
+            raise InputError("give a ScheduleSpec or agents/durations/capabilities/resources, not both")
+        return {"spec": spec, **how}
+    if isinstance(agents, Mapping):
+        agents = ",".join(f"{kind}={n}" for kind, n in agents.items())
+    return {"spec": ScheduleSpec.from_files(agents, *files), **how}
+
+
+def jobs(ids: Sequence[int], together: bool) -> list[int | tuple[int, ...]]:
+    """The goals ``ids`` one by one, or with ``together`` one meal of them (a tuple)."""
+    return [tuple(dict.fromkeys(ids))] if together else list(ids)
+
+
+def one_goal(goals: object) -> bool:
+    """Does ``goals`` name one goal (the answer is one value, not a list)?"""
+    return isinstance(goals, str | int | FoonObject) and goals not in ("all", "all-objects")
+
+
+def workers_count(workers: int | str) -> int:
+    """``workers`` of a batch as the pool takes it (``"auto"``: :data:`foon2asp.batch.pool.AUTO`)."""
+    if isinstance(workers, str) and workers.strip().lower() == "auto":
+        return AUTO
+    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= 1024:
+        raise InputError(f"workers must be 1..1024 or 'auto', not {workers!r}")
+    return workers

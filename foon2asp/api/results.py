@@ -1,28 +1,33 @@
 """The answers of :class:`foon2asp.api.KnowledgeBase`: trees and their schedules, check reports,
-comparisons, missing items and reachability; each renders itself in the formats of :mod:`foon2asp.report`."""
+comparisons, missing items, reachability, batch runs, consolidations and verdicts on files; each
+renders itself in the formats of :mod:`foon2asp.report`.
+
+Each answer wraps one internal record (``raw``, of object and unit ids) once; its attributes
+(:class:`Raw`) read that record's fields in the FOON of the knowledge base that gave it."""
 
 from __future__ import annotations
 
 import json
 from collections.abc import Callable, Iterable, Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
-from typing import Any, Generic, Protocol, TypeVar, Unpack, cast
+from typing import Any, ClassVar, Generic, Protocol, TypeVar, cast
 
 from foon2asp import report
 from foon2asp.analysis import compare as compare_mod
-from foon2asp.api.options import Options, Settings
-from foon2asp.api.schedules import make_spec
+from foon2asp.api.options import Options, schedule_request
 from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.options import AspOptions
+from foon2asp.batch.results import summarize
+from foon2asp.batch.schedules import schedule_records
+from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem
 from foon2asp.report import draw, gantt
-from foon2asp.schedule import DEFAULT_ENCODING, ScheduleResult, ScheduleSpec
-from foon2asp.schedule import check as schedule_check
-from foon2asp.schedule import schedule as schedule_tree
+from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec, schedule
+from foon2asp.schedule.check import check_schedule
 from foon2asp.schedule.result import seconds, seconds_text
-from foon2asp.tree.results import MissingResult, Report, Row
 from foon2asp.tree.serialize import tree_foon, tree_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
 
@@ -34,7 +39,7 @@ class Source(Protocol):
 
     problem: Problem
 
-    def options(self, options: Options | None = None, **settings: Unpack[Settings]) -> AspOptions: ...
+    def options(self, options: Options | None = None, **settings: Any) -> AspOptions: ...
 
     def solving_problem(self, solver: AspOptions) -> Problem: ...
 
@@ -42,60 +47,77 @@ class Source(Protocol):
 
 
 class Raw(Generic[T]):
-    """An answer's attribute that is the attribute ``name`` (default: the same name) of its ``raw`` record."""
+    """An answer's read-only attribute: the field ``path`` of its ``raw`` record (dotted: nested;
+    default: the attribute's name), passed through ``read(answer, value)`` when given."""
 
-    def __init__(self, doc: str = "", name: str = "") -> None:
-        self.__doc__, self.name = doc, name
+    def __init__(self, doc: str = "", path: str = "", read: Callable[[Any, Any], T] | None = None) -> None:
+        self.__doc__, self.path, self.read = doc, path, read
 
     def __set_name__(self, owner: type, name: str) -> None:
-        self.name = self.name or name
+        self.path = self.path or name
 
     def __get__(self, answer: Any, owner: type | None = None) -> T:
-        return cast(T, self) if answer is None else getattr(answer.raw, self.name)
+        if answer is None:
+            return cast(T, self)
+        value = answer.raw
+        for name in self.path.split("."):
+            value = getattr(value, name)
+        return value if self.read is None else self.read(answer, value)
 
     def __set__(self, answer: Any, value: Any) -> None:
-        raise AttributeError(f"{self.name!r} is read-only")
+        raise AttributeError(f"{self.path!r} is read-only")
 
 
-class Tree:
-    """A task tree for one goal by one method, with its status and measures; ``units`` in
-    executable order."""
+def object_of(answer: Any, oid: int) -> FoonObject:
+    return answer.kb.problem.objects[oid]
+
+
+def objects_of(answer: Any, ids: Iterable[int]) -> list[FoonObject]:
+    return [answer.kb.problem.objects[o] for o in ids]
+
+
+def units_of(answer: Any, ids: Iterable[int]) -> list[Unit]:
+    return [answer.kb.problem.units[u] for u in ids]
+
+
+def tree_of(answer: Any, raw: TaskTree) -> Tree:
+    return Tree(answer.kb, raw)
+
+
+def as_list(answer: Any, items: Iterable) -> list:
+    return list(items)
+
+
+@dataclass(eq=False)
+class Answer:
+    """An answer: its internal record ``raw``, read in the FOON of ``kb``."""
+
+    kb: Source
+    raw: Any
+    #: the kind of answer :meth:`render` renders (:func:`foon2asp.report.render`)
+    kind: ClassVar[str] = ""
+
+    def render(self, fmt: str = "text") -> str:
+        """The answer in a text format of its command's ``--format``."""
+        return report.render(self.kind, fmt, self.kb.problem, self.raw)
+
+
+class Tree(Answer):
+    """A task tree for one goal by one method, with its status and measures; ``units`` in executable order."""
 
     method = Raw[str]()
-    goal_id = Raw[int](name="goal")
+    goal = Raw[FoonObject](read=object_of)
+    goal_id = Raw[int](path="goal")
+    goals = Raw[list[FoonObject]]("Every goal of the tree: one, or the dishes of a meal.", "meal", objects_of)
+    units = Raw[list[Unit]](read=units_of)
+    unit_ids = Raw[list[int]](path="units", read=as_list)
     status = Raw[str]("``optimal`` | ``feasible`` | ``unreachable`` | ``unknown`` (ASP), ``found`` | ``not-found``.")
     cost = Raw[dict]("``units``, ``success``, ``inputs``, ``depth`` (empty when there is no tree).")
-    bound = Raw[dict | None](
-        "The best proven lower bound per objective level, in the units of :attr:`cost` (None for the search baselines)."
-    )
+    bound = Raw[dict | None]("The best proven lower bound per objective level, in the units of :attr:`cost`.")
     gap = Raw[float | None]("The relative gap to :attr:`bound` on the first objective: 0 when proven.")
-    proven_by = Raw[str | None](
-        "What proved the answer: ``clingo``, ``fixpoint`` or ``only-tree``; None when not proven and for the search baselines."
-    )
+    proven_by = Raw[str | None]("What proved the answer: ``clingo``, ``fixpoint`` or ``only-tree``; else None.")
     time_s = Raw[float]()
     has_tree = Raw[bool]()
-
-    def __init__(self, kb: Source, raw: TaskTree) -> None:
-        self.kb = kb
-        #: the internal record (object and unit ids)
-        self.raw = raw
-
-    @property
-    def goal(self) -> FoonObject:
-        return self.kb.problem.objects[self.raw.goal]
-
-    @property
-    def goals(self) -> list[FoonObject]:
-        """Every goal of the tree: one, or the dishes of a meal."""
-        return [self.kb.problem.objects[g] for g in self.raw.meal]
-
-    @property
-    def units(self) -> list[Unit]:
-        return [self.kb.problem.units[u] for u in self.raw.units]
-
-    @property
-    def unit_ids(self) -> list[int]:
-        return list(self.raw.units)
 
     @property
     def valid(self) -> bool | None:
@@ -124,29 +146,22 @@ class Tree:
         return [self if t is self.raw else Tree(self.kb, t) for t in alternatives(self.raw)]
 
     def schedule(
-        self,
-        spec: ScheduleSpec | None = None,
-        *,
-        agents: str | dict[str, int] | None = None,
-        durations: str | Path | None = None,
-        capabilities: str | Path | None = None,
-        resources: str | Path | None = None,
-        joint: bool = False,
-        encoding: str = DEFAULT_ENCODING,
-        options: Options | AspOptions | None = None,
-        **settings: Unpack[Settings],
+        self, spec: ScheduleSpec | None = None, *, options: Options | AspOptions | None = None, **settings: Any
     ) -> Schedule:
-        """This tree's units scheduled with the proven-minimal makespan (the agents as in
-        :meth:`KnowledgeBase.schedule`); ``joint``: the tree chosen again with the schedule, this
-        one's own schedule kept as the result's ``fixed``."""
+        """This tree's units scheduled with the proven-minimal makespan (the agents and ``joint``
+        as in :meth:`KnowledgeBase.schedule`; ``joint``: this tree's own schedule is ``fixed``)."""
+        request = schedule_request(spec, settings)
         solver = options if isinstance(options, AspOptions) else self.kb.options(options, **settings)
-        chosen = make_spec(spec, agents, durations, capabilities, resources)
-        return next(schedule_trees([self], chosen, solver, joint, encoding))
+        return next(schedule_trees([self], solver, **request))
 
     def judge(self) -> Tree:
         """Judge the tree with the independent validator (sets :attr:`valid`); returns the tree."""
         compare_mod.judge(self.kb.problem, self.raw)
         return self
+
+    def render(self, fmt: str = "text") -> str:
+        """The tree in a text format of ``solve --format``."""
+        return report.render("trees", fmt, self.kb.problem, [self.raw])
 
     def to_dict(self) -> dict:
         """Exactly one element of ``solve --format json``."""
@@ -159,10 +174,6 @@ class Tree:
         """The tree as FOON text (``solve --format foon``)."""
         return tree_foon(self.kb.problem, self.raw)
 
-    def render(self, fmt: str) -> str:
-        """The tree in a text format of ``solve --format``."""
-        return report.render("trees", fmt, self.kb.problem, [self.raw])
-
     def draw(self, path: str | Path) -> Path:
         """Draw the tree into ``path``; the format follows the extension (.svg, .png, .pdf, .dot)."""
         return draw.draw_tree(self.kb.problem, self.raw, path)
@@ -174,37 +185,20 @@ class Tree:
         return f"<Tree {self.goal} {self.method} {self.status} {self.cost}>"
 
 
-class Schedule:
+@dataclass(eq=False)
+class Schedule(Answer):
     """The schedule of one goal's tree: who does which unit when, the makespan, its bounds and baseline."""
 
-    status = Raw[str](
-        "``optimal`` | ``feasible`` | ``unschedulable`` | ``unreachable`` | ``unknown`` (no tree in time)."
-    )
-
-    def __init__(self, kb: Source, raw: ScheduleResult, spec: ScheduleSpec) -> None:
-        self.kb = kb
-        #: the internal record (unit ids, times in milliseconds)
-        self.raw = raw
-        self.spec = spec
-
-    @property
-    def makespan(self) -> float | None:
-        """Seconds (None without a schedule)."""
-        return seconds(self.raw.makespan)
-
-    @property
-    def agents(self) -> list[str]:
-        return list(self.raw.agents)
+    spec: ScheduleSpec = field(default_factory=ScheduleSpec)
+    status = Raw[str]("``optimal`` | ``feasible`` | ``unschedulable`` | ``unreachable`` | ``unknown`` (no tree).")
+    makespan = Raw[float | None]("Seconds (None without a schedule).", read=lambda _, ms: seconds(ms))
+    agents = Raw[list[str]](read=as_list)
+    tree = Raw[Tree]("The scheduled tree (``joint``: the one chosen with the schedule).", read=tree_of)
 
     @property
     def entries(self) -> list[dict]:
         """``{"unit", "agent", "start", "end"}`` per unit, by start time (the JSON's ``schedule``)."""
         return self.to_dict()["schedule"]
-
-    @property
-    def tree(self) -> Tree:
-        """The scheduled tree (``joint``: the one chosen with the schedule)."""
-        return Tree(self.kb, self.raw.tree)
 
     @property
     def fixed(self) -> Schedule | None:
@@ -213,7 +207,7 @@ class Schedule:
 
     def check(self) -> str | None:
         """The first violation the independent checker finds (None: a valid schedule)."""
-        return schedule_check.check_schedule(self.raw.problem, self.to_dict(), self.spec)
+        return check_schedule(self.raw.problem, self.to_dict(), self.spec)
 
     def to_dict(self) -> dict:
         """Exactly one element of ``schedule --format json``."""
@@ -223,7 +217,7 @@ class Schedule:
         """The headline (status, makespan, baseline, bounds) and one timeline per agent."""
         return self.raw.to_text()
 
-    def render(self, fmt: str) -> str | bytes:
+    def render(self, fmt: str = "text") -> str | bytes:  # type: ignore[override]
         """The Gantt chart in a format of :mod:`foon2asp.report` kind ``schedule`` (svg, png, pdf, dot, html)."""
         if report.get("schedule", fmt).binary:
             return report.render_bytes("schedule", fmt, [self.to_dict()])
@@ -249,8 +243,8 @@ def schedules_json(schedules: list[Schedule]) -> str:
 
 def schedule_trees(
     trees: Iterable[Tree],
-    spec: ScheduleSpec,
     solver: AspOptions,
+    spec: ScheduleSpec,
     joint: bool = False,
     encoding: str = DEFAULT_ENCODING,
     progress: Callable[[dict], None] | None = None,
@@ -266,23 +260,20 @@ def schedule_trees(
                 progress({**info, "goal": label})
 
         problem = tree.kb.judging_problem(solver, tree.raw.meal)
-        found = schedule_tree(problem, tree.raw, spec, solver, joint, None, encoding, progress=told)
+        found = schedule(problem, tree.raw, spec, solver, joint, None, encoding, progress=told)
         yield Schedule(tree.kb, found, spec)
 
 
-@dataclass
-class CheckReport:
+class CheckReport(Answer):
     """What ``check`` says about one tree: valid or not, the first problem, the optimum."""
 
-    kb: Source
-    raw: Report
     valid = Raw[bool]()
     substitutions = Raw[list[dict] | None]("With substitutes: the ones a valid tree uses (None without substitutes).")
     cost = Raw[dict]()
-
-    @property
-    def goal(self) -> FoonObject:
-        return self.kb.problem.objects[self.raw.goal]
+    goal = Raw[FoonObject](read=object_of)
+    warnings = Raw[list[str]](
+        "What reading the tree's file skipped or merged (one line each).", "tree.warnings", as_list
+    )
 
     @property
     def problem(self) -> str | None:
@@ -292,25 +283,18 @@ class CheckReport:
     @property
     def cycle(self) -> list[tuple[FoonObject, Unit]]:
         """For circular support: (object, unit making it) pairs; each unit needs the next object."""
-        if not self.raw.finding:
-            return []
         p = self.kb.problem
-        return [(p.objects[o], p.units[u]) for o, u in self.raw.finding.cycle]
+        return [(p.objects[o], p.units[u]) for o, u in self.raw.finding.cycle] if self.raw.finding else []
 
     @property
     def order(self) -> list[Unit]:
         """The units that can fire, in an executable order."""
         v = self.raw.validation
-        return [self.kb.problem.units[u] for u in v.order] if v is not None else []
+        return units_of(self, v.order) if v is not None else []
 
     @property
     def optimum(self) -> Tree | None:
         return Tree(self.kb, self.raw.optimum) if self.raw.optimum is not None else None
-
-    @property
-    def warnings(self) -> list[str]:
-        """What reading the tree's file skipped or merged (one line each)."""
-        return list(self.raw.tree.warnings)
 
     def to_dict(self) -> dict:
         return report.check.report_json(self.kb.problem, self.raw)
@@ -319,36 +303,25 @@ class CheckReport:
         return report.check.report_text(self.kb.problem, self.raw)
 
 
-@dataclass
-class Comparison:
-    """One row per goal: the tree of every method, each judged by the validator."""
+class Comparison(Answer):
+    """One row per goal (``raw``: the rows): the tree of every method, each judged by the validator."""
 
-    kb: Source
-    raw: list[Row]
+    kind = "compare"
 
     @property
     def rows(self) -> list[tuple[FoonObject, dict[str, Tree]]]:
-        return [(self.kb.problem.objects[r.goal], {m: Tree(self.kb, t) for m, t in r.trees.items()}) for r in self.raw]
+        return [(object_of(self, r.goal), {m: Tree(self.kb, t) for m, t in r.trees.items()}) for r in self.raw]
 
     @property
     def trees(self) -> list[Tree]:
         return [Tree(self.kb, t) for r in self.raw for t in r.trees.values()]
 
-    def render(self, fmt: str = "text") -> str:
-        return report.render("compare", fmt, self.kb.problem, self.raw)
 
-
-@dataclass
-class Missing:
+class Missing(Answer):
     """The fewest objects to add to the kitchen so a goal can be made, and the tree then."""
 
-    kb: Source
-    raw: MissingResult
     status = Raw[str]()
-
-    @property
-    def missing(self) -> list[FoonObject]:
-        return [self.kb.problem.objects[o] for o in self.raw.missing]
+    missing = Raw[list[FoonObject]](read=objects_of)
 
     @property
     def tree(self) -> Tree | None:
@@ -364,18 +337,84 @@ class Missing:
         return report.queries.missing_text(self.kb.problem, self.raw)
 
 
-@dataclass
-class Reachability:
-    """For each goal: can it be made from the kitchen at all."""
+class Reachability(Answer):
+    """For each goal: can it be made from the kitchen at all (``raw``: object id -> reachable, in the order asked)."""
 
-    kb: Source
-    #: object id -> reachable, in the order asked
-    raw: dict[int, bool]
+    kind = "reachable"
 
     @property
     def answers(self) -> dict[FoonObject, bool]:
-        return {self.kb.problem.objects[o]: ok for o, ok in self.raw.items()}
+        return {object_of(self, o): ok for o, ok in self.raw.items()}
+
+
+@dataclass(eq=False)
+class BatchRun(Answer):
+    """What a batch did: counts, times, the grounding and every record of the requested pairs."""
+
+    #: :meth:`schedule`'s schedules, one per goal (empty until it runs)
+    schedules: list[Schedule] = field(default_factory=list)
+    done = Raw[int]("Results computed now.")
+    skipped = Raw[int]("Results already in the file (``resume``).")
+    elapsed_s = Raw[float]()
+    records = Raw[list[dict]]("The JSON lines of the requested (goal, method) pairs, old and new.")
+    workers = Raw[int]()
+    output = Raw[str | None]()
+    grounding = Raw[str]("``whole`` or ``per-goal``: the grounding used.")
+    grounding_reason = Raw[str]('Why ``grounding="auto"`` chose it (empty otherwise).')
+
+    def schedule(
+        self,
+        spec: ScheduleSpec | None = None,
+        *,
+        method: str | None = None,
+        output: str | Path | None = None,
+        options: Options | None = None,
+        **settings: Any,
+    ) -> list[Schedule]:
+        """Schedule the tree of every goal of the run (of ``method``; default the first asked for)
+        as :meth:`Tree.schedule` does; ``output``: also write them there as ``schedule --format json``."""
+        request = schedule_request(spec, settings)
+        solver = self.kb.options(options, **settings)
+        problem, view = self.kb.solving_problem(solver), partial(self.kb.judging_problem, solver)
+        spec, joint, encoding = request["spec"], request["joint"], request["encoding"]
+        found = schedule_records(problem, self.raw.records, spec, solver, method, joint, encoding, view)
+        self.schedules = [Schedule(self.kb, r, spec) for r in found]
+        if output is not None:
+            write_file(Path(output), schedules_json(self.schedules).encode("utf-8"))
+        return self.schedules
+
+    def summary(self) -> list[dict]:
+        """One row per method: results per status, trees, valid trees, tree sizes and times."""
+        return summarize(self.raw.records)
 
     def render(self, fmt: str = "text") -> str:
-        """The answers in a format of ``reachable --format``."""
-        return report.render("reachable", fmt, self.kb.problem, self.raw)
+        """The summary ``batch`` prints, in a format of ``batch --summary``."""
+        # the HTML page draws the schedules, and the FOON for kitchen items and cycles
+        extra = [[s.to_dict() for s in self.schedules], self.kb.problem] if fmt == "html" else []
+        return report.render("summary", fmt, self.summary(), self.raw, *extra)
+
+
+def writable_dir(path: str | Path) -> Path:
+    """``path`` as a directory, created with its parents (an error names the path)."""
+    out = Path(path)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"cannot create the output directory: {exc.strerror or exc}", str(out)) from None
+    if not out.is_dir():
+        raise InputError("output path is not a directory", str(out))
+    return out
+
+
+def write_file(path: str | Path, text: str | bytes) -> None:
+    """Write ``text`` to ``path``, creating its directory (an error names the path)."""
+    out = Path(path)
+    if out.parent != Path("."):
+        writable_dir(out.parent)
+    try:
+        if isinstance(text, bytes):
+            out.write_bytes(text)
+        else:
+            out.write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise InputError(f"cannot write the output file: {exc.strerror or exc}", str(out)) from None

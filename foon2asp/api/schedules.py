@@ -1,9 +1,9 @@
-"""Schedules through the library: the agents and tables of a schedule, and schedule files checked."""
+"""Schedule files (``schedule --format json``): told from tree files, and each schedule in them checked."""
 
 from __future__ import annotations
 
 import json
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -11,35 +11,8 @@ from foon2asp.errors import InputError
 from foon2asp.foon import reading
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
-from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec
+from foon2asp.schedule import ScheduleSpec
 from foon2asp.schedule import check as check_mod
-from foon2asp.schedule.encode import ENCODINGS
-
-#: the statuses of a schedule (``optimal``: makespan proven minimal; ``feasible``: a time limit ended the search)
-SCHEDULE_STATUSES = ("optimal", "feasible", "unschedulable", "unreachable", "unknown")
-
-#: the schedule encodings (:mod:`foon2asp.schedule.encode`) and the default one
-SCHEDULE_ENCODINGS = ENCODINGS
-DEFAULT_SCHEDULE_ENCODING = DEFAULT_ENCODING
-
-
-def make_spec(
-    spec: ScheduleSpec | None = None,
-    agents: str | Mapping[str, int] | None = None,
-    durations: str | Path | None = None,
-    capabilities: str | Path | None = None,
-    resources: str | Path | None = None,
-) -> ScheduleSpec:
-    """``spec``, or the spec of ``agents`` (``"arm=2,human=1"`` or ``{"arm": 2, "human": 1}``; default
-    ``robot=1``) and the durations, capabilities and resources files (each optional)."""
-    files = (durations, capabilities, resources)
-    if spec is not None:
-        if agents is not None or any(f is not None for f in files):
-            raise InputError("give a ScheduleSpec or agents/durations/capabilities/resources, not both")
-        return spec
-    if isinstance(agents, Mapping):
-        agents = ",".join(f"{kind}={n}" for kind, n in agents.items())
-    return ScheduleSpec.from_files(agents, *files)
 
 
 @dataclass

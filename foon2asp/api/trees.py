@@ -3,49 +3,42 @@ and candidate trees of one recipe consolidated into one proven-best tree (:func:
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Unpack
+from typing import Any
 
 from foon2asp import report
 from foon2asp.analysis import check as check_mod
 from foon2asp.analysis import consolidate as consolidate_mod
-from foon2asp.analysis.check import check_trees, read_and_check
 from foon2asp.api.kb import GoalLike, KnowledgeBase
-from foon2asp.api.load import knowledge_base
-from foon2asp.api.matching import jobs, projection
-from foon2asp.api.options import Options, Settings
-from foon2asp.api.results import Raw, Tree
+from foon2asp.api.load import knowledge_base, projection
+from foon2asp.api.options import Options, jobs
+from foon2asp.api.results import Answer, Raw, Tree, as_list, object_of, objects_of, tree_of, units_of
 from foon2asp.errors import InputError
 from foon2asp.foon.leaves import LEAVES, leaves
 from foon2asp.foon.loaders import Dataset, read_goals, read_kitchen, read_motion, read_utensils
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.treefiles import TreeUnit, read_trees
 from foon2asp.report import draw
-from foon2asp.tree.results import AloneReport, CandidateVerdict
-from foon2asp.tree.results import Consolidation as RawConsolidation
+from foon2asp.tree.results import Candidate
 
 
-@dataclass
+@dataclass(eq=False)
 class TreeVerdict:
     """A tree of a file judged on its own: valid when every unit fires in the order written
     (from its leaves, or the kitchen given) and the goal is made."""
 
-    raw: AloneReport
+    raw: Any
     valid = Raw[bool]()
     kind = Raw[str | None](
         "``no-goal``, ``cycle``, ``missing-input``, ``order`` or ``goal-not-made`` (None when valid)."
     )
-
-    @property
-    def valid_as_set(self) -> bool:
-        """Do the units make the goal in some order (as a set, the independent validator's verdict)?"""
-        return self.raw.verdict.valid
-
-    @property
-    def goals(self) -> list[FoonObject]:
-        return list(self.raw.verdict.goals)
+    valid_as_set = Raw[bool](
+        "Do the units make the goal in some order (the independent validator's verdict)?", "verdict.valid"
+    )
+    goals = Raw[list[FoonObject]](path="verdict.goals", read=as_list)
+    warnings = Raw[list[str]]("What reading the file skipped or merged (one line each).", "tree.warnings", as_list)
 
     @property
     def problem(self) -> str | None:
@@ -57,17 +50,82 @@ class TreeVerdict:
         """Circular support: (object, unit making it) pairs; each unit needs the next object."""
         return [(o, self.raw.tree.units[p - 1].unit) for o, p in self.raw.verdict.cycle]
 
-    @property
-    def warnings(self) -> list[str]:
-        """What reading the file skipped or merged (one line each, naming the file and the unit)."""
-        return list(self.raw.tree.warnings)
-
     def to_dict(self) -> dict:
         """One element of ``check --format json`` (a tree judged on its own)."""
         return report.check.alone_json(self.raw)
 
     def to_text(self) -> str:
         return report.check.alone_text(self.raw)
+
+
+@dataclass(eq=False)
+class CandidateReport:
+    """One candidate file for one goal: executable on its own or not, its measures, the units used."""
+
+    raw: Any
+    valid = Raw[bool]("Is it executable on its own (its units, in file order, from the consolidation's kitchen)?")
+    cost = Raw[dict]("Its measures in the merged FOON, as ``solve`` reports a tree's.")
+    file = Raw[str](path="candidate.path")
+    used_units = Raw[list[int]](
+        "The numbers (in its file, from 1) of its units the consolidated tree uses.", "used", as_list
+    )
+
+    @property
+    def problem(self) -> str | None:
+        return None if self.raw.valid else self.raw.verdict.problem
+
+
+class ConsolidatedGoal(Answer):
+    """One goal (or meal) of :func:`consolidate`: the proven-best tree, sources, verdicts, what to add."""
+
+    goals = Raw[list[FoonObject]](read=objects_of)
+    goal = Raw[FoonObject](path="goals", read=lambda a, ids: object_of(a, ids[0]))
+    tree = Raw[Tree](read=tree_of)
+    status = Raw[str](path="tree.status")
+    cost = Raw[dict](path="tree.cost")
+    units = Raw[list[Unit]](path="tree.units", read=units_of)
+    candidates = Raw[list[CandidateReport]](read=lambda _, found: [CandidateReport(v) for v in found])
+
+    @property
+    def sources(self) -> list[list[str]]:
+        """The files holding each unit of the tree, in the order of :attr:`units`."""
+        return [list(self.raw.sources[u]) for u in self.raw.tree.units]
+
+    @property
+    def missing(self) -> list[FoonObject]:
+        """The fewest objects to add to the kitchen (when the goal is unreachable; else empty)."""
+        return objects_of(self, self.raw.missing.missing) if self.raw.missing is not None else []
+
+    def to_dict(self) -> dict:
+        """One element of ``consolidate --format json``."""
+        return report.consolidate.consolidation_json(self.kb.problem, self.raw)
+
+
+@dataclass(eq=False)
+class Consolidation(Answer):
+    """What :func:`foon2asp.api.consolidate` found (``raw``: one record per goal) in the merged FOON
+    (``kb``): iterable and indexable, one :class:`ConsolidatedGoal` per goal."""
+
+    #: about the candidates, the files and the request
+    warnings: tuple[str, ...] = ()
+    kind = "consolidate"
+
+    @property
+    def results(self) -> list[ConsolidatedGoal]:
+        return [ConsolidatedGoal(self.kb, r) for r in self.raw]
+
+    def __iter__(self) -> Iterator[ConsolidatedGoal]:
+        return iter(self.results)
+
+    def __len__(self) -> int:
+        return len(self.raw)
+
+    def __getitem__(self, k: int) -> ConsolidatedGoal:
+        return self.results[k]
+
+    def to_list(self) -> list[dict]:
+        """``consolidate --format json`` as data: one object per goal."""
+        return [r.to_dict() for r in self.results]
 
 
 def check_tree(
@@ -108,119 +166,16 @@ def draw_file(
     if fmt != "dot":
         draw.require_dot()
     if kb is None:
-        trees, reports = read_and_check(tree, None, None, goal, strict)
+        trees, reports = check_mod.read_and_check(tree, None, None, goal, strict)
         problem = None
     else:  # the trees as the knowledge base sees them; with substitutes, what they stand in for is had
         trees = [kb.project_tree(t) for t in read_trees(tree, kb.problem, strict)]
         problem = kb.judging_problem(options)
-        reports = check_trees(kb.data, problem, trees, goal)
+        reports = check_mod.check_trees(kb.data, problem, trees, goal)
     if warnings is not None:
         warnings.extend(dict.fromkeys(w for t in trees for w in t.warnings))
     Path(output).write_bytes(draw.render(draw.file_graph(trees, reports, problem), fmt))
     return len(trees)
-
-
-# ---------------------------------------------------------------- consolidating candidates
-
-
-@dataclass
-class CandidateReport:
-    """One candidate file for one goal: executable on its own or not, its measures, the units used."""
-
-    raw: CandidateVerdict
-    valid = Raw[bool]("Is it executable on its own (its units, in file order, from the consolidation's kitchen)?")
-    cost = Raw[dict]("Its measures in the merged FOON, as ``solve`` reports a tree's.")
-
-    @property
-    def file(self) -> str:
-        return self.raw.candidate.path
-
-    @property
-    def problem(self) -> str | None:
-        return None if self.raw.valid else self.raw.verdict.problem
-
-    @property
-    def used_units(self) -> list[int]:
-        """The numbers (in its file, from 1) of its units that the consolidated tree uses."""
-        return list(self.raw.used)
-
-
-@dataclass
-class ConsolidatedGoal:
-    """One goal (or meal) of :func:`consolidate`: the proven-best tree, sources, verdicts, what to add."""
-
-    kb: KnowledgeBase
-    raw: RawConsolidation
-
-    @property
-    def goals(self) -> list[FoonObject]:
-        return [self.kb.problem.objects[g] for g in self.raw.goals]
-
-    @property
-    def goal(self) -> FoonObject:
-        return self.goals[0]
-
-    @property
-    def tree(self) -> Tree:
-        return Tree(self.kb, self.raw.tree)
-
-    @property
-    def status(self) -> str:
-        return self.raw.tree.status
-
-    @property
-    def cost(self) -> dict:
-        return self.raw.tree.cost
-
-    @property
-    def units(self) -> list[Unit]:
-        return self.tree.units
-
-    @property
-    def sources(self) -> list[list[str]]:
-        """The files holding each unit of the tree, in the order of :attr:`units`."""
-        return [list(self.raw.sources[u]) for u in self.raw.tree.units]
-
-    @property
-    def candidates(self) -> list[CandidateReport]:
-        return [CandidateReport(v) for v in self.raw.candidates]
-
-    @property
-    def missing(self) -> list[FoonObject]:
-        """The fewest objects to add to the kitchen (when the goal is unreachable; else empty)."""
-        m = self.raw.missing
-        return [self.kb.problem.objects[o] for o in m.missing] if m is not None else []
-
-    def to_dict(self) -> dict:
-        """One element of ``consolidate --format json``."""
-        return report.consolidate.consolidation_json(self.kb.problem, self.raw)
-
-
-@dataclass
-class Consolidation:
-    """What :func:`consolidate` found: one :class:`ConsolidatedGoal` per goal, the merged FOON (``kb``)."""
-
-    kb: KnowledgeBase
-    results: list[ConsolidatedGoal]
-    #: about the candidates, the files and the request
-    warnings: tuple[str, ...] = ()
-
-    def __iter__(self) -> Iterator[ConsolidatedGoal]:
-        return iter(self.results)
-
-    def __len__(self) -> int:
-        return len(self.results)
-
-    def __getitem__(self, k: int) -> ConsolidatedGoal:
-        return self.results[k]
-
-    def to_list(self) -> list[dict]:
-        """``consolidate --format json`` as data: one object per goal."""
-        return [r.to_dict() for r in self.results]
-
-    def render(self, fmt: str = "text") -> str:
-        """The report in a format of ``consolidate --format`` (text, json, html, units-json)."""
-        return report.render("consolidate", fmt, self.kb.problem, [r.raw for r in self.results])
 
 
 def consolidate(
@@ -234,19 +189,18 @@ def consolidate(
     utensil_rule: str = "starter",
     together: bool = False,
     strict: bool = False,
-    level: int = 3,
-    normalize: bool = False,
-    synonyms: str | Path | Mapping[str, str] | None = None,
     options: Options | None = None,
-    **settings: Unpack[Settings],
+    **settings: Any,
 ) -> Consolidation:
     """Merge candidate trees of one recipe (files in any tree format) into one FOON and find one
     proven-best tree per goal; the kitchen is its leaves unless ``kitchen`` names a file.
     ``goal``: goals of the merged FOON (``together``: one meal); ``goals``: a goals file or
     ``"all"`` (every product of a candidate's last unit); neither: the product of the last units
-    most candidates share.  ``level``, ``normalize``, ``synonyms``: as :func:`foon2asp.api.load`."""
+    most candidates share.  ``level``, ``normalize``, ``synonyms`` (as :func:`foon2asp.api.load`)
+    and the request's settings come as keywords."""
     if not paths:
         raise InputError("no candidate tree given")
+    seen_as = projection(settings.pop("level", 3), settings.pop("normalize", False), settings.pop("synonyms", None))
     candidates = consolidate_mod.read_candidates(paths, strict)
     foon, sources = consolidate_mod.merge(candidates)
     names = [str(p) for p in paths]
@@ -261,20 +215,20 @@ def consolidate(
         paths={"foon": ",".join(names), "kitchen": given or LEAVES},
         warnings=warnings,
     )
-    seen_as = projection(level, normalize, synonyms)
     kb = knowledge_base(data, utensil_rule, [w for c in candidates for w in c.warnings], seen_as)
     if not kb.projection.identity:
         candidates, sources = _projected(kb, candidates)
     solver, asked = kb.options_and_warnings(options, **settings)
     ids, source = _goals(kb, candidates, goal, goals)
     kitchen_source = "leaves" if given is None else given
+    asked_for = jobs(ids, together)
     raw = consolidate_mod.consolidate(
-        kb.solving_problem(solver), candidates, sources, jobs(ids, together), solver, source, kitchen_source
+        kb.solving_problem(solver), candidates, sources, asked_for, solver, source, kitchen_source
     )
-    return Consolidation(kb, [ConsolidatedGoal(kb, r) for r in raw], kb.warnings + tuple(asked))
+    return Consolidation(kb, raw, kb.warnings + tuple(asked))
 
 
-def _projected(kb: KnowledgeBase, candidates: list) -> tuple[list, list[list[str]]]:
+def _projected(kb: KnowledgeBase, candidates: list[Candidate]) -> tuple[list[Candidate], list[list[str]]]:
     """The candidates with their units as the knowledge base's comparison sees them, and the
     files of each unit of its (projected) FOON."""
     index = {unit.key(): uid for uid, unit in enumerate(kb.problem.units)}
@@ -298,7 +252,7 @@ def _projected(kb: KnowledgeBase, candidates: list) -> tuple[list, list[list[str
 
 
 def _goals(
-    kb: KnowledgeBase, candidates: list, goal: GoalLike | Sequence[GoalLike] | None, goals: str | Path | None
+    kb: KnowledgeBase, candidates: list[Candidate], goal: GoalLike | Sequence[GoalLike] | None, goals: str | Path | None
 ) -> tuple[list[int], str]:
     """The goal ids a consolidation answers and where they came from."""
     if goal is not None:

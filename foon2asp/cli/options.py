@@ -35,7 +35,7 @@ def choice_option(*names: str, choices: Sequence[str], default: str | None = Non
 
 def request_options(keys: dict[str, str], *opts: Callable, check: Callable[[dict], None] | None = None):
     """A decorator adding the click options ``opts``; the values of their parameters (``keys``:
-    parameter name -> keyword of :class:`foon2asp.api.options.Settings`) go into ``options``."""
+    parameter name -> keyword of :meth:`foon2asp.api.Options.of`) go into ``options``."""
 
     def decorate(func):
         @functools.wraps(func)
