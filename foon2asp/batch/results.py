@@ -156,7 +156,7 @@ class ResultFile:
         self._synced = time.monotonic()
         self._dirty = False
         try:
-            if self.path.parent and not self.path.parent.exists():
+            if not self.path.parent.exists():
                 self.path.parent.mkdir(parents=True, exist_ok=True)
             self.fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
         except OSError as exc:

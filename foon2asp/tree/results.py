@@ -6,6 +6,7 @@ rendering them needs neither.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from decimal import Decimal
@@ -132,9 +133,7 @@ class MealRow:
         """The single optima added up (units, inputs, cost; success multiplied); {} if one has no tree."""
         if not all(t.has_tree for t in self.singles):
             return {}
-        success = 1.0
-        for t in self.singles:
-            success *= t.cost.get("success", 1.0)
+        success = math.prod(t.cost.get("success", 1.0) for t in self.singles)
         total = {
             "units": sum(t.cost["units"] for t in self.singles),
             "success": float(f"{success:.6g}"),

@@ -87,9 +87,7 @@ def measures(problem: Problem, goal: int | Iterable[int], units: list[int]) -> d
     greatest of its goals'; None when one is not made) and, with a motion-cost table
     (:attr:`Problem.motion_costs`), the exact summed cost of its motions."""
     obj_level, _ = problem.derivation_levels(list(units))
-    success = 1.0
-    for u in units:
-        success *= problem.rates[u]
+    success = math.prod(problem.rates[u] for u in units)
     levels = [obj_level.get(g) for g in meal_of(goal)]
     depth = None if any(d is None for d in levels) else max(d for d in levels if d is not None)
     out = {
