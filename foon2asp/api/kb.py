@@ -17,17 +17,8 @@ from foon2asp import methods
 from foon2asp.analysis import check as check_mod
 from foon2asp.analysis import compare as compare_mod
 from foon2asp.analysis import queries
+from foon2asp.api import results
 from foon2asp.api.options import Options, jobs, one_goal, schedule_request, workers_count
-from foon2asp.api.results import (
-    BatchRun,
-    CheckReport,
-    Comparison,
-    Missing,
-    Reachability,
-    Schedule,
-    Tree,
-    schedule_trees,
-)
 from foon2asp.api.schedules import ScheduleVerdict, check_schedule_file
 from foon2asp.asp.constraints import unknown_names
 from foon2asp.asp.facts import facts as facts_text
@@ -239,17 +230,17 @@ class KnowledgeBase:
             made[skip] = substituted_kitchen(problem, [n for n in needed if n not in skip])
         return made[skip]
 
-    def solve_iter(self, goal_ids: Jobs, method: str = "asp", options: Request = None) -> Iterator[Tree]:
+    def solve_iter(self, goal_ids: Jobs, method: str = "asp", options: Request = None) -> Iterator[results.Tree]:
         """Trees for ``goal_ids`` one after another (a tuple of ids: a meal)."""
         solver = self._solver(options)
         if methods.get(method).kind != "asp" and solver.programs:
             raise InputError(f"constraints apply to ASP methods only; {method!r} is a search baseline")
         for raw in solve_goals(self.solving_problem(solver), goal_ids, method, solver):
-            yield Tree(self, raw)
+            yield results.Tree(self, raw)
 
     def solve(
         self, goals: Goals = None, *, method: str = "asp", together: bool = False, **settings: Any
-    ) -> Tree | list[Tree]:
+    ) -> results.Tree | list[results.Tree]:
         """The best task tree for a goal, or a list for several (also ``"all"``, ``"all-objects"``);
         ``together``: one tree that makes every goal (a meal; shared units count once)."""
         solver = self.options(**settings)
@@ -258,20 +249,20 @@ class KnowledgeBase:
 
     def check(
         self,
-        tree: Tree | str | Path,
+        tree: results.Tree | str | Path,
         goal: Goals = None,
         optimum: bool = True,
         goals: Sequence[GoalLike] | str | Path | None = None,
         *,
         strict: bool = False,
         **settings: Any,
-    ) -> CheckReport | list[CheckReport]:
+    ) -> results.CheckReport | list[results.CheckReport]:
         """Judge a :class:`Tree`, or each tree of a file (a list when it holds several).  ``goal``:
         the goal (several: a meal); else the one of ``goals`` the tree makes, else the one the file
         names, else the tree's only product no unit needs.  ``optimum``: also solve the optimum."""
         solver = self.options(**settings)
         view = partial(self.judging_problem, solver)
-        if isinstance(tree, Tree):
+        if isinstance(tree, results.Tree):
             if goal is not None and not isinstance(goal, str | int | FoonObject):
                 raise InputError("check a Tree against one goal (its own by default)")
             units = [TreeUnit(self.problem.units[u], i, None) for i, u in enumerate(tree.unit_ids, 1)]
@@ -285,12 +276,12 @@ class KnowledgeBase:
             used = [u for u in dict.fromkeys(r.ids) if u is not None]
             r.substitutions = report_substitutions(self.problem, r.meal, used, solver.substitutes) if r.valid else []
         if optimum and reports:  # a Tree's own goal, a file's trees by meal (one goal: a meal of one)
-            key = (lambda r: r.goal) if isinstance(tree, Tree) else (lambda r: r.meal)
+            key = (lambda r: r.goal) if isinstance(tree, results.Tree) else (lambda r: r.meal)
             meals = list(dict.fromkeys(key(r) for r in reports))
             best = dict(zip(meals, (t.raw for t in self.solve_iter(meals, "asp", solver))))
             for r in reports:
                 r.optimum = best[key(r)]
-        found = [CheckReport(self, r) for r in reports]
+        found = [results.CheckReport(self, r) for r in reports]
         return found[0] if len(found) == 1 else found
 
     def _check_file(self, view: Callable, path: str | Path, goal: Goals, goals: Any, strict: bool) -> list:
@@ -312,33 +303,33 @@ class KnowledgeBase:
                 reports[i].goal_source = r.goal_source
         return reports
 
-    def check_all(self, *args: Any, **kwargs: Any) -> list[CheckReport]:
+    def check_all(self, *args: Any, **kwargs: Any) -> list[results.CheckReport]:
         """:meth:`check` (the same arguments) as a list, whatever the file holds."""
         found = self.check(*args, **kwargs)
         return found if isinstance(found, list) else [found]
 
     def compare(
         self, goals: Goals = "all", methods: Sequence[str] = compare_mod.DEFAULT_METHODS, **settings: Any
-    ) -> Comparison:
+    ) -> results.Comparison:
         """Every method on every goal, each tree judged valid or not, beside the proven optimum."""
         solver = self.options(**settings)
         parts = self.compare_iter(self.goal_ids(goals), methods, solver)
-        return Comparison(self, [row for part in parts for row in part.raw])
+        return results.Comparison(self, [row for part in parts for row in part.raw])
 
     def compare_iter(
         self, goal_ids: Sequence[int], methods: Sequence[str] = compare_mod.DEFAULT_METHODS, options: Request = None
-    ) -> Iterator[Comparison]:
+    ) -> Iterator[results.Comparison]:
         """:meth:`compare` goal by goal: a one-row :class:`Comparison` as soon as each goal is done."""
         solver = self._solver(options)
         for row in compare_mod.compare_iter(self.solving_problem(solver), list(goal_ids), list(methods), solver):
-            yield Comparison(self, [row])
+            yield results.Comparison(self, [row])
 
     def compare_meal(self, goals: Sequence[GoalLike], method: str = "asp", **settings: Any) -> MealRow:
         """The meal's optimal tree (all ``goals`` at once) beside each goal's own optimum."""
         solver = self.options(**settings)
         return compare_mod.compare_meal(self.solving_problem(solver), self.goal_ids(goals), method, solver)
 
-    def reachability(self, goals: Goals = "all", *, options: Options | None = None) -> Reachability:
+    def reachability(self, goals: Goals = "all", *, options: Options | None = None) -> results.Reachability:
         """For each goal: can it be made from the kitchen at all (with substitutes: when they may stand in)?"""
         ids = self.goal_ids(goals)
         base = self.judging_problem(options)
@@ -347,13 +338,13 @@ class KnowledgeBase:
             judged_on = self.judging_problem(options, (goal,))
             if judged_on is not base:
                 answers[goal] = queries.reachable(judged_on, [goal])[goal]
-        return Reachability(self, answers)
+        return results.Reachability(self, answers)
 
     def reachable(self, goals: Goals = "all", *, options: Options | None = None) -> dict[FoonObject, bool]:
         """:meth:`reachability` as ``{object: reachable}``."""
         return self.reachability(goals, options=options).answers
 
-    def missing(self, goal: GoalLike | Sequence[GoalLike], **settings: Any) -> Missing:
+    def missing(self, goal: GoalLike | Sequence[GoalLike], **settings: Any) -> results.Missing:
         """The fewest objects to add to the kitchen so ``goal`` (several: the meal) can be made, then the best tree."""
         solver = self.options(**settings)
         target: int | tuple[int, ...]
@@ -370,7 +361,7 @@ class KnowledgeBase:
         if solver.substitutes:
             bought = substituted_kitchen(problem, answer.missing)  # the kitchen with what is added
             answer.substitutions = report_substitutions(bought, meal, answer.units, solver.substitutes)
-        return Missing(self, answer)
+        return results.Missing(self, answer)
 
     def query(
         self,
@@ -401,7 +392,7 @@ class KnowledgeBase:
         fsync: bool = True,
         scheduler: str | None = None,
         **settings: Any,
-    ) -> BatchRun:
+    ) -> results.BatchRun:
         """Many goals x methods into a resumable JSON-lines file (``output``; None: in memory) with
         ``workers`` processes, or ``"auto"`` (docs/batch.md)."""
         request = Options.of(settings.pop("options", None), **settings)
@@ -412,11 +403,11 @@ class KnowledgeBase:
         executor = cluster.executor(scheduler) if scheduler else None
         count = workers_count(workers)
         outcome = batch_run.run_batch(spec, self.goal_ids(goals), output, resume, count, progress, fsync, executor)
-        return BatchRun(self, outcome)
+        return results.BatchRun(self, outcome)
 
     def schedule(
         self, goals: Goals = None, spec: ScheduleSpec | None = None, *, together: bool = False, **settings: Any
-    ) -> Schedule | list[Schedule]:
+    ) -> results.Schedule | list[results.Schedule]:
         """The schedule with the proven-minimal makespan of each goal's best tree on ``spec``'s
         agents, or on the keywords ``agents`` (``"arm=2,human=1"``, default one robot),
         ``durations``, ``capabilities`` and ``resources`` (files); ``joint``: tree and schedule
@@ -436,11 +427,11 @@ class KnowledgeBase:
         joint: bool = False,
         encoding: str = DEFAULT_ENCODING,
         progress: Callable[[dict], None] | None = None,
-    ) -> Iterator[Schedule]:
+    ) -> Iterator[results.Schedule]:
         """:meth:`schedule` goal after goal; ``progress``: called as each goal's schedules improve."""
         solver = self._solver(options)
         trees = self.solve_iter(goal_ids, "asp", solver)
-        yield from schedule_trees(trees, solver, spec or ScheduleSpec(), joint, encoding, progress)
+        yield from results.schedule_trees(trees, solver, spec or ScheduleSpec(), joint, encoding, progress)
 
     def check_schedules(
         self, path: str | Path, spec: ScheduleSpec | None = None, options: Options | None = None

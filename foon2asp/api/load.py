@@ -5,9 +5,12 @@ from __future__ import annotations
 
 import io
 from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, fields
 from pathlib import Path
+from typing import Any
 
 from foon2asp.api.kb import KnowledgeBase
+from foon2asp.api.options import check_keywords
 from foon2asp.api.results import write_file
 from foon2asp.asp.constraints import read_file
 from foon2asp.errors import InputError
@@ -32,32 +35,70 @@ _WITHOUT = {
 }
 
 
+@dataclass(frozen=True)
+class Reading:
+    """How the files beside a FOON are read and its objects compared: the keywords of :func:`load`
+    (and of :func:`foon2asp.api.consolidate`) besides the FOON and the goals."""
+
+    #: a kitchen file, or ``"leaves"``: every object no unit makes
+    kitchen: str | Path | None = None
+    motion: str | Path | None = None
+    utensils: str | Path | None = None
+    #: when a utensil holding one ingredient is not a required input (``foon2asp.api.UTENSIL_RULES``)
+    utensil_rule: str = "starter"
+    #: a unit skipped with a warning is an error
+    strict: bool = False
+    #: FOON's hierarchy level objects are compared at: 1 labels, 2 with states and container, 3 also ingredients
+    level: int = 3
+    #: texts compared case-folded, white space collapsed, the last word singular
+    normalize: bool = False
+    #: ``name = canonical name`` lines (a file) or a mapping: names compared as one
+    synonyms: str | Path | Mapping[str, str] | None = None
+
+    @classmethod
+    def of(cls, keywords: dict[str, Any]) -> Reading:
+        """The reading the keywords of ``keywords`` name, taken out of it."""
+        return cls(**{f.name: keywords.pop(f.name) for f in fields(cls) if f.name in keywords})
+
+    def projection(self) -> Projection:
+        """How objects are compared (checked before any FOON is read; :class:`foon2asp.foon.matching.Projection`)."""
+        level, normalize, synonyms = self.level, self.normalize, self.synonyms
+        if isinstance(level, bool) or level not in (1, 2, 3):
+            raise InputError(f"--level must be 1, 2 or 3, not {level!r}")
+        if synonyms is None:
+            table: dict[str, str] = {}
+        elif isinstance(synonyms, Mapping):
+            for text in (t for pair in synonyms.items() for t in pair):
+                if not isinstance(text, str) or any(c in LINE_BREAKS for c in text):
+                    raise InputError(f"synonyms: a name must be a string without line breaks, not {text!r}")
+            text = "".join(f"{name} = {canonical}\n" for name, canonical in synonyms.items())
+            table = parse_synonyms(text, "synonyms", normalize)
+        else:
+            table = read_synonyms(synonyms, normalize)
+        return Projection(level, Texts(normalize, table))
+
+
 def load(
     path: str | Path | None = None,
     *,
     foon: str | Path | Sequence[str | Path] | None = None,
-    kitchen: str | Path | None = None,
     goals: str | Path | None = None,
-    motion: str | Path | None = None,
-    utensils: str | Path | None = None,
-    utensil_rule: str = "starter",
-    strict: bool = False,
-    level: int = 3,
-    normalize: bool = False,
-    synonyms: str | Path | Mapping[str, str] | None = None,
+    **reading: Any,
 ) -> KnowledgeBase:
     """Read a data folder (``FOON.txt``, ``kitchen.json``, ``goal_nodes.json``, ``motion.txt``,
     ``utensils.txt``) or ``"demo"``; keyword files override its files.  With ``foon`` and no
     folder, the others are read from beside the first FOON file (no kitchen there is an error).
-    ``kitchen="leaves"``: every object no unit makes.  ``level`` (1 labels, 2 with states and
-    container, 3 also ingredients), ``normalize`` and ``synonyms``: how objects are compared."""
-    seen_as = projection(level, normalize, synonyms)
+    ``reading``: the fields of :class:`Reading` (``kitchen``, ``motion``, ``utensils``,
+    ``utensil_rule``, ``strict``, ``level``, ``normalize``, ``synonyms``)."""
+    check_keywords(reading, [f.name for f in fields(Reading)], "load(): ")
+    how = Reading(**reading)
+    seen_as = how.projection()
     if path == "demo":
         path = demo_dir()
     if path is None and foon is None:
         raise InputError("no data given: load(DIR), load('demo') or load(foon=FILE, kitchen=FILE, ...)")
     given = None if foon is None else [str(f) for f in foon] if isinstance(foon, list | tuple) else str(foon)
-    files = {"kitchen": kitchen, "goals": goals, "motion": motion, "utensils": utensils}
+    files = {"kitchen": how.kitchen, "goals": goals, "motion": how.motion, "utensils": how.utensils}
     beside: list[str] = []
     if path is None and given:
         foons = [given] if isinstance(given, str) else given
@@ -77,8 +118,8 @@ def load(
                 )
             else:
                 beside.append(f"no {FILE_NAMES[key]} beside {first}: {_WITHOUT[key]}")
-    data = Dataset.load(path, foon=given, strict=strict, **files)
-    return knowledge_base(data, utensil_rule, beside, seen_as)
+    data = Dataset.load(path, foon=given, strict=how.strict, **files)
+    return knowledge_base(data, how.utensil_rule, beside, seen_as)
 
 
 def knowledge_base(
@@ -105,24 +146,6 @@ def knowledge_base(
     return KnowledgeBase(data, problem, tuple(found), seen_as)
 
 
-def projection(level: int, normalize: bool, synonyms: str | Path | Mapping[str, str] | None) -> Projection:
-    """How objects are compared for ``load``'s ``level``, ``normalize`` and ``synonyms`` (checked
-    before any FOON is read; :class:`foon2asp.foon.matching.Projection`)."""
-    if isinstance(level, bool) or level not in (1, 2, 3):
-        raise InputError(f"--level must be 1, 2 or 3, not {level!r}")
-    if synonyms is None:
-        table: dict[str, str] = {}
-    elif isinstance(synonyms, Mapping):
-        for text in (t for pair in synonyms.items() for t in pair):
-            if not isinstance(text, str) or any(c in LINE_BREAKS for c in text):
-                raise InputError(f"synonyms: a name must be a string without line breaks, not {text!r}")
-        text = "".join(f"{name} = {canonical}\n" for name, canonical in synonyms.items())
-        table = parse_synonyms(text, "synonyms", normalize)
-    else:
-        table = read_synonyms(synonyms, normalize)
-    return Projection(level, Texts(normalize, table))
-
-
 def read_foons(paths: Iterable[str | Path], strict: bool = False) -> Foon:
     """FOON files (text, FOON JSON or unit-list JSON) merged into one FOON, duplicate units once,
     with ``.warnings``; ``strict``: a unit skipped with a warning is an error."""
@@ -137,7 +160,7 @@ def match_foon(
 ) -> tuple[Foon, dict[str, list[str]]]:
     """``foon`` as hierarchy ``level`` with ``normalize``/``synonyms`` sees it (see :func:`load`):
     units equal there are one unit; and the spellings joined (first spelling -> every spelling)."""
-    found = projection(level, normalize, synonyms)
+    found = Reading(level=level, normalize=normalize, synonyms=synonyms).projection()
     if found.identity:
         return foon, {}
     return found.foon(foon), {first: list(every) for first, every in found.texts_joined.items()}

@@ -96,15 +96,26 @@ class Answer:
     raw: Any
     #: the kind of answer :meth:`render` renders (:func:`foon2asp.report.render`)
     kind: ClassVar[str] = ""
+    #: the writers of :meth:`to_dict` and :meth:`to_text`: (problem, raw) -> JSON value, text
+    json_of: ClassVar[Callable[[Problem, Any], dict]]
+    text_of: ClassVar[Callable[[Problem, Any], str]]
 
     def render(self, fmt: str = "text") -> str:
         """The answer in a text format of its command's ``--format``."""
         return report.render(self.kind, fmt, self.kb.problem, self.raw)
 
+    def to_dict(self) -> dict:
+        """Exactly one element of its command's ``--format json``."""
+        return type(self).json_of(self.kb.problem, self.raw)
+
+    def to_text(self) -> str:
+        return type(self).text_of(self.kb.problem, self.raw)
+
 
 class Tree(Answer):
     """A task tree for one goal by one method, with its status and measures; ``units`` in executable order."""
 
+    json_of, text_of = tree_json, tree_text
     method = Raw[str]()
     goal = Raw[FoonObject](read=object_of)
     goal_id = Raw[int](path="goal")
@@ -162,13 +173,6 @@ class Tree(Answer):
     def render(self, fmt: str = "text") -> str:
         """The tree in a text format of ``solve --format``."""
         return report.render("trees", fmt, self.kb.problem, [self.raw])
-
-    def to_dict(self) -> dict:
-        """Exactly one element of ``solve --format json``."""
-        return tree_json(self.kb.problem, self.raw)
-
-    def to_text(self) -> str:
-        return tree_text(self.kb.problem, self.raw)
 
     def to_foon(self) -> str:
         """The tree as FOON text (``solve --format foon``)."""
@@ -267,6 +271,7 @@ def schedule_trees(
 class CheckReport(Answer):
     """What ``check`` says about one tree: valid or not, the first problem, the optimum."""
 
+    json_of, text_of = report.check.report_json, report.check.report_text
     valid = Raw[bool]()
     substitutions = Raw[list[dict] | None]("With substitutes: the ones a valid tree uses (None without substitutes).")
     cost = Raw[dict]()
@@ -296,12 +301,6 @@ class CheckReport(Answer):
     def optimum(self) -> Tree | None:
         return Tree(self.kb, self.raw.optimum) if self.raw.optimum is not None else None
 
-    def to_dict(self) -> dict:
-        return report.check.report_json(self.kb.problem, self.raw)
-
-    def to_text(self) -> str:
-        return report.check.report_text(self.kb.problem, self.raw)
-
 
 class Comparison(Answer):
     """One row per goal (``raw``: the rows): the tree of every method, each judged by the validator."""
@@ -320,6 +319,7 @@ class Comparison(Answer):
 class Missing(Answer):
     """The fewest objects to add to the kitchen so a goal can be made, and the tree then."""
 
+    json_of, text_of = report.queries.missing_json, report.queries.missing_text
     status = Raw[str]()
     missing = Raw[list[FoonObject]](read=objects_of)
 
@@ -329,12 +329,6 @@ class Missing(Answer):
         if not r.has_tree:
             return None
         return Tree(self.kb, TaskTree(r.goal, "missing", r.status, list(r.units), dict(r.cost), r.time_s))
-
-    def to_dict(self) -> dict:
-        return report.queries.missing_json(self.kb.problem, self.raw)
-
-    def to_text(self) -> str:
-        return report.queries.missing_text(self.kb.problem, self.raw)
 
 
 class Reachability(Answer):

@@ -12,7 +12,7 @@ from foon2asp import report
 from foon2asp.analysis import check as check_mod
 from foon2asp.analysis import consolidate as consolidate_mod
 from foon2asp.api.kb import GoalLike, KnowledgeBase
-from foon2asp.api.load import knowledge_base, projection
+from foon2asp.api.load import Reading, knowledge_base
 from foon2asp.api.options import Options, jobs
 from foon2asp.api.results import Answer, Raw, Tree, as_list, object_of, objects_of, tree_of, units_of
 from foon2asp.errors import InputError
@@ -78,6 +78,7 @@ class CandidateReport:
 class ConsolidatedGoal(Answer):
     """One goal (or meal) of :func:`consolidate`: the proven-best tree, sources, verdicts, what to add."""
 
+    json_of = report.consolidate.consolidation_json
     goals = Raw[list[FoonObject]](read=objects_of)
     goal = Raw[FoonObject](path="goals", read=lambda a, ids: object_of(a, ids[0]))
     tree = Raw[Tree](read=tree_of)
@@ -95,10 +96,6 @@ class ConsolidatedGoal(Answer):
     def missing(self) -> list[FoonObject]:
         """The fewest objects to add to the kitchen (when the goal is unreachable; else empty)."""
         return objects_of(self, self.raw.missing.missing) if self.raw.missing is not None else []
-
-    def to_dict(self) -> dict:
-        """One element of ``consolidate --format json``."""
-        return report.consolidate.consolidation_json(self.kb.problem, self.raw)
 
 
 @dataclass(eq=False)
@@ -183,42 +180,38 @@ def consolidate(
     goal: GoalLike | Sequence[GoalLike] | None = None,
     *,
     goals: str | Path | None = None,
-    kitchen: str | Path | None = None,
-    motion: str | Path | None = None,
-    utensils: str | Path | None = None,
-    utensil_rule: str = "starter",
     together: bool = False,
-    strict: bool = False,
-    options: Options | None = None,
-    **settings: Any,
+    **keywords: Any,
 ) -> Consolidation:
     """Merge candidate trees of one recipe (files in any tree format) into one FOON and find one
     proven-best tree per goal; the kitchen is its leaves unless ``kitchen`` names a file.
     ``goal``: goals of the merged FOON (``together``: one meal); ``goals``: a goals file or
     ``"all"`` (every product of a candidate's last unit); neither: the product of the last units
-    most candidates share.  ``level``, ``normalize``, ``synonyms`` (as :func:`foon2asp.api.load`)
-    and the request's settings come as keywords."""
+    most candidates share.  ``keywords``: the fields of :class:`foon2asp.api.load.Reading` (the
+    kitchen, motion and utensils files, ``utensil_rule``, ``strict``, how objects are compared)
+    and the request (``options``, settings)."""
     if not paths:
         raise InputError("no candidate tree given")
-    seen_as = projection(settings.pop("level", 3), settings.pop("normalize", False), settings.pop("synonyms", None))
-    candidates = consolidate_mod.read_candidates(paths, strict)
+    how = Reading.of(keywords)
+    seen_as = how.projection()
+    candidates = consolidate_mod.read_candidates(paths, how.strict)
     foon, sources = consolidate_mod.merge(candidates)
     names = [str(p) for p in paths]
-    given = None if kitchen in (None, LEAVES) else str(kitchen)
+    given = None if how.kitchen in (None, LEAVES) else str(how.kitchen)
     warnings: list[str] = []
     data = Dataset(
         foon=foon,
         kitchen=leaves(foon) if given is None else read_kitchen(given),
         goals=read_goals(str(goals)) if goals not in (None, "all") else [],
-        motion=read_motion(str(motion), warnings) if motion is not None else {},
-        utensils=read_utensils(str(utensils), warnings) if utensils is not None else frozenset(),
+        motion=read_motion(str(how.motion), warnings) if how.motion is not None else {},
+        utensils=read_utensils(str(how.utensils), warnings) if how.utensils is not None else frozenset(),
         paths={"foon": ",".join(names), "kitchen": given or LEAVES},
         warnings=warnings,
     )
-    kb = knowledge_base(data, utensil_rule, [w for c in candidates for w in c.warnings], seen_as)
+    kb = knowledge_base(data, how.utensil_rule, [w for c in candidates for w in c.warnings], seen_as)
     if not kb.projection.identity:
         candidates, sources = _projected(kb, candidates)
-    solver, asked = kb.options_and_warnings(options, **settings)
+    solver, asked = kb.options_and_warnings(**keywords)
     ids, source = _goals(kb, candidates, goal, goals)
     kitchen_source = "leaves" if given is None else given
     asked_for = jobs(ids, together)
