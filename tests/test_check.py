@@ -17,8 +17,7 @@ from foon2asp.errors import InputError
 from foon2asp.foon.goals import resolve_label
 from foon2asp.foon.parser import format_units, unit_lines
 from foon2asp.foon.treefiles import read_trees
-from foon2asp.tree.diagnose import check_units, diagnose
-from foon2asp.tree.validate import validate
+from foon2asp.tree.validate import check_units, diagnose, validate
 from helpers import build, goal_id, obj
 
 

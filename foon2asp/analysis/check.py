@@ -15,10 +15,17 @@ from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem, required_flags
 from foon2asp.foon.treefiles import TreeFile, read_trees
-from foon2asp.tree.diagnose import Finding, check_units, describe_unit
 from foon2asp.tree.results import AloneReport, Report
 from foon2asp.tree.tasktree import Goals, meal_of, measures
-from foon2asp.tree.validate import check_order, derivable_objects, judge_alone, validate
+from foon2asp.tree.validate import (
+    Finding,
+    check_order,
+    check_units,
+    derivable_objects,
+    describe_unit,
+    judge_alone,
+    validate,
+)
 
 
 def unit_index(problem: Problem) -> dict[tuple, int]:

@@ -8,10 +8,9 @@ import json
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.treefiles import TreeFile
 from foon2asp.report.registry import register
-from foon2asp.tree.diagnose import describe_unit
 from foon2asp.tree.results import AloneReport, Report
 from foon2asp.tree.serialize import number
-from foon2asp.tree.validate import AloneVerdict
+from foon2asp.tree.validate import AloneVerdict, describe_unit
 
 
 def unreachable(report: Report | AloneReport) -> bool:

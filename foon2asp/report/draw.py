@@ -22,9 +22,9 @@ from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.treefiles import TreeFile
 from foon2asp.report.registry import register
-from foon2asp.tree.diagnose import Finding, check_units
 from foon2asp.tree.results import Report
 from foon2asp.tree.tasktree import TaskTree
+from foon2asp.tree.validate import Finding, check_units
 
 #: drawing formats and what ``dot`` calls them
 FORMATS = ("dot", "svg", "png", "pdf")

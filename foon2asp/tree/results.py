@@ -17,9 +17,8 @@ import clingo
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.motioncost import as_number
 from foon2asp.foon.treefiles import TreeFile, TreeUnit
-from foon2asp.tree.diagnose import Finding
 from foon2asp.tree.tasktree import TaskTree
-from foon2asp.tree.validate import AloneVerdict, Validation
+from foon2asp.tree.validate import AloneVerdict, Finding, Validation
 
 
 @dataclass
