@@ -126,20 +126,13 @@ def validate(problem: Problem, goal: FoonObject | int, units: list[int]) -> Vali
             return Validation(False, f"unit {u!r} is not in the FOON")
     have = _Had(problem.kitchen_set)
     order, pending = _fire_all(
-        list(dict.fromkeys(units)),
-        lambda u: _required(problem, u),
-        lambda u: product_outputs(problem.units[u]),
-        have,
+        dict.fromkeys(units), lambda u: _required(problem, u), lambda u: product_outputs(problem.units[u]), have
     )
     if pending:
         u = pending[0]
-        missing = [o for o in _required(problem, u) if o not in have]
-        return Validation(
-            False,
-            f"unit {u} ({problem.units[u].motion}) never fires: missing input {missing[0]}",
-            order,
-            pending,
-        )
+        missing = next(o for o in _required(problem, u) if o not in have)
+        words = f"unit {u} ({problem.units[u].motion}) never fires: missing input {missing}"
+        return Validation(False, words, order, pending)
     if goal_obj not in have:
         return Validation(False, f"goal {goal_obj} is not made by these units", order)
     return Validation(True, None, order)
