@@ -10,6 +10,8 @@ with and without shortcuts), and say that the budget ran out.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import pytest
 
 from foon2asp.asp import canonical
@@ -106,4 +108,4 @@ def test_a_larger_budget_ends_at_a_smaller_or_equal_tree(small, monkeypatch):
 def canonical_session(problem, options: AspOptions, goal: int) -> Session:
     """A fresh session as the canonical one of ``goal`` is built (asp.canonical.canonical_problem)."""
     view, part = canonical.canonical_problem(problem, [goal])
-    return Session(view, options, units=part, goal=goal)
+    return Session(view, replace(options, units=part), goal=goal)

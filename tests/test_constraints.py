@@ -310,7 +310,7 @@ def test_shared_forbidding_a_used_motion(shared_problem):
 
     data, problem = shared_problem
     g = goals.resolve_label(data, problem, "macaroni")
-    session = Session(problem, AspOptions(), units=None)
+    session = Session(problem, AspOptions())
     base = session.solve(g)
     assert base.status == "optimal"
     used = sorted(motions_of(problem, base.units))

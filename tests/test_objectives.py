@@ -169,7 +169,7 @@ def test_depth_levels_and_windows(shared):
     problem, goals = shared
     session = Session(problem, AspOptions(objective=("depth",)))
     from_problem = Levels.from_problem(problem, range(len(problem.units)))
-    from_control = Levels.from_control(session.ctl)
+    from_control = Levels.from_control(session.control.ctl)
     obj_level, unit_level = problem.derivation_levels()
     made = {o: lv for o, lv in obj_level.items() if o not in problem.kitchen}
     for index in (from_problem, from_control):
@@ -486,7 +486,7 @@ def test_shared_multishot_equals_fresh_control(shared, objective, every):
     session = Session(problem, AspOptions(objective=objective))
     for g in reversed(goals[::every]):
         tree = session.solve(g)
-        fresh = Session(problem, AspOptions(objective=objective), units=problem.relevant_units(g)).solve(g)
+        fresh = Session(problem, AspOptions(objective=objective, units=tuple(problem.relevant_units(g)))).solve(g)
         assert tree.status == fresh.status
         assert tree.extra.get("asp_cost") == fresh.extra.get("asp_cost"), problem.objects[g].label
 

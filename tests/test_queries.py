@@ -247,7 +247,7 @@ def test_missing_on_shared(shared_problem, label, expected):
     assert k == size and tuple(result.missing) in sets
     # fewest units among the smallest sets (the tree encoding, on each extended kitchen)
     units = problem.relevant_units(g)
-    fewest = min(len(Session(extended(problem, s), units=units).solve(g).units) for s in sets)
+    fewest = min(len(Session(extended(problem, s), AspOptions(units=units)).solve(g).units) for s in sets)
     assert len(result.units) == fewest
 
 

@@ -60,17 +60,15 @@ class Session:
         self,
         problem: Problem,
         options: AspOptions | None = None,
-        units: Iterable[int] | None = None,
-        require: Iterable[int] = (),
         goal: Goals | None = None,
         prepared: Preparation | None = None,
     ):
-        """``units``: ground only these (default ``options.units``, else the viable units);
-        ``require``: units every tree must use; ``goal``: a session for this goal (or meal)
-        alone; ``prepared``: a session for one goal's prepared part."""
+        """``goal``: a session for this goal (or meal) alone; ``prepared``: a session for one goal's
+        prepared part.  It grounds ``options.units`` (None: the viable units)."""
         self.prepared = prepared
         #: the prepared part is searched as closed sets with loop cuts
         self._closed = prepared is not None and not (options and (options.programs or options.threads > 1))
+        units: Iterable[int] | None = None if options is None else options.units
         if prepared is not None:
             goal, units = prepared.goal, prepared.candidates
         #: the goal (as a meal) this session was grounded for; None: any goal
@@ -87,13 +85,9 @@ class Session:
             args.append("--heuristic=Domain")
         self.control = Control(args)
         self.control.statistics = prepared is None
-        self.ctl = self.control.ctl
-        if units is None:
-            units = self.options.units
         if units is None:
             units = sorted(problem.viable_units)
         self.units = tuple(units)
-        self.required = tuple(sorted(set(require)))
         #: no solve has run yet (the solver state of any fresh session of the same grounding)
         self._fresh = True
         self._driver: Driver | None = None
@@ -123,8 +117,6 @@ class Session:
         if options.canonical and not options.heuristic and (self.prepared is None or options.threads > 1):
             rules.append(("encodings/canonical.lp", encodings.encoding("canonical")))
             rules.append(("unit order", chain_facts(units)))
-        if self.required:
-            rules.append(("required units", "".join(f":- not use({u}).\n" for u in self.required)))
         rules += list(options.programs)
         # facts nobody reads are left out
         read = set().union(*(_mentions(text) for name, text in rules if name != "input nodes"))
@@ -141,7 +133,9 @@ class Session:
             return set(self.goal)
         if self.options.programs:  # a user program may add objects
             return {
-                a.symbol.arguments[0].number for a in self.ctl.symbolic_atoms.by_signature("goal", 1) if a.is_external
+                a.symbol.arguments[0].number
+                for a in self.control.ctl.symbolic_atoms.by_signature("goal", 1)
+                if a.is_external
             }
         return fact_objects(self.problem, list(self.units))
 
@@ -328,12 +322,12 @@ class Session:
         return task_tree(self.problem, self.options.method, meal, status, answer, time.perf_counter() - t0, stats)
 
     def _canonical_here(self, meal: tuple[int, ...]) -> bool:
-        """Is this session ``meal``'s canonical session (fresh, grounded for the meal's part, nothing
-        required)?  It is no longer fresh afterwards."""
+        """Is this session ``meal``'s canonical session (fresh, grounded for the meal's part)?  It is
+        no longer fresh afterwards."""
         if self.goal is not None and meal != self.goal:
             raise ValueError(f"a session grounded for {self.goal} cannot solve {meal}")
         here = False
-        if self._fresh and self.goal == meal and not self.required and self.options.canonical:
+        if self._fresh and self.goal == meal and self.options.canonical:
             view, part = canonical_problem(self.problem, meal)
             here = self.units == part and self.problem.kitchen == view.kitchen
         self._fresh = False
