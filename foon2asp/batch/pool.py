@@ -131,8 +131,7 @@ class Worker:
         return [(goal, method, self.run(goal, method)) for goal, method in tasks]
 
 
-# --- the worker of a process pool (built by the pool's initializer) ---
-
+#: the worker of a pool process (built by the pool's initializer)
 _WORKER: Worker | None = None
 
 

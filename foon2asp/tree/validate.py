@@ -230,9 +230,6 @@ def check_order(problem: Problem, goal: FoonObject | int, units: list[int]) -> s
     return None if goal_obj in have else f"goal {goal_obj} is not made"
 
 
-# ---------------------------------------------------------------- a tree on its own
-
-
 @dataclass
 class Blocked:
     """The first unit that cannot fire when its turn comes (units in the order given)."""
