@@ -10,10 +10,8 @@
        "motion_node": {"motion_id": 54, "motion_label": "pour", "start_time": "Assumed", "end_time": "Assumed"},
        "output_nodes": [...]}, ...]}
 
-The ingredients are the state ``contains`` plus the list ``ingredients``; the container is
-the state ``in`` with ``relative_object``; another relation is kept as the state ``"on
-[plate]"``.  :func:`parse_json` also reads foon2asp's ``{motion, inputs, outputs}`` units
-and ``solve --format json`` results, so every JSON written here can serve as a FOON.
+The container is the state ``in`` with ``relative_object``; another relation is the state
+``"on [plate]"``.  :func:`parse_json` also reads foon2asp's units and results.
 """
 
 from __future__ import annotations
@@ -22,19 +20,16 @@ import json
 from collections.abc import Callable, Iterable
 from functools import partial
 from pathlib import Path
-from typing import Protocol
+from typing import TYPE_CHECKING
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject, Unit, motion_key, norm
 
+if TYPE_CHECKING:
+    from foon2asp.foon.parser import IdMap
+
 #: what the official tools write for times and the in-motion flag
 ASSUMED = "Assumed"
-
-
-class Ids(Protocol):
-    """What :class:`foon2asp.foon.parser.IdMap` offers: one id per object label, state name, motion."""
-
-    def get(self, kind: str, text: str) -> int: ...
 
 
 def _relation(state: str) -> tuple[str, str | None]:
@@ -48,8 +43,8 @@ def _relation(state: str) -> tuple[str, str | None]:
     return state, None
 
 
-def object_json(obj: FoonObject, ids: Ids) -> dict:
-    """One node in foon_api's schema (``ids``: an :class:`~foon2asp.foon.parser.IdMap`)."""
+def object_json(obj: FoonObject, ids: IdMap) -> dict:
+    """One node in foon_api's schema."""
     states = []
     for state in obj.states:
         name, rel = _relation(state)
@@ -70,7 +65,7 @@ def object_json(obj: FoonObject, ids: Ids) -> dict:
     }
 
 
-def unit_json(unit: Unit, ids: Ids) -> dict:
+def unit_json(unit: Unit, ids: IdMap) -> dict:
     return {
         "input_nodes": [object_json(o, ids) for o in unit.inputs],
         "motion_node": {
@@ -83,16 +78,14 @@ def unit_json(unit: Unit, ids: Ids) -> dict:
     }
 
 
-def to_foon_json(units: Iterable[Unit], ids: Ids, header: str | None = None) -> dict:
+def to_foon_json(units: Iterable[Unit], ids: IdMap, header: str | None = None) -> dict:
     """``{"functional_units": [...]}`` for ``units`` (``header`` goes to ``"comment"``)."""
-    out: dict = {}
-    if header:
-        out["comment"] = header
+    out: dict = {"comment": header} if header else {}
     out["functional_units"] = [unit_json(u, ids) for u in units]
     return out
 
 
-def dumps(units: Iterable[Unit], ids: Ids, header: str | None = None) -> str:
+def dumps(units: Iterable[Unit], ids: IdMap, header: str | None = None) -> str:
     return json.dumps(to_foon_json(units, ids, header), indent=1) + "\n"
 
 

@@ -1,12 +1,8 @@
 """Looser matching: FOON's hierarchy levels, label normalisation and synonyms, as a projection.
 
-FOON's hierarchy levels (foon_api's ``equals_lvl1/2/3``): level 1 compares labels,
-level 2 also states (the container as the related object of a state), level 3 also
-ingredients (foon2asp's identity).  :class:`Projection` maps each object to the one the
-level sees and a FOON to the FOON of the projected units (units equal at the level are
-one unit; at levels 1 and 2 a :class:`LevelUnit` lists its products).  Texts compare by
-a :class:`Texts` key: normalised, with ``normalize`` the last word singular
-(:func:`noun_key`), then synonyms; a projected object keeps the first spelling seen.
+Level 1 compares labels, level 2 also states and container, level 3 also ingredients
+(foon2asp's identity).  :class:`Projection` maps each object to the one its level sees and a
+FOON to the FOON of the projected units; texts compare by a :class:`Texts` key.
 docs/matching.md says why these choices.
 """
 
@@ -24,8 +20,8 @@ from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.model import Foon, FoonObject, Unit, norm
 from foon2asp.foon.parser import state_parts
-from foon2asp.foon.reading import read_text
-from foon2asp.foon.substitutes import Substitute, entries
+from foon2asp.foon.reading import content_lines, read_text
+from foon2asp.foon.substitutes import Substitute
 
 LEVELS = (1, 2, 3)
 
@@ -142,7 +138,8 @@ def parse_synonyms(text: str, path: str = "<synonyms>", normalize: bool = False)
     texts = Texts(normalize)
     table: dict[str, str] = {}
     lines: dict[str, int] = {}
-    for lineno, body in entries(text):
+    for lineno, line in content_lines(text):
+        body = line.strip()
         name, eq, canonical = body.partition("=")
         if not eq:
             raise InputError(f"expected 'name = canonical name', got {body[:60]!r}", path, lineno)

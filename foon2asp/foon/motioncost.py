@@ -1,10 +1,8 @@
 """Motion-cost tables: what each motion costs, for the ``cost`` objective.
 
-A table is a JSON object ``{"chop": 0.9, ...}`` or ``motion<TAB>cost`` lines; motions
-match as units hold them (:func:`motion_key`).  Costs are decimals in [0,
-:data:`MAX_COST`] exact to :data:`PRECISION`, used by the solver as integers ``cost *
-SCALE``; anything else is an :class:`InputError` naming the file and line.  A motion
-the table does not list costs :data:`DEFAULT_COST`.
+A table is a JSON object ``{"chop": 0.9, ...}`` or ``motion<TAB>cost`` lines.  Costs are
+decimals in [0, :data:`MAX_COST`] exact to :data:`PRECISION`, used by the solver as integers
+``cost * SCALE``; a motion the table does not list costs :data:`DEFAULT_COST`.
 """
 
 from __future__ import annotations
@@ -22,7 +20,6 @@ from foon2asp.foon.reading import loads as safe_loads
 #: costs are exact to this step; the solver's integer weight of a cost is cost * SCALE
 PRECISION = Decimal("0.01")
 SCALE = 100
-_PLACES = -2  # the exponent of PRECISION
 #: the cost of a motion the table does not list
 DEFAULT_COST = Decimal(1)
 #: the largest cost accepted (its weight keeps the solver's sums far from overflow)
@@ -66,17 +63,6 @@ def as_number(cost: Decimal) -> int | float:
     return int(cost) if cost == cost.to_integral_value() else float(cost)
 
 
-def _finer(value: Decimal) -> bool:
-    """Is ``value`` not a multiple of :data:`PRECISION`?  (Exact: no context rounding.)"""
-    _, digits, exponent = value.as_tuple()
-    assert isinstance(exponent, int)  # finite values only
-    trimmed = list(digits)
-    while exponent < 0 and len(trimmed) > 1 and trimmed[-1] == 0:
-        trimmed.pop()
-        exponent += 1
-    return exponent < _PLACES and any(trimmed)
-
-
 def _shown(text: str) -> str:
     return text if len(text) <= 40 else text[:40] + "..."
 
@@ -96,7 +82,7 @@ def parse_cost(text: str, path: str, line: int | None, motion: str) -> Decimal:
         raise InputError(f"cost of {motion!r} is negative: {shown}", path, line)
     if value > MAX_COST:
         raise InputError(f"cost of {motion!r} is {shown}; at most {MAX_COST} is accepted", path, line)
-    if _finer(value):
+    if value % PRECISION:  # exact: value is at most MAX_COST
         raise InputError(
             f"cost of {motion!r} is {shown}, finer than {PRECISION} (costs are used to two decimals)", path, line
         )

@@ -1,16 +1,13 @@
 """Ingredient substitutes: which kitchen items may stand in for a needed object.
 
-A substitutes file (docs/matching.md) is JSON, ``{"onion": ["red onion"], "butter":
-{"margarine": 2}}``, or lines ``onion: red onion, shallot=2`` (split at the first ``:``,
-at ``,`` and at the last ``=``); a cost is a positive integer, :data:`DEFAULT_COST`
-when left out.  An object that is not a kitchen item is available when the kitchen
-holds it with its label, or one ingredient, replaced by a substitute
-(:func:`candidates`); the solver chooses which substitutions a tree uses.
+A substitutes file (docs/matching.md) is JSON or ``label: substitute, other=COST`` lines; an
+object that is not a kitchen item is available when the kitchen holds it with its label, or
+one ingredient, replaced by a substitute (:func:`candidates`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -86,15 +83,10 @@ def _from_json(value: object, path: str) -> dict[tuple[str, str], Substitute]:
     return out
 
 
-def entries(text: str) -> Iterator[tuple[int, str]]:
-    """``(line number, stripped line)`` of the lines that are neither blank nor ``#`` comments."""
-    for lineno, line in content_lines(text):
-        yield lineno, line.strip()
-
-
 def _from_lines(text: str, path: str) -> dict[tuple[str, str], Substitute]:
     out: dict[tuple[str, str], Substitute] = {}
-    for lineno, body in entries(text):
+    for lineno, line in content_lines(text):
+        body = line.strip()
         needed, colon, rest = body.partition(":")
         if not colon:
             raise InputError(f"expected 'label: substitute, ...', got {body[:60]!r}", path, lineno)

@@ -1,9 +1,7 @@
 """Task trees read from files, in every form foon2asp and the earlier programs write.
 
-:func:`read_trees` tells the forms apart: FOON text (one tree per ``# task tree for
-GOAL (...)`` header), FOON JSON, foon2asp JSON results, unit lists
-(:mod:`foon2asp.foon.unitlist`) and plans (:mod:`foon2asp.foon.plans`).  It gives each
-tree's units as written, with file, line and step, and the goal and method when named.
+:func:`read_trees` tells the forms apart: FOON text (one tree per ``# task tree for GOAL
+(...)`` header), FOON JSON, foon2asp JSON results, unit lists and plans.
 """
 
 from __future__ import annotations
