@@ -3,7 +3,7 @@ canonical session, so the tree depends only on the input also when the budget ru
 
 On the ``small`` preset the search for the smallest optimal tree of some goals needs millions
 of conflicts; there the answer must still be optimal (against the reference search of
-test_hard.py), the same from every path (a fresh session on the goal's part, a session that
+test_session.py), the same from every path (a fresh session on the goal's part, a session that
 solved other goals first, one grounding for all goals, the batch runner in both groundings,
 with and without shortcuts), and say that the budget ran out.
 """
@@ -22,7 +22,7 @@ from foon2asp.methods.bounds import Bounds
 from foon2asp.methods.runner import GoalRunner, solve_goals
 from foon2asp.tree.validate import validate
 from synth import preset
-from test_hard import reference
+from test_session import reference
 
 
 @pytest.fixture(scope="module")

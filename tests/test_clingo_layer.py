@@ -22,7 +22,7 @@ from foon2asp.tree.serialize import tree_json
 from foon2asp.tree.tasktree import TaskTree, measures
 from foon2asp.tree.validate import validate
 from synth import preset
-from test_hard import reference
+from test_session import reference
 
 
 @pytest.fixture(scope="module")

@@ -14,7 +14,7 @@ from foon2asp.asp.session import AspOptions, Session
 from foon2asp.cli.main import main
 from foon2asp.errors import InputError
 from foon2asp.tree.validate import validate
-from helpers import brute_force, build, goal_id, obj
+from helpers import best, brute_force, build, goal_id, obj
 
 MOTIONS = ("cut", "mix", "heat")
 LABELS = "abcdefg"
@@ -345,3 +345,19 @@ def test_batch_applies_constraints_like_solve(tmp_path):
         assert all(u["motion"] != "chop" for u in b["units"])
     # without chop the tomato salad takes slice + dice: one unit more than the unconstrained optimum
     assert batch["tomato salad"]["cost"]["units"] == 5
+
+
+def test_constraint_on_labels_still_sees_labels():
+    # two producers of the goal: the cheaper one uses "knife"; forbidding that label
+    # (a program over label/2 and input/2, left out of lean facts) must take the other
+    units = [("cut", ["knife", "k"], ["goal"]), ("pour", ["k"], ["x"]), ("mix", ["x"], ["goal"])]
+    problem = build(units, ["knife", "k"])
+    goal = goal_id(problem, "goal")
+    plain = Session(problem).solve(goal)
+    assert plain.status == "optimal" and len(plain.units) == 1
+    rule = ':- use(U), input(U,O), label(O,"knife").\n'
+    constrained = Session(problem, AspOptions(programs=[("rule", rule)])).solve(goal)
+    assert constrained.status == "optimal" and sorted(constrained.units) == [1, 2]
+    # brute force agrees: unit 0 alone is the one smallest tree, and it has the knife
+    size, trees = best(problem, goal, lambda m: m["units"])
+    assert size == 1 and trees == [(0,)]

@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import re
+
 import clingo
 import pytest
 
-from foon2asp.asp.facts import facts, neglog_weight, q
+from foon2asp.asp.facts import OPTIONAL, facts, neglog_weight, q
 from foon2asp.asp.predicates import FACTS
 from foon2asp.asp.session import Session
 from helpers import build, obj
@@ -96,3 +98,18 @@ def test_quoting_matches_clingo(text):
     assert literal == str(clingo.String(text.replace("\x00", "")))
     (atom,) = ground_atoms(f"x({literal}).")
     assert atom.arguments[0].string == text.replace("\x00", "")
+
+
+def test_facts_leave_out_only_what_is_named(shared_problem):
+    _, problem = shared_problem
+    units = list(range(40))
+    full = facts(problem, units=units)
+    lean = facts(problem, units=units, leave_out=OPTIONAL)
+    preds = lambda text: {m.group(1) for m in re.finditer(r"^([a-z_]+)\(", text, re.M)}  # noqa: E731
+    assert preds(full) - preds(lean) == set(OPTIONAL)
+    assert preds(lean) == {"unit", "required", "product", "object", "kitchen"}
+    # what stays is exactly the same lines
+    kept = [line for line in full.splitlines() if line.split("(")[0] not in OPTIONAL]
+    assert kept == lean.splitlines()
+    with pytest.raises(ValueError):
+        facts(problem, leave_out=["required"])

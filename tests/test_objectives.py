@@ -592,3 +592,12 @@ def test_opt_strategies_agree(disagree):
             for s in ("bb", "usc", "usc,oll")
         }
         assert len({tuple(c) for c in costs.values()}) == 1, costs
+
+
+def test_success_objective_keeps_its_weights():
+    # success needs neglog/2, which lean facts leave out unless an encoding reads it
+    units = [("a", ["k"], ["goal"]), ("b", ["k"], ["y"]), ("c", ["y"], ["goal"])]
+    problem = build(units, ["k"], {"a": 0.1, "b": 0.9, "c": 0.9})
+    goal = goal_id(problem, "goal")
+    tree = Session(problem, AspOptions(objective=("success",))).solve(goal)
+    assert tree.status == "optimal" and sorted(tree.units) == [1, 2]  # 0.81 beats 0.1

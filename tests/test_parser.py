@@ -149,3 +149,17 @@ def test_universal_foon(shared_foon_dir):
     assert not foon.warnings
     again = parse_text(format_units(foon.units))
     assert again.units == foon.units
+
+
+def test_parser_fast_path_errors_and_ids():
+    foon = parse_text("O12\tegg\t0\nS3\twhole\nM7\tcrack*\t0\t1\nO1\tegg\nS\tcracked\n//\n")
+    assert len(foon.units) == 1 and foon.units[0].motion == "crack"
+    assert foon.units[0].outputs[0].states == ("cracked",)
+    for text, needle in (
+        ("O egg\n", "expected a TAB"),
+        ("Ox\tegg\n", "unknown line type"),
+        (" O\tegg\n", "unknown line type"),
+        ("X\tegg\n", "unknown line type"),
+    ):
+        with pytest.raises(InputError, match=needle):
+            parse_text(text)
