@@ -55,15 +55,8 @@ class Plan:
 
 def looks_like_plan(text: str) -> bool:
     """Does ``text`` look like a plan file: ``(name ...)`` lines and ``;`` comments only?"""
-    seen = False
-    for raw in text.splitlines():
-        line = raw.strip()
-        if not line or line.startswith(";"):
-            continue
-        if not _STEP.match(line):
-            return False
-        seen = True
-    return seen
+    steps = [line for line in map(str.strip, text.splitlines()) if line and not line.startswith(";")]
+    return bool(steps) and all(_STEP.match(line) for line in steps)
 
 
 def parse_plan(text: str, path: str) -> Plan:

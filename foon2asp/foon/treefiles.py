@@ -110,8 +110,8 @@ def _read_json_tree(text: str, path: str, strict: bool = False) -> list[TreeFile
     results = data if isinstance(data, list) else [data]
     if results and all(foonjson.is_foon_json(d) for d in results):
         return _read_foon_json_trees(results, path)
-    start = len(text) - len(text.lstrip())
-    if isinstance(data, list):  # the line each top-level result starts on, for messages
+    start = len(text) - len(text.lstrip())  # the line each result starts on, for messages
+    if isinstance(data, list):
         starts = [line for _, line, _ in list_elements(text, path, start)]
     else:
         starts = [text.count("\n", 0, start) + 1]
