@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from foon2asp.errors import InputError
-from foon2asp.foon.model import Foon, FoonObject, Unit, motion_key, norm
+from foon2asp.foon.model import Foon, FoonObject, Unit, motion_key, norm, state_parts
 
 if TYPE_CHECKING:
     from foon2asp.foon.parser import IdMap
@@ -32,25 +32,14 @@ if TYPE_CHECKING:
 ASSUMED = "Assumed"
 
 
-def _relation(state: str) -> tuple[str, str | None]:
-    """``"on [plate]"`` -> ``("on", "plate")``; ``"seasoned {salt}"`` keeps its braces."""
-    if state.endswith("]") and " [" in state:
-        name, _, arg = state.partition(" [")
-        return name, arg[:-1]
-    if state.endswith("}") and " {" in state:
-        name, _, arg = state.partition(" {")
-        return name, "{" + arg
-    return state, None
-
-
 def object_json(obj: FoonObject, ids: IdMap) -> dict:
     """One node in foon_api's schema."""
     states = []
     for state in obj.states:
-        name, rel = _relation(state)
+        name, arg = state_parts(state)
         entry: dict = {"state_id": ids.get("S", name), "state_label": name}
-        if rel is not None:
-            entry["relative_object"] = rel
+        if arg is not None:
+            entry["relative_object"] = arg[1:-1] if arg[0] == "[" else arg
         states.append(entry)
     if obj.ingredients:
         states.append({"state_id": ids.get("S", "contains"), "state_label": "contains"})

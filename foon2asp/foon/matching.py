@@ -18,8 +18,7 @@ from typing import Any
 
 from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset
-from foon2asp.foon.model import Foon, FoonObject, Unit, norm
-from foon2asp.foon.parser import state_parts
+from foon2asp.foon.model import Foon, FoonObject, Unit, norm, state_parts
 from foon2asp.foon.reading import content_lines, read_text
 from foon2asp.foon.substitutes import Substitute
 

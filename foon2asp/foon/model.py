@@ -2,13 +2,20 @@
 
 Object identity is label + set of states + set of ingredients + container, independent
 of order (docs/proofs/preparation.md, "Object identity"); relations other than
-``in``/``contains`` are states such as ``"on [plate]"``.
+``in``/``contains`` are states such as ``"on [plate]"`` (:func:`state_parts` splits them).
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
+
+#: a bracket of a state's argument (``on [plate]``, ``contains {a,b}``)
+BRACKET = re.compile(r"[\[\]{}]")
+_CLOSING = {"[": "]", "{": "}"}
+_OPENING = {"]": "[", "}": "{"}
+_RELATION_STATE = re.compile(r"^(.+?) ([\[{].*[\]}])$")
 
 
 def norm(text: str) -> str:
@@ -19,6 +26,37 @@ def norm(text: str) -> str:
 def motion_key(text: str) -> str:
     """A motion as units hold it: normalised, a trailing ``*`` dropped."""
     return norm(text).rstrip("*").strip()
+
+
+def bracket_problem(text: str) -> tuple[str, int] | None:
+    """Why the brackets of ``text`` do not pair up (``[``/``]``, ``{``/``}``), with the offset
+    of the bracket at fault; None when they pair up."""
+    open_: list[tuple[str, int]] = []
+    for m in BRACKET.finditer(text):
+        c, at = m.group(), m.start()
+        if c in _CLOSING:
+            open_.append((c, at))
+        elif not open_:
+            return f"stray {c!r} (no {_OPENING[c]!r} before it)", at
+        elif _CLOSING[open_[-1][0]] != c:
+            return f"{open_[-1][0]!r} closed by {c!r}", at
+        else:
+            open_.pop()
+    if open_:
+        c, at = open_[0]
+        return f"unbalanced {c!r} (no {_CLOSING[c]!r} after it)", at
+    return None
+
+
+def state_parts(state: str) -> tuple[str, str | None]:
+    """``"on [plate]"`` -> ``("on", "[plate]")``; a plain state -> ``(state, None)``.  Split only
+    where both parts read back as they are (brackets pair up, the name is not ``in``/``contains``)."""
+    m = _RELATION_STATE.match(state)
+    if m is None or m.group(1).lower() in ("in", "contains", "ingredients"):
+        return state, None
+    if bracket_problem(m.group(1)) is not None or bracket_problem(m.group(2)) is not None:
+        return state, None
+    return m.group(1), m.group(2)
 
 
 @dataclass(frozen=True, order=True)

@@ -18,18 +18,12 @@ from typing import TextIO
 from foon2asp.errors import InputError
 from foon2asp.foon import unitlist
 from foon2asp.foon.foonjson import looks_like_json, parse_json
-from foon2asp.foon.model import Foon, FoonObject, Unit, norm
+from foon2asp.foon.model import BRACKET, Foon, FoonObject, Unit, bracket_problem, norm, state_parts
 from foon2asp.foon.reading import check_line, lines_of, read_text
 
 _KINDS = frozenset("OSM")
-_RELATION_STATE = re.compile(r"^(.+?) ([\[{].*[\]}])$")
-
-
-_BRACKET = re.compile(r"[\[\]{}]")
 #: the usual state line with brackets (``in\t[bowl]``, ``contains\t{a,b}``): checked without a scan
 _ONE_LIST = re.compile(r"[^\[\]{}\t]*\t *(?:\[[^\[\]{}\t]*\]|\{[^\[\]{}\t]*\}) *")
-_CLOSING = {"[": "]", "{": "}"}
-_OPENING = {"]": "[", "}": "{"}
 
 
 def _strip_brackets(arg: str) -> str:
@@ -37,26 +31,6 @@ def _strip_brackets(arg: str) -> str:
     if arg[:1] in "[{" and arg[-1:] in "]}":
         arg = arg[1:-1]
     return arg.strip()
-
-
-def _bracket_problem(text: str) -> tuple[str, int] | None:
-    """Why the brackets of ``text`` do not pair up (``[``/``]``, ``{``/``}``), with the offset
-    of the bracket at fault; None when they pair up."""
-    open_: list[tuple[str, int]] = []
-    for m in _BRACKET.finditer(text):
-        c, at = m.group(), m.start()
-        if c in _CLOSING:
-            open_.append((c, at))
-        elif not open_:
-            return f"stray {c!r} (no {_OPENING[c]!r} before it)", at
-        elif _CLOSING[open_[-1][0]] != c:
-            return f"{open_[-1][0]!r} closed by {c!r}", at
-        else:
-            open_.pop()
-    if open_:
-        c, at = open_[0]
-        return f"unbalanced {c!r} (no {_CLOSING[c]!r} after it)", at
-    return None
 
 
 def _check_brackets(line: str, tab: int, path: str, lineno: int) -> None:
@@ -67,7 +41,7 @@ def _check_brackets(line: str, tab: int, path: str, lineno: int) -> None:
     raw = line[start:].split("\t")
     shown = " ".join(f.strip() for f in raw if f.strip())
     for part in raw:
-        problem = _bracket_problem(part)
+        problem = bracket_problem(part)
         if problem is not None:
             what, at = problem
             raise InputError(f"{what} in the state {shown!r}", path, lineno, start + at + 1)
@@ -76,7 +50,7 @@ def _check_brackets(line: str, tab: int, path: str, lineno: int) -> None:
     if len(raw) > 1 and name in ("in", "contains", "ingredients"):
         arg = raw[1]
         inner = _strip_brackets(arg)
-        m = _BRACKET.search(inner)
+        m = BRACKET.search(inner)
         if m is not None:
             column = tab + 1 + len(raw[0]) + 1 + arg.find(inner) + m.start() + 1
             example = "in [bowl]" if name == "in" else f"{name} {{flour,sugar}}"
@@ -170,7 +144,7 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
             name = fields[0]
             if not name:
                 raise InputError("state line with an empty state", path, lineno)
-            if _BRACKET.search(rest) is not None and _ONE_LIST.fullmatch(rest) is None:
+            if BRACKET.search(rest) is not None and _ONE_LIST.fullmatch(rest) is None:
                 _check_brackets(line, tab, path, lineno)
             arg = fields[1] if len(fields) > 1 and fields[1] else None
             if arg is None:
@@ -232,17 +206,6 @@ def read_foons(paths: Iterable[str | Path], strict: bool = False) -> Foon:
 
 def parse_text(text: str, path: str = "<string>", strict: bool = False) -> Foon:
     return parse_lines(lines_of(text), path, strict=strict)
-
-
-def state_parts(state: str) -> tuple[str, str | None]:
-    """``"on [plate]"`` -> ``("on", "[plate]")``; a plain state -> ``(state, None)``.  Split only
-    where both parts read back as they are (brackets pair up, the name is not ``in``/``contains``)."""
-    m = _RELATION_STATE.match(state)
-    if m is None or m.group(1).lower() in ("in", "contains", "ingredients"):
-        return state, None
-    if _bracket_problem(m.group(1)) is not None or _bracket_problem(m.group(2)) is not None:
-        return state, None
-    return m.group(1), m.group(2)
 
 
 def object_fields(obj: FoonObject) -> list[tuple[str, str | None]]:
