@@ -830,33 +830,40 @@ ROBOT = 'kind("robot",1).\n'
 PRIORITIES = "priority(makespan,2).\npriority(human,1).\n"
 
 
+#: the time-step encoding and the order encoding of the same facts (fixed trees, no durations 0)
+BOTH = [("schedule_steps",), ("schedule_order",)]
+
+
 def steps(facts: str, horizon: int, names=("schedule_steps",)) -> Clingo:
     return solver(list(names), facts, f"horizon({horizon}).\nfloor(0).\n", PRIORITIES)
 
 
-def test_schedule_steps_a_maker_first():
+@pytest.mark.parametrize("names", BOTH)
+def test_schedule_steps_a_maker_first(names):
     facts = ROBOT + 'use(0;1).\ncan(0,"robot",2).\ncan(1,"robot",1).\nwindow(0,0,3).\nwindow(1,0,3).\n'
     facts += "need(1,5).\nmaker(0,5).\n"
     shown = ['on(0,"robot")', 'on(1,"robot")', "start(0,0)", "start(1,2)"]
-    check(steps(facts, 4), optimum(shown, 3))
+    check(steps(facts, 4, names), optimum(shown, 3))
 
 
-def test_schedule_steps_a_person_only_when_it_is_shorter():
+@pytest.mark.parametrize("names", BOTH)
+def test_schedule_steps_a_person_only_when_it_is_shorter(names):
     facts = ROBOT + 'kind("human",1).\nhuman_kind("human").\nuse(0;1).\n'
     facts += 'can(0,"robot",2).\ncan(1,"robot",2).\ncan(1,"human",3).\nwindow(0,0,4).\nwindow(1,0,4).\n'
     # the robot's unit may start at 0 or 1 within the person's 3 steps
     schedules = [['on(0,"robot")', 'on(1,"human")', f"start(0,{s})", "start(1,0)"] for s in (0, 1)]
-    check(steps(facts, 6), optima(schedules, 3, 1))
+    check(steps(facts, 6, names), optima(schedules, 3, 1))
 
 
-def test_schedule_steps_resource_capacity():
+@pytest.mark.parametrize("names", BOTH)
+def test_schedule_steps_resource_capacity(names):
     facts = 'kind("robot",2).\nuse(0;1).\ncan(0,"robot",2).\ncan(1,"robot",2).\nwindow(0,0,4).\nwindow(1,0,4).\n'
     facts += 'uses(0,"pan").\nuses(1,"pan").\ncapacity("pan",1).\n'
     orders = [
         ['on(0,"robot")', 'on(1,"robot")', "start(0,0)", "start(1,2)"],
         ['on(0,"robot")', 'on(1,"robot")', "start(0,2)", "start(1,0)"],
     ]
-    check(steps(facts, 6), optima(orders, 4))
+    check(steps(facts, 6, names), optima(orders, 4))
 
 
 def test_schedule_steps_zero_durations_follow_their_makers():
@@ -880,42 +887,16 @@ def test_schedule_steps_every_unit_ends_by_the_horizon():
     check(solver(["schedule_steps"], facts, args=ALL), models(2, each))
 
 
-def test_schedule_steps_one_agent_one_unit_at_a_time():
+@pytest.mark.parametrize("names", BOTH)
+def test_schedule_steps_one_agent_one_unit_at_a_time(names):
     # 0 and 1 must start at 0, 2 at 2: the work fits 3 steps, but 0 and 1 overlap on one robot
     facts = ROBOT + "use(0;1;2).\n" + "".join(f'can({u},"robot",1).\n' for u in range(3))
     facts += "window(0,0,0).\nwindow(1,0,0).\nwindow(2,2,2).\n"
-    check(steps(facts, 3), unsat())
+    check(steps(facts, 3, names), unsat())
 
 
 # --- schedule_order.lp: the same facts, each start a chain of "starts by step T" atoms -------
-
-
-def order(facts: str, horizon: int) -> Clingo:
-    return steps(facts, horizon, ("schedule_order",))
-
-
-def test_schedule_order_a_maker_first():
-    facts = ROBOT + 'use(0;1).\ncan(0,"robot",2).\ncan(1,"robot",1).\nwindow(0,0,3).\nwindow(1,0,3).\n'
-    facts += "need(1,5).\nmaker(0,5).\n"
-    shown = ['on(0,"robot")', 'on(1,"robot")', "start(0,0)", "start(1,2)"]
-    check(order(facts, 4), optimum(shown, 3))
-
-
-def test_schedule_order_a_person_only_when_it_is_shorter():
-    facts = ROBOT + 'kind("human",1).\nhuman_kind("human").\nuse(0;1).\n'
-    facts += 'can(0,"robot",2).\ncan(1,"robot",2).\ncan(1,"human",3).\nwindow(0,0,4).\nwindow(1,0,4).\n'
-    schedules = [['on(0,"robot")', 'on(1,"human")', f"start(0,{s})", "start(1,0)"] for s in (0, 1)]
-    check(order(facts, 6), optima(schedules, 3, 1))
-
-
-def test_schedule_order_resource_capacity():
-    facts = 'kind("robot",2).\nuse(0;1).\ncan(0,"robot",2).\ncan(1,"robot",2).\nwindow(0,0,4).\nwindow(1,0,4).\n'
-    facts += 'uses(0,"pan").\nuses(1,"pan").\ncapacity("pan",1).\n'
-    orders = [
-        ['on(0,"robot")', 'on(1,"robot")', "start(0,0)", "start(1,2)"],
-        ['on(0,"robot")', 'on(1,"robot")', "start(0,2)", "start(1,0)"],
-    ]
-    check(order(facts, 6), optima(orders, 4))
+# (the cases marked BOTH above run on it too)
 
 
 def test_schedule_order_tail_rules_out_a_late_start():
@@ -923,12 +904,6 @@ def test_schedule_order_tail_rules_out_a_late_start():
     facts = ROBOT + 'use(0).\ncan(0,"robot",1).\nwindow(0,0,3).\ntail(0,3).\n'
     each = a.Or(*(atoms('on(0,"robot")', f"start(0,{s})") for s in (0, 1)))
     check(solver(["schedule_order"], facts, "horizon(4).\n", args=ALL), models(2, each))
-
-
-def test_schedule_order_one_agent_one_unit_at_a_time():
-    facts = ROBOT + "use(0;1;2).\n" + "".join(f'can({u},"robot",1).\n' for u in range(3))
-    facts += "window(0,0,0).\nwindow(1,0,0).\nwindow(2,2,2).\n"
-    check(order(facts, 3), unsat())
 
 
 def test_schedule_steps_floor():
