@@ -145,24 +145,15 @@ def task_tree(
 ) -> TaskTree:
     """The tree of ``answer`` (None: no tree) for ``goal``, with the solver's cost vector
     (``asp_cost``); ``human_steps``: also the steps a person does."""
-    fields = goal_fields(goal)
+    tree = TaskTree(method=method, status=status, time_s=round(time_s, 6), stats=stats, **goal_fields(goal))
     if answer is None:
-        return TaskTree(method=method, status=status, time_s=round(time_s, 6), stats=stats, **fields)
-    units = executable_order(problem, list(answer.units))
-    cost = measures(problem, goal, units)
-    extra: dict = {"asp_cost": list(answer.cost)}
+        return tree
+    units = tree.units = executable_order(problem, list(answer.units))
+    tree.cost = measures(problem, goal, units)
+    tree.extra["asp_cost"] = list(answer.cost)
     if human_steps:
         human = set(answer.human)
-        cost["success"] = objectives.success_product(problem, units, answer.human)
-        extra["human_steps"] = [u for u in units if u in human]
-        extra["human_step_numbers"] = [i for i, u in enumerate(units, 1) if u in human]
-    return TaskTree(
-        method=method,
-        status=status,
-        units=units,
-        cost=cost,
-        time_s=round(time_s, 6),
-        stats=stats,
-        extra=extra,
-        **fields,
-    )
+        tree.cost["success"] = objectives.success_product(problem, units, answer.human)
+        tree.extra["human_steps"] = [u for u in units if u in human]
+        tree.extra["human_step_numbers"] = [i for i, u in enumerate(units, 1) if u in human]
+    return tree

@@ -42,18 +42,6 @@ _UNIT_LINES: tuple[tuple[str, Lines], ...] = (
 )
 
 
-def _lines(table: tuple[tuple[str, Lines], ...], problem: Problem, key: int, leave_out: frozenset[str]) -> list[str]:
-    return [line for name, make in table if name not in leave_out for line in make(problem, key)]
-
-
-def object_facts(problem: Problem, oid: int, leave_out: frozenset[str] = frozenset()) -> list[str]:
-    return [f"object({oid}).", *_lines(_OBJECT_LINES, problem, oid, leave_out)]
-
-
-def unit_facts(problem: Problem, u: int, leave_out: frozenset[str] = frozenset()) -> list[str]:
-    return [f"unit({u}).", *_lines(_UNIT_LINES, problem, u, leave_out)]
-
-
 #: predicates a solver session may leave out when no program it grounds reads them
 OPTIONAL = ("label", "state", "ingredient", "container", "motion", "success", "neglog", "input", "output")
 
@@ -90,9 +78,12 @@ def facts(
     if unknown:
         raise ValueError(f"facts cannot leave out {sorted(unknown)}")
     ids = unit_ids(problem, units)
+    unit_lines = [make for name, make in _UNIT_LINES if name not in leave_out]
+    object_lines = [make for name, make in _OBJECT_LINES if name not in leave_out]
     lines = ["% units"]
     for u in ids:
-        lines += unit_facts(problem, u, leave_out)[0 if declare else 1 :]
+        lines += [f"unit({u})."] if declare else []
+        lines += [line for make in unit_lines for line in make(problem, u)]
     if whole_kitchen:
         objects = fact_objects(problem, ids)
     else:
@@ -102,11 +93,10 @@ def facts(
     if goal is not None:
         objects.add(goal)
     lines.append("% objects")
-    if leave_out.issuperset(("label", "state", "ingredient", "container")):
-        lines += [f"object({o})." for o in sorted(objects)] if declare else []
-    else:
+    if object_lines or declare:
         for o in sorted(objects):
-            lines += object_facts(problem, o, leave_out)
+            lines.append(f"object({o}).")
+            lines += [line for make in object_lines for line in make(problem, o)]
     lines.append("% kitchen")
     kitchen = problem.kitchen
     lines += [f"kitchen({o})." for o in sorted(objects) if o in kitchen]
