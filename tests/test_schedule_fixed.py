@@ -11,7 +11,7 @@ import pytest
 
 import foon2asp
 from conftest import REPO
-from foon2asp.cli.schedule import status_text
+from foon2asp.cli.goals import status_text
 from foon2asp.schedule import ScheduleSpec, schedule
 from foon2asp.schedule import solve as solve_mod
 from foon2asp.schedule.baseline import earliest_finish, known_schedule, list_schedule

@@ -1,17 +1,15 @@
 """The ``foon2asp`` command group: one-line errors, documented exit statuses, signals.
 
-Each command is a module of :mod:`foon2asp.cli` registered on :data:`main`; the options they
-share are declared once in :mod:`foon2asp.cli.options`.
+The commands are declared in :mod:`foon2asp.cli.goals` and :mod:`foon2asp.cli.files`, their
+options once in :mod:`foon2asp.cli.options`.
 """
 
 from __future__ import annotations
 
-import functools
 import signal
 import sys
 import traceback
-from collections.abc import Callable
-from typing import Any
+from typing import Any, NoReturn
 
 import click
 
@@ -22,26 +20,18 @@ from foon2asp.errors import InputError, Terminated, escape
 EXIT_INPUT, EXIT_INTERNAL, EXIT_SIGINT, EXIT_SIGTERM = 2, 3, 130, 143
 
 #: the library's error hints (:attr:`foon2asp.errors.InputError.hint`, ``KEY`` or ``KEY=VALUE``)
-#: worded with this command line's flags
-FLAG_WORDING: dict[str, Callable[[str], str]] = {
-    "no-goal": lambda _: "no goal given: use --goal TEXT or --goals FILE|all|all-objects",
-    "goals-all": lambda _: "--goals all needs a goals file (goal_nodes.json in --data DIR, or --goals FILE)",
-    "no-goals-file": lambda _: (
-        "no goal given and no goals file: use --goal TEXT, --goals FILE or --goals all-objects"
-        " (goal_nodes.json beside the FOON is read when present)"
-    ),
-    "kitchen": lambda looked_for: (
-        f"no kitchen.json beside the FOON file (looked for {looked_for});"
-        " give --kitchen FILE, --kitchen leaves (every object no unit makes, e.g. for merged generated trees)"
-        " or --data DIR (--data demo for the demo data)"
-    ),
-    "motion-cost": lambda _: (
-        "--objective cost needs --motion-cost FILE (a JSON object motion -> cost, or motion<TAB>cost lines)"
-    ),
-    "human-steps": lambda objective: (
-        "human steps only change the tree when 'success' is an objective (a person's step succeeds"
-        f" for sure); use --objective success or {objective}"
-    ),
+#: worded with this command line's flags ({}: the hint's VALUE)
+FLAG_WORDING = {
+    "no-goal": "no goal given: use --goal TEXT or --goals FILE|all|all-objects",
+    "goals-all": "--goals all needs a goals file (goal_nodes.json in --data DIR, or --goals FILE)",
+    "no-goals-file": "no goal given and no goals file: use --goal TEXT, --goals FILE or --goals all-objects"
+    " (goal_nodes.json beside the FOON is read when present)",
+    "kitchen": "no kitchen.json beside the FOON file (looked for {});"
+    " give --kitchen FILE, --kitchen leaves (every object no unit makes, e.g. for merged generated trees)"
+    " or --data DIR (--data demo for the demo data)",
+    "motion-cost": "--objective cost needs --motion-cost FILE (a JSON object motion -> cost, or motion<TAB>cost lines)",
+    "human-steps": "human steps only change the tree when 'success' is an objective (a person's step succeeds"
+    " for sure); use --objective success or {}",
 }
 
 
@@ -49,26 +39,22 @@ def flag_wording(exc: InputError) -> str:
     """The one-line message of ``exc`` as this command line words it."""
     key, _, value = (exc.hint or "").partition("=")
     if key in FLAG_WORDING:
-        return str(InputError(FLAG_WORDING[key](value), exc.path, exc.line, exc.column))
+        return str(InputError(FLAG_WORDING[key].format(value), exc.path, exc.line, exc.column))
     return str(exc)
 
 
-def fail(message: str, code: int = EXIT_INPUT) -> None:
+def fail(message: str, code: int = EXIT_INPUT) -> NoReturn:
     click.echo(f"foon2asp: error: {escape(message)}", err=True)
     sys.exit(code)
-
-
-def _debug() -> bool:
-    ctx = click.get_current_context(silent=True)
-    return bool(ctx is not None and ctx.find_root().params.get("debug"))
 
 
 def _terminate(signum, frame) -> None:
     raise Terminated()
 
 
-def report_exception(exc: BaseException) -> None:
-    """Turn any exception of a command into one line on stderr and a documented exit status."""
+def report_exception(exc: BaseException, debug: bool = False) -> NoReturn:
+    """Turn any exception of a command into one line on stderr and a documented exit status
+    (``debug``: with the traceback of an internal error)."""
     if isinstance(exc, Terminated):
         click.echo("foon2asp: terminated", err=True)
         sys.exit(EXIT_SIGTERM)
@@ -83,33 +69,26 @@ def report_exception(exc: BaseException) -> None:
         fail(f"{exc.filename}: {exc.strerror or exc}")
     if isinstance(exc, RecursionError | MemoryError):
         fail(f"input too large or too deeply nested ({type(exc).__name__})")
-    if _debug():
+    if debug:
         traceback.print_exception(exc)
     fail(
         f"internal error: {type(exc).__name__}: {exc} -- please report it with the command line"
-        f"{'' if _debug() else ' (--debug shows the traceback)'}",
+        f"{'' if debug else ' (--debug shows the traceback)'}",
         EXIT_INTERNAL,
     )
 
 
-def guarded(func):
-    """Run a command: bad input is one line on stderr and exit status 2, an internal error one line
-    and 3 (the traceback with --debug), SIGINT 130, SIGTERM 143; never a traceback otherwise."""
+class Main(click.Group):
+    """The command group: every error is one line on stderr with a documented exit status
+    (2 bad input, 3 an internal error, 130 SIGINT, 143 SIGTERM), never a traceback without --debug."""
 
-    @functools.wraps(func)
-    def wrapper(*args, **kwargs):
+    def invoke(self, ctx: click.Context) -> Any:
         try:
-            return func(*args, **kwargs)
+            return super().invoke(ctx)
         except (SystemExit, click.exceptions.Exit, click.ClickException):
             raise
         except BaseException as exc:
-            report_exception(exc)
-
-    return wrapper
-
-
-class Main(click.Group):
-    """The command group: usage errors are one line too, SIGTERM is an interrupt (exit 143)."""
+            report_exception(exc, bool(ctx.params.get("debug")))
 
     def main(self, *args: Any, standalone_mode: bool = True, **kwargs: Any) -> Any:
         run: Any = super().main
@@ -144,7 +123,9 @@ class Main(click.Group):
         sys.exit(rv if isinstance(rv, int) else 0)
 
 
-@click.group(cls=Main, context_settings={"help_option_names": ["-h", "--help"]}, epilog=EXIT_CODES)
+@click.group(
+    cls=Main, context_settings={"help_option_names": ["-h", "--help"], "show_default": True}, epilog=EXIT_CODES
+)
 @click.version_option(package_name="foon2asp")
 @click.option("--debug", is_flag=True, help="On an internal error (exit status 3), also print the traceback.")
 def main(debug):

@@ -24,7 +24,6 @@ Exit codes: 0 every goal answered as asked (a tree, or proven unreachable);
 #: or a search method's tree (judged separately by "valid")
 ANSWERED = frozenset({"optimal", "ranked", "unreachable", "infeasible", "found", "satisfiable", "unsatisfiable"})
 
-
 #: statuses that come with a tree (whose "valid" counts)
 WITH_TREE = frozenset({"optimal", "ranked", "feasible", "found"})
 
@@ -35,20 +34,14 @@ def exit_code(answers: Iterable[tuple[str, Any]]) -> int:
     return 0 if ok else 1
 
 
-def warn(message: str) -> None:
-    """One warning line on stderr."""
-    click.echo(f"foon2asp: warning: {message}", err=True)
-
-
 def warn_all(warnings: Iterable[str]) -> None:
     """Warnings about the input or the request, one line each on stderr."""
     for warning in warnings:
-        warn(escape(warning))
+        click.echo(f"foon2asp: warning: {escape(warning)}", err=True)
 
 
 def solver_of(kb: api.KnowledgeBase, options: api.Options) -> Any:
-    """The solver options of the request ``options`` (:meth:`foon2asp.api.KnowledgeBase.options_and_warnings`),
-    its warnings on stderr."""
+    """The solver options of the request ``options``, its warnings on stderr."""
     solver, warnings = kb.options_and_warnings(options)
     warn_all(warnings)
     return solver
@@ -84,7 +77,7 @@ class GoalProgress:
     """A status line on stderr while one goal is solved, ``text(info)`` at most five times a second
     (the library's ``on_progress`` callback)."""
 
-    def __init__(self, text: Callable[[dict], str] = solving_text) -> None:
+    def __init__(self, text: Callable[[dict], str]) -> None:
         self._text = text
         self._bar: Any = None
         self._last = 0.0
@@ -108,8 +101,7 @@ class GoalProgress:
 
 
 def goal_progress(enabled: bool | None, text: Callable[[dict], str] = solving_text) -> GoalProgress | None:
-    """A :class:`GoalProgress` showing ``text`` when stderr is a terminal (``enabled`` None) or as
-    ``enabled`` says."""
+    """A :class:`GoalProgress` showing ``text`` when stderr is a terminal (``enabled`` None) or as ``enabled`` says."""
     show = sys.stderr.isatty() if enabled is None else enabled
     return GoalProgress(text) if show else None
 
