@@ -204,6 +204,8 @@ class Control:
                 on_lower(lower[0])
 
         stopped = False
+        calls: dict[str, Any] = {"on_model": on_model, "on_unsat": on_unsat, "assumptions": list(assumptions)}
+        calls["on_statistics"] = self._record_stats if self.statistics else None
         with deferred_signals():
             self._last_stats: dict = {}
             if self._absorb:
@@ -212,18 +214,14 @@ class Control:
                 self.ctl.solve(assumptions=[(_ABSORB, True)])
             self._stopping = False
             if self._decision:
+                # a decision is first tried in this thread, for one slice
                 first = POLL_S if deadline is None else min(POLL_S, max(0.0, deadline - time.perf_counter()))
-                done = self._here(on_model, on_unsat, assumptions, first)
-                if done is not None:
+                with WATCHDOG.limit(self.ctl, first):
+                    done = self.ctl.solve(**calls)
+                if not done.interrupted or self._stopping:
                     self._stopped(done)
                     return self._result(done, True, False, t0, lower)
-            with self.ctl.solve(
-                on_model=on_model,
-                on_unsat=on_unsat,
-                on_statistics=self._record_stats if self.statistics else None,
-                async_=True,
-                assumptions=list(assumptions),
-            ) as handle:
+            with self.ctl.solve(**calls, async_=True) as handle:
                 finished = False
                 # wait in slices so that a deferred signal, the deadline or a stop is seen between them
                 while not signal_pending():
@@ -262,23 +260,6 @@ class Control:
         if self._stopping:
             WATCHDOG.forget(self.ctl)
             self._absorb = self._absorb or not result.interrupted
-
-    def _here(
-        self,
-        on_model: Callable[[clingo.Model], bool | None] | None,
-        on_unsat: Callable[[Sequence[int]], None],
-        assumptions: Sequence[tuple[clingo.Symbol, bool]],
-        seconds: float,
-    ) -> clingo.SolveResult | None:
-        """Solve in this thread for at most ``seconds``: the result, None when that was not enough."""
-        with WATCHDOG.limit(self.ctl, seconds):
-            result = self.ctl.solve(
-                on_model=on_model,
-                on_unsat=on_unsat,
-                on_statistics=self._record_stats if self.statistics else None,
-                assumptions=list(assumptions),
-            )
-        return None if result.interrupted and not self._stopping else result
 
     def assign(self, externals: dict[clingo.Symbol, bool]) -> None:
         """Set external atoms (a signal meanwhile waits until all are set)."""
