@@ -94,18 +94,15 @@ class AspOptions:
     heuristic: str | None = None
     #: among several optimal trees, return the lexicographically smallest (foon2asp.asp.canonical)
     canonical: bool = True
-    #: the objective "cost": motion -> integer weight, the cost in hundredths (foon2asp.foon.motioncost);
-    #: a motion not listed weighs 100 (cost 1); None: no table (the objective "cost" is refused)
+    #: the objective "cost": motion -> cost in hundredths (a motion not listed: 100); None: no table
     motion_costs: dict[str, int] | None = None
-    #: labels that may stand in for others (foon2asp.foon.substitutes): the fewest (cheapest)
-    #: substitutions rank above the objectives (foon2asp.asp.substitutes)
+    #: labels that may stand in for others; the cheapest substitutions rank above the objectives
     substitutes: tuple[Substitute, ...] = ()
     #: at most this many substitutions per tree
     max_substitutions: int | None = None
     #: stop a goal once its gap (foon2asp.tree.gap) is at most this (0.05: 5 %); None: prove
     gap: float | None = None
-    #: called while a goal is solved with ``{"cost": [...], "lower": [...], "gap": g}`` (solver
-    #: weights per level; gap None while unknown) at each model and each proven lower bound
+    #: called with ``{"cost": [...], "lower": [...], "gap": g}`` at each model and proven lower bound
     progress: Callable[[dict], None] | None = field(default=None, compare=False, repr=False)
 
     @property
@@ -116,7 +113,7 @@ class AspOptions:
 
     @property
     def driven(self) -> bool:
-        """Does solving need foon2asp.asp.multishot.driver (more than one plain optimisation)?"""
+        """Does solving need the multi-shot driver (more than one plain optimisation)?"""
         return bool(
             self.heuristic
             or self.max_depth is not None
