@@ -30,7 +30,7 @@ def _run_chunk(token: str, spec: BatchSpec, tasks: list[tuple[int, str]]) -> lis
     """On a Dask worker: the results of ``tasks`` (runners built once per thread and spec)."""
     if getattr(_LOCAL, "token", None) != token:
         _LOCAL.token, _LOCAL.worker = token, Worker(spec)
-    return _LOCAL.worker.run_many(tasks)
+    return [(goal, method, _LOCAL.worker.run(goal, method)) for goal, method in tasks]
 
 
 def executor(scheduler, chunk: int = 8) -> Callable[[BatchSpec, list[tuple[int, str]]], Iterator[tuple[int, str, str]]]:

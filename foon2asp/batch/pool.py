@@ -127,9 +127,6 @@ class Worker:
         record["requested_method"] = method
         return json.dumps(record, ensure_ascii=False) + "\n"
 
-    def run_many(self, tasks: list[tuple[int, str]]) -> list[tuple[int, str, str]]:
-        return [(goal, method, self.run(goal, method)) for goal, method in tasks]
-
 
 #: the worker of a pool process (built by the pool's initializer)
 _WORKER: Worker | None = None
@@ -162,9 +159,9 @@ def _init_worker(spec: BatchSpec) -> None:
     _WORKER = Worker(spec)
 
 
-def _run_in_worker(tasks: list[tuple[int, str]]) -> list[tuple[int, str, str]]:
+def _run_in_worker(task: tuple[int, str]) -> tuple[int, str, str]:
     assert _WORKER is not None, "worker not initialised"
-    return _WORKER.run_many(tasks)
+    return (*task, _WORKER.run(*task))
 
 
 class Execution:
@@ -175,8 +172,8 @@ class Execution:
     When the caller stops (:meth:`close`: an interrupt, an error) the pool's workers
     are terminated at once."""
 
-    def __init__(self, spec: BatchSpec, tasks: list[tuple[int, str]], workers: int = 1, chunk: int = 1):
-        self.spec, self.tasks, self.chunk = spec, tasks, max(1, chunk)
+    def __init__(self, spec: BatchSpec, tasks: list[tuple[int, str]], workers: int = 1):
+        self.spec, self.tasks = spec, tasks
         self.requested = workers
         #: the most processes that ran tasks so far
         self.workers = 1 if workers == AUTO else workers
@@ -208,10 +205,8 @@ class Execution:
         context = multiprocessing.get_context(start_method())
         _check_start(context)
         pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec,))
-        chunks = (tasks[i : i + self.chunk] for i in range(0, len(tasks), self.chunk))
         try:
-            for results in pool.imap_unordered(_run_in_worker, chunks):
-                yield from results
+            yield from pool.imap_unordered(_run_in_worker, tasks)
             pool.close()
         finally:
             pool.terminate()

@@ -34,7 +34,6 @@ def run_batch(
     progress: bool | None = None,
     sync: bool = True,
     executor: Callable[[BatchSpec, list[tuple[int, str]]], Iterable[tuple[int, str, str]]] | None = None,
-    chunk: int = 1,
 ) -> BatchReport:
     """Solve every (goal, method) pair of ``goals`` x ``spec.methods``; append results to ``output``.
 
@@ -65,7 +64,7 @@ def run_batch(
         results: Iterable[tuple[int, str, str]] = ()
         used = 1 if workers == AUTO else workers  # the processes that ran tasks (the pool's, once it started)
         try:
-            results = executor(spec, todo) if executor is not None else Execution(spec, todo, workers, chunk)
+            results = executor(spec, todo) if executor is not None else Execution(spec, todo, workers)
             for _goal, _method, line in results:
                 if out is not None:
                     out.append(line)
