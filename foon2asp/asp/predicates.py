@@ -28,16 +28,6 @@ FACTS: frozenset[Signature] = frozenset(
 )
 
 
-@dataclass
-class Predicates:
-    """What one program defines and uses."""
-
-    #: predicates in a rule head, ``#external`` or ``#defined``
-    defined: set[Signature] = field(default_factory=set)
-    #: predicates in a body, ``#show``, ``#heuristic`` or ``#project``, with their first use (line, column)
-    used: dict[Signature, tuple[int, int]] = field(default_factory=dict)
-
-
 def _signatures(symbol: clingo.ast.AST) -> list[Signature]:
     """The predicates of an atom's symbol: ``p(X)``, ``-p(X)`` (as ``p``), ``p(1;2)``."""
     kind = symbol.ast_type
@@ -52,20 +42,24 @@ def _signatures(symbol: clingo.ast.AST) -> list[Signature]:
     return []
 
 
-class _Walk:
-    """Collects :class:`Predicates` from the statements of one program."""
+@dataclass
+class Predicates:
+    """What one program defines and uses."""
 
-    def __init__(self) -> None:
-        self.found = Predicates()
+    #: predicates in a rule head, ``#external`` or ``#defined``
+    defined: set[Signature] = field(default_factory=set)
+    #: predicates in a body, ``#show``, ``#heuristic`` or ``#project``, with their first use (line, column)
+    used: dict[Signature, tuple[int, int]] = field(default_factory=dict)
 
     def define(self, sigs: Iterable[Signature]) -> None:
-        self.found.defined.update(sigs)
+        self.defined.update(sigs)
 
     def use(self, sigs: Iterable[Signature], location: clingo.ast.Location) -> None:
         for sig in sigs:
-            self.found.used.setdefault(sig, (location.begin.line, location.begin.column))
+            self.used.setdefault(sig, (location.begin.line, location.begin.column))
 
     def statement(self, stm: clingo.ast.AST) -> None:
+        """Collect the predicates of one statement."""
         kind = stm.ast_type
         T = clingo.ast.ASTType
         if kind == T.Rule:
@@ -115,9 +109,9 @@ class _Walk:
 
 def predicates(text: str) -> Predicates:
     """The predicates program ``text`` defines and uses (clingo's parser; RuntimeError on a syntax error)."""
-    walk = _Walk()
-    clingo.ast.parse_string(text, walk.statement, logger=lambda code, msg: None)
-    return walk.found
+    found = Predicates()
+    clingo.ast.parse_string(text, found.statement, logger=lambda code, msg: None)
+    return found
 
 
 def _parsed(text: str) -> Predicates | None:
