@@ -11,7 +11,7 @@ import json
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from decimal import Decimal, InvalidOperation
+from decimal import Decimal
 from pathlib import Path
 
 from foon2asp.errors import InputError
@@ -77,10 +77,21 @@ def _line_of(text: str, *keys: str) -> int | None:
     return text.count("\n", 0, pos) + 1
 
 
-def _read(path: str | Path, what: str) -> tuple[str, object]:
-    """The text of a JSON file and its value, numbers as :class:`~decimal.Decimal` (exact)."""
+def _read(path: str | Path, what: str, shape: str) -> tuple[str, str, dict]:
+    """The path, text and JSON object of a file, numbers as :class:`~decimal.Decimal` (exact);
+    ``shape`` is the error when it is not an object."""
     text, _ = reading.load(path, what)
-    return text, json.loads(text, parse_float=Decimal, parse_int=Decimal)
+    doc = json.loads(text, parse_float=Decimal, parse_int=Decimal)
+    if not isinstance(doc, dict):
+        raise InputError(shape, str(path), 1)
+    return str(path), text, doc
+
+
+def _check_kind(kind: str, path: str, text: str) -> None:
+    if not _KIND.match(kind):
+        raise InputError(
+            f"kind {json.dumps(kind)} must be a letter, then letters, digits or _", path, _line_of(text, kind)
+        )
 
 
 def _entry(keys: tuple[str, ...]) -> str:
@@ -99,11 +110,8 @@ def seconds_to_ticks(value: object, path: str, text: str, keys: tuple[str, ...])
         raise InputError(f"duration {where} must be at least 0, not {value}", path, line)
     if value > MAX_SECONDS:
         raise InputError(f"duration {where} is {value} s, above the limit of {MAX_SECONDS} s", path, line)
-    try:
-        ticks = value / PRECISION
-        whole = ticks.to_integral_value()
-    except InvalidOperation:  # pragma: no cover - bounded above, so never too many digits
-        raise InputError(f"duration {where} is not a decimal number", path, line) from None
+    ticks = value / PRECISION
+    whole = ticks.to_integral_value()
     if ticks != whole:
         raise InputError(f"duration {where} is {value} s: finer than the precision of {PRECISION} s", path, line)
     return int(whole)
@@ -132,18 +140,14 @@ class Durations:
 
 def load_durations(path: str | Path) -> Durations:
     """Read a durations file (``{motion: seconds}`` or ``{KIND: {motion: seconds}}``)."""
-    p = str(path)
-    text, doc = _read(path, "durations")
-    if not isinstance(doc, dict):
-        raise InputError("a durations file is a JSON object {motion: seconds} or {KIND: {motion: seconds}}", p, 1)
+    shape = "a durations file is a JSON object {motion: seconds} or {KIND: {motion: seconds}}"
+    p, text, doc = _read(path, "durations", shape)
     motions: dict[str, int] = {}
     kinds: dict[str, dict[str, int]] = {}
     for key, value in doc.items():
         if isinstance(value, dict):
-            if key != "*" and not _KIND.match(key):
-                raise InputError(
-                    f"kind {json.dumps(key)} must be a letter, then letters, digits or _", p, _line_of(text, key)
-                )
+            if key != "*":
+                _check_kind(key, p, text)
             kinds[key] = {
                 norm(m) if m != "*" else "*": seconds_to_ticks(v, p, text, (key, m)) for m, v in value.items()
             }
@@ -154,27 +158,21 @@ def load_durations(path: str | Path) -> Durations:
 
 def load_capabilities(path: str | Path) -> dict[str, frozenset[str]]:
     """Read a capabilities file ``{KIND: [motion, ...]}``: kind -> the motions it can do."""
-    p = str(path)
-    text, doc = _read(path, "capabilities")
-    if not isinstance(doc, dict):
-        raise InputError("a capabilities file is a JSON object {KIND: [motion, ...]}", p, 1)
+    p, text, doc = _read(path, "capabilities", "a capabilities file is a JSON object {KIND: [motion, ...]}")
     out: dict[str, frozenset[str]] = {}
     for kind, motions in doc.items():
-        line = _line_of(text, kind)
-        if not _KIND.match(kind):
-            raise InputError(f"kind {json.dumps(kind)} must be a letter, then letters, digits or _", p, line)
+        _check_kind(kind, p, text)
         if not isinstance(motions, list) or not all(isinstance(m, str) for m in motions):
-            raise InputError(f"capabilities of {json.dumps(kind)} must be a list of motion names", p, line)
+            raise InputError(
+                f"capabilities of {json.dumps(kind)} must be a list of motion names", p, _line_of(text, kind)
+            )
         out[kind] = frozenset(norm(m) for m in motions)
     return out
 
 
 def load_resources(path: str | Path) -> dict[str, int]:
     """Read a resources file ``{label: capacity}``: label -> how many units using it may run at once."""
-    p = str(path)
-    text, doc = _read(path, "resources")
-    if not isinstance(doc, dict):
-        raise InputError("a resources file is a JSON object {label: capacity}", p, 1)
+    p, text, doc = _read(path, "resources", "a resources file is a JSON object {label: capacity}")
     out: dict[str, int] = {}
     for label, cap in doc.items():
         if isinstance(cap, bool) or not isinstance(cap, Decimal) or cap != cap.to_integral_value() or cap < 1:
