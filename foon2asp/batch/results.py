@@ -146,13 +146,12 @@ SYNC_INTERVAL_S = 0.25
 
 class ResultFile:
     """Append-only result lines, each written whole, synced to disk in groups (at most
-    ``sync_interval`` seconds apart, and on close); an exclusive lock (``flock``) while
-    open, so a second writer is refused.  ``sync_interval=0`` syncs every line."""
+    :data:`SYNC_INTERVAL_S` apart, and on close); an exclusive lock (``flock``) while open, so a
+    second writer is refused."""
 
-    def __init__(self, path: str | Path, sync: bool = True, sync_interval: float = SYNC_INTERVAL_S):
+    def __init__(self, path: str | Path, sync: bool = True):
         self.path = Path(path)
         self.sync = sync
-        self.sync_interval = sync_interval
         self._synced = time.monotonic()
         self._dirty = False
         try:
@@ -179,7 +178,7 @@ class ResultFile:
                 view = view[written:]
             if self.sync:
                 self._dirty = True
-                if time.monotonic() - self._synced >= self.sync_interval:
+                if time.monotonic() - self._synced >= SYNC_INTERVAL_S:
                     self.flush()
 
     def flush(self) -> None:

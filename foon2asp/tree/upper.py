@@ -13,25 +13,27 @@ from foon2asp.foon.derive import Implied
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.weights import UNIT_WEIGHTS, lexicographic
 
+#: the longest time spent dropping redundant units from a cheapest-set tree
+PRUNE_S = 0.5
+
 
 def cheapest_tree(
     problem: Problem,
     goals: Iterable[int],
     units: Iterable[int] | None = None,
     objective: str = "units",
-    prune_s: float = 0.5,
 ) -> list[int] | None:
     """The units of a tree that makes every goal from the kitchen, using only ``units``
     (None: all); None when some goal cannot be made.  ``objective``: a key of
-    :data:`~foon2asp.tree.weights.UNIT_WEIGHTS` (any other, e.g. depth, counts units).
-    ``prune_s`` bounds the time spent dropping redundant units."""
+    :data:`~foon2asp.tree.weights.UNIT_WEIGHTS` (any other, e.g. depth, counts units).  Dropping
+    redundant units stops after :data:`PRUNE_S` seconds."""
     wanted = set(goals)
     w = lexicographic(problem, objective if objective in UNIT_WEIGHTS else "units")
     sets = cheapest_sets(problem, w, units, wanted)
     if any(g not in sets for g in wanted):
         return None
     tree = set(frozenset().union(*(sets[g] for g in wanted)))
-    return _irredundant(problem, wanted, tree, w, time.perf_counter() + prune_s)
+    return _irredundant(problem, wanted, tree, w, time.perf_counter() + PRUNE_S)
 
 
 def cheapest_sets(
