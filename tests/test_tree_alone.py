@@ -10,8 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from foon2asp.foon.leaves import leaves, made
-from foon2asp.foon.model import Foon, FoonObject, Unit
+from foon2asp.foon.model import Foon, FoonObject, Unit, leaves, made
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.unitlist import read_unit_list_file
 from foon2asp.tree.validate import check_order, judge_alone, validate

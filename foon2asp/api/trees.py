@@ -16,9 +16,8 @@ from foon2asp.api.load import Reading, knowledge_base
 from foon2asp.api.options import Options, jobs
 from foon2asp.api.results import Answer, Raw, Tree, as_list, object_of, objects_of, tree_of, units_of
 from foon2asp.errors import InputError
-from foon2asp.foon.leaves import LEAVES, leaves
 from foon2asp.foon.loaders import Dataset, read_goals, read_kitchen, read_motion, read_utensils
-from foon2asp.foon.model import FoonObject, Unit
+from foon2asp.foon.model import LEAVES, FoonObject, Unit, leaves
 from foon2asp.foon.treefiles import TreeUnit, read_trees
 from foon2asp.report import draw
 from foon2asp.tree.results import Candidate

@@ -10,8 +10,7 @@ from pathlib import Path
 
 from foon2asp.errors import InputError
 from foon2asp.foon.foonjson import object_from_json
-from foon2asp.foon.leaves import LEAVES, leaves
-from foon2asp.foon.model import Foon, FoonObject, norm
+from foon2asp.foon.model import LEAVES, Foon, FoonObject, leaves, norm
 from foon2asp.foon.parser import read_foons
 from foon2asp.foon.reading import content_lines, lines_of, list_elements, name_and_value, read_text
 

@@ -192,3 +192,21 @@ class Foon:
     def by_label(self, label: str) -> list[FoonObject]:
         label = norm(label)
         return [o for o in self.objects if o.label == label]
+
+
+#: the kitchen named this (``--kitchen leaves``, ``load(kitchen="leaves")``) is the FOON's leaves
+LEAVES = "leaves"
+
+
+def made(units: Iterable[Unit]) -> set[FoonObject]:
+    """The objects some unit of ``units`` makes (outputs that are not bare and not its own inputs)."""
+    return {o for u in units for o in u.outputs if not o.is_bare() and o not in u.inputs}
+
+
+def leaves(foon: Foon | Iterable[Unit]) -> list[FoonObject]:
+    """The kitchen of a FOON that comes without one: every input of a unit of ``foon`` (a FOON
+    or units) that no unit makes, each once, in the order they first appear
+    (docs/proofs/preparation.md, "Leaves")."""
+    units = list(foon.units if isinstance(foon, Foon) else foon)
+    makes = made(units)
+    return list(dict.fromkeys(o for u in units for o in u.inputs if o not in makes))

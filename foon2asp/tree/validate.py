@@ -10,8 +10,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
-from foon2asp.foon.leaves import leaves
-from foon2asp.foon.model import FoonObject, Unit
+from foon2asp.foon.model import FoonObject, Unit, leaves
 from foon2asp.foon.problem import Problem, product_outputs, required_flags
 from foon2asp.foon.treefiles import TreeFile
 
