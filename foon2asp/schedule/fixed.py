@@ -97,11 +97,6 @@ def solve_encoded(
     raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(encode.ENCODINGS)})")
 
 
-def _none(problem: Problem, tree: TaskTree, spec: ScheduleSpec, status: str, reason: str | None, t0: float):
-    agents = [name for name, _ in spec.agent_list()]
-    return ScheduleResult(problem, tree, status, agents, reason=reason, time_s=time.perf_counter() - t0)
-
-
 def schedule_fixed(
     problem: Problem,
     tree: TaskTree,
@@ -114,93 +109,74 @@ def schedule_fixed(
     progress: Callable[[dict], None] | None = None,
     first: Sequence[tuple[int, int]] = (),
 ) -> ScheduleResult:
-    """The optimal schedule of ``tree``'s units.  ``within`` (ms; joint scheduling): only a
-    schedule of at most that makespan matters; when there is none the status is
-    ``unschedulable`` (reason: not within).  ``progress``: called as schedules improve
-    (:class:`foon2asp.schedule.encode.Job`).  ``first`` (joint scheduling): (object, maker)
-    pairs; a unit needing the object waits for that maker
-    (:func:`foon2asp.schedule.model.designate`)."""
+    """The optimal schedule of ``tree``'s units.
+
+    ``within`` (ms; joint scheduling): only a schedule of at most that makespan matters; when
+    there is none the status is ``unschedulable``.  ``progress``: as for
+    :class:`foon2asp.schedule.encode.Job`.  ``first`` (joint scheduling): (object, maker)
+    pairs, :func:`foon2asp.schedule.model.designate`."""
     t0 = time.perf_counter()
+
+    def none(status: str, reason: str | None) -> ScheduleResult:
+        agents = [name for name, _ in spec.agent_list()]
+        return ScheduleResult(problem, tree, status, agents, reason=reason, time_s=time.perf_counter() - t0)
+
     if not tree.has_tree:
-        status = "unreachable" if tree.status in ("unreachable", "not-found") else "unknown"
-        return _none(problem, tree, spec, status, tree.extra.get("reason"), t0)
+        return none(
+            "unreachable" if tree.status in ("unreachable", "not-found") else "unknown", tree.extra.get("reason")
+        )
     inst = designate(instance(problem, tree.units, spec), first)
     agents = [name for name, _ in inst.agents]
     bad = inst.incapable()
     if bad:
-        why = f"no agent can do unit {bad[0]} ({problem.units[bad[0]].motion})"
-        return _none(problem, tree, spec, "unschedulable", why, t0)
+        return none("unschedulable", f"no agent can do unit {bad[0]} ({problem.units[bad[0]].motion})")
     if len(earliest(inst)) < len(inst.units):
-        return _none(problem, tree, spec, "unschedulable", "some unit of the tree never has its inputs", t0)
+        return none("unschedulable", "some unit of the tree never has its inputs")
     b = bounds(inst)
     base = list_schedule(inst)
     ub = makespan(base)
-    stats: dict = {"encoding": encoding}
+    late = f"no schedule within {within} ms"
     if within is not None and b.lower > within:
-        return _within(problem, tree, spec, options, encoding, time_limit, inst, b, within, t0)
-    # the baseline, or a shorter list schedule (perturbed priorities, each unit where it ends
-    # first), or one with fewer human units; a tree of a joint search tries a few only (most
-    # of them are ruled out by ``within`` or solved below it anyway)
+        return none("unschedulable", late)
+    # the baseline, or a shorter list schedule, or one with fewer human units; a tree of a
+    # joint search tries a few only
     least = max(forced_human(inst), human_lower(inst, b.lower)) if spec.has_human() else 0
     done = ub <= b.lower and human_units(base) <= least
     tries = TRIES if within is None else JOINT_TRIES
     known, which = (base, "baseline") if done else known_schedule(inst, b.lower, tries)
-    if within is not None and makespan(known) > within:
-        return _within(problem, tree, spec, options, encoding, time_limit, inst, b, within, t0)
-    if shortcut and makespan(known) == b.lower and human_units(known) <= least:
+    over = within is not None and makespan(known) > within
+    stats: dict = {"encoding": encoding}
+    if not over and shortcut and makespan(known) == b.lower and human_units(known) <= least:
         stats["shortcut"] = f"{which} meets the lower bound"
         return ScheduleResult(
             problem, tree, "optimal", agents, known, b, ub, time_s=time.perf_counter() - t0, stats=stats
         )
+    if over:  # is there a schedule within ``within`` at all (dl asks below its horizon first)?
+        assert within is not None
+        horizon = within + divisor(inst) if encoding == "dl" else within
+    else:
+        horizon = makespan(known) if encoding == "steps" else ub
+    start = known if encoding == "steps" and not over else None
     sol = solve_encoded(
         inst,
         earliest(inst),
         tails(inst),
-        makespan(known) if encoding == "steps" else ub,
+        horizon,
         b.lower,
         options,
         encoding,
         time_limit,
         ties=spec.has_human(),
-        known=known if encoding == "steps" else None,
+        known=start,
         progress=progress,
     )
     stats.update(sol.stats)
+    if over and sol.entries is None:
+        return none("unschedulable" if sol.proven or sol.unsatisfiable else "unknown", late)
     entries = known
-    if sol.entries is not None and makespan(sol.entries) <= makespan(known):
+    if sol.entries is not None and (over or makespan(sol.entries) <= makespan(known)):
         entries = compact(inst, sol.entries)
     # without tie-breakers a schedule at the lower bound is optimal, however the search ended
-    met = makespan(entries) <= b.lower and not spec.has_human()
+    met = not over and makespan(entries) <= b.lower and not spec.has_human()
     status = "optimal" if sol.proven or met else "feasible"
-    return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
-
-
-def _within(
-    problem: Problem,
-    tree: TaskTree,
-    spec: ScheduleSpec,
-    options: AspOptions,
-    encoding: str,
-    time_limit: float | None,
-    inst: Instance,
-    b,
-    within: int,
-    t0: float,
-) -> ScheduleResult:
-    """:func:`schedule_fixed` when the baseline is longer than ``within``: is there a schedule
-    of at most ``within``, and the best one if so?"""
-    agents = [name for name, _ in inst.agents]
-    if b.lower > within:
-        return _none(problem, tree, spec, "unschedulable", f"no schedule within {within} ms", t0)
-    known = within + divisor(inst) if encoding == "dl" else within  # dl asks below its horizon first
-    sol = solve_encoded(
-        inst, earliest(inst), tails(inst), known, b.lower, options, encoding, time_limit, ties=spec.has_human()
-    )
-    stats = {"encoding": encoding, **sol.stats}
-    if sol.entries is None:
-        status = "unschedulable" if sol.proven or sol.unsatisfiable else "unknown"
-        return _none(problem, tree, spec, status, f"no schedule within {within} ms", t0)
-    entries = compact(inst, sol.entries)
-    status = "optimal" if sol.proven else "feasible"
-    ub = makespan(list_schedule(inst))
     return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
