@@ -30,7 +30,7 @@ def test_wheel_contains_encodings_and_demo(tmp_path):
 
 def test_installed_package_finds_its_resources():
     from foon2asp.asp import encodings
-    from foon2asp.foon.demo import demo_dir
+    from foon2asp.foon.loaders import demo_dir
 
     assert "tree" in encodings.names() and "units" in encodings.names()
     assert "use(U)" in encodings.encoding("tree")

@@ -15,8 +15,7 @@ from foon2asp.api.results import write_file
 from foon2asp.asp.constraints import read_file
 from foon2asp.errors import InputError
 from foon2asp.foon import foonjson, parser, unitlist
-from foon2asp.foon.demo import demo_dir
-from foon2asp.foon.loaders import FILE_NAMES, Dataset, check_foon_file
+from foon2asp.foon.loaders import FILE_NAMES, Dataset, check_foon_file, demo_dir
 from foon2asp.foon.matching import Projection, Texts, parse_synonyms, project_dataset, read_synonyms
 from foon2asp.foon.model import LEAVES, Foon
 from foon2asp.foon.problem import Problem

@@ -6,6 +6,7 @@ A data directory holds the files :data:`FILE_NAMES` names; :class:`Dataset` bund
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from importlib import resources
 from pathlib import Path
 
 from foon2asp.errors import InputError
@@ -22,8 +23,22 @@ FILE_NAMES = {
     "motion": "motion.txt",
     "utensils": "utensils.txt",
 }
+#: the demo data set in the source tree (``foon2asp.demo`` when installed)
+_DEMO_SOURCE = Path(__file__).resolve().parents[2] / "data"
 #: what a missing or empty motion file means
 DEFAULT_RATE_NOTE = "every motion gets the default success rate 0.5"
+
+
+def demo_dir() -> Path:
+    """The folder holding the demo FOON.txt, kitchen.json, goal_nodes.json, motion.txt, utensils.txt."""
+    try:
+        # an installed namespace package is a MultiplexedPath: go through one of its files
+        probe = Path(str(resources.files("foon2asp.demo").joinpath("FOON.txt")))
+        if probe.is_file():
+            return probe.parent
+    except ModuleNotFoundError:
+        pass
+    return _DEMO_SOURCE
 
 
 def check_foon_file(path: str | Path) -> None:
