@@ -20,8 +20,7 @@ from foon2asp.asp.session import Session
 from foon2asp.cli import main
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
-from foon2asp.foon.plans import action_name, looks_like_plan, parse_plan, unit_of_action
-from foon2asp.foon.treefiles import read_trees
+from foon2asp.foon.treefiles import action_name, looks_like_plan, parse_plan, read_trees, unit_of_action
 from foon2asp.report import pddl
 
 

@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 
 from foon2asp.asp.constraints import ConstraintSpec, motion_name, normalise
 from foon2asp.errors import InputError
-from foon2asp.foon.plans import action_name
 from foon2asp.foon.problem import Problem, walk_back
+from foon2asp.foon.treefiles import action_name
 from foon2asp.tree.weights import unit_weight
 
 #: objectives that PDDL can state (action costs per unit; "units" is plan length)
