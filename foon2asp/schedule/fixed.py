@@ -2,16 +2,10 @@
 ``human`` agent (:func:`schedule_fixed`).
 
 Statuses: ``optimal`` (makespan proven minimal), ``feasible`` (the time limit ended the
-search: the best schedule found, at worst the baseline's), ``unschedulable`` (a unit of the
-tree no agent can do), ``unreachable`` (no tree makes the goal), ``unknown`` (no tree was
-found in time).  Every answer carries the list-scheduling baseline and the lower bounds
-(:mod:`foon2asp.schedule.bounds`).
-
-A shortcut: when a list schedule (:func:`foon2asp.schedule.baseline.known_schedule`) meets
-the lower bound and uses no more human units than a person must do at that makespan
-(:func:`foon2asp.schedule.bounds.human_lower`), it is optimal and no solver runs.  Otherwise
-the solver starts from that schedule: the time-step encoding within its makespan,
-clingo-dl below the baseline's.
+search), ``unschedulable`` (a unit of the tree no agent can do), ``unreachable`` (no tree
+makes the goal), ``unknown`` (no tree was found in time).  A list schedule that meets the
+lower bound (and the fewest human units) is optimal without a solver; otherwise the solver
+starts from the best list schedule.
 """
 
 from __future__ import annotations

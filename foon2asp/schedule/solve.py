@@ -1,26 +1,15 @@
 """The library entry point: :func:`schedule` a goal's task tree, or choose tree and schedule together.
 
-Objective (lexicographic): the shortest makespan, proven; then the fewest
-units done by a ``human`` agent; then (``joint``) the tree objective of the
-options (``units`` by default).  For a fixed tree the schedule is optimal for
-that tree; ``joint=True`` proves the makespan minimal over every valid tree
-of the goal (never longer than the given tree's, which is reported beside it).
-
-The fixed tree is scheduled by :mod:`foon2asp.schedule.fixed` (its statuses; joint:
-``unschedulable`` when no valid tree can be scheduled).  Joint scheduling first schedules
-the given tree, then searches the trees that could be shorter, every search clingo's: tree
-by tree (:mod:`foon2asp.schedule.joint`: clingo lists the designated trees whose work fits
-within the given tree's makespan, each is scheduled by clingo, lowest lower bound first,
-until the next bound reaches the best), and when they are too many to list, tree and
-schedule in one encoding (tree.lp beside the schedule encoding, the given tree's makespan
-its horizon).  An answer not proven carries a lower bound over every tree.
+Objective (lexicographic): the shortest makespan, proven; then the fewest units done by a
+``human`` agent; then (``joint``) the tree objective of the options.  How joint scheduling
+searches the trees: docs/schedules.md, "How it is solved".
 """
 
 from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 from foon2asp.asp import dominance, encodings, objectives
@@ -62,29 +51,19 @@ def _check_joint(options: AspOptions) -> tuple[str, ...]:
 def _dominance(problem: Problem, inst: Instance, ranked: tuple[str, ...]) -> str:
     """``dom(V,U)`` facts (encodings/dominance.lp): the tree dominance of
     :mod:`foon2asp.asp.dominance` where V also takes no longer than U on every kind that can
-    do U and uses no resource U does not (docs/proofs/schedules.md)."""
-    out = []
-    for v, u, extra in _replaceable(problem, inst, ranked):
-        out.append(f"dom({v},{u}).\n")
-        out += [f"dom_extra({v},{u},{o}).\n" for o in extra]
-    return "".join(out)
-
-
-def _replaceable(problem: Problem, inst: Instance, ranked: tuple[str, ...]) -> list[tuple[int, int, tuple]]:
-    """The dominance pairs (V, U, extra) of :func:`_dominance`."""
+    do U and uses no resource U does not."""
     out = []
     for v, u, extra in dominance.dominance_pairs(problem, inst.units, ranked):
         dv, du = inst.durations[v], inst.durations[u]
         if all(k in dv and dv[k] <= d for k, d in du.items()) and set(inst.uses[v]) <= set(inst.uses[u]):
-            out.append((v, u, extra))
-    return out
+            out.append(f"dom({v},{u}).\n")
+            out += [f"dom_extra({v},{u},{o}).\n" for o in extra]
+    return "".join(out)
 
 
 def tree_parts(problem: Problem, meal: tuple[int, ...], inst: Instance, options: AspOptions) -> list:
-    """The tree encoding, its objectives and facts for the goals ``meal`` over the candidate
-    units of ``inst``, as programs for joint scheduling; the tree objective takes priorities
-    1..n; units a no worse unit can replace are left out (:func:`_dominance`) when no user
-    program asks for more."""
+    """The tree encoding, its objectives (priorities 1..n) and facts for the goals ``meal`` over
+    the units of ``inst``, as programs for joint scheduling."""
     ranked = _check_joint(options)
     units = list(inst.units)
     names = ["tree", *(OBJECTIVES[o] for o in ranked)]
@@ -117,56 +96,54 @@ class JointRequest:
     shortcut: bool
 
     def solve(self, cand: joint.Candidate, limit: float | None, within: int | None) -> ScheduleResult:
-        """The schedule of a designated tree chosen among the candidates (time left ``limit``;
-        only one of at most ``within`` matters); the given tree's own when it is that tree and
-        proven (as short as any designation of it)."""
+        """The schedule of a designated tree (time left ``limit``; only one of at most ``within``
+        matters); the given tree's own when it is that tree and proven."""
         units, first = cand
         if units == tuple(sorted(self.tree.units)) and self.fixed.status == "optimal":
             return self.fixed
+        tree = self.tree_of(units, "optimal")
+        return schedule_fixed(
+            self.problem, tree, self.spec, self.options, self.encoding, limit, self.shortcut, within, first=first
+        )
+
+    def tree_of(self, units: Sequence[int], status: str) -> TaskTree:
+        """The task tree of ``units`` for the goals of the given tree."""
         meal = self.tree.meal
-        given = TaskTree(
+        return TaskTree(
             method=f"{self.tree.method}+schedule",
-            status="optimal",
+            status=status,
             units=executable_order(self.problem, list(units)),
             cost=measures(self.problem, meal, list(units)),
             **goal_fields(meal),
         )
-        return schedule_fixed(
-            self.problem, given, self.spec, self.options, self.encoding, limit, self.shortcut, within, first=first
+
+    def none(self, **more) -> ScheduleResult:
+        """The joint answer when no valid tree of the goal can be scheduled."""
+        why = "no valid tree of the goal can be scheduled"
+        agents = self.fixed.agents
+        return ScheduleResult(
+            self.problem, self.tree, "unschedulable", agents, joint=True, fixed=self.fixed, reason=why, **more
         )
 
+    def rank(self, r: ScheduleResult) -> tuple:
+        """A joint answer's rank: makespan, human units, the tree objective."""
+        ranked = objectives.ranked(self.options)
+        return (r.makespan, len(r.human), joint.tree_cost(self.problem, r.tree.units, r.human, ranked))
+
     def finish(
-        self, found: tuple[ScheduleResult | None, bool], key: Callable[[ScheduleResult], tuple], ties: bool, stats: dict
+        self, best: ScheduleResult | None, proven: bool, ties: bool, stats: dict
     ) -> tuple[ScheduleResult | None, bool]:
-        """The joint answer from the best tree ``found`` (result, proven) and the given tree's
-        schedule, which wins a tie; (None, proven) when ``ties`` leaves the tie-breakers over
-        the trees of the given one's makespan to the one encoding."""
-        best, proven = found
+        """The joint answer from the best tree found and the given tree's schedule, which wins a
+        tie; (None, proven) when ``ties`` leaves the tie-breakers to the one encoding."""
         fixed = self.fixed
-        if fixed.has_schedule and (best is None or key(fixed) <= key(best)):
+        if fixed.has_schedule and (best is None or self.rank(fixed) <= self.rank(best)):
             if ties:
                 return None, proven and fixed.status == "optimal"
             best = fixed
         if best is None:
-            if not proven:
-                return None, False
-            why = "no valid tree of the goal can be scheduled"
-            none = ScheduleResult(
-                self.problem, self.tree, "unschedulable", fixed.agents, joint=True, fixed=fixed, reason=why
-            )
-            return none, True
+            return (self.none(), True) if proven else (None, False)
         status = "optimal" if proven and best.status == "optimal" else "feasible"
         return replace(best, status=status, joint=True, fixed=fixed, stats={**best.stats, **stats}), proven
-
-
-def _rank(problem: Problem, ranked: tuple[str, ...]) -> Callable[[ScheduleResult], tuple]:
-    """A joint answer's rank: makespan, human units, the tree objective (equal ranks keep the
-    answer found first, the given tree before all)."""
-
-    def rank(r: ScheduleResult) -> tuple:
-        return (r.makespan, len(r.human), joint.tree_cost(problem, r.tree.units, r.human, ranked))
-
-    return rank
 
 
 def _by_trees(
@@ -179,13 +156,11 @@ def _by_trees(
     ties: bool,
     deadline: float | None,
 ) -> tuple[ScheduleResult | None, bool, ScheduleResult | None]:
-    """Joint scheduling tree by tree (:mod:`foon2asp.schedule.joint`): (result, proven, partial),
-    the result None when there are too many trees to look at (or no time to list them), or when
-    no tree beats the given one and ``ties`` asks for the tie-breakers over every tree of its
-    makespan (then ``proven`` says its makespan is the optimum).  On several agents the listing
-    has a third of the time left; when the designated trees are too many to list in it, the
-    trees are asked for least work first for a quarter of the time left; unproven, that answer
-    is ``partial`` and the result None (the one encoding goes on)."""
+    """Joint scheduling tree by tree (:mod:`foon2asp.schedule.joint`): (result, proven, partial).
+
+    The result is None when the trees are too many to look at in time, or when ``ties`` leaves
+    the tie-breakers to the one encoding (``proven``: the given makespan is the optimum); an
+    unproven answer from the trees asked for least work first is ``partial``."""
     problem, spec, options = job.problem, job.spec, job.options
     single = len(inst.agents) == 1
     within = horizon if single or not job.fixed.has_schedule else horizon - model.divisor(inst)
@@ -200,9 +175,7 @@ def _by_trees(
     ranked = objectives.ranked(options)
 
     def bound(cand: joint.Candidate) -> tuple:
-        """A lower bound on the key of the designated tree's schedule: its makespan bounds
-        (:func:`foon2asp.schedule.bounds.bounds`), the units only a person can do, and (no
-        person among the agents) the tree objective."""
+        """A lower bound on the rank of the designated tree's schedule."""
         units, first = cand
         sub = model.designate(inst.restrict(units), first)
         if len(earliest(sub)) < len(units):  # the designated makers wait for one another
@@ -212,18 +185,16 @@ def _by_trees(
             return (low, forced_human(sub), ())
         return (low, 0, joint.tree_cost(problem, units, (), ranked))
 
-    key = _rank(problem, ranked)
-
     left = None if deadline is None else max(0.0, deadline - time.perf_counter())
     if found.complete:
-        best, proven = joint.best_tree(found.trees, bound, job.solve, key, left)
+        best, proven = joint.best_tree(found.trees, bound, job.solve, job.rank, left)
     else:  # too many to list: one at a time, least work first
         levels = len(ranked)
         first = single and not spec.has_human()  # a person alone: fewest units among equal work
         share = left if single or left is None else left / 4
-        best, proven = joint.best_by_work(listing, levels, bound, job.solve, key, share, first)
+        best, proven = joint.best_by_work(listing, levels, bound, job.solve, job.rank, share, first)
     stats = {"joint": "tree by tree" if found.complete else "tree by tree, least work first"}
-    result, proven = job.finish((best, proven), key, ties, stats)
+    result, proven = job.finish(best, proven, ties, stats)
     if not single and not found.complete and not proven:
         return None, False, result
     return result, proven, None
@@ -233,45 +204,39 @@ def schedule_joint(job: JointRequest, time_limit: float | None = None) -> Schedu
     """The tree and schedule chosen together; ``job.fixed`` is ``job.tree``'s own schedule.  An
     answer not proven optimal carries ``joint_bound``: no tree is shorter
     (:func:`foon2asp.schedule.joint.every_tree_bound`, at most the answer's makespan)."""
-    problem, tree, spec = job.problem, job.tree, job.spec
-    result = _schedule_joint(job, time_limit)
-    if result.status == "feasible" and result.makespan is not None:
-        inst = instance(problem, problem.units_for(tree.meal), spec)
-        start = earliest(inst)
-        floor = _floor(problem, inst, tree.meal, start)
-        products = {u: problem.products[u] for u in inst.units}
-        result.joint_bound = min(joint.every_tree_bound(inst, tree.meal, products, start, floor), result.makespan)
-    return result
-
-
-def _floor(problem: Problem, inst: Instance, meal: tuple[int, ...], start: dict[int, int]) -> int:
-    """The earliest every goal can be made by the candidate units of ``inst`` (``start``: their
-    earliest starts): a lower bound on the makespan of every tree."""
+    t0 = time.perf_counter()
+    problem, meal = job.problem, job.tree.meal
+    inst = instance(problem, problem.units_for(meal), job.spec)
+    start = earliest(inst)
+    # the earliest every goal can be made: a lower bound on the makespan of every tree
     made = [
         min((start[u] + inst.min_duration(u) for u in start if g in problem.products[u]), default=None)
         for g in meal
         if g not in problem.kitchen
     ]
-    return max((t for t in made if t is not None), default=0)
+    made_by = max((t for t in made if t is not None), default=0)
+    products = {u: problem.products[u] for u in inst.units}
+    floor = joint.every_tree_bound(inst, meal, products, start, made_by)
+    result = _schedule_joint(job, time_limit, t0, inst, start, floor)
+    if result.status == "feasible" and result.makespan is not None:
+        result.joint_bound = min(floor, result.makespan)
+    return result
 
 
-def _schedule_joint(job: JointRequest, time_limit: float | None) -> ScheduleResult:
-    """:func:`schedule_joint` but the bound over every tree."""
+def _schedule_joint(
+    job: JointRequest, time_limit: float | None, t0: float, inst: Instance, start: dict[int, int], floor: int
+) -> ScheduleResult:
+    """:func:`schedule_joint` but the bound over every tree (``floor``)."""
     problem, tree, spec, options, fixed = job.problem, job.tree, job.spec, job.options, job.fixed
     encoding, shortcut = job.encoding, job.shortcut
-    t0 = time.perf_counter()
     meal = tree.meal
-    cands = list(problem.units_for(meal))
-    inst = instance(problem, cands, spec)
-    start = earliest(inst)
     products = {u: problem.products[u] for u in inst.units}
-    floor = joint.every_tree_bound(inst, meal, products, start, _floor(problem, inst, meal, start))
     if fixed.has_schedule:
         horizon = fixed.makespan
         assert horizon is not None
     else:
         horizon = sum(max(inst.durations[u].values()) for u in start)
-    stats: dict = {"encoding": encoding, "candidates": len(cands)}
+    stats: dict = {"encoding": encoding, "candidates": len(inst.units)}
     if (
         shortcut
         and fixed.status == "optimal"
@@ -303,21 +268,9 @@ def _schedule_joint(job: JointRequest, time_limit: float | None) -> ScheduleResu
     stats.update(sol.stats, joint="tie-breakers in one encoding" if proven else "one encoding")
     elapsed = time.perf_counter() - t0
     if sol.unsatisfiable:
-        why = "no valid tree of the goal can be scheduled"
-        return ScheduleResult(
-            problem,
-            tree,
-            "unschedulable",
-            fixed.agents,
-            joint=True,
-            fixed=fixed,
-            reason=why,
-            time_s=elapsed,
-            stats=stats,
-        )
+        return job.none(time_s=elapsed, stats=stats)
     if not sol.proven and partial is not None:
-        key = _rank(problem, objectives.ranked(options))
-        if sol.entries is None or key(partial) <= (makespan(sol.entries), 0, ()):
+        if sol.entries is None or job.rank(partial) <= (makespan(sol.entries), 0, ()):
             return replace(partial, stats={**stats, **partial.stats}, time_s=elapsed)
     if sol.entries is None:  # the given tree's schedule is the best found (proven: optimal)
         status = "optimal" if sol.proven and fixed.status == "optimal" else "feasible"
@@ -325,17 +278,10 @@ def _schedule_joint(job: JointRequest, time_limit: float | None) -> ScheduleResu
     units = list(sol.units)
     sub = inst.restrict(units)
     entries = model.compact(sub, sol.entries)
-    chosen = TaskTree(
-        method=f"{tree.method}+schedule",
-        status="optimal" if sol.proven else "feasible",
-        units=executable_order(problem, units),
-        cost=measures(problem, meal, units),
-        **goal_fields(meal),
-    )
     status = "optimal" if sol.proven else "feasible"
     return ScheduleResult(
         problem,
-        chosen,
+        job.tree_of(units, status),
         status,
         fixed.agents,
         entries,
