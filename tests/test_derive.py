@@ -1,4 +1,4 @@
-"""The least fixpoint (foon/derive.py), Problem.with_kitchen and the unit weights (tree/weights.py),
+"""The least fixpoint (foon/problem.py), Problem.with_kitchen and the unit weights (tree/weights.py),
 each against a naive computation."""
 
 from __future__ import annotations
@@ -9,8 +9,7 @@ import random
 import pytest
 
 from foon2asp.asp.multishot.depth import Levels
-from foon2asp.foon.derive import least_fixpoint
-from foon2asp.foon.problem import Problem
+from foon2asp.foon.problem import Problem, least_fixpoint
 from foon2asp.tree.weights import UNIT_WEIGHTS, lexicographic, neglog_weight, total
 from synth import preset
 

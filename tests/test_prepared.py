@@ -10,9 +10,8 @@ import pytest
 
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.session import Session
-from foon2asp.foon.derive import least_fixpoint
 from foon2asp.foon.loaders import Dataset
-from foon2asp.foon.problem import Problem
+from foon2asp.foon.problem import Problem, least_fixpoint
 from foon2asp.methods.runner import GoalRunner
 from foon2asp.tree.validate import validate
 from synth import preset

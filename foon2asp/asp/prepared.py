@@ -14,8 +14,7 @@ import clingo
 
 from foon2asp.asp.answers import Shot, Watch, solve_shot
 from foon2asp.asp.control import Answer, Control
-from foon2asp.foon.derive import least_fixpoint
-from foon2asp.foon.problem import Problem
+from foon2asp.foon.problem import Problem, least_fixpoint
 
 
 @dataclass(frozen=True)

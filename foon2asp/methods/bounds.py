@@ -10,8 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from foon2asp.foon.derive import least_fixpoint
-from foon2asp.foon.problem import Problem, walk_back
+from foon2asp.foon.problem import Problem, least_fixpoint, walk_back
 from foon2asp.tree.upper import cheapest_sets
 from foon2asp.tree.weights import lexicographic, total
 

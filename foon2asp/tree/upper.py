@@ -9,8 +9,7 @@ import heapq
 import time
 from collections.abc import Iterable, Sequence
 
-from foon2asp.foon.derive import Implied
-from foon2asp.foon.problem import Problem
+from foon2asp.foon.problem import Implied, Problem
 from foon2asp.tree.weights import UNIT_WEIGHTS, lexicographic
 
 #: the longest time spent dropping redundant units from a cheapest-set tree

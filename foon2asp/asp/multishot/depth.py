@@ -17,7 +17,7 @@ import clingo
 
 from foon2asp.asp.control import Control
 from foon2asp.asp.interrupts import deferred_signals
-from foon2asp.foon.derive import least_fixpoint
+from foon2asp.foon.problem import least_fixpoint
 
 
 class Levels:
