@@ -1,14 +1,10 @@
 """The two schedule encodings and their solving: time steps (plain ASP) and clingo-dl.
 
-``steps`` (``schedule_steps.lp``; for a fixed tree without durations 0 ``schedule_order.lp``,
-whose starts are chains of "starts by step T" atoms): every unit chooses a kind of agent and a
-start step (steps of the durations' greatest common divisor), at most N units of a kind with N
-agents run at a step, and clasp minimises the late steps, then the human units (and, joint,
-the tree objective).  A fixed tree with a person is solved in two phases: the makespan, then
-the human units within it (docs/proofs/schedules.md).  ``dl`` (``schedule_dl.lp``): start
-times are clingo-dl variables, units on one agent or resource lane are ordered by choices,
-and the makespan is minimised by descending bounds switched on through the part ``bound(b)``.
-Both read the facts of :func:`schedule_facts`, labels and kinds as escaped strings.
+``steps`` (``schedule_steps.lp``, or ``schedule_order.lp`` for a fixed tree without durations
+0): start steps chosen, clasp minimising the late steps, then the human units (and, joint, the
+tree objective); a fixed tree with a person in two phases, the makespan then the human units.
+``dl`` (``schedule_dl.lp``): clingo-dl start times, the makespan minimised by descending
+bounds.  Both read the facts of :func:`schedule_facts`.
 """
 
 from __future__ import annotations
@@ -153,14 +149,13 @@ def _steps_once(
     windows: dict,
     horizon: int,
     floor: int,
-    optimise: bool,
     time_limit: float | None,
     only: str | None = None,
     enough: Callable[[list[Entry]], bool] | None = None,
 ):
-    """One grounding and solve of the time-step encoding with makespan at most ``horizon``
-    (``optimise``: the lexicographic objective, else any schedule; ``only``: that objective
-    alone, :func:`_priorities`; ``enough``: stop at a schedule it accepts); (solution, finished)."""
+    """One grounding and optimisation of the time-step encoding with makespan at most
+    ``horizon`` (``only``: that objective alone; ``enough``: stop at a schedule it accepts);
+    (solution, finished)."""
     inst = job.inst
     scale = divisor(inst)
     steps = horizon // scale
@@ -171,33 +166,27 @@ def _steps_once(
         ("horizon", f"horizon({steps}).\nfloor({-(-floor // scale)}).\n" + _priorities(job.levels, only)),
         *job.tree_parts,
     ]
-    control = Control(["--opt-mode=opt" if optimise else "--opt-mode=ignore", *job.args])
+    control = Control(["--opt-mode=opt", *job.args])
     t0 = time.perf_counter()
     control.add_all(parts, user=job.user)
     control.ground()
     ground_s = time.perf_counter() - t0
     best: dict[str, Any] = {}
     # a fixed tree without tie-breakers: a schedule that compacts to the floor is optimal, so stop there
-    stop_at_floor = optimise and job.fixed and not job.breakers
+    stop_at_floor = job.fixed and not job.breakers
 
     def on_model(model: clingo.Model) -> bool:
         best["atoms"] = model.symbols(shown=True)
-        if stop_at_floor:
-            entries = _entries_of_steps(inst, best["atoms"], scale, inst.units)
-            if makespan(compact(inst, entries)) <= floor:
-                best["met"] = True
-                return False
-        if enough is not None and enough(_entries_of_steps(inst, best["atoms"], scale, inst.units)):
+        if not (stop_at_floor or enough is not None or (job.fixed and job.progress is not None)):
+            return True
+        entries = _entries_of_steps(inst, best["atoms"], scale, inst.units)
+        if (stop_at_floor and makespan(compact(inst, entries)) <= floor) or (enough is not None and enough(entries)):
             best["met"] = True
             return False
-        if enough is None and job.fixed and job.progress is not None:
-            _report(
-                job, compact(inst, _entries_of_steps(inst, best["atoms"], scale, inst.units)), floor, None, "makespan"
-            )
+        if enough is None:
+            _report(job, compact(inst, entries), floor, None, "makespan")
         return True
 
-    if not optimise:
-        control.ctl.configuration.solve.models = "1"  # type: ignore[union-attr]
     result = control.solve(on_model, time_limit)
     stats = {"step_ms": scale, "horizon_steps": steps, "ground_s": round(ground_s, 6), **control.stats()}
     if "atoms" not in best:
@@ -211,18 +200,16 @@ def _steps_once(
 
 
 def solve_steps(job: Job, time_limit: float | None = None) -> Solution:
-    """Solve with the time-step encoding: one lexicographic optimisation (makespan, then the
-    tie-breakers) within the known makespan ``job.horizon``, no makespan below ``job.floor``.
-    The makespan is proven when the search ends, or when a schedule meets the floor.  A fixed
-    tree with a person: :func:`_steps_in_phases`."""
+    """Solve with the time-step encoding within the known makespan ``job.horizon``: one
+    lexicographic optimisation, or for a fixed tree with a person :func:`_steps_in_phases`."""
     assert job.horizon is not None
-    if job.fixed and job.breakers and not job.levels:
-        return _steps_in_phases(job, time_limit)
     stats: dict[str, Any] = {"encoding": "steps"}
     windows = job.windows(job.horizon)
     if windows is None:  # a unit cannot start and still end in time: no schedule within the horizon
         return Solution(None, True, True, (), stats)
-    sol, finished = _steps_once(job, windows, job.horizon, job.floor, True, time_limit)
+    if job.fixed and job.breakers and not job.levels:
+        return _steps_in_phases(job, windows, stats, time_limit)
+    sol, finished = _steps_once(job, windows, job.horizon, job.floor, time_limit)
     stats.update(sol.stats)
     if sol.entries is None:
         return Solution(None, finished, finished and bool(sol.unsatisfiable), (), stats)
@@ -234,34 +221,36 @@ def solve_steps(job: Job, time_limit: float | None = None) -> Solution:
 
 def _report(job: Job, entries: list[Entry], lower: int, human_low: int | None, phase: str) -> None:
     if job.progress is not None:
-        job.progress(
-            {
-                "makespan": makespan(entries),
-                "lower": lower,
-                "human": human_units(entries),
-                "human_lower": human_low,
-                "phase": phase,
-            }
-        )
+        made = {"makespan": makespan(entries), "lower": lower, "human": human_units(entries)}
+        job.progress({**made, "human_lower": human_low, "phase": phase})
 
 
-def _steps_in_phases(job: Job, time_limit: float | None) -> Solution:
-    """A fixed tree with a person, in two solves: the makespan alone, from the known schedule
-    (``job.known``, of makespan ``job.horizon``) down to ``job.floor``, then, within the
-    makespan found, the human units down to :func:`foon2asp.schedule.bounds.human_lower`
-    (``stats["tie_breakers"]``: ``proven`` or ``time``).  Each solve stops at its bound; the
-    makespan is proven when the first ends or meets the floor."""
+def _human_stop(job: Job, opt: int, stats: dict) -> tuple[int, Callable[[list[Entry]], bool]]:
+    """The fewest human units at makespan ``opt`` (into ``stats``) and a stop at a schedule with no more."""
+    low = human_lower(job.inst, opt)
+    stats["human_lower"] = low
+
+    def few(entries: list[Entry]) -> bool:
+        _report(job, entries, opt, low, "human")
+        return human_units(entries) <= low
+
+    return low, few
+
+
+def _clock(time_limit: float | None) -> Callable[[], float | None]:
+    """The time left of ``time_limit`` from now (None: no limit)."""
+    deadline = None if time_limit is None else time.perf_counter() + time_limit
+    return lambda: None if deadline is None else max(0.0, deadline - time.perf_counter())
+
+
+def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit: float | None) -> Solution:
+    """A fixed tree with a person, in two solves each stopping at its bound: the makespan alone
+    from the known schedule down to ``job.floor``, then the human units within it
+    (``stats["tie_breakers"]``: ``proven`` or ``time``)."""
     assert job.horizon is not None
     inst, floor = job.inst, job.floor
-    deadline = None if time_limit is None else time.perf_counter() + time_limit
-    stats: dict[str, Any] = {"encoding": "steps", "phases": 1}
-
-    def left() -> float | None:
-        return None if deadline is None else max(0.0, deadline - time.perf_counter())
-
-    windows = job.windows(job.horizon)
-    if windows is None:  # a unit cannot start and still end in time: no schedule within the horizon
-        return Solution(None, True, True, (), stats)
+    left = _clock(time_limit)
+    stats["phases"] = 1
     best = job.known
     horizon = job.horizon if best is None else min(job.horizon, makespan(best))
     proven = horizon <= floor
@@ -274,7 +263,7 @@ def _steps_in_phases(job: Job, time_limit: float | None) -> Solution:
             _report(job, entries, floor, None, "makespan")
             return makespan(entries) <= floor
 
-        sol, finished = _steps_once(job, windows, horizon, floor, True, left(), "makespan", short)
+        sol, finished = _steps_once(job, windows, horizon, floor, left(), "makespan", short)
         stats.update(sol.stats)
         if sol.entries is not None:
             entries = compact(inst, sol.entries)
@@ -287,8 +276,7 @@ def _steps_in_phases(job: Job, time_limit: float | None) -> Solution:
         if not proven:
             stats["tie_breakers"] = "time"
             return Solution(best, False, False, inst.units, stats)
-    low = human_lower(inst, horizon)
-    stats["human_lower"] = low
+    low, few = _human_stop(job, horizon, stats)
     if best is not None and human_units(best) <= low:
         stats["tie_breakers"] = "proven"
         return Solution(best, True, False, inst.units, stats)
@@ -296,12 +284,7 @@ def _steps_in_phases(job: Job, time_limit: float | None) -> Solution:
     if within is None or left() == 0.0:
         stats["tie_breakers"] = "time"
         return Solution(best, True, False, inst.units, stats)
-
-    def few(entries: list[Entry]) -> bool:
-        _report(job, entries, horizon, low, "human")
-        return human_units(entries) <= low
-
-    sol, finished = _steps_once(job, within, horizon, horizon, True, left(), "human", few)
+    sol, finished = _steps_once(job, within, horizon, horizon, left(), "human", few)
     stats["phases"] = 2
     stats.update({f"human_{k}": v for k, v in sol.stats.items() if k in ("ground_s", "solve_s", "horizon_steps")})
     if sol.entries is not None and (best is None or human_units(sol.entries) < human_units(best)):
@@ -310,6 +293,13 @@ def _steps_in_phases(job: Job, time_limit: float | None) -> Solution:
         return Solution(None, finished, finished, (), stats)
     stats["tie_breakers"] = "proven" if finished or human_units(best) <= low else "time"
     return Solution(best, True, False, inst.units, stats)
+
+
+def solve(job: Job, encoding: str, time_limit: float | None = None) -> Solution:
+    """Solve ``job`` with ``encoding`` (``steps`` or ``dl``)."""
+    if encoding not in ENCODINGS:
+        raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(ENCODINGS)})")
+    return (solve_steps if encoding == "steps" else solve_dl)(job, time_limit)
 
 
 def _used(atoms: Sequence[clingo.Symbol]) -> tuple[int, ...]:
@@ -340,7 +330,7 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
     ]
     control = Control(["--opt-mode=ignore", *job.args], theory=theory)
     t0 = time.perf_counter()
-    deadline = None if time_limit is None else t0 + time_limit
+    left = _clock(time_limit)
     control.add_all(parts, user=job.user)
     control.ground()
     stats: dict[str, Any] = {"encoding": "dl", "ground_s": round(time.perf_counter() - t0, 6), "bounds": 0}
@@ -363,9 +353,6 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
                 entries.append(Entry(u, names[(kind, i)], s, s + inst.durations[u][kind]))
         best["entries"], best["atoms"] = entries, atoms
         return not (enough and enough[0](entries))
-
-    def left() -> float | None:
-        return None if deadline is None else max(0.0, deadline - time.perf_counter())
 
     grounded: set[int] = set()
     active: list[int] = []
@@ -403,14 +390,9 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
     if proven and opt is not None and job.breakers and (job.ties or best.get("entries") is not None):
         # the tie-breakers under the proven makespan; a fixed tree stops at the fewest human units
         # a person must do (a joint one has the tree objective after them)
-        low = human_lower(inst, opt) if job.fixed and not job.levels else None
-        if low is not None:
-            stats["human_lower"] = low
-
-            def few(entries: list[Entry]) -> bool:
-                _report(job, entries, opt, low, "human")
-                return human_units(entries) <= low
-
+        low = None
+        if job.fixed and not job.levels:
+            low, few = _human_stop(job, opt, stats)
             enough.append(few)
         met = low is not None and best.get("entries") is not None and human_units(best["entries"]) <= low
         if met:

@@ -15,7 +15,6 @@ from collections.abc import Callable, Sequence
 
 from foon2asp.asp import objectives
 from foon2asp.asp.options import AspOptions, solver_args
-from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule import encode
 from foon2asp.schedule.baseline import TRIES, known_schedule, list_schedule
@@ -84,11 +83,7 @@ def solve_encoded(
         known,
         progress,
     )
-    if encoding == "steps":
-        return encode.solve_steps(job, time_limit)
-    if encoding == "dl":
-        return encode.solve_dl(job, time_limit)
-    raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(encode.ENCODINGS)})")
+    return encode.solve(job, encoding, time_limit)
 
 
 def schedule_fixed(
