@@ -33,11 +33,6 @@ from foon2asp.schedule.spec import HUMAN, TICKS, kind_of
 from foon2asp.tree.serialize import goal_heading, tree_json
 from foon2asp.tree.tasktree import TaskTree
 
-STATUSES = ("optimal", "feasible", "unschedulable", "unreachable", "unknown")
-
-#: the baseline's name in the JSON
-BASELINE = "longest-chain-first"
-
 
 def seconds(ticks: int | None) -> float | None:
     """Milliseconds as seconds (exact: every millisecond count is a short decimal)."""
@@ -115,15 +110,10 @@ class ScheduleResult:
             **goal,
             "status": self.status,
             "makespan": seconds(self.makespan),
-            "bounds": {}
-            if b is None
-            else {
-                "chain": seconds(b.chain),
-                "work": seconds(b.work),
-                "energy": seconds(b.energy),
-                "lower": seconds(b.lower),
-            },
-            "baseline": {} if self.baseline is None else {"method": BASELINE, "makespan": seconds(self.baseline)},
+            "bounds": {} if b is None else {k: seconds(getattr(b, k)) for k in ("chain", "work", "energy", "lower")},
+            "baseline": {}
+            if self.baseline is None
+            else {"method": "longest-chain-first", "makespan": seconds(self.baseline)},
             "agents": list(self.agents),
             "schedule": [
                 {
@@ -176,13 +166,12 @@ class ScheduleResult:
     def to_text(self) -> str:
         """The goal, the headline, then one timeline per agent: ``start - end  motion -> products``."""
         lines = [goal_heading(self.problem, self.tree), self.headline()]
-        if self.has_schedule:
-            lines.append(f"Units: {len(self.entries)}  Agents: {', '.join(self.agents)}")
+        if not self.has_schedule:
+            return "\n".join(lines) + "\n"
+        lines.append(f"Units: {len(self.entries)}  Agents: {', '.join(self.agents)}")
         width = max((len(seconds_text(e.end)) for e in self.entries), default=1)
         for agent in self.agents:
             mine = [e for e in self.entries if e.agent == agent]
-            if not self.has_schedule:
-                break
             lines.append(f"  {agent}:" + ("" if mine else " (idle)"))
             for e in mine:
                 unit = self.problem.units[e.unit]
