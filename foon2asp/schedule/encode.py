@@ -191,7 +191,7 @@ def _steps_once(
     stats = {"step_ms": scale, "horizon_steps": steps, "ground_s": round(ground_s, 6), **control.stats()}
     if "atoms" not in best:
         return Solution(None, False, bool(result.unsatisfiable), (), stats), result.finished
-    units = _used(best["atoms"]) if not job.fixed else inst.units
+    units = used(best["atoms"]) if not job.fixed else inst.units
     entries = _entries_of_steps(inst, best["atoms"], scale, units)
     if best.get("met"):
         stats["floor"] = "met after compaction"
@@ -302,7 +302,8 @@ def solve(job: Job, encoding: str, time_limit: float | None = None) -> Solution:
     return (solve_steps if encoding == "steps" else solve_dl)(job, time_limit)
 
 
-def _used(atoms: Sequence[clingo.Symbol]) -> tuple[int, ...]:
+def used(atoms: Sequence[clingo.Symbol]) -> tuple[int, ...]:
+    """The units of a model's ``use/1`` atoms, sorted."""
     return tuple(sorted(s.arguments[0].number for s in atoms if s.name == "use" and len(s.arguments) == 1))
 
 
@@ -407,5 +408,5 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
     if best.get("entries") is None:
         # unsatisfiable, or the known schedule (of makespan horizon) is optimal, or no time
         return Solution(None, proven, unsat, (), stats)
-    units = _used(best["atoms"]) if not job.fixed else inst.units
+    units = used(best["atoms"]) if not job.fixed else inst.units
     return Solution(best["entries"], proven, False, units, stats)

@@ -1,14 +1,9 @@
 """Joint scheduling by trees: every tree that could beat a known makespan, each scheduled alone.
 
-clingo lists the *designated* trees (each needed object with one first maker,
-:func:`foon2asp.schedule.model.designate`; ``asp/encodings/schedule_first.lp`` over
-``schedule_trees.lp``) whose work fits the agents within the known makespan and whose
-units can each end within it.  They are scheduled one by one
-(:func:`foon2asp.schedule.solve.schedule_fixed`), lowest lower bound first, until the next
-bound reaches the best makespan found (:func:`best_tree`).  Ties go to the fewest human
-units, then the tree objective (equal trees: the given one, then the first found).  With
-more than :data:`MAX_TREES` trees, :func:`best_by_work` asks for them one at a time, least
-work first.  Why this finds the joint optimum: docs/proofs/schedules.md.
+clingo lists the *designated* trees (each needed object with one first maker) that fit within
+the known makespan (:func:`candidate_trees`); :func:`best_tree` schedules them lowest lower
+bound first, and :func:`best_by_work` asks for trees one at a time, least work first, when
+they are too many.  Why this finds the joint optimum: docs/proofs/schedules.md.
 """
 
 from __future__ import annotations
@@ -16,7 +11,6 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from functools import partial
 from typing import Any
 
 import clingo
@@ -26,6 +20,7 @@ from foon2asp.asp.control import Control
 from foon2asp.asp.objectives import neglog_sum
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule.bounds import energy_over
+from foon2asp.schedule.encode import used
 from foon2asp.schedule.model import Instance, divisor, joint_tails
 
 #: the most designated trees listed at once
@@ -40,9 +35,9 @@ Candidate = tuple[tuple[int, ...], tuple[tuple[int, int], ...]]
 
 @dataclass(frozen=True)
 class Listing:
-    """What the trees are listed from: the candidate units (``inst``), their earliest starts
-    (``head``) and least times to the end (``tail``), the makespan a tree must fit
-    (``horizon``), tree.lp with its facts (``tree_parts``) and clingo's arguments."""
+    """What the trees are listed from: the candidate units, their earliest starts (``head``) and
+    least times to the end (``tail``), the makespan a tree must fit, tree.lp with its facts and
+    clingo's arguments."""
 
     inst: Instance
     head: dict[int, int]
@@ -89,7 +84,7 @@ def candidate_trees(listing: Listing, time_limit: float | None, cap: int | None 
 
     def on_model(model: clingo.Model) -> bool:
         atoms = model.symbols(atoms=True)
-        units = tuple(sorted(s.arguments[0].number for s in atoms if s.name == "use" and len(s.arguments) == 1))
+        units = used(atoms)
         first = sorted(
             (s.arguments[0].number, s.arguments[1].number) for s in atoms if s.name == "first" and len(s.arguments) == 2
         )
@@ -121,9 +116,8 @@ def best_tree(
     time_limit: float | None,
 ) -> tuple[Any, bool]:
     """The best result of ``solve`` (a designated tree, the time left, the best makespan so
-    far) over ``trees`` by ``key`` (equal keys keep the one found first), lowest ``bound``
-    first (a lower bound on a tree's key), stopping when the next bound is no better than the
-    best key.  (best, proven): proven when every tree solved was solved to its optimum."""
+    far) over ``trees`` by ``key`` (ties: the first found), lowest ``bound`` first, stopping
+    when the next bound is no better than the best; (best, proven)."""
     t0 = time.perf_counter()
     best, proven = None, True
     for t in sorted(trees, key=bound):
@@ -140,10 +134,6 @@ def best_tree(
     return best, proven
 
 
-def _record_tree(model: clingo.Model, into: dict) -> None:
-    into["units"] = tuple(sorted(s.arguments[0].number for s in model.symbols(shown=True) if s.name == "use"))
-
-
 def best_by_work(
     listing: Listing,
     levels: int,
@@ -153,10 +143,9 @@ def best_by_work(
     time_limit: float | None,
     first: bool = False,
 ) -> tuple[Any, bool]:
-    """Like :func:`best_tree` over the trees of ``schedule_trees.lp`` (undesignated), asked
-    for one at a time, least work first (the trees seen excluded), stopping when a tree's
-    work over the agents exceeds the best makespan.  ``first``: the first tree is the best
-    (one agent).  (best, proven)."""
+    """Like :func:`best_tree` over the undesignated trees, asked for one at a time, least work
+    first, stopping when a tree's work over the agents exceeds the best makespan.  ``first``:
+    the first tree is the best (one agent)."""
     t0 = time.perf_counter()
     inst = listing.inst
     m = len(inst.agents)
@@ -164,6 +153,7 @@ def best_by_work(
     order = f"#minimize {{ D@{levels + 1},U : use(U), work(U,D) }}.\n"
     seen: list[tuple[int, ...]] = []
     best, proven = None, True
+    last: list[tuple[int, ...]] = []  # the trees of one solve
     while True:
         left = None if time_limit is None else time_limit - (time.perf_counter() - t0)
         if left is not None and left <= 0:
@@ -174,13 +164,13 @@ def best_by_work(
         control = Control(["--opt-mode=opt", *listing.args])
         control.add_all([*listing.tree_parts, _TREES, ("bounds", facts), ("least work first", order + cuts)])
         control.ground()
-        last: dict[str, Any] = {}
-        result = control.solve(partial(_record_tree, into=last), left)
+        last.clear()
+        result = control.solve(lambda m: last.append(used(m.symbols(shown=True))), left)
         if not result.finished:
             return best, False
-        if "units" not in last:
+        if not last:
             return best, proven  # no tree left
-        t = last["units"]
+        t = last[-1]
         seen.append(t)
         work = sum(inst.min_duration(u) for u in t)
         if best is not None and -(-work // m) > best.makespan:
