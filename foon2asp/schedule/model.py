@@ -32,7 +32,6 @@ class Instance:
     """Durations, needs and resources of a set of units, with the agents."""
 
     units: tuple[int, ...]
-    motion: dict[int, str]
     #: unit -> kind -> milliseconds, for the kinds that can do it (none: nobody can)
     durations: dict[int, dict[str, int]]
     #: unit -> (object, its makers in the set) for each required input that is not a kitchen item
@@ -77,15 +76,9 @@ class Instance:
         needs = {u: tuple((o, tuple(m for m in ms if m in mine)) for o, ms in self.needs[u]) for u in keep}
         uses = {u: self.uses[u] for u in keep}
         used = {r for rs in uses.values() for r in rs}
-        return Instance(
-            keep,
-            {u: self.motion[u] for u in keep},
-            {u: self.durations[u] for u in keep},
-            needs,
-            uses,
-            self.agents,
-            self.kinds,
-            {r: c for r, c in self.capacity.items() if r in used},
+        capacity = {r: c for r, c in self.capacity.items() if r in used}
+        return replace(
+            self, units=keep, durations={u: self.durations[u] for u in keep}, needs=needs, uses=uses, capacity=capacity
         )
 
     def incapable(self) -> list[int]:
@@ -134,8 +127,7 @@ def instance(problem: Problem, units: Iterable[int], spec: ScheduleSpec) -> Inst
         uses[u] = tuple(sorted({o.label for o in unit.inputs if o.label in limited}))
     used = {r for rs in uses.values() for r in rs}
     capacity = {r: c for r, c in limited.items() if r in used}
-    motion = {u: problem.units[u].motion for u in ids}
-    return Instance(ids, motion, durations, needs, uses, spec.agent_list(), kinds, capacity)
+    return Instance(ids, durations, needs, uses, spec.agent_list(), kinds, capacity)
 
 
 def earliest(inst: Instance) -> dict[int, int]:
@@ -182,24 +174,15 @@ def joint_tails(inst: Instance, goals: Iterable[int], products: dict[int, tuple[
     need what it makes.  ``products``: unit -> the objects it makes; units that lead to no
     goal are left out."""
     wanted = set(goals)
-    users: dict[int, list[int]] = {}
-    for v in inst.units:
-        for _, ms in inst.needs[v]:
-            for m in ms:
-                users.setdefault(m, []).append(v)
     queue = [(inst.min_duration(u), u) for u in inst.units if inst.durations[u] and wanted & set(products[u])]
     heapq.heapify(queue)
     out: dict[int, int] = {}
-    consumers: dict[int, list[int]] = {}
-    for m, vs in users.items():
-        for v in vs:
-            consumers.setdefault(v, []).append(m)
     while queue:
         q, v = heapq.heappop(queue)
         if v in out:
             continue
         out[v] = q
-        for m in consumers.get(v, ()):
+        for m in {m for _, ms in inst.needs[v] for m in ms}:
             if m not in out and inst.durations[m]:
                 heapq.heappush(queue, (q + inst.min_duration(m), m))
     return out
