@@ -189,27 +189,12 @@ def _kinds_fit(inst: Instance, start: dict[int, int], tail: dict[int, int], hori
         # windows from an earliest start or a latest start to a latest end or an earliest end
         lefts = sorted({*r.values(), *(e[u] - p for u, p in px.items()), *(e[u] - p for u, p in py.items())})
         rights = sorted({*e.values(), *(r[u] + p for u, p in px.items()), *(r[u] + p for u, p in py.items())})
-        only_x = [u for u in units if u in px and u not in py]
-        only_y = [u for u in units if u in py and u not in px]
-        both = [u for u in units if u in px and u in py]
+        parts = _Parts(units, r, e, px, py)
         for a in lefts:
-            for b in rights:
-                if b <= a:
-                    continue
-                length = b - a
-                cap_x = n_x * length - sum(_mandatory(length, b, a, r[u], e[u], px[u]) for u in only_x)
-                cap_y = n_y * length - sum(_mandatory(length, b, a, r[u], e[u], py[u]) for u in only_y)
-                if cap_x < 0 or cap_y < 0:
-                    return False
-                work = [
-                    (_mandatory(length, b, a, r[u], e[u], px[u]), _mandatory(length, b, a, r[u], e[u], py[u]))
-                    for u in both
-                ]
-                if work and not _split(work, cap_x, cap_y):
-                    return False
+            if not all(parts.fit((a, b), (a, b), n_x, n_y, keep=False) for b in rights if b > a):
+                return False
         if all(px.get(u) == py.get(u) for u in units):
             continue  # alike on both classes: no windows per class (fewer windows, still a bound)
-        parts = _Parts(units, r, e, px, py)
         lo, hi = lefts[0], rights[-1]
         ends = [(lo, b) for b in sorted(set(e.values())) if b > lo]
         begins = [(a, hi) for a in sorted(set(r.values())) if a < hi]
@@ -228,21 +213,23 @@ class _Parts:
         self.both = [u for u in units if u in px and u in py]
         self.cache: dict[tuple[int, int, bool], tuple[dict[int, int], int, int]] = {}
 
-    def parts(self, window: tuple[int, int], x: bool) -> tuple[dict[int, int], int, int]:
+    def parts(self, window: tuple[int, int], x: bool, keep: bool) -> tuple[dict[int, int], int, int]:
         """Each unit's least part within ``window`` on class x (``x``) or y, if it can go there;
-        the sum over the units only that class can do, and over those both can."""
+        the sum over the units only that class can do, and over those both can (``keep``: cached)."""
         key = (*window, x)
         if key in self.cache:
             return self.cache[key]
         a, b = window
         mine, other = (self.px, self.py) if x else (self.py, self.px)
         part = {u: _mandatory(b - a, b, a, self.r[u], self.e[u], d) for u, d in mine.items()}
-        self.cache[key] = part, sum(m for u, m in part.items() if u not in other), sum(part[u] for u in self.both)
-        return self.cache[key]
+        found = part, sum(m for u, m in part.items() if u not in other), sum(part[u] for u in self.both)
+        if keep:
+            self.cache[key] = found
+        return found
 
-    def fit(self, wx: tuple[int, int], wy: tuple[int, int], n_x: int, n_y: int) -> bool:
+    def fit(self, wx: tuple[int, int], wy: tuple[int, int], n_x: int, n_y: int, keep: bool = True) -> bool:
         """Can the parts be split: class x's in ``wx`` on its ``n_x`` agents, y's in ``wy``?"""
-        (on_x, only_x, both_x), (on_y, only_y, both_y) = self.parts(wx, True), self.parts(wy, False)
+        (on_x, only_x, both_x), (on_y, only_y, both_y) = self.parts(wx, True, keep), self.parts(wy, False, keep)
         cap_x = n_x * (wx[1] - wx[0]) - only_x
         cap_y = n_y * (wy[1] - wy[0]) - only_y
         if cap_x < 0 or cap_y < 0:
