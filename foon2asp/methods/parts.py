@@ -7,7 +7,6 @@ bounds, dominators); :func:`choose_grounding` picks ``batch --grounding auto``.
 from __future__ import annotations
 
 import statistics
-from functools import cached_property
 
 from foon2asp.asp.dominance import Dominators
 from foon2asp.foon.problem import Problem, walk_back
@@ -66,10 +65,6 @@ class Parts:
                     self._weights[ranked_objectives] = lexicographic(self.problem, ranked_objectives[0])
                 return Bounds(self.problem, ranked_objectives, units, self._weights[ranked_objectives])
         return self.bounds(ranked_objectives)
-
-    @cached_property
-    def derivable(self) -> frozenset[int]:
-        return self.problem.derivable
 
     def relevant(self, goal: Goals) -> tuple[list[int], set[int], bool]:
         """``(units, objects, choice)`` of the goal's (or meal's) relevant part: the candidate units,

@@ -140,7 +140,7 @@ class GoalRunner:
         if len(meal) > 1 or not (self._preparable or self._depth_settles):
             return "clingo"
         goal = meal[0]
-        if goal not in self.parts.derivable or goal in self.problem.kitchen:
+        if goal not in self.problem.derivable or goal in self.problem.kitchen:
             return "fixpoint"
         units, _, choice = self.parts.relevant(goal)
         if self._allowed is not None and not self._allowed.issuperset(units):
@@ -180,7 +180,7 @@ class GoalRunner:
             tree = self._answer(meal[0], units, t0)
         else:
             tree = self._prepared(meal[0], t0)
-        if self._effective.programs and tree.status == "unreachable" and all(g in self.parts.derivable for g in meal):
+        if self._effective.programs and tree.status == "unreachable" and all(g in self.problem.derivable for g in meal):
             self._infeasible(tree)
         for answer in (tree, *tree.alternatives):
             if answer.status in PROVEN:

@@ -73,9 +73,7 @@ class Driver:
 
     def depth_floor(self) -> int | None:
         """With depth the first objective: a lower bound on the depth of the current goal's trees."""
-        if self.depth_mode != "first" or not self.depth.bound:
-            return None
-        return self.depth.bound
+        return self.depth.bound if self.depth_mode == "first" and self.depth.bound else None
 
     def level(self, goal: Goals, guards: dict, count: int, deadline, on_model) -> tuple[Shot, int | None]:
         """The best trees (up to ``count``, distinct) not yet excluded, with the depth bound used."""
