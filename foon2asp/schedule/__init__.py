@@ -1,14 +1,7 @@
 """Schedules: a task tree's units on robot arms and people, with a proven-minimal makespan.
 
-* :mod:`foon2asp.schedule.spec` -- agents, durations, capabilities, resources (parsing)
-* :mod:`foon2asp.schedule.model` -- the instance of a tree, agents dealt, schedules compacted
-* :mod:`foon2asp.schedule.bounds` -- lower bounds and the list-scheduling baseline
-* :mod:`foon2asp.schedule.encode` -- the time-step and clingo-dl encodings
-* :mod:`foon2asp.schedule.fixed` -- a fixed tree's optimal schedule
-* :mod:`foon2asp.schedule.solve` -- :func:`schedule`, the entry point (fixed tree or joint)
-* :mod:`foon2asp.schedule.joint` -- joint scheduling tree by tree (designated trees listed by clingo)
-* :mod:`foon2asp.schedule.result` -- :class:`ScheduleResult`: JSON shape and text timeline
-* :mod:`foon2asp.schedule.check` -- an independent checker of schedule JSON
+The modules follow the data: spec -> model -> bounds/baseline -> encode -> fixed/joint/solve -> result;
+:mod:`foon2asp.schedule.check` checks schedule JSON on its own.
 """
 
 from foon2asp.schedule.result import ScheduleResult

@@ -1,23 +1,6 @@
 """A schedule for one goal: its JSON shape (:meth:`ScheduleResult.to_dict`) and text timeline.
 
-JSON (one object per goal; times in seconds, exact to 0.001 s)::
-
-    {"goal": OBJ, "status": "optimal" | "feasible" | "unschedulable" | "unreachable",
-     "makespan": 7.5,
-     "bounds": {"chain": 6.0, "work": 5.5, "energy": 6.5, "lower": 6.5},
-     "baseline": {"method": "longest-chain-first", "makespan": 8.0},
-     "agents": ["arm-1", "arm-2", "human-1"],
-     "schedule": [{"unit": {"motion", "inputs", "outputs"}, "agent": "arm-1", "start": 0.0, "end": 1.0}, ...],
-     "tree": {...},                       # foon2asp.tree.serialize.tree_json of the scheduled tree
-     "success": 0.012, "human_units": 1, "joint": false, "encoding": "steps", "time_s": 0.01,
-     "human_units_proven": true,          # with a person among the agents: the fewest at this makespan
-     "fixed_tree": {"status", "makespan", "units"},   # joint scheduling only: the given tree's
-     "joint_bound": 7.0}   # joint, when the search over trees was cut short: no tree is shorter
-
-A meal has ``"goals"`` instead of ``"goal"``, as in tree_json.  ``bounds`` and
-``baseline`` are ``{}`` and ``makespan`` null when there is no schedule;
-``reason`` says why (``unschedulable``: the unit no agent can do).
-``schedule`` is sorted by start, then agent.
+Times are kept in milliseconds and written in seconds; the fields: docs/schedules.md, "JSON".
 """
 
 from __future__ import annotations
@@ -102,7 +85,7 @@ class ScheduleResult:
         return success_product(self.problem, [e.unit for e in self.entries], self.human)
 
     def to_dict(self) -> dict:
-        """The JSON shape of the module docstring."""
+        """The JSON object of the goal's schedule (``schedule`` sorted by start, then agent)."""
         tree = tree_json(self.problem, self.tree)
         goal = {k: tree[k] for k in ("goal", "goals") if k in tree}
         b = self.bounds
