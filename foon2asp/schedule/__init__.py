@@ -1,6 +1,6 @@
 """Schedules: a task tree's units on robot arms and people, with a proven-minimal makespan.
 
-The modules follow the data: spec -> model -> bounds/baseline -> encode -> fixed/joint/solve -> result;
+The modules follow the data: spec -> model -> bounds/baseline -> encode -> joint/solve -> result;
 :mod:`foon2asp.schedule.check` checks schedule JSON on its own.
 """
 

@@ -15,13 +15,67 @@ from typing import Any
 
 import clingo
 
-from foon2asp.asp import encodings
+from foon2asp.asp import dominance, encodings, objectives
 from foon2asp.asp.control import Control
+from foon2asp.asp.facts import OPTIONAL, facts
 from foon2asp.asp.objectives import neglog_sum
+from foon2asp.asp.options import OBJECTIVES, AspOptions
+from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule.bounds import energy_over
 from foon2asp.schedule.encode import used
 from foon2asp.schedule.model import Instance, divisor, joint_tails
+
+#: tree objectives joint scheduling supports (depth needs the multi-shot driver)
+JOINT_OBJECTIVES = ("units", "success", "inputs")
+
+
+def check_options(options: AspOptions) -> tuple[str, ...]:
+    """The ranked tree objectives of ``options``; InputError when joint scheduling cannot use them."""
+    ranked = objectives.ranked(options)
+    wrong = [o for o in ranked if o not in JOINT_OBJECTIVES]
+    if wrong or options.max_depth is not None or not ranked:
+        raise InputError(
+            f"joint scheduling chooses trees by {', '.join(JOINT_OBJECTIVES)} only, not by depth or heuristics"
+        )
+    if options.human_steps is not None:
+        raise InputError("joint scheduling counts a person's units through a human agent, not human steps")
+    return ranked
+
+
+def _dominance(problem: Problem, inst: Instance, ranked: tuple[str, ...]) -> str:
+    """``dom(V,U)`` facts (encodings/dominance.lp): the tree dominance of
+    :mod:`foon2asp.asp.dominance` where V also takes no longer than U on every kind that can
+    do U and uses no resource U does not."""
+    out = []
+    for v, u, extra in dominance.dominance_pairs(problem, inst.units, ranked):
+        dv, du = inst.durations[v], inst.durations[u]
+        if all(k in dv and dv[k] <= d for k, d in du.items()) and set(inst.uses[v]) <= set(inst.uses[u]):
+            out.append(f"dom({v},{u}).\n")
+            out += [f"dom_extra({v},{u},{o}).\n" for o in extra]
+    return "".join(out)
+
+
+def tree_parts(problem: Problem, meal: tuple[int, ...], inst: Instance, options: AspOptions) -> list:
+    """The tree encoding, its objectives (priorities 1..n) and facts for the goals ``meal`` over
+    the units of ``inst``, as programs for joint scheduling."""
+    ranked = check_options(options)
+    units = list(inst.units)
+    names = ["tree", *(OBJECTIVES[o] for o in ranked)]
+    parts = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(names)]
+    n = len(ranked)
+    parts.append(("objective", "".join(f"objective({o},{n - i}).\n" for i, o in enumerate(ranked))))
+    if "inputs" in ranked:
+        parts.append(("input nodes", objectives.input_node_facts(problem, units)))
+    parts.append(("goal", "".join(f"goal({g}).\n" for g in meal)))
+    if not options.programs:
+        parts.append(("encodings/dominance.lp", encodings.encoding("dominance")))
+        parts.append(("dominated units", _dominance(problem, inst, ranked)))
+    parts += list(options.programs)
+    keep = {"neglog"} if "success" in ranked else set()
+    leave_out = [] if options.programs else [p for p in OPTIONAL if p not in keep]
+    return [("facts", facts(problem, units=units, leave_out=leave_out)), *parts]
+
 
 #: the most designated trees listed at once
 MAX_TREES = 2000

@@ -1,4 +1,4 @@
-"""The scheduling problem of a set of units, its bounds and the list-scheduling baseline.
+"""The scheduling problem of a set of units: the instance, precedence, compaction, agents dealt.
 
 An :class:`Instance` holds, for the units of a tree (or every candidate unit of a goal), each
 unit's duration on each kind of agent that can do it (milliseconds), the units that must end

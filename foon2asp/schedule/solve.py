@@ -1,8 +1,11 @@
 """The library entry point: :func:`schedule` a goal's task tree, or choose tree and schedule together.
 
 Objective (lexicographic): the shortest makespan, proven; then the fewest units done by a
-``human`` agent; then (``joint``) the tree objective of the options.  How joint scheduling
-searches the trees: docs/schedules.md, "How it is solved".
+``human`` agent; then (``joint``) the tree objective of the options.  Statuses: ``optimal``
+(makespan proven minimal), ``feasible`` (the time limit ended the search), ``unschedulable``
+(a unit of the tree no agent can do; joint: no valid tree can be scheduled), ``unreachable``
+(no tree makes the goal), ``unknown`` (no tree was found in time).  How the trees are
+searched: docs/schedules.md, "How it is solved".
 """
 
 from __future__ import annotations
@@ -12,74 +15,170 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
-from foon2asp.asp import dominance, encodings, objectives
-from foon2asp.asp.facts import OPTIONAL, facts
-from foon2asp.asp.options import OBJECTIVES, AspOptions
+from foon2asp.asp import objectives
+from foon2asp.asp.options import AspOptions, solver_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule import encode, joint, model
-from foon2asp.schedule.baseline import list_schedule
-from foon2asp.schedule.bounds import bounds
-from foon2asp.schedule.fixed import DEFAULT_ENCODING, forced_human, schedule_fixed, solve_encoded, solver_arguments
-from foon2asp.schedule.model import Instance, earliest, instance, makespan
+from foon2asp.schedule.baseline import TRIES, known_schedule, list_schedule
+from foon2asp.schedule.bounds import bounds, human_lower
+from foon2asp.schedule.joint import check_options
+from foon2asp.schedule.model import (
+    Entry,
+    Instance,
+    compact,
+    designate,
+    divisor,
+    earliest,
+    human_units,
+    instance,
+    makespan,
+    tails,
+)
 from foon2asp.schedule.result import ScheduleResult
-from foon2asp.schedule.spec import ScheduleSpec
+from foon2asp.schedule.spec import HUMAN, ScheduleSpec
 from foon2asp.tree.tasktree import TaskTree, executable_order, goal_fields, measures
 
 __all__ = ["DEFAULT_ENCODING", "DEFAULT_TIME_LIMIT", "schedule", "schedule_fixed", "schedule_joint"]
-
-#: tree objectives joint scheduling supports (depth needs the multi-shot driver)
-JOINT_OBJECTIVES = ("units", "success", "inputs")
 
 #: seconds per solve (the fixed tree's schedule, the joint search) when no time limit is given:
 #: a goal never runs unbounded, and one cut short answers with its best schedule and bound
 DEFAULT_TIME_LIMIT = 60.0
 
+#: the encoding chosen by measurement (BENCHMARKS.md, "Schedules")
+DEFAULT_ENCODING = "steps"
 
-def _check_joint(options: AspOptions) -> tuple[str, ...]:
-    ranked = objectives.ranked(options)
-    wrong = [o for o in ranked if o not in JOINT_OBJECTIVES]
-    if wrong or options.max_depth is not None or not ranked:
-        raise InputError(
-            f"joint scheduling chooses trees by {', '.join(JOINT_OBJECTIVES)} only, not by depth or heuristics"
+#: clasp's optimisation strategy for schedules when the options set none (BENCHMARKS.md)
+OPT_STRATEGY = "bb"
+
+#: perturbed list-scheduling runs for each tree a joint search schedules (a fixed tree: TRIES)
+JOINT_TRIES = 4
+
+
+def solver_arguments(options: AspOptions) -> list[str]:
+    return solver_args(options.opt_strategy or OPT_STRATEGY, options.threads, options.portfolio)
+
+
+def forced_human(inst: Instance) -> int:
+    """Units only a person can do (every schedule gives them to one)."""
+    return sum(1 for u in inst.units if inst.durations[u] and set(inst.durations[u]) == {HUMAN})
+
+
+def solve_encoded(
+    inst: Instance,
+    head: dict[int, int],
+    tail: dict[int, int],
+    horizon: int | None,
+    floor: int,
+    options: AspOptions,
+    encoding: str,
+    time_limit: float | None,
+    tree_parts: list[tuple[str, str]] | None = None,
+    ties: bool = True,
+    known: list[Entry] | None = None,
+    progress: Callable[[dict], None] | None = None,
+) -> encode.Solution:
+    """Solve with ``encoding`` (:class:`foon2asp.schedule.encode.Job` says what the values are)."""
+    job = encode.Job(
+        inst,
+        head,
+        tail,
+        horizon,
+        floor,
+        solver_arguments(options),
+        tree_parts or (),
+        len(objectives.ranked(options)) if tree_parts else 0,
+        [name for name, _ in options.programs] if tree_parts else [],
+        ties,
+        known,
+        progress,
+    )
+    return encode.solve(job, encoding, time_limit)
+
+
+def schedule_fixed(
+    problem: Problem,
+    tree: TaskTree,
+    spec: ScheduleSpec,
+    options: AspOptions,
+    encoding: str = DEFAULT_ENCODING,
+    time_limit: float | None = None,
+    shortcut: bool = True,
+    within: int | None = None,
+    progress: Callable[[dict], None] | None = None,
+    first: Sequence[tuple[int, int]] = (),
+) -> ScheduleResult:
+    """The optimal schedule of ``tree``'s units.
+
+    ``within`` (ms; joint scheduling): only a schedule of at most that makespan matters; when
+    there is none the status is ``unschedulable``.  ``progress``: as for
+    :class:`foon2asp.schedule.encode.Job`.  ``first`` (joint scheduling): (object, maker)
+    pairs, :func:`foon2asp.schedule.model.designate`."""
+    t0 = time.perf_counter()
+
+    def none(status: str, reason: str | None) -> ScheduleResult:
+        agents = [name for name, _ in spec.agent_list()]
+        return ScheduleResult(problem, tree, status, agents, reason=reason, time_s=time.perf_counter() - t0)
+
+    if not tree.has_tree:
+        return none(
+            "unreachable" if tree.status in ("unreachable", "not-found") else "unknown", tree.extra.get("reason")
         )
-    if options.human_steps is not None:
-        raise InputError("joint scheduling counts a person's units through a human agent, not human steps")
-    return ranked
-
-
-def _dominance(problem: Problem, inst: Instance, ranked: tuple[str, ...]) -> str:
-    """``dom(V,U)`` facts (encodings/dominance.lp): the tree dominance of
-    :mod:`foon2asp.asp.dominance` where V also takes no longer than U on every kind that can
-    do U and uses no resource U does not."""
-    out = []
-    for v, u, extra in dominance.dominance_pairs(problem, inst.units, ranked):
-        dv, du = inst.durations[v], inst.durations[u]
-        if all(k in dv and dv[k] <= d for k, d in du.items()) and set(inst.uses[v]) <= set(inst.uses[u]):
-            out.append(f"dom({v},{u}).\n")
-            out += [f"dom_extra({v},{u},{o}).\n" for o in extra]
-    return "".join(out)
-
-
-def tree_parts(problem: Problem, meal: tuple[int, ...], inst: Instance, options: AspOptions) -> list:
-    """The tree encoding, its objectives (priorities 1..n) and facts for the goals ``meal`` over
-    the units of ``inst``, as programs for joint scheduling."""
-    ranked = _check_joint(options)
-    units = list(inst.units)
-    names = ["tree", *(OBJECTIVES[o] for o in ranked)]
-    parts = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(names)]
-    n = len(ranked)
-    parts.append(("objective", "".join(f"objective({o},{n - i}).\n" for i, o in enumerate(ranked))))
-    if "inputs" in ranked:
-        parts.append(("input nodes", objectives.input_node_facts(problem, units)))
-    parts.append(("goal", "".join(f"goal({g}).\n" for g in meal)))
-    if not options.programs:
-        parts.append(("encodings/dominance.lp", encodings.encoding("dominance")))
-        parts.append(("dominated units", _dominance(problem, inst, ranked)))
-    parts += list(options.programs)
-    keep = {"neglog"} if "success" in ranked else set()
-    leave_out = [] if options.programs else [p for p in OPTIONAL if p not in keep]
-    return [("facts", facts(problem, units=units, leave_out=leave_out)), *parts]
+    inst = designate(instance(problem, tree.units, spec), first)
+    agents = [name for name, _ in inst.agents]
+    bad = inst.incapable()
+    if bad:
+        return none("unschedulable", f"no agent can do unit {bad[0]} ({problem.units[bad[0]].motion})")
+    if len(earliest(inst)) < len(inst.units):
+        return none("unschedulable", "some unit of the tree never has its inputs")
+    b = bounds(inst)
+    base = list_schedule(inst)
+    ub = makespan(base)
+    late = f"no schedule within {within} ms"
+    if within is not None and b.lower > within:
+        return none("unschedulable", late)
+    # the baseline, or a shorter list schedule, or one with fewer human units; a tree of a
+    # joint search tries a few only
+    least = max(forced_human(inst), human_lower(inst, b.lower)) if spec.has_human() else 0
+    done = ub <= b.lower and human_units(base) <= least
+    tries = TRIES if within is None else JOINT_TRIES
+    known, which = (base, "baseline") if done else known_schedule(inst, b.lower, tries)
+    over = within is not None and makespan(known) > within
+    stats: dict = {"encoding": encoding}
+    if not over and shortcut and makespan(known) == b.lower and human_units(known) <= least:
+        stats["shortcut"] = f"{which} meets the lower bound"
+        return ScheduleResult(
+            problem, tree, "optimal", agents, known, b, ub, time_s=time.perf_counter() - t0, stats=stats
+        )
+    if over:  # is there a schedule within ``within`` at all (dl asks below its horizon first)?
+        assert within is not None
+        horizon = within + divisor(inst) if encoding == "dl" else within
+    else:
+        horizon = makespan(known) if encoding == "steps" else ub
+    start = known if encoding == "steps" and not over else None
+    sol = solve_encoded(
+        inst,
+        earliest(inst),
+        tails(inst),
+        horizon,
+        b.lower,
+        options,
+        encoding,
+        time_limit,
+        ties=spec.has_human(),
+        known=start,
+        progress=progress,
+    )
+    stats.update(sol.stats)
+    if over and sol.entries is None:
+        return none("unschedulable" if sol.proven or sol.unsatisfiable else "unknown", late)
+    entries = known
+    if sol.entries is not None and (over or makespan(sol.entries) <= makespan(known)):
+        entries = compact(inst, sol.entries)
+    # without tie-breakers a schedule at the lower bound is optimal, however the search ended
+    met = not over and makespan(entries) <= b.lower and not spec.has_human()
+    status = "optimal" if sol.proven or met else "feasible"
+    return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
 
 
 @dataclass
@@ -249,7 +348,7 @@ def _schedule_joint(
     tail = model.joint_tails(inst, meal, products)
     deadline = None if time_limit is None else t0 + time_limit
     ties = spec.has_human() or tree.status != "optimal"
-    parts = tree_parts(problem, meal, inst, options)
+    parts = joint.tree_parts(problem, meal, inst, options)
     by_trees, proven, partial = _by_trees(job, inst, start, tail, horizon, parts, ties, deadline)
     if by_trees is not None:
         by_trees.stats = {**stats, **by_trees.stats}
@@ -322,7 +421,7 @@ def schedule(
     if encoding not in encode.ENCODINGS:
         raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(encode.ENCODINGS)})")
     if joint:
-        _check_joint(options)
+        check_options(options)
     limit = options.time_limit if time_limit is None else time_limit
     if limit is None:
         limit = DEFAULT_TIME_LIMIT
