@@ -1,26 +1,15 @@
 """An independent checker of schedules in the JSON shape of :mod:`foon2asp.schedule.result`.
 
-It uses neither clingo nor :mod:`foon2asp.schedule.model`: units are matched by
-their motion, inputs and outputs against the FOON, required inputs come from
-:func:`foon2asp.foon.problem.required_flags` and the kitchen, and the schedule
-is replayed in time.  :func:`check_schedule` returns the first violation in
-words (None for a valid schedule), in this order:
-
-1. the shape (fields, numbers, agents of ``agents``, units of the FOON, start <= end,
-   times exact to 0.001 s, each unit once); every agent of ``agents`` one of the spec's;
-2. the tree: valid for the goal by :func:`foon2asp.tree.validate.validate`;
-3. durations (end - start as the spec says for the agent's kind) and capabilities;
-4. precedence: when a unit starts, each required input that is not a kitchen item has
-   been made by a unit that ended by then (and had its own inputs when it started);
-5. one unit per agent at a time;
-6. resources: at most ``capacity`` units whose inputs include the label at a time;
-7. the makespan: the latest end.
+It uses neither clingo nor :mod:`foon2asp.schedule.model`: units are matched by their motion,
+inputs and outputs against the FOON and the schedule is replayed in time.
+:func:`check_schedule` returns the first violation in words (None for a valid schedule), in
+the order of docs/schedules.md, "Checking schedules", the shape of the JSON first.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from decimal import Decimal, InvalidOperation
+from decimal import Decimal
 
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem, required_flags
@@ -46,10 +35,7 @@ def _unit(doc: object) -> Unit:
 def _ticks(value: object) -> int:
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise ValueError(f"{value!r} is not a number of seconds")
-    try:
-        exact = Decimal(repr(value)) * TICKS
-    except InvalidOperation:
-        raise ValueError(f"{value!r} is not a number of seconds") from None
+    exact = Decimal(repr(value)) * TICKS
     if not exact.is_finite() or exact != exact.to_integral_value():
         raise ValueError(f"{value!r} is not exact to 0.001 s")
     return int(exact)
