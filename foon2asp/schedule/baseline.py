@@ -30,11 +30,9 @@ def _waiting(inst: Instance) -> tuple[dict[int, set[int]], dict[int, list[tuple[
 
 
 def list_schedule(inst: Instance, prio: dict[int, float] | None = None) -> list[Entry]:
-    """List scheduling, longest remaining chain first (:func:`tails`; or by ``prio``, highest
-    first): whenever an agent is free, the ready unit with the longest chain starts on the
-    free agent that can do it soonest (shortest duration, then not a person, then the first
-    agent), if its resources allow; nobody waits while a unit it could do is ready (a
-    non-delay schedule)."""
+    """List scheduling, longest remaining chain first (or by ``prio``, highest first): whenever
+    an agent is free, the ready unit with the longest chain starts on the free agent that can
+    do it soonest, if its resources allow (a non-delay schedule)."""
     order: dict[int, float] = dict(tails(inst)) if prio is None else prio
     waiting, users, ready = _waiting(inst)
     free = {name: True for name, _ in inst.agents}
@@ -101,11 +99,9 @@ def _slot(busy: list[tuple[int, int]], using: list[list[tuple[int, int]]], caps:
 
 
 def earliest_finish(inst: Instance, prio: dict[int, float] | None = None) -> list[Entry]:
-    """List scheduling by agent choice: the ready unit with the longest remaining chain
-    (:func:`tails`; or by ``prio``, highest first) goes where it ends first, waiting for a
-    faster agent if that is sooner, into the first gap long enough (shortest end, then not a
-    person, then the first agent), its resources allowing.  A unit is ready once a maker of
-    each object it needs is placed; it starts after the first of them ends."""
+    """List scheduling by agent choice: the ready unit with the longest remaining chain (or by
+    ``prio``) goes into the first gap where it ends first, its resources allowing; it starts
+    after the first maker of each object it needs ends."""
     order: dict[int, float] = dict(tails(inst)) if prio is None else prio
     placed: dict[int, Entry] = {}
     busy: dict[str, list[tuple[int, int]]] = {name: [] for name, _ in inst.agents}
@@ -142,11 +138,9 @@ def earliest_finish(inst: Instance, prio: dict[int, float] | None = None) -> lis
 
 
 def known_schedule(inst: Instance, target: int, tries: int = TRIES, seed: int = 0) -> tuple[list[Entry], str]:
-    """The best list schedule, by makespan, then human units, and what made it: the baseline
-    (:func:`list_schedule`) and, under ``tries`` seeded random perturbations (up to 30 %) of its
-    priorities, list schedules again and :func:`earliest_finish` ones (with several kinds of
-    agents also an unperturbed one, first).  It stops at one that reaches ``target`` (a lower bound) with no
-    more human units than :func:`human_lower` there.  The same answer every time."""
+    """The best list schedule by makespan, then human units, and what made it: the baseline and,
+    under ``tries`` seeded perturbations of its priorities, list and :func:`earliest_finish`
+    schedules; it stops at one that reaches ``target`` with the fewest human units there."""
     base = tails(inst)
     rng = random.Random(seed)
     kinds = len(inst.kinds) > 1

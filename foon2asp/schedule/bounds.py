@@ -41,13 +41,11 @@ def energy_over(
     servers: int,
     floor: int,
     step: int,
-    limit: int | None = None,
 ) -> int:
     """Energetic reasoning: the least makespan at least ``floor``, a multiple of ``step``, at
     which every window between a unit's earliest start and a tail can hold the parts of
-    ``parts`` (lists of units of which one runs, durations ``d``) on ``servers``; windows with
-    a + b at ``limit`` or later are not looked at (docs/proofs/schedules.md)."""
-    return _clear([_gaps(parts, d, start, tail, servers, limit)], floor, step)
+    ``parts`` (lists of units of which one runs, durations ``d``) on ``servers``."""
+    return _clear([_gaps(parts, d, start, tail, servers)], floor, step)
 
 
 def pools(inst: Instance) -> list[tuple[list[int], dict[int, int], int]]:
@@ -91,7 +89,7 @@ Gaps = list[tuple[float, float]]
 Times = dict[int, int]
 
 
-def _gaps(parts: list[list[int]], d: Times, start: Times, tail: Times, servers: int, limit: int | None = None) -> Gaps:
+def _gaps(parts: list[list[int]], d: Times, start: Times, tail: Times, servers: int) -> Gaps:
     """The makespans :func:`energy_over` rules out: open intervals (low, high)."""
     units = [u for g in parts for u in g]
     if not units:
@@ -102,8 +100,6 @@ def _gaps(parts: list[list[int]], d: Times, start: Times, tail: Times, servers: 
         # each unit's part within [a, ...) before the tail cuts it
         head = [[min(d[u], start[u] + d[u] - a) for u in g] for g in parts]
         for b in after:
-            if limit is not None and a + b >= limit:
-                break
             c = [x for x in (min(min(x, tail[u] - b) for x, u in zip(h, g)) for h, g in zip(head, parts)) if x > 0]
             if len(c) < servers:
                 continue  # fewer parts than servers: no window needed
@@ -148,9 +144,8 @@ def bounds(inst: Instance) -> Bounds:
 
 
 def _classes(inst: Instance) -> list[tuple[int, dict[int, int], int, dict[int, int]]]:
-    """Two classes of agents per test of :func:`kind_energy`: one kind, and the other kinds as
-    one; ``(agents, durations, agents, durations)``, a unit missing from a class's durations
-    when no agent of it can do the unit.  Empty with a single kind."""
+    """Two classes of agents per test of :func:`kind_energy`, one kind and the other kinds as
+    one: ``(agents, durations, agents, durations)`` (a unit missing where nobody can do it)."""
     kinds = sorted(inst.kinds)
     if len(kinds) < 2:
         return []
@@ -169,10 +164,8 @@ def _mandatory(length: int, b: int, a: int, r: int, e: int, p: int) -> int:
 
 
 def _kinds_fit(inst: Instance, start: dict[int, int], tail: dict[int, int], horizon: int) -> bool:
-    """Can the units end by ``horizon`` as far as energetic reasoning with kinds tells (the
-    mandatory parts in a window of each of two classes, :func:`_classes`, split between the
-    classes by a fractional knapsack; one window for both, or, from the start or to the end,
-    one window per class; docs/proofs/schedules.md)?"""
+    """Can the units end by ``horizon`` as far as energetic reasoning over two classes of
+    agents (:func:`_classes`) tells?"""
     units = [u for u in inst.units if inst.durations[u]]
     if not units:
         return True
