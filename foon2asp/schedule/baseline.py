@@ -29,6 +29,15 @@ def _waiting(inst: Instance) -> tuple[dict[int, set[int]], dict[int, list[tuple[
     return waiting, users, {u for u in inst.units if not waiting[u]}
 
 
+def _release(u: int, waiting: dict[int, set[int]], users: dict[int, list[tuple[int, int]]], ready: set[int]) -> None:
+    """Unit ``u`` made its objects: the units waiting for nothing more are ready."""
+    for v, o in users.get(u, ()):
+        if o in waiting[v]:
+            waiting[v].discard(o)
+            if not waiting[v]:
+                ready.add(v)
+
+
 def list_schedule(inst: Instance, prio: dict[int, float] | None = None) -> list[Entry]:
     """List scheduling, longest remaining chain first (or by ``prio``, highest first): whenever
     an agent is free, the ready unit with the longest chain starts on the free agent that can
@@ -46,11 +55,7 @@ def list_schedule(inst: Instance, prio: dict[int, float] | None = None) -> list[
             free[e.agent] = True
             for r in inst.uses[e.unit]:
                 in_use[r] -= 1
-            for v, o in users.get(e.unit, ()):
-                if o in waiting[v]:
-                    waiting[v].discard(o)
-                    if not waiting[v]:
-                        ready.add(v)
+            _release(e.unit, waiting, users, ready)
         for u in sorted(ready, key=lambda u: (-order[u], u)):
             if any(in_use[r] >= inst.capacity[r] for r in inst.uses[u]):
                 continue
@@ -129,11 +134,7 @@ def earliest_finish(inst: Instance, prio: dict[int, float] | None = None) -> lis
             busy[name].append((t, end))
             for spans_r in using:
                 spans_r.append((t, end))
-        for v, o in users.get(u, ()):
-            if o in waiting[v]:
-                waiting[v].discard(o)
-                if not waiting[v]:
-                    ready.add(v)
+        _release(u, waiting, users, ready)
     return list(placed.values())
 
 

@@ -94,14 +94,10 @@ def _check_kind(kind: str, path: str, text: str) -> None:
         )
 
 
-def _entry(keys: tuple[str, ...]) -> str:
-    return " / ".join(json.dumps(k, ensure_ascii=False) for k in keys)
-
-
-def seconds_to_ticks(value: object, path: str, text: str, keys: tuple[str, ...]) -> int:
+def _ticks(value: object, path: str, text: str, keys: tuple[str, ...]) -> int:
     """A duration in seconds as whole milliseconds; an error names the file, line and entry."""
     line = _line_of(text, *keys)
-    where = _entry(keys)
+    where = " / ".join(json.dumps(k, ensure_ascii=False) for k in keys)
     if isinstance(value, bool) or not isinstance(value, Decimal):
         raise InputError(
             f"duration {where} must be a number of seconds, not {json.dumps(value, default=str)}", path, line
@@ -111,10 +107,9 @@ def seconds_to_ticks(value: object, path: str, text: str, keys: tuple[str, ...])
     if value > MAX_SECONDS:
         raise InputError(f"duration {where} is {value} s, above the limit of {MAX_SECONDS} s", path, line)
     ticks = value / PRECISION
-    whole = ticks.to_integral_value()
-    if ticks != whole:
+    if ticks != ticks.to_integral_value():
         raise InputError(f"duration {where} is {value} s: finer than the precision of {PRECISION} s", path, line)
-    return int(whole)
+    return int(ticks)
 
 
 @dataclass(frozen=True)
@@ -148,11 +143,9 @@ def load_durations(path: str | Path) -> Durations:
         if isinstance(value, dict):
             if key != "*":
                 _check_kind(key, p, text)
-            kinds[key] = {
-                norm(m) if m != "*" else "*": seconds_to_ticks(v, p, text, (key, m)) for m, v in value.items()
-            }
+            kinds[key] = {norm(m) if m != "*" else "*": _ticks(v, p, text, (key, m)) for m, v in value.items()}
         else:
-            motions[norm(key) if key != "*" else "*"] = seconds_to_ticks(value, p, text, (key,))
+            motions[norm(key) if key != "*" else "*"] = _ticks(value, p, text, (key,))
     return Durations(motions, kinds)
 
 
