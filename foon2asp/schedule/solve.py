@@ -24,7 +24,6 @@ from foon2asp.schedule.baseline import TRIES, known_schedule, list_schedule
 from foon2asp.schedule.bounds import bounds, human_lower
 from foon2asp.schedule.joint import check_options
 from foon2asp.schedule.model import (
-    Entry,
     Instance,
     compact,
     designate,
@@ -62,38 +61,6 @@ def solver_arguments(options: AspOptions) -> list[str]:
 def forced_human(inst: Instance) -> int:
     """Units only a person can do (every schedule gives them to one)."""
     return sum(1 for u in inst.units if inst.durations[u] and set(inst.durations[u]) == {HUMAN})
-
-
-def solve_encoded(
-    inst: Instance,
-    head: dict[int, int],
-    tail: dict[int, int],
-    horizon: int | None,
-    floor: int,
-    options: AspOptions,
-    encoding: str,
-    time_limit: float | None,
-    tree_parts: list[tuple[str, str]] | None = None,
-    ties: bool = True,
-    known: list[Entry] | None = None,
-    progress: Callable[[dict], None] | None = None,
-) -> encode.Solution:
-    """Solve with ``encoding`` (:class:`foon2asp.schedule.encode.Job` says what the values are)."""
-    job = encode.Job(
-        inst,
-        head,
-        tail,
-        horizon,
-        floor,
-        solver_arguments(options),
-        tree_parts or (),
-        len(objectives.ranked(options)) if tree_parts else 0,
-        [name for name, _ in options.programs] if tree_parts else [],
-        ties,
-        known,
-        progress,
-    )
-    return encode.solve(job, encoding, time_limit)
 
 
 def schedule_fixed(
@@ -156,19 +123,10 @@ def schedule_fixed(
     else:
         horizon = makespan(known) if encoding == "steps" else ub
     start = known if encoding == "steps" and not over else None
-    sol = solve_encoded(
-        inst,
-        earliest(inst),
-        tails(inst),
-        horizon,
-        b.lower,
-        options,
-        encoding,
-        time_limit,
-        ties=spec.has_human(),
-        known=start,
-        progress=progress,
-    )
+    args = solver_arguments(options)
+    head, tail = earliest(inst), tails(inst)
+    job = encode.Job(inst, head, tail, horizon, b.lower, args, ties=spec.has_human(), known=start, progress=progress)
+    sol = encode.solve(job, encoding, time_limit)
     stats.update(sol.stats)
     if over and sol.entries is None:
         return none("unschedulable" if sol.proven or sol.unsatisfiable else "unknown", late)
@@ -363,7 +321,10 @@ def _schedule_joint(
             return replace(partial, stats={**stats, **partial.stats}, time_s=time.perf_counter() - t0)
         status = "feasible" if fixed.has_schedule else "unknown"
         return replace(fixed, status=status, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
-    sol = solve_encoded(inst, start, tail, horizon, floor, options, encoding, left, parts, ties)
+    user = [name for name, _ in options.programs]
+    levels = len(objectives.ranked(options))
+    one = encode.Job(inst, start, tail, horizon, floor, solver_arguments(options), parts, levels, user, ties)
+    sol = encode.solve(one, encoding, left)
     stats.update(sol.stats, joint="tie-breakers in one encoding" if proven else "one encoding")
     elapsed = time.perf_counter() - t0
     if sol.unsatisfiable:
