@@ -17,7 +17,14 @@ from foon2asp.schedule.check import check_schedule
 from foon2asp.schedule.spec import ScheduleSpec
 from helpers import build
 from test_cli import assert_one_line_error, run
-from test_schedule_solve import AGENT_SETS, ENCODINGS, brute_schedule, longer_tree_shorter_chain, random_spec, random_tree
+from test_schedule_solve import (
+    AGENT_SETS,
+    ENCODINGS,
+    brute_schedule,
+    longer_tree_shorter_chain,
+    random_spec,
+    random_tree,
+)
 
 needs_dot = pytest.mark.skipif(shutil.which("neato") is None, reason="Graphviz is not installed")
 
