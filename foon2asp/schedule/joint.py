@@ -219,7 +219,7 @@ def best_by_work(
         control.add_all([*listing.tree_parts, _TREES, ("bounds", facts), ("least work first", order + cuts)])
         control.ground()
         last.clear()
-        result = control.solve(lambda m: last.append(used(m.symbols(shown=True))), left)
+        result = control.solve(lambda model: last.append(used(model.symbols(shown=True))), left)
         if not result.finished:
             return best, False
         if not last:
