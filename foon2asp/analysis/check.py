@@ -231,14 +231,6 @@ def check_trees(
     return reports
 
 
-def read_and_check(
-    path: str | Path, data=None, problem: Problem | None = None, goal: str | None = None, strict: bool = False
-) -> tuple[list[TreeFile], list[Report] | None]:
-    """The trees of a tree file and, with ``problem``, their reports (no optimum); else None."""
-    trees = read_trees(path, strict=strict)
-    return trees, check_trees(data, problem, trees, goal) if problem is not None else None
-
-
 def alone_goal(tree: TreeFile, text: str) -> FoonObject:
     """The object ``text`` names in ``tree``: an object's full text, else the one object of the tree
     made with that label."""

@@ -162,8 +162,7 @@ def draw_file(
     if fmt != "dot":
         draw.require_dot()
     if kb is None:
-        trees, reports = check_mod.read_and_check(tree, None, None, goal, strict)
-        problem = None
+        trees, reports, problem = read_trees(tree, strict=strict), None, None
     else:  # the trees as the knowledge base sees them; with substitutes, what they stand in for is had
         trees = [kb.project_tree(t) for t in read_trees(tree, kb.problem, strict)]
         problem = kb.judging_problem(options)

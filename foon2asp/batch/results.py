@@ -22,18 +22,15 @@ from foon2asp.asp.facts import facts
 from foon2asp.asp.interrupts import deferred_signals
 from foon2asp.batch.pool import BatchSpec
 from foon2asp.errors import InputError
-from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.reading import loads as safe_loads
+from foon2asp.tree.results import WITH_TREE, record_object
 
 
 def goal_key(problem: Problem, record: dict) -> int | None:
     """The object id of the goal a result record names (None: not a goal of this FOON)."""
-    goal = record.get("goal")
-    if not isinstance(goal, dict) or not isinstance(goal.get("label"), str):
-        return None
-    obj = FoonObject.make(goal["label"], goal.get("states") or (), goal.get("ingredients") or (), goal.get("container"))
-    return problem.foon.object_ids.get(obj)
+    obj = record_object(record.get("goal"))
+    return None if obj is None else problem.foon.object_ids.get(obj)
 
 
 def read_results(path: str | Path, repair: bool = False) -> list[dict]:
@@ -71,9 +68,6 @@ def read_results(path: str | Path, repair: bool = False) -> list[dict]:
             os.fsync(fh.fileno())
     return records
 
-
-#: statuses of records with a tree
-WITH_TREE = ("optimal", "ranked", "feasible", "found")
 
 HEADER_KEY = "foon2asp_results"
 HEADER_VERSION = 1
@@ -118,11 +112,6 @@ def configuration(spec: BatchSpec) -> dict:
     return config
 
 
-def header_line(config: dict) -> str:
-    """The first line of a results file."""
-    return json.dumps({HEADER_KEY: HEADER_VERSION, "config": config}, ensure_ascii=False) + "\n"
-
-
 def read_header(path: str | Path) -> dict | None:
     """The configuration recorded in the header line of a results file (None: no header)."""
     try:
@@ -132,12 +121,6 @@ def read_header(path: str | Path) -> dict | None:
         return None
     config = value.get("config") if isinstance(value, dict) and HEADER_KEY in value else None
     return config if isinstance(config, dict) else None
-
-
-def config_differences(old: dict, new: dict) -> list[str]:
-    """The keys whose values differ (the ones in RESUMABLE_KEYS aside)."""
-    keys = sorted(set(old) | set(new))
-    return [k for k in keys if k not in RESUMABLE_KEYS and old.get(k) != new.get(k)]
 
 
 #: with sync on, the longest time between two syncs of the results file while lines are written
@@ -230,8 +213,10 @@ def open_results(output: str | Path, config: dict, resume: bool, sync: bool) -> 
     try:
         previous: list[dict] = []
         if resume:
-            old = read_header(path)
-            differ = config_differences(old, config) if old is not None else []
+            old = read_header(path) or config
+            differ = [
+                k for k in sorted(set(old) | set(config)) if k not in RESUMABLE_KEYS and old.get(k) != config.get(k)
+            ]
             if differ:
                 raise InputError(
                     "results file was made with another configuration (differs in: "
@@ -240,7 +225,7 @@ def open_results(output: str | Path, config: dict, resume: bool, sync: bool) -> 
                 )
             previous = read_results(path, repair=True)
         if path.stat().st_size == 0:
-            out.append(header_line(config))
+            out.append(json.dumps({HEADER_KEY: HEADER_VERSION, "config": config}, ensure_ascii=False) + "\n")
     except BaseException:
         out.close()
         raise

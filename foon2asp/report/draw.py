@@ -11,6 +11,7 @@ from __future__ import annotations
 import html
 import re
 import shutil
+import textwrap
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -22,7 +23,7 @@ from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.treefiles import TreeFile
 from foon2asp.report.registry import register
-from foon2asp.tree.results import Report
+from foon2asp.tree.results import Report, record_object
 from foon2asp.tree.tasktree import TaskTree
 from foon2asp.tree.validate import Finding, check_units
 
@@ -94,17 +95,6 @@ def object_label(obj: FoonObject) -> str:
     return "<" + "<BR/>".join(rows) + ">"
 
 
-def _wrap(text: str, width: int = 90) -> list[str]:
-    words, lines, line = text.split(), [], ""
-    for w in words:
-        if line and len(line) + 1 + len(w) > width:
-            lines.append(line)
-            line = w
-        else:
-            line = f"{line} {w}" if line else w
-    return lines + ([line] if line else [])
-
-
 def build_graph(
     units: list[Unit], marks: Marks | None = None, name: str = "task_tree", prefix: str = ""
 ) -> graphviz.Digraph:
@@ -113,7 +103,9 @@ def build_graph(
     g = graphviz.Digraph(name)
     g.attr(rankdir="TB", fontname="Helvetica", fontsize="12", labelloc="t", nodesep="0.25", ranksep="0.35")
     title = [_esc(_clip(marks.title, MAX_TOOLTIP))] if marks.title else []
-    note = _wrap(_clip(marks.note, MAX_TOOLTIP)) if marks.note else []
+    note = textwrap.wrap(
+        " ".join(_clip(marks.note, MAX_TOOLTIP).split()), 90, break_long_words=False, break_on_hyphens=False
+    )
     title += [f'<FONT COLOR="{CYCLE}">{_esc(line)}</FONT>' for line in note]
     title.append(f'<FONT POINT-SIZE="9">{_esc(LEGEND if marks.legend is None else marks.legend)}</FONT>')
     g.attr(label="<" + "<BR/>".join(title) + ">")
@@ -239,7 +231,7 @@ def record_marks(record: dict, units: list[Unit], problem: Problem | None = None
     """Marks of a result record (a line of a batch's results) whose units are ``units``: its goals
     and verdict; with ``problem`` also its kitchen items and an invalid tree's blocking cycle."""
     goals = [g for g in (record.get("goals") or [record.get("goal")]) if isinstance(g, dict)]
-    objects = [_record_object(g) for g in goals]
+    objects = [record_object(g) for g in goals]
     made = [o for o in objects if o is not None]
     goal = made[0] if made else _top_product(units)
     valid = record.get("valid")
@@ -264,19 +256,6 @@ def record_marks(record: dict, units: list[Unit], problem: Problem | None = None
             if finding is not None and finding.cycle:
                 return replace(marks, **cycle_marks(problem, finding, {u: k for k, u in enumerate(known)}))
     return marks
-
-
-def _record_object(value: dict) -> FoonObject | None:
-    """The object of a record's ``goal`` (None when it is not one)."""
-    label = value.get("label")
-    if not isinstance(label, str):
-        return None
-    return FoonObject.make(
-        label,
-        [str(s) for s in value.get("states") or []],
-        [str(i) for i in value.get("ingredients") or []],
-        value.get("container") if isinstance(value.get("container"), str) else None,
-    )
 
 
 def tree_file_marks(tree: TreeFile, problem: Problem | None = None, report: Report | None = None) -> Marks:

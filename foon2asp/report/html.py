@@ -17,7 +17,7 @@ from foon2asp.foon.problem import Problem
 from foon2asp.report import draw, gantt
 from foon2asp.report.compare import SUMMARY_COLUMNS, method_header, summary, summary_cell, units_cell
 from foon2asp.report.registry import register
-from foon2asp.tree.results import BatchReport, Row
+from foon2asp.tree.results import WITH_TREE, BatchReport, Row
 
 _STYLE = """
 body { font-family: Helvetica, Arial, sans-serif; margin: 1.5em; color: #222; }
@@ -236,7 +236,7 @@ def summary_html(
     body = [table('id="summary"', SUMMARY_COLUMNS, [row([summary_cell(r[c]) for c in SUMMARY_COLUMNS]) for r in rows])]
     started = time.perf_counter()
     records = report.records if report is not None else []
-    trees = [r for r in records if r.get("status") in ("optimal", "ranked", "feasible", "found") and r.get("units")]
+    trees = [r for r in records if r.get("status") in WITH_TREE and r.get("units")]
     if trees:
         draw.require_dot()
         body.append('<h2>Task trees</h2><div class="trees">')

@@ -145,6 +145,22 @@ class MealRow:
         return total
 
 
+#: statuses of result records with a tree
+WITH_TREE = ("optimal", "ranked", "feasible", "found")
+
+
+def record_object(value: object) -> FoonObject | None:
+    """The object a result record's ``goal`` (``{"label", "states", ...}``) names (None: not one)."""
+    if not isinstance(value, dict) or not isinstance(value.get("label"), str):
+        return None
+    return FoonObject.make(
+        value["label"],
+        [str(s) for s in value.get("states") or []],
+        [str(i) for i in value.get("ingredients") or []],
+        value.get("container") if isinstance(value.get("container"), str) else None,
+    )
+
+
 @dataclass
 class BatchReport:
     """What a batch did: counts, times and all records of the requested pairs."""
