@@ -234,14 +234,6 @@ def alone_json(report: AloneReport) -> dict:
     }
 
 
-def summary_line(reports: list[Report | AloneReport]) -> str:
-    """``Checked 25 trees: 23 valid, 0 invalid, 2 unreachable (no tree to check)``."""
-    gone = sum(unreachable(r) for r in reports)
-    valid = sum(r.valid for r in reports)
-    line = f"Checked {len(reports)} trees: {valid} valid, {len(reports) - valid - gone} invalid"
-    return line + (f", {gone} unreachable (no tree to check)" if gone else "")
-
-
 def _one(problem: Problem | None, report: Report | AloneReport, as_json: bool = False):
     """One report as ``check`` prints it (``as_json``: as ``check --format json`` lists it)."""
     if isinstance(report, AloneReport):
@@ -253,7 +245,12 @@ def _one(problem: Problem | None, report: Report | AloneReport, as_json: bool = 
 @register("check", "text", "txt", "readable report per tree; with several, a last line counting them")
 def check_text(problem: Problem | None, reports: list[Report | AloneReport]) -> str:
     out = "\n".join(_one(problem, r) for r in reports)
-    return out + (f"\n{summary_line(reports)}\n" if len(reports) > 1 else "")
+    if len(reports) < 2:
+        return out
+    gone = sum(unreachable(r) for r in reports)
+    valid = sum(r.valid for r in reports)
+    out += f"\nChecked {len(reports)} trees: {valid} valid, {len(reports) - valid - gone} invalid"
+    return out + (f", {gone} unreachable (no tree to check)" if gone else "") + "\n"
 
 
 @register("check", "json", "json", "a list of reports")

@@ -22,30 +22,25 @@ from foon2asp.tree.serialize import json_list, number, tree_text
 PALETTE = ("#9fc5e8", "#f6b26b", "#b6d7a8", "#d5a6bd", "#ffe599", "#a2c4c9", "#ea9999", "#b4a7d6")
 
 
-def goal_json(problem: Problem, c: Consolidation) -> dict | list:
-    objs = [problem.objects[g].to_json() for g in c.goals]
-    return objs[0] if len(objs) == 1 else objs
-
-
-def candidate_json(v: CandidateVerdict) -> dict:
-    return {
-        "file": v.candidate.path,
-        "valid": v.valid,
-        "problem": None if v.valid else v.verdict.problem,
-        "cost": v.cost,
-        "used_units": v.used,
-    }
-
-
 def consolidation_json(problem: Problem, c: Consolidation) -> dict:
     """One goal's object of ``consolidate --format json``."""
     missing = c.missing.missing if c.missing is not None else []
+    goals = [problem.objects[g].to_json() for g in c.goals]
     out = {
-        "goal": goal_json(problem, c),
+        "goal": goals[0] if len(goals) == 1 else goals,
         "status": c.tree.status,
         "cost": c.tree.cost,
         "units": [{**problem.units[u].to_json(), "sources": list(c.sources[u])} for u in c.tree.units],
-        "candidates": [candidate_json(v) for v in c.candidates],
+        "candidates": [
+            {
+                "file": v.candidate.path,
+                "valid": v.valid,
+                "problem": None if v.valid else v.verdict.problem,
+                "cost": v.cost,
+                "used_units": v.used,
+            }
+            for v in c.candidates
+        ],
         "missing": [problem.objects[o].to_json() for o in missing],
     }
     if "substitutions" in c.tree.extra:

@@ -213,11 +213,6 @@ def schedules_body(records: list[dict], timed: bool = True) -> list[str]:
     return body
 
 
-def schedule_html(records: list[dict]) -> str:
-    """``schedule --format html``: the schedules' table and their Gantt charts."""
-    return page("foon2asp: schedules", schedules_body(list(records)))
-
-
 def summary_html(
     rows: list[dict],
     report: BatchReport | None = None,
@@ -276,4 +271,6 @@ def summary_html(
 
 register("compare", "html", "html", "one self-contained HTML page: the table and a drawing of every tree")(compare_html)
 register("summary", "html", "html", "HTML page: the summary and a drawing of every tree")(summary_html)
-register("schedule", "html", "html", "HTML page: the schedules and their Gantt charts")(schedule_html)
+register("schedule", "html", "html", "HTML page: the schedules and their Gantt charts")(
+    lambda records: page("foon2asp: schedules", schedules_body(list(records)))
+)

@@ -35,22 +35,33 @@ class PddlTask:
     goals: tuple[int, ...] = ()
 
 
-def refuse_general(spec: ConstraintSpec | None) -> None:
-    """Raise InputError for constraints that are not unit filters."""
-    if spec is None:
-        return
-    given = {
-        "--constraint": spec.files or spec.extra,
-        "--rule": spec.rules,
-        "--require-motion": spec.require_motion,
-        "--require-object": spec.require_object,
-        "--max-units": spec.max_units is not None,
-    }
+def exported_units(problem: Problem, goals: Iterable[int], spec: ConstraintSpec | None = None) -> list[int]:
+    """The units a tree for ``goals`` can use once the filters of ``spec`` removed units; raises
+    InputError for constraints that are not unit filters."""
+    given = (
+        {}
+        if spec is None
+        else {
+            "--constraint": spec.files or spec.extra,
+            "--rule": spec.rules,
+            "--require-motion": spec.require_motion,
+            "--require-object": spec.require_object,
+            "--max-units": spec.max_units is not None,
+        }
+    )
     bad = [flag for flag, on in given.items() if on]
     if bad:
         raise InputError(
             f"{', '.join(bad)} cannot be exported to PDDL (only --forbid-motion and --forbid-object, which remove units)"
         )
+    keep = [u for u in range(len(problem.units)) if allowed(problem, u, spec)]
+    _, unit_level = problem.derivation_levels(keep)  # fires from the kitchen without the removed units
+    producers: dict[int, list[int]] = {}
+    for u in sorted(unit_level):
+        for o in problem.products[u]:
+            producers.setdefault(o, []).append(u)
+    units, _, _ = walk_back(list(goals), problem.kitchen, producers, problem.required)
+    return sorted(units)
 
 
 def allowed(problem: Problem, u: int, spec: ConstraintSpec | None) -> bool:
@@ -62,19 +73,6 @@ def allowed(problem: Problem, u: int, spec: ConstraintSpec | None) -> bool:
         return False
     labels = {normalise(x) for x in spec.forbid_object}
     return not any(o.label in labels for o in (*unit.inputs, *unit.outputs))
-
-
-def exported_units(problem: Problem, goals: Iterable[int], spec: ConstraintSpec | None = None) -> list[int]:
-    """The units a tree for ``goals`` can use once the filters of ``spec`` removed units."""
-    refuse_general(spec)
-    keep = [u for u in range(len(problem.units)) if allowed(problem, u, spec)]
-    _, unit_level = problem.derivation_levels(keep)  # fires from the kitchen without the removed units
-    producers: dict[int, list[int]] = {}
-    for u in sorted(unit_level):
-        for o in problem.products[u]:
-            producers.setdefault(o, []).append(u)
-    units, _, _ = walk_back(list(goals), problem.kitchen, producers, problem.required)
-    return sorted(units)
 
 
 def _comment(text: object) -> str:
