@@ -7,13 +7,12 @@ The lexicographically smallest optimal tree (units in FOON id order), searched w
 
 from __future__ import annotations
 
-import time
 from collections.abc import Iterable
 from typing import Any
 
 import clingo
 
-from foon2asp.asp.control import Answer, Control, read_model
+from foon2asp.asp.control import Answer, Control, read_model, remaining
 from foon2asp.foon.problem import Problem
 
 LEX_ON = clingo.Function("lex_on", [])
@@ -58,11 +57,6 @@ def canonicalise(
         return answer, True
     if control.ctl.symbolic_atoms[LEX_ON] is None:
         return answer, False  # the session was grounded without encodings/canonical.lp
-    conf: Any = control.ctl.configuration.solve
-    saved = (conf.opt_mode, conf.models, conf.project, conf.solve_limit)
-    conf.opt_mode = "enum," + ",".join(str(c) for c in answer.cost)
-    conf.models = "1"
-    conf.project = "no"
     best = answer
     complete = False
     found: list[Answer] = []
@@ -73,29 +67,30 @@ def canonicalise(
     if conflicts is None:
         conflicts = CONFLICTS
     on: set[int] = set()
+    conf: Any = control.ctl.configuration.solve
+    enum = ",".join(["enum", *map(str, answer.cost)])
     try:
-        while True:
-            tree = set(best.units)
-            switch = {_cur(u): True for u in tree - on}
-            switch.update({_cur(u): False for u in on - tree})
-            switch[LEX_ON] = True
-            control.assign(switch)
-            on = tree
-            found.clear()
-            remaining = None if deadline is None else max(0.0, deadline - time.perf_counter())
-            if conflicts <= 0:
+        with control.configured(opt_mode=enum, models="1", project="no", solve_limit=conf.solve_limit):
+            while True:
+                tree = set(best.units)
+                switch = {_cur(u): True for u in tree - on}
+                switch.update({_cur(u): False for u in on - tree})
+                switch[LEX_ON] = True
+                control.assign(switch)
+                on = tree
+                found.clear()
+                if conflicts <= 0:
+                    break
+                conf.solve_limit = str(conflicts)
+                result = control.solve(record, remaining(deadline))
+                conflicts -= control.stats().get("conflicts", conflicts)
+                if found and found[0].units != best.units:
+                    best = found[0]
+                    continue
+                complete = result.finished and result.unsatisfiable is True
                 break
-            conf.solve_limit = str(conflicts)
-            result = control.solve(record, remaining)
-            conflicts -= control.stats().get("conflicts", conflicts)
-            if found and found[0].units != best.units:
-                best = found[0]
-                continue
-            complete = result.finished and result.unsatisfiable is True
-            break
     finally:
         off = {_cur(u): False for u in on}
         off[LEX_ON] = False
         control.assign(off)
-        conf.opt_mode, conf.models, conf.project, conf.solve_limit = saved
     return best, complete

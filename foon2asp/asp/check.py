@@ -59,9 +59,5 @@ class ConstraintCheck:
         if self.vacuous:
             return True
         atoms = [clingo.Function("use", [clingo.Number(u)]) for u in tree]
-        atoms = [a for a in atoms if self.control.has_atom(a)]
-        self.control.assign(dict.fromkeys(atoms, True))
-        try:
+        with self.control.switched(a for a in atoms if self.control.has_atom(a)):
             return self.control.solve().satisfiable is True
-        finally:
-            self.control.assign(dict.fromkeys(atoms, False))

@@ -8,7 +8,7 @@ guarded nogoods and time-limited solving; signals wait until a clingo call has r
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
@@ -35,6 +35,11 @@ MODES: dict[str, tuple[str, str | None, str]] = {
 
 #: a part to ground: its name and its arguments
 Part = tuple[str, Sequence[int | clingo.Symbol]]
+
+
+def remaining(deadline: float | None) -> float | None:
+    """The seconds left until ``deadline`` (a ``time.perf_counter()`` value; None: no limit)."""
+    return None if deadline is None else max(0.0, deadline - time.perf_counter())
 
 
 @dataclass
@@ -159,18 +164,28 @@ class Control:
         """Solve in ``mode`` inside the body: "opt" (the best model), "optN" (up to ``count``
         distinct optimal models, projected) or "first" (the first model; with ``bound``, the
         first whose cost vector is at most ``bound``)."""
-        conf: Any = self.ctl.configuration.solve
-        saved = (conf.opt_mode, conf.models, conf.project)
         opt_mode, models, project = MODES[mode]
         if bound is not None:
             opt_mode = ",".join(["enum", *map(str, bound)])
-        conf.opt_mode, conf.models, conf.project = opt_mode, models or str(count), project
         self._decision = mode == "first"
+        try:
+            with self.configured(opt_mode=opt_mode, models=models or str(count), project=project):
+                yield
+        finally:
+            self._decision = False
+
+    @contextmanager
+    def configured(self, **settings: str) -> Iterator[None]:
+        """Inside the body clingo's solve configuration has ``settings`` (restored afterwards)."""
+        conf: Any = self.ctl.configuration.solve
+        saved = {key: getattr(conf, key) for key in settings}
+        for key, value in settings.items():
+            setattr(conf, key, value)
         try:
             yield
         finally:
-            conf.opt_mode, conf.models, conf.project = saved
-            self._decision = False
+            for key, value in saved.items():
+                setattr(conf, key, value)
 
     def stop_soon(self) -> None:
         """End the running solve call, which then reports its search as finished."""
@@ -215,8 +230,7 @@ class Control:
             self._stopping = False
             if self._decision:
                 # a decision is first tried in this thread, for one slice
-                first = POLL_S if deadline is None else min(POLL_S, max(0.0, deadline - time.perf_counter()))
-                with WATCHDOG.limit(self.ctl, first):
+                with WATCHDOG.limit(self.ctl, self._slice(deadline)):
                     done = self.ctl.solve(**calls)
                 if not done.interrupted or self._stopping:
                     self._stopped(done)
@@ -225,8 +239,7 @@ class Control:
                 finished = False
                 # wait in slices so that a deferred signal, the deadline or a stop is seen between them
                 while not signal_pending():
-                    step = POLL_S if deadline is None else min(POLL_S, max(0.0, deadline - time.perf_counter()))
-                    if handle.wait(step):
+                    if handle.wait(self._slice(deadline)):
                         finished = True
                         break
                     if deadline is not None and time.perf_counter() >= deadline:
@@ -239,6 +252,12 @@ class Control:
                 result = handle.get()
             self._stopped(result)
         return self._result(result, finished, stopped, t0, lower)
+
+    @staticmethod
+    def _slice(deadline: float | None) -> float:
+        """How long to wait before looking again for a signal, the deadline or a stop."""
+        left = remaining(deadline)
+        return POLL_S if left is None else min(POLL_S, left)
 
     def _result(
         self, result: clingo.SolveResult, finished: bool, stopped: bool, t0: float, lower: list[tuple[int, ...]]
@@ -261,7 +280,17 @@ class Control:
             WATCHDOG.forget(self.ctl)
             self._absorb = self._absorb or not result.interrupted
 
-    def assign(self, externals: dict[clingo.Symbol, bool]) -> None:
+    @contextmanager
+    def switched(self, atoms: Iterable[clingo.Symbol | int]) -> Iterator[None]:
+        """The body runs with the external ``atoms`` true (false again afterwards)."""
+        atoms = list(atoms)
+        self.assign(dict.fromkeys(atoms, True))
+        try:
+            yield
+        finally:
+            self.assign(dict.fromkeys(atoms, False))
+
+    def assign(self, externals: Mapping[Any, bool]) -> None:
         """Set external atoms (a signal meanwhile waits until all are set)."""
         with deferred_signals():
             for atom, value in externals.items():

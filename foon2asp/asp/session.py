@@ -9,8 +9,7 @@ from __future__ import annotations
 
 import re
 import time
-from collections.abc import Callable, Iterable, Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import replace
 from functools import lru_cache
 
@@ -139,16 +138,6 @@ class Session:
             }
         return fact_objects(self.problem, list(self.units))
 
-    @contextmanager
-    def _goals_on(self, meal: tuple[int, ...]) -> Iterator[None]:
-        """The body runs with ``goal(G)`` on for each goal of ``meal`` (off again afterwards)."""
-        atoms = [clingo.Function("goal", [clingo.Number(g)]) for g in meal]
-        self.control.assign(dict.fromkeys(atoms, True))
-        try:
-            yield
-        finally:
-            self.control.assign(dict.fromkeys(atoms, False))
-
     def solve(
         self,
         goal: Goals,
@@ -256,7 +245,7 @@ class Session:
             watch.on_model(model)
             return on_model(model) if on_model is not None else None
 
-        with self._goals_on(meal):
+        with self.control.switched(clingo.Function("goal", [clingo.Number(g)]) for g in meal):
             shot = solve_shot(self.control, mode, count, seen, time_limit or None, watch.on_lower, watch.stop)
             self._lower = shot.lower
             if shot.last is not None and shot.finished and shot.last.proven:

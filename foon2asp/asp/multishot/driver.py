@@ -17,7 +17,7 @@ import clingo
 from foon2asp.asp import objectives
 from foon2asp.asp.answers import Shot, solve_shot, status, task_tree
 from foon2asp.asp.canonical import canonicalise
-from foon2asp.asp.control import Answer
+from foon2asp.asp.control import Answer, remaining
 from foon2asp.asp.multishot import depth as depth_mod
 from foon2asp.tree.tasktree import Goals, TaskTree, meal_of, measures
 
@@ -50,14 +50,11 @@ class Driver:
     ) -> Shot:
         """Solve once in ``mode`` (None: "opt"; "optN" up to ``count`` trees; "first") with ``externals`` on."""
         mode = mode or "opt"
-        switched = {clingo.Function("goal", [clingo.Number(g)]): True for g in meal_of(goal)}
-        switched.update(externals)
+        goals = [clingo.Function("goal", [clingo.Number(g)]) for g in meal_of(goal)]
         control = self.control
-        control.assign(switched)
         self.solves += 1
-        try:
-            remaining = None if deadline is None else max(0.0, deadline - time.perf_counter())
-            shot = solve_shot(control, mode, count, on_model, remaining)
+        with control.switched([*goals, *externals]):
+            shot = solve_shot(control, mode, count, on_model, remaining(deadline))
             self.last_stats = control.stats()  # before the externals change: that resets them
             found = shot.answers
             settled = (mode == "opt" and shot.exhausted) or (mode == "optN" and bool(found) and found[0].proven)
@@ -67,8 +64,6 @@ class Driver:
                 if not complete:
                     self.canonical_search = "budget"
                 shot.answers = [first] + [a for a in found if a.units != first.units][: max(0, count - 1)]
-        finally:
-            control.assign(dict.fromkeys(switched, False))
         return shot
 
     def depth_floor(self) -> int | None:
