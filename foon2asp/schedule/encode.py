@@ -237,7 +237,7 @@ def _human_stop(job: Job, opt: int, stats: dict) -> tuple[int, Callable[[list[En
     return low, few
 
 
-def _clock(time_limit: float | None) -> Callable[[], float | None]:
+def clock(time_limit: float | None) -> Callable[[], float | None]:
     """The time left of ``time_limit`` from now (None: no limit)."""
     deadline = None if time_limit is None else time.perf_counter() + time_limit
     return lambda: None if deadline is None else max(0.0, deadline - time.perf_counter())
@@ -249,7 +249,7 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
     (``stats["tie_breakers"]``: ``proven`` or ``time``)."""
     assert job.horizon is not None
     inst, floor = job.inst, job.floor
-    left = _clock(time_limit)
+    left = clock(time_limit)
     stats["phases"] = 1
     best = job.known
     horizon = job.horizon if best is None else min(job.horizon, makespan(best))
@@ -331,7 +331,7 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
     ]
     control = Control(["--opt-mode=ignore", *job.args], theory=theory)
     t0 = time.perf_counter()
-    left = _clock(time_limit)
+    left = clock(time_limit)
     control.add_all(parts, user=job.user)
     control.ground()
     stats: dict[str, Any] = {"encoding": "dl", "ground_s": round(time.perf_counter() - t0, 6), "bounds": 0}

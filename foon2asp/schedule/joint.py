@@ -8,7 +8,6 @@ they are too many.  Why this finds the joint optimum: docs/proofs/schedules.md.
 
 from __future__ import annotations
 
-import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -23,7 +22,7 @@ from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule.bounds import energy_over
-from foon2asp.schedule.encode import used
+from foon2asp.schedule.encode import clock, used
 from foon2asp.schedule.model import Instance, divisor, joint_tails
 
 #: tree objectives joint scheduling supports (depth needs the multi-shot driver)
@@ -162,6 +161,31 @@ def tree_cost(problem: Problem, units: Sequence[int], human: Sequence[int], rank
     return tuple(out)
 
 
+class _Best:
+    """The best result of ``solve`` (a designated tree, the time left, the best makespan so far)
+    by ``key``, ties to the first found; ``proven`` while every solve ended proven."""
+
+    def __init__(
+        self,
+        solve: Callable[[Candidate, float | None, int | None], Any],
+        key: Callable[[Any], tuple],
+        time_limit: float | None,
+    ) -> None:
+        self.solve, self.key, self.left = solve, key, clock(time_limit)
+        self.best: Any = None
+        self.proven = True
+
+    def beats(self, low: tuple) -> bool:
+        """Can a result of rank at least ``low`` beat the best?"""
+        return self.best is None or low < self.key(self.best)
+
+    def offer(self, cand: Candidate) -> None:
+        r = self.solve(cand, self.left(), None if self.best is None else self.best.makespan)
+        self.proven = self.proven and r.status in ("optimal", "unschedulable")
+        if r.has_schedule and self.beats(self.key(r)):
+            self.best = r
+
+
 def best_tree(
     trees: list[Candidate],
     bound: Callable[[Candidate], tuple],
@@ -169,23 +193,16 @@ def best_tree(
     key: Callable[[Any], tuple],
     time_limit: float | None,
 ) -> tuple[Any, bool]:
-    """The best result of ``solve`` (a designated tree, the time left, the best makespan so
-    far) over ``trees`` by ``key`` (ties: the first found), lowest ``bound`` first, stopping
+    """The best result of ``solve`` over ``trees`` by ``key``, lowest ``bound`` first, stopping
     when the next bound is no better than the best; (best, proven)."""
-    t0 = time.perf_counter()
-    best, proven = None, True
+    found = _Best(solve, key, time_limit)
     for t in sorted(trees, key=bound):
-        if best is not None and bound(t) >= key(best):
+        if not found.beats(bound(t)):
             break  # sorted: no later tree can beat the best
-        left = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
-        if left == 0.0:
-            return best, False
-        r = solve(t, left, None if best is None else best.makespan)
-        if r.status not in ("optimal", "unschedulable"):  # unschedulable: none as short as the best
-            proven = False
-        if r.has_schedule and (best is None or key(r) < key(best)):
-            best = r
-    return best, proven
+        if found.left() == 0.0:
+            return found.best, False
+        found.offer(t)
+    return found.best, found.proven
 
 
 def best_by_work(
@@ -200,18 +217,16 @@ def best_by_work(
     """Like :func:`best_tree` over the undesignated trees, asked for one at a time, least work
     first, stopping when a tree's work over the agents exceeds the best makespan.  ``first``:
     the first tree is the best (one agent)."""
-    t0 = time.perf_counter()
-    inst = listing.inst
-    m = len(inst.agents)
+    found = _Best(solve, key, time_limit)
+    m = len(listing.inst.agents)
     facts = listing.bound_facts()
     order = f"#minimize {{ D@{levels + 1},U : use(U), work(U,D) }}.\n"
     seen: list[tuple[int, ...]] = []
-    best, proven = None, True
     last: list[tuple[int, ...]] = []  # the trees of one solve
     while True:
-        left = None if time_limit is None else time_limit - (time.perf_counter() - t0)
-        if left is not None and left <= 0:
-            return best, False
+        left = found.left()
+        if left == 0.0:
+            return found.best, False
         cuts = "".join(
             ":- " + ", ".join(f"use({u})" for u in t) + f", #count {{ U : use(U) }} = {len(t)}.\n" for t in seen
         )
@@ -219,24 +234,19 @@ def best_by_work(
         control.add_all([*listing.tree_parts, _TREES, ("bounds", facts), ("least work first", order + cuts)])
         control.ground()
         last.clear()
-        result = control.solve(lambda model: last.append(used(model.symbols(shown=True))), left)
-        if not result.finished:
-            return best, False
+        if not control.solve(lambda model: last.append(used(model.symbols(shown=True))), left).finished:
+            return found.best, False
         if not last:
-            return best, proven  # no tree left
+            return found.best, found.proven  # no tree left
         t = last[-1]
         seen.append(t)
-        work = sum(inst.min_duration(u) for u in t)
-        if best is not None and -(-work // m) > best.makespan:
-            return best, proven
-        if best is None or bound((t, ())) < key(best):
-            left = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
-            r = solve((t, ()), left, None if best is None else best.makespan)
-            proven = proven and r.status in ("optimal", "unschedulable")
-            if r.has_schedule and (best is None or key(r) < key(best)):
-                best = r
+        work = sum(listing.inst.min_duration(u) for u in t)
+        if found.best is not None and -(-work // m) > found.best.makespan:
+            return found.best, found.proven
+        if found.beats(bound((t, ()))):
+            found.offer((t, ()))
         if first:
-            return best, proven
+            return found.best, found.proven
 
 
 def every_tree_bound(

@@ -204,32 +204,23 @@ class JointRequest:
 
 
 def _by_trees(
-    job: JointRequest,
-    inst: Instance,
-    start: dict[int, int],
-    tail: dict[int, int],
-    horizon: int,
-    parts: list,
-    ties: bool,
-    deadline: float | None,
+    job: JointRequest, listing: joint.Listing, ties: bool, left: Callable[[], float | None]
 ) -> tuple[ScheduleResult | None, bool, ScheduleResult | None]:
     """Joint scheduling tree by tree (:mod:`foon2asp.schedule.joint`): (result, proven, partial).
 
     The result is None when the trees are too many to look at in time, or when ``ties`` leaves
     the tie-breakers to the one encoding (``proven``: the given makespan is the optimum); an
     unproven answer from the trees asked for least work first is ``partial``."""
-    problem, spec, options = job.problem, job.spec, job.options
+    problem, spec, inst = job.problem, job.spec, listing.inst
     single = len(inst.agents) == 1
-    within = horizon if single or not job.fixed.has_schedule else horizon - model.divisor(inst)
-    listing = joint.Listing(inst, start, tail, within, parts, solver_arguments(options))
     if single:  # the makespan is the tree's work: least work first, the first tree is the best
         found = joint.Trees([], False)
     else:
-        left = None if deadline is None else max(0.0, deadline - time.perf_counter()) / 3
-        found = joint.candidate_trees(listing, left)
-        if not found.complete and (deadline is not None and time.perf_counter() >= deadline):
+        share = left()
+        found = joint.candidate_trees(listing, None if share is None else share / 3)
+        if not found.complete and left() == 0.0:
             return None, False, None
-    ranked = objectives.ranked(options)
+    ranked = objectives.ranked(job.options)
 
     def bound(cand: joint.Candidate) -> tuple:
         """A lower bound on the rank of the designated tree's schedule."""
@@ -242,14 +233,14 @@ def _by_trees(
             return (low, forced_human(sub), ())
         return (low, 0, joint.tree_cost(problem, units, (), ranked))
 
-    left = None if deadline is None else max(0.0, deadline - time.perf_counter())
     if found.complete:
-        best, proven = joint.best_tree(found.trees, bound, job.solve, job.rank, left)
+        best, proven = joint.best_tree(found.trees, bound, job.solve, job.rank, left())
     else:  # too many to list: one at a time, least work first
-        levels = len(ranked)
+        share = left()
+        if not single and share is not None:
+            share /= 4
         first = single and not spec.has_human()  # a person alone: fewest units among equal work
-        share = left if single or left is None else left / 4
-        best, proven = joint.best_by_work(listing, levels, bound, job.solve, job.rank, share, first)
+        best, proven = joint.best_by_work(listing, len(ranked), bound, job.solve, job.rank, share, first)
     stats = {"joint": "tree by tree" if found.complete else "tree by tree, least work first"}
     result, proven = job.finish(best, proven, ties, stats)
     if not single and not found.complete and not proven:
@@ -285,7 +276,6 @@ def _schedule_joint(
 ) -> ScheduleResult:
     """:func:`schedule_joint` but the bound over every tree (``floor``)."""
     problem, tree, spec, options, fixed = job.problem, job.tree, job.spec, job.options, job.fixed
-    encoding, shortcut = job.encoding, job.shortcut
     meal = tree.meal
     products = {u: problem.products[u] for u in inst.units}
     if fixed.has_schedule:
@@ -293,9 +283,9 @@ def _schedule_joint(
         assert horizon is not None
     else:
         horizon = sum(max(inst.durations[u].values()) for u in start)
-    stats: dict = {"encoding": encoding, "candidates": len(inst.units)}
+    stats: dict = {"encoding": job.encoding, "candidates": len(inst.units)}
     if (
-        shortcut
+        job.shortcut
         and fixed.status == "optimal"
         and tree.status == "optimal"
         and horizon == floor
@@ -304,18 +294,20 @@ def _schedule_joint(
         stats["shortcut"] = "the given tree's makespan meets the lower bound over every tree"
         return replace(fixed, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
     tail = model.joint_tails(inst, meal, products)
-    deadline = None if time_limit is None else t0 + time_limit
+    left = encode.clock(time_limit)
     ties = spec.has_human() or tree.status != "optimal"
     parts = joint.tree_parts(problem, meal, inst, options)
-    by_trees, proven, partial = _by_trees(job, inst, start, tail, horizon, parts, ties, deadline)
+    within = horizon if len(inst.agents) == 1 or not fixed.has_schedule else horizon - model.divisor(inst)
+    args = solver_arguments(options)
+    listing = joint.Listing(inst, start, tail, within, parts, args)
+    by_trees, proven, partial = _by_trees(job, listing, ties, left)
     if by_trees is not None:
         by_trees.stats = {**stats, **by_trees.stats}
         by_trees.time_s = time.perf_counter() - t0
         return by_trees
     if proven:  # no tree beats the given one's makespan: only the tie-breakers are left
         floor = horizon
-    left = None if deadline is None else max(0.0, deadline - time.perf_counter())
-    if left == 0.0:  # no time for the one encoding (its grounding alone can take minutes): the given tree's
+    if left() == 0.0:  # no time for the one encoding (its grounding alone can take minutes): the given tree's
         stats["joint"] = "time"
         if partial is not None:
             return replace(partial, stats={**stats, **partial.stats}, time_s=time.perf_counter() - t0)
@@ -323,8 +315,8 @@ def _schedule_joint(
         return replace(fixed, status=status, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
     user = [name for name, _ in options.programs]
     levels = len(objectives.ranked(options))
-    one = encode.Job(inst, start, tail, horizon, floor, solver_arguments(options), parts, levels, user, ties)
-    sol = encode.solve(one, encoding, left)
+    one = encode.Job(inst, start, tail, horizon, floor, args, parts, levels, user, ties)
+    sol = encode.solve(one, job.encoding, left())
     stats.update(sol.stats, joint="tie-breakers in one encoding" if proven else "one encoding")
     elapsed = time.perf_counter() - t0
     if sol.unsatisfiable:
