@@ -27,21 +27,5 @@ from foon2asp.api import (  # noqa: E402
 from foon2asp.errors import InputError  # noqa: E402
 from foon2asp.foon.model import FoonObject, Unit  # noqa: E402
 
-__all__ = [
-    "__version__",
-    "load",
-    "consolidate",
-    "check_tree",
-    "KnowledgeBase",
-    "Tree",
-    "CheckReport",
-    "Comparison",
-    "Missing",
-    "Consolidation",
-    "TreeVerdict",
-    "Constraints",
-    "Options",
-    "FoonObject",
-    "Unit",
-    "InputError",
-]
+__all__ = ["__version__", "load", "consolidate", "check_tree", "KnowledgeBase", "Tree", "CheckReport", "Comparison"]
+__all__ += ["Missing", "Consolidation", "TreeVerdict", "Constraints", "Options", "FoonObject", "Unit", "InputError"]

@@ -14,7 +14,7 @@ name, for front ends that offer it as choices.
 """
 
 from foon2asp import methods as methods_mod
-from foon2asp.analysis.compare import DEFAULT_METHODS
+from foon2asp.analysis.compare import DEFAULT_METHODS as COMPARE_METHODS
 from foon2asp.api.kb import KnowledgeBase
 from foon2asp.api.load import FOON_FORMATS, load, match_foon, read_foons, read_program, write_foon
 from foon2asp.api.options import Constraints, Options
@@ -42,29 +42,17 @@ from foon2asp.api.trees import (
 )
 from foon2asp.asp.options import OBJECTIVES as _OBJECTIVES
 from foon2asp.batch.schedules import schedules_path
-from foon2asp.foon.goals import OBJECT_FILTERS as _OBJECT_FILTERS
-from foon2asp.foon.motioncost import PRECISION_TEXT
-from foon2asp.foon.problem import UTENSIL_RULES as _UTENSIL_RULES
-from foon2asp.methods.parts import GROUNDING_CHOICES
+from foon2asp.foon.goals import OBJECT_FILTERS
+from foon2asp.foon.motioncost import PRECISION_TEXT as MOTION_COST_PRECISION
+from foon2asp.foon.problem import UTENSIL_RULES
+from foon2asp.methods.parts import GROUNDING_CHOICES as GROUNDINGS
 from foon2asp.methods.registry import Method
-from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec, parse_agents
-from foon2asp.schedule.encode import ENCODINGS
+from foon2asp.schedule import DEFAULT_ENCODING as DEFAULT_SCHEDULE_ENCODING
+from foon2asp.schedule import ScheduleSpec, parse_agents
+from foon2asp.schedule.encode import ENCODINGS as SCHEDULE_ENCODINGS
 
 #: objective names, for ``objective=`` (lexicographic lists of them)
 OBJECTIVES: tuple[str, ...] = tuple(_OBJECTIVES)
-#: how exact motion costs are (``motion_cost=``), in words
-MOTION_COST_PRECISION: str = PRECISION_TEXT
-#: ``utensil_rule=`` of :func:`load`: when a utensil holding one ingredient is not a required input
-UTENSIL_RULES: tuple[str, ...] = tuple(_UTENSIL_RULES)
-#: ``grounding=`` of a batch: ``auto`` chooses ``whole`` or ``per-goal``
-GROUNDINGS: tuple[str, ...] = tuple(GROUNDING_CHOICES)
-#: the methods :meth:`KnowledgeBase.compare` runs by default
-COMPARE_METHODS: tuple[str, ...] = tuple(DEFAULT_METHODS)
-#: ``only=`` of :meth:`KnowledgeBase.find_objects`
-OBJECT_FILTERS: tuple[str, ...] = tuple(_OBJECT_FILTERS)
-#: the schedule encodings (:mod:`foon2asp.schedule.encode`) and the default one
-SCHEDULE_ENCODINGS = ENCODINGS
-DEFAULT_SCHEDULE_ENCODING = DEFAULT_ENCODING
 
 
 def methods() -> list[Method]:
@@ -77,47 +65,10 @@ def method(name: str) -> Method:
     return methods_mod.get(name)
 
 
-__all__ = [
-    "load",
-    "KnowledgeBase",
-    "Options",
-    "Constraints",
-    "Tree",
-    "CheckReport",
-    "Comparison",
-    "Missing",
-    "Reachability",
-    "BatchRun",
-    "Schedule",
-    "ScheduleSpec",
-    "ScheduleVerdict",
-    "SCHEDULE_ENCODINGS",
-    "DEFAULT_SCHEDULE_ENCODING",
-    "parse_agents",
-    "is_schedule_file",
-    "schedules_path",
-    "schedules_json",
-    "verdicts_json",
-    "check_tree",
-    "TreeVerdict",
-    "consolidate",
-    "Consolidation",
-    "ConsolidatedGoal",
-    "CandidateReport",
-    "read_foons",
-    "match_foon",
-    "write_foon",
-    "FOON_FORMATS",
-    "read_program",
-    "draw_file",
-    "writable_dir",
-    "write_file",
-    "methods",
-    "method",
-    "OBJECTIVES",
-    "UTENSIL_RULES",
-    "GROUNDINGS",
-    "COMPARE_METHODS",
-    "OBJECT_FILTERS",
-    "MOTION_COST_PRECISION",
-]
+__all__ = ["load", "KnowledgeBase", "Options", "Constraints", "Tree", "CheckReport", "Comparison", "Missing"]
+__all__ += ["Reachability", "BatchRun", "Schedule", "ScheduleSpec", "ScheduleVerdict", "SCHEDULE_ENCODINGS"]
+__all__ += ["DEFAULT_SCHEDULE_ENCODING", "parse_agents", "is_schedule_file", "schedules_path", "schedules_json"]
+__all__ += ["verdicts_json", "check_tree", "TreeVerdict", "consolidate", "Consolidation", "ConsolidatedGoal"]
+__all__ += ["CandidateReport", "read_foons", "match_foon", "write_foon", "FOON_FORMATS", "read_program", "draw_file"]
+__all__ += ["writable_dir", "write_file", "methods", "method", "OBJECTIVES", "UTENSIL_RULES", "GROUNDINGS"]
+__all__ += ["COMPARE_METHODS", "OBJECT_FILTERS", "MOTION_COST_PRECISION"]
