@@ -143,9 +143,6 @@ def report_json(problem: Problem, report: Report) -> dict:
     return out
 
 
-# ---------------------------------------------------------------- a tree on its own
-
-
 def _alone_steps(v: AloneVerdict, positions: list[int]) -> str:
     return " ".join(str(v.step(p)) for p in positions) or "-"
 

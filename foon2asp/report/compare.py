@@ -219,8 +219,6 @@ def render(problem: Problem, rows: list[Row], fmt: str) -> str:
     return registry.render("compare", fmt, problem, rows)
 
 
-# ---------------------------------------------------------------- the summary of a batch
-
 SUMMARY_COLUMNS = (
     "method results statuses trees valid units_min units_median units_mean units_max time_total_s time_median_ms"
 ).split()

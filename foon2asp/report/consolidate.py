@@ -100,22 +100,15 @@ def consolidation_text(problem: Problem, c: Consolidation) -> str:
     return "\n".join(head) + "\n"
 
 
-@register("consolidate", "text", "txt", "readable report per goal: the tree, each unit's sources, the candidates")
-def consolidate_text(problem: Problem, results: list[Consolidation]) -> str:
-    return "\n".join(consolidation_text(problem, c) for c in results)
-
-
-@register("consolidate", "json", "json", "a list with one object per goal (see foon2asp.report.consolidate)")
-def consolidate_json(problem: Problem, results: list[Consolidation]) -> str:
-    return json_list([consolidation_json(problem, c) for c in results]) + "\n"
-
-
-@register("consolidate", "units-json", "json", "the tree of each goal in the unit-list form of generated trees")
-def consolidate_units(problem: Problem, results: list[Consolidation]) -> str:
-    return dumps_trees([[problem.units[u] for u in c.tree.units] for c in results])
-
-
-# ---------------------------------------------------------------- HTML
+register("consolidate", "text", "txt", "readable report per goal: the tree, each unit's sources, the candidates")(
+    lambda problem, results: "\n".join(consolidation_text(problem, c) for c in results)
+)
+register("consolidate", "json", "json", "a list with one object per goal (see foon2asp.report.consolidate)")(
+    lambda problem, results: json_list([consolidation_json(problem, c) for c in results]) + "\n"
+)
+register("consolidate", "units-json", "json", "the tree of each goal in the unit-list form of generated trees")(
+    lambda problem, results: dumps_trees([[problem.units[u] for u in c.tree.units] for c in results])
+)
 
 
 def colors(results: list[Consolidation]) -> dict[str, str]:

@@ -155,9 +155,6 @@ def build_graph(
     return g
 
 
-# ---------------------------------------------------------------- marks from a problem
-
-
 def cycle_marks(problem: Problem, finding: Finding | None, position: dict[int, int]) -> dict:
     """The Marks fields of the cycle of ``finding`` (``position``: FOON unit id -> drawn position)."""
     if finding is None or not finding.cycle:
@@ -290,9 +287,6 @@ def file_graph(
     )
 
 
-# ---------------------------------------------------------------- rendering
-
-
 def require_dot() -> None:
     """Fail with one line when Graphviz's ``dot`` is not installed."""
     if shutil.which("dot") is None:
@@ -355,9 +349,6 @@ def format_of(path: str | Path) -> str:
     if ext not in FORMATS:
         raise InputError(f"cannot tell the drawing format from {str(path)!r}: use .svg, .png, .pdf or .dot")
     return ext
-
-
-# ---------------------------------------------------------------- the library API
 
 
 def tree_svg(problem: Problem, tree: TaskTree) -> str:

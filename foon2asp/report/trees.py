@@ -12,44 +12,33 @@ from foon2asp.report.registry import register
 from foon2asp.tree.serialize import to_json, tree_foon, tree_foon_json, tree_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
 
-
-@register("trees", "text", "txt", "readable steps")
-def trees_text(problem: Problem, trees: list[TaskTree]) -> str:
-    return "\n".join(tree_text(problem, t) for t in trees)
-
-
-@register("trees", "json", "json", "a list of results in the stable JSON shape")
-def trees_json(problem: Problem, trees: list[TaskTree]) -> str:
-    return to_json(problem, trees) + "\n"
-
-
-@register("trees", "foon", "foon.txt", "FOON text in the official dialect (ids), as FOON_view and foon_api load it")
-def trees_foon(problem: Problem, trees: list[TaskTree]) -> str:
-    return "".join(tree_foon(problem, t) for t in trees)
-
-
-@register("trees", "foon-plain", "foon.txt", "FOON text without ids (the earlier course programs' dialect)")
-def trees_foon_plain(problem: Problem, trees: list[TaskTree]) -> str:
-    return "".join(tree_foon(problem, t, "plain") for t in trees)
+register("trees", "text", "txt", "readable steps")(
+    lambda problem, trees: "\n".join(tree_text(problem, t) for t in trees)
+)
+register("trees", "json", "json", "a list of results in the stable JSON shape")(
+    lambda problem, trees: to_json(problem, trees) + "\n"
+)
+register("trees", "foon", "foon.txt", "FOON text in the official dialect (ids), as FOON_view and foon_api load it")(
+    lambda problem, trees: "".join(tree_foon(problem, t) for t in trees)
+)
+register("trees", "foon-plain", "foon.txt", "FOON text without ids (the earlier course programs' dialect)")(
+    lambda problem, trees: "".join(tree_foon(problem, t, "plain") for t in trees)
+)
 
 
 @register("trees", "foon-json", "foon.json", "FOON JSON (foon_api's schema); a list when there are several trees")
-def trees_foon_json(problem: Problem, trees: list[TaskTree]) -> str:
+def _foon_json(problem: Problem, trees: list[TaskTree]) -> str:
     docs = [tree_foon_json(problem, t) for t in trees]
     return json.dumps(docs[0] if len(docs) == 1 else docs, indent=1) + "\n"
 
 
-@register(
+register(
     "trees",
     "units-json",
     "json",
     "the unit-list JSON of generated trees ({input_nodes, motion_node, output_nodes} per unit);"
     " a list of them when there are several trees",
-)
-def trees_units_json(problem: Problem, trees: list[TaskTree]) -> str:
-    return dumps_trees([[problem.units[u] for u in t.units] for t in trees])
-
-
+)(lambda problem, trees: dumps_trees([[problem.units[u] for u in t.units] for t in trees]))
 draw.register_pictures(
     "trees",
     lambda fmt, problem, trees: draw.render(draw.trees_graph(problem, trees), fmt),
@@ -57,11 +46,9 @@ draw.register_pictures(
     "the drawing",
     "Graphviz 'dot'",
 )
-
-
-@register("trees", "jsonl", "jsonl", "JSON lines: one result per line, written as each goal is solved")
-def trees_jsonl(problem: Problem, trees: list[TaskTree]) -> str:
-    return "".join(json.dumps(tree_json(problem, t), ensure_ascii=False) + "\n" for t in trees)
+register("trees", "jsonl", "jsonl", "JSON lines: one result per line, written as each goal is solved")(
+    lambda problem, trees: "".join(json.dumps(tree_json(problem, t), ensure_ascii=False) + "\n" for t in trees)
+)
 
 
 def render(problem: Problem, trees: list[TaskTree], fmt: str) -> str:
