@@ -12,30 +12,9 @@ from pathlib import Path
 import click
 
 from foon2asp import api, report
+from foon2asp.cli import options as opt
 from foon2asp.cli.main import main
-from foon2asp.cli.options import (
-    CONSTRAINTS,
-    DATA,
-    FILES,
-    GAP_OPTION,
-    GOAL_HELP,
-    KITCHEN_HELP,
-    MATCHING,
-    MOTION_COST,
-    SCHEDULE,
-    SOURCES,
-    STRATEGY,
-    STRICT_HELP,
-    choice,
-    command,
-    format_option,
-    joined_lines,
-    models_option,
-    objective_options,
-    output_option,
-    time_limit_option,
-    together_option,
-)
+from foon2asp.cli.options import command
 from foon2asp.cli.output import EXIT_CODES, emit, exit_code, warn_all
 from foon2asp.errors import InputError
 from foon2asp.report import draw as draw_mod
@@ -46,23 +25,16 @@ from foon2asp.report import pddl
 
 @command(
     click.argument("trees", nargs=-1, required=True, type=click.Path(), metavar="TREE [TREE...]"),
-    DATA,
-    click.option(
-        "--goal",
-        multiple=True,
-        metavar="TEXT",
-        help="The goal (a label, an object's text or #ID; repeat for a meal); default: the goal the file names"
+    opt.DATA,
+    opt.goal_options(
+        "Several goals (a goals file, or 'all' for the goals file): each tree's goal is the one of them it makes.",
+        goal_help="The goal (a label, an object's text or #ID; repeat for a meal); default: the goal the file names"
         " (a JSON result, or the '# task tree for ...' line of solve --format foon), else the tree's only sink"
         " (judged on its own: the products of its last unit).",
     ),
-    click.option(
-        "--goals",
-        metavar="FILE|all",
-        help="Several goals (a goals file, or 'all' for the goals file): each tree's goal is the one of them it makes.",
-    ),
-    format_option("check"),
+    opt.format_option("check"),
     click.option("--optimum/--no-optimum", default=True, help="Also solve the ASP optimum to compare with."),
-    SCHEDULE,
+    opt.SCHEDULE,
 )
 def check(trees, data, goal, goals, fmt, optimum, spec, options):
     """Check the task tree(s) in each TREE (FOON text with // between units, FOON JSON, foon2asp JSON,
@@ -136,12 +108,12 @@ def check(trees, data, goal, goals, fmt, optimum, spec, options):
         help="Data directory: marks kitchen items, the goal and a blocking cycle.",
     ),
     click.option("--goal", help="Goal label (default: the goal a JSON result names, else inferred from the tree)."),
-    output_option("FILE.svg, .png, .pdf or .dot", required=True),
-    choice(
+    opt.output_option("FILE.svg, .png, .pdf or .dot", required=True),
+    opt.choice(
         "--format", "fmt", choices=draw_mod.FORMATS, default=None, help="Drawing format (default: from the extension)."
     ),
-    click.option("--strict", is_flag=True, help=STRICT_HELP),
-    MATCHING,
+    click.option("--strict", is_flag=True, help=opt.STRICT_HELP),
+    opt.MATCHING,
 )
 def draw(tree, data, goal, output, fmt, options):
     """Draw a task tree file: FOON text (either dialect), FOON JSON, foon2asp JSON or the unit-list
@@ -168,9 +140,9 @@ def draw(tree, data, goal, output, fmt, options):
 
 @command(
     click.argument("files", nargs=-1, required=True, type=click.Path()),
-    output_option("The merged FOON file.", required=True),
+    opt.output_option("The merged FOON file.", required=True),
     click.option("--strict", is_flag=True, help="Treat skipped units (warnings) as errors."),
-    choice(
+    opt.choice(
         "--format",
         "fmt",
         choices=api.FOON_FORMATS,
@@ -178,7 +150,7 @@ def draw(tree, data, goal, output, fmt, options):
         help="foon: official dialect with ids; foon-plain: without ids; foon-json: foon_api's JSON;"
         " units-json: the unit-list JSON of generated trees.",
     ),
-    MATCHING,
+    opt.MATCHING,
 )
 def merge(files, output, strict, fmt, match, options):
     """Merge FOON subgraphs into one universal FOON (duplicate units merged).
@@ -193,7 +165,7 @@ def merge(files, output, strict, fmt, match, options):
     foon = api.read_foons(files, strict)
     warn_all(foon.warnings)
     foon, joined = api.match_foon(foon, **match)
-    for line in joined_lines(joined):
+    for line in opt.joined_lines(joined):
         click.echo(line, err=True)
     api.write_foon(foon, output, fmt, header=f"merged by foon2asp from {len(files)} file(s)")
     click.echo(
@@ -203,24 +175,21 @@ def merge(files, output, strict, fmt, match, options):
 
 @command(
     click.argument("trees", nargs=-1, required=True, type=click.Path(), metavar="TREES..."),
-    click.option("--goal", multiple=True, metavar="TEXT", help=GOAL_HELP),
-    click.option(
-        "--goals",
-        metavar="FILE|all",
-        help="A FILE of goal objects, or 'all': every product of a candidate's last unit. Default: the product of"
-        " the candidates' last units that most of them share.",
+    opt.goal_options(
+        "A FILE of goal objects, or 'all': every product of a candidate's last unit. Default: the product of"
+        " the candidates' last units that most of them share."
     ),
-    click.option("--kitchen", type=click.Path(), help=KITCHEN_HELP + " Default: leaves."),
-    FILES,
-    CONSTRAINTS,
-    objective_options(),
-    format_option("consolidate"),
-    output_option("A FILE to write the report to (default: stdout)."),
-    time_limit_option(),
-    GAP_OPTION,
-    together_option("A meal: one tree that makes every goal."),
-    STRATEGY,
-    MATCHING,
+    click.option("--kitchen", type=click.Path(), help=opt.KITCHEN_HELP + " Default: leaves."),
+    opt.FILES,
+    opt.CONSTRAINTS,
+    opt.objective_options(),
+    opt.format_option("consolidate"),
+    opt.output_option("A FILE to write the report to (default: stdout)."),
+    opt.time_limit_option(),
+    opt.GAP_OPTION,
+    opt.together_option("A meal: one tree that makes every goal."),
+    opt.STRATEGY,
+    opt.MATCHING,
     epilog=EXIT_CODES,
 )
 def consolidate(trees, goal, fmt, output, options, match, **given):
@@ -249,10 +218,13 @@ def export():
 
 
 @command(
-    DATA,
-    click.option("--goal", multiple=True, help="Goal label; repeat for a meal (every goal in :goal)."),
-    click.option("--goals", help="FILE of goal objects or 'all' (the goals file): all of them in one :goal."),
-    choice(
+    opt.DATA,
+    opt.goal_options(
+        "FILE of goal objects or 'all' (the goals file): all of them in one :goal.",
+        "TEXT",
+        "Goal label; repeat for a meal (every goal in :goal).",
+    ),
+    opt.choice(
         "--objective",
         "pddl_objective",
         choices=pddl.PDDL_OBJECTIVES,
@@ -260,10 +232,10 @@ def export():
         help="units: plan length; success: integer action costs round(-1000 ln p) (:action-costs); inputs: input"
         " nodes; cost: the motion costs of --motion-cost in hundredths.",
     ),
-    MOTION_COST,
-    output_option("Directory for domain.pddl and problem.pddl.", file=False, required=True),
+    opt.MOTION_COST,
+    opt.output_option("Directory for domain.pddl and problem.pddl.", file=False, required=True),
     click.option("--name", default="foon", help="Domain name (problem: NAME-task)."),
-    CONSTRAINTS,
+    opt.CONSTRAINTS,
     name="pddl",
     group=export,
 )
@@ -304,10 +276,10 @@ FACT_GOALS = click.option(
 
 
 @command(
-    DATA,
+    opt.DATA,
     FACT_GOALS,
-    click.option("--goal", multiple=True, metavar="TEXT", help="Also fix goal(O) for this goal. " + GOAL_HELP),
-    output_option("A FILE to write the facts to (default: stdout)."),
+    click.option("--goal", multiple=True, metavar="TEXT", help="Also fix goal(O) for this goal. " + opt.GOAL_HELP),
+    opt.output_option("A FILE to write the facts to (default: stdout)."),
 )
 def facts(data, goals, goal, output, options):
     """Write the FOON, kitchen and goals as ASP facts."""
@@ -319,9 +291,9 @@ def facts(data, goals, goal, output, options):
 
 @command(
     click.argument("program", type=click.Path()),
-    DATA,
+    opt.DATA,
     FACT_GOALS,
-    click.option("--goal", metavar="TEXT", help="Also add goal(O) for this goal. " + GOAL_HELP),
+    click.option("--goal", metavar="TEXT", help="Also add goal(O) for this goal. " + opt.GOAL_HELP),
     click.option(
         "--encoding",
         "encoding_names",
@@ -329,9 +301,9 @@ def facts(data, goals, goal, output, options):
         help="Also load a shipped encoding (tree, units, success, inputs, reachable, missing) and what it needs;"
         " repeatable.",
     ),
-    models_option(0, "Models to print (0 = all); with an objective, the optimum."),
-    format_option("query"),
-    time_limit_option("Seconds for the solve."),
+    opt.models_option(0, "Models to print (0 = all); with an objective, the optimum."),
+    opt.format_option("query"),
+    opt.time_limit_option("Seconds for the solve."),
 )
 def query(program, data, goals, goal, encoding_names, fmt, options):
     """Run your ASP PROGRAM with the FOON facts; print its shown atoms with ids as readable objects.
@@ -361,9 +333,9 @@ def query(program, data, goals, goal, encoding_names, fmt, options):
 
 @command(
     click.argument("query", required=False, metavar="[LABEL]"),
-    SOURCES,
-    FILES,
-    MATCHING,
+    opt.SOURCES,
+    opt.FILES,
+    opt.MATCHING,
     click.option(
         "--produced",
         "only",
@@ -376,9 +348,9 @@ def query(program, data, goals, goal, encoding_names, fmt, options):
         "--kitchen-file",
         "kitchen",
         metavar="FILE|leaves",
-        help=KITCHEN_HELP.replace("kitchen.json", "A kitchen.json", 1),
+        help=opt.KITCHEN_HELP.replace("kitchen.json", "A kitchen.json", 1),
     ),
-    choice("--format", "fmt", choices=("text", "json")),
+    opt.choice("--format", "fmt", choices=("text", "json")),
 )
 def objects(query, data, only, fmt, options):
     """List the objects LABEL names (all objects without it), each with its #ID and text.
@@ -423,7 +395,7 @@ def objects(query, data, only, fmt, options):
         click.echo(f"{'#' + str(info['id']):<{width}}  {info['text']}" + (f"   ({', '.join(where)})" if where else ""))
     what = {None: "", "produced": " made by some unit", "kitchen": " in the kitchen", "derivable": " derivable"}[only]
     click.echo(f"{len(infos)} object{'s' if len(infos) != 1 else ''}{what}", err=True)
-    for line in joined_lines(kb.joined):
+    for line in opt.joined_lines(kb.joined):
         click.echo(line, err=True)
 
 

@@ -8,27 +8,8 @@ import sys
 import click
 
 from foon2asp import api, report
-from foon2asp.cli.options import (
-    CONSTRAINTS,
-    DATA,
-    GAP_OPTION,
-    GOALS,
-    PROGRESS,
-    SCHEDULE,
-    STRATEGY,
-    Checked,
-    choice,
-    command,
-    format_option,
-    goal_command,
-    int32,
-    method_option,
-    models_option,
-    objective_options,
-    output_option,
-    time_limit_option,
-    together_option,
-)
+from foon2asp.cli import options as opt
+from foon2asp.cli.options import Checked, command, goal_command
 from foon2asp.cli.output import EXIT_CODES, echo_now, emit, exit_code, goal_progress, progress_bar, solver_of, warn_all
 from foon2asp.errors import InputError
 from foon2asp.report import draw
@@ -66,34 +47,36 @@ def written(trees: list) -> str:
     return "; ".join(t.status + (", INVALID" if t.has_tree and t.extra.get("valid") is False else "") for t in trees)
 
 
-#: --max-depth, --human-steps, --models, --all-optimal and :data:`STRATEGY`
+#: --max-depth, --human-steps, --models, --all-optimal and :data:`~foon2asp.cli.options.STRATEGY`
 SOLVER = [
     click.option(
         "--max-depth",
-        type=int32(min=1),
+        type=opt.int32(min=1),
         help="Only trees of at most N sequential rounds (the goal's level); with --objective depth, the search stops there.",
     ),
     click.option(
         "--human-steps",
-        type=int32(min=0),
+        type=opt.int32(min=0),
         help="At most M units may be done by a person (success 1.0); the solver picks them, the output marks them.",
     ),
-    models_option(1, "The K best distinct trees per goal, best first."),
+    opt.models_option(1, "The K best distinct trees per goal, best first."),
     click.option("--all-optimal", is_flag=True, help="Every optimal tree per goal (at most 100)."),
-    *STRATEGY,
+    *opt.STRATEGY,
 ]
 
 
 @goal_command(
     "trees",
-    output_option(
+    opt.output_option(
         "A FOLDER: write one file per goal (and method) there, and print one line per file written.", file=False
     ),
-    time_limit_option(),
-    GAP_OPTION,
-    together_option("A meal: one tree that makes every goal, units shared between dishes counted once (ASP methods)."),
+    opt.time_limit_option(),
+    opt.GAP_OPTION,
+    opt.together_option(
+        "A meal: one tree that makes every goal, units shared between dishes counted once (ASP methods)."
+    ),
     SOLVER,
-    PROGRESS,
+    opt.PROGRESS,
     methods="asp",
 )
 def solve(data, goal, goals, method_list, fmt, output, together, options, progress):
@@ -154,11 +137,11 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
 
 @goal_command(
     "compare",
-    time_limit_option("Seconds per goal for ASP methods."),
-    GAP_OPTION,
-    together_option("A meal: the one tree for all goals beside the sum of the single optima (ASP)."),
-    STRATEGY,
-    PROGRESS,
+    opt.time_limit_option("Seconds per goal for ASP methods."),
+    opt.GAP_OPTION,
+    opt.together_option("A meal: the one tree for all goals beside the sum of the single optima (ASP)."),
+    opt.STRATEGY,
+    opt.PROGRESS,
     methods=",".join(api.COMPARE_METHODS),
 )
 def compare(data, goal, goals, method_list, fmt, together, options, progress):
@@ -190,10 +173,10 @@ def compare(data, goal, goals, method_list, fmt, together, options, progress):
 
 @goal_command(
     "missing",
-    time_limit_option("Seconds per goal; the best answer so far is reported as 'feasible'."),
-    together_option("A meal: the fewest objects so that one tree makes every goal."),
-    STRATEGY,
-    PROGRESS,
+    opt.time_limit_option("Seconds per goal; the best answer so far is reported as 'feasible'."),
+    opt.together_option("A meal: the fewest objects so that one tree makes every goal."),
+    opt.STRATEGY,
+    opt.PROGRESS,
     objective_help="After the fewest added objects, the best tree by these objectives (units, success, inputs, cost"
     " with --motion-cost), comma-separated.",
 )
@@ -214,7 +197,7 @@ def missing(data, goal, goals, fmt, together, options, progress):
     sys.exit(exit_code((r.status, None) for r in results))
 
 
-@command(DATA, GOALS, format_option("reachable"))
+@command(opt.DATA, opt.GOALS, opt.format_option("reachable"))
 def reachable(data, goal, goals, fmt, options):
     """Which goals (or objects) can be made from the kitchen at all, in one solve (default: the goals file's goals)."""
     kb, goal_ids = data.load_goals(goal, goals)
@@ -238,35 +221,35 @@ def status_text(info: dict) -> str:
 
 @goal_command(
     None,
-    time_limit_option(
+    opt.time_limit_option(
         "Seconds per solve (tree, schedule; with --joint also the search over trees); a schedule cut short is"
         " 'feasible': the best found, with its lower bound. Without it the tree has no limit and each schedule"
         f" solve {DEFAULT_TIME_LIMIT:g} s."
     ),
-    SCHEDULE,
+    opt.SCHEDULE,
     click.option(
         "--joint",
         is_flag=True,
         help="Choose tree and schedule together: the makespan is minimal over every valid tree (the fixed tree's"
         " is reported beside it).",
     ),
-    choice(
+    opt.choice(
         "--format",
         "fmt",
         choices=["text", "json", *report.names("schedule")],
         help="text: a timeline per agent; json: a list, one object per goal; svg/png/pdf/dot: Gantt charts;"
         " html: a page of them.",
     ),
-    output_option("Write to FILE instead of stdout (png, pdf: binary)."),
-    choice(
+    opt.output_option("Write to FILE instead of stdout (png, pdf: binary)."),
+    opt.choice(
         "--encoding",
         choices=api.SCHEDULE_ENCODINGS,
         default=api.DEFAULT_SCHEDULE_ENCODING,
         help="Time steps in plain ASP, or clingo-dl start times (needs clingo-dl).",
     ),
-    together_option("A meal: one tree that makes every goal, and one schedule of it."),
-    STRATEGY,
-    PROGRESS,
+    opt.together_option("A meal: one tree that makes every goal, and one schedule of it."),
+    opt.STRATEGY,
+    opt.PROGRESS,
     objective_help="The tree's objective(s), comma-separated (units, success, inputs, depth, cost): the tree"
     " scheduled, or with --joint the tie-breaker after makespan and human units.",
     epilog="""\b
@@ -341,11 +324,11 @@ WORKERS, SCHEDULER = Checked("N|auto", _workers), Checked("address", _address)
 
 
 @command(
-    DATA,
-    GOALS,
-    method_option("asp"),
-    objective_options(),
-    output_option("A FILE of results, one JSON line per (goal, method).", default="results.jsonl"),
+    opt.DATA,
+    opt.GOALS,
+    opt.method_option("asp"),
+    opt.objective_options(),
+    opt.output_option("A FILE of results, one JSON line per (goal, method).", default="results.jsonl"),
     click.option(
         "--resume",
         is_flag=True,
@@ -361,10 +344,10 @@ WORKERS, SCHEDULER = Checked("N|auto", _workers), Checked("address", _address)
     click.option(
         "--scheduler", type=SCHEDULER, metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra)."
     ),
-    time_limit_option(),
-    GAP_OPTION,
-    STRATEGY,
-    choice(
+    opt.time_limit_option(),
+    opt.GAP_OPTION,
+    opt.STRATEGY,
+    opt.choice(
         "--grounding",
         choices=api.GROUNDINGS,
         default="auto",
@@ -378,16 +361,16 @@ WORKERS, SCHEDULER = Checked("N|auto", _workers), Checked("address", _address)
         help="Let preparation answer a goal it proves (one tree in the goal's part; the landmark bound met by"
         " the bounds tree); --no-shortcuts: clingo answers every goal that can be made.",
     ),
-    choice(
+    opt.choice(
         "--summary", "summary_fmt", choices=report.names("summary"), help="Format of the summary printed at the end."
     ),
-    PROGRESS,
+    opt.PROGRESS,
     click.option(
         "--fsync/--no-fsync",
         default=True,
         help="Sync result lines to disk (grouped: at most 0.25 s apart, and at the end).",
     ),
-    CONSTRAINTS,
+    opt.CONSTRAINTS,
     click.option(
         "--schedule",
         "with_schedules",
@@ -395,25 +378,10 @@ WORKERS, SCHEDULER = Checked("N|auto", _workers), Checked("address", _address)
         help="Also schedule each goal's tree (of the first method) on the agents of the schedule options, into"
         " OUTPUT with the suffix .schedules.json (a JSON list as 'schedule --format json' writes).",
     ),
-    SCHEDULE,
+    opt.SCHEDULE,
     epilog=EXIT_CODES,
 )
-def batch(
-    data,
-    goal,
-    goals,
-    method_list,
-    output,
-    resume,
-    workers,
-    scheduler,
-    summary_fmt,
-    progress,
-    fsync,
-    with_schedules,
-    spec,
-    options,
-):
+def batch(data, goal, goals, method_list, output, summary_fmt, with_schedules, spec, options, **run_options):
     """Solve many goals with several methods; resumable JSON-lines output and a summary.
 
     Every result line carries "valid" (the independent validator's verdict); the
@@ -421,17 +389,8 @@ def batch(
     """
     kb, goal_ids = data.load_goals(goal, goals)
     solver_of(kb, options)  # the request checked, its warnings before the run
-    run = kb.batch(
-        goal_ids,
-        output,
-        methods=methods_of(method_list),
-        workers=workers,
-        resume=resume,
-        progress=progress,
-        fsync=fsync,
-        scheduler=scheduler,
-        options=options,
-    )
+    # run_options: --workers, --resume, --progress, --fsync and --scheduler, as kb.batch names them
+    run = kb.batch(goal_ids, output, methods=methods_of(method_list), options=options, **run_options)
     answers = [(r.get("status", "?"), r.get("valid")) for r in run.records]
     if with_schedules:
         path = api.schedules_path(output)

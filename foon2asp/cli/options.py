@@ -252,15 +252,20 @@ GOAL_HELP = (
     " from 'foon2asp objects'; repeatable."
 )
 
-GOALS = [
-    click.option("--goal", multiple=True, metavar="TEXT", help=GOAL_HELP),
-    click.option(
-        "--goals",
-        metavar="FILE|all|all-objects",
-        help="FILE of goal objects (e.g. 'foon2asp objects --format json' output), 'all' (the goals file) or"
-        " 'all-objects' (every made object). Default without --goal: the goals file.",
-    ),
-]
+
+def goal_options(goals_help: str, metavar: str = "FILE|all", goal_help: str = GOAL_HELP) -> list:
+    """``--goal TEXT`` (repeatable) and ``--goals`` (``metavar``)."""
+    return [
+        click.option("--goal", multiple=True, metavar="TEXT", help=goal_help),
+        click.option("--goals", metavar=metavar, help=goals_help),
+    ]
+
+
+GOALS = goal_options(
+    "FILE of goal objects (e.g. 'foon2asp objects --format json' output), 'all' (the goals file) or"
+    " 'all-objects' (every made object). Default without --goal: the goals file.",
+    "FILE|all|all-objects",
+)
 
 
 def method_option(default: str):
