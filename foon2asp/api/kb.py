@@ -38,7 +38,7 @@ from foon2asp.foon.problem import Problem
 from foon2asp.foon.substitutes import Substitute, candidates, substituted_kitchen, with_substitutes
 from foon2asp.foon.treefiles import TreeFile, TreeUnit, read_trees
 from foon2asp.methods.runner import solve_goals
-from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec
+from foon2asp.schedule import ScheduleSpec
 from foon2asp.tree.results import MealRow, QueryResult
 from foon2asp.tree.tasktree import meal_of
 
@@ -77,8 +77,7 @@ class KnowledgeBase:
     def find_objects(
         self, query: str | None = None, only: str | None = None, options: Options | None = None
     ) -> list[int]:
-        """Ids of the objects ``query`` names (:func:`foon2asp.foon.goals.find_objects`); ``only``:
-        ``produced``, ``kitchen`` or ``derivable`` (with substitutes: when they may stand in)."""
+        """Ids of the objects ``query`` names; ``only``: ``produced``, ``kitchen`` or ``derivable``."""
         table = self.substitutes(options)
         problem = with_substitutes(self.problem, table) if only == "derivable" and table else self.problem
         return goals_mod.find_objects(problem, query, only)
@@ -181,8 +180,7 @@ class KnowledgeBase:
         return substitute_facts(self.problem, table, limit=options.max_substitutions if options else None)
 
     def options_and_warnings(self, options: Options | None = None, **settings: Any) -> tuple[AspOptions, list[str]]:
-        """The solver options of a request (:meth:`options`) and the warnings about it (names no
-        motion or label matches, motions the motion-cost table lacks)."""
+        """The solver options of a request (:meth:`options`) and the warnings about its names."""
         request = Options.of(options, **settings)
         warnings = unknown_names(self.problem, request.constraints)
         solver = request.solver()
@@ -195,8 +193,7 @@ class KnowledgeBase:
         return replace(solver, motion_costs=weights), warnings + ([] if warning is None else [warning])
 
     def options(self, options: Options | None = None, **settings: Any) -> AspOptions:
-        """The solver options of a request: names checked, constraint programs read, the motion-cost
-        table as integer weights (hundredths)."""
+        """The solver options of a request: names checked, programs read, motion costs as weights."""
         return self.options_and_warnings(options, **settings)[0]
 
     def _solver(self, options: Request) -> AspOptions:
@@ -257,9 +254,7 @@ class KnowledgeBase:
         strict: bool = False,
         **settings: Any,
     ) -> results.CheckReport | list[results.CheckReport]:
-        """Judge a :class:`Tree`, or each tree of a file (a list when it holds several).  ``goal``:
-        the goal (several: a meal); else the one of ``goals`` the tree makes, else the one the file
-        names, else the tree's only product no unit needs.  ``optimum``: also solve the optimum."""
+        """Judge a :class:`Tree`, or each tree of a file (a list when it holds several; docs/api.md)."""
         solver = self.options(**settings)
         view = partial(self.judging_problem, solver)
         if isinstance(tree, results.Tree):
@@ -393,8 +388,7 @@ class KnowledgeBase:
         scheduler: str | None = None,
         **settings: Any,
     ) -> results.BatchRun:
-        """Many goals x methods into a resumable JSON-lines file (``output``; None: in memory) with
-        ``workers`` processes, or ``"auto"`` (docs/batch.md)."""
+        """Many goals x methods into a resumable JSON-lines file (``output``; None: in memory; docs/batch.md)."""
         request = Options.of(settings.pop("options", None), **settings)
         solver = self.options(request)
         spec = BatchSpec(
@@ -408,34 +402,22 @@ class KnowledgeBase:
     def schedule(
         self, goals: Goals = None, spec: ScheduleSpec | None = None, *, together: bool = False, **settings: Any
     ) -> results.Schedule | list[results.Schedule]:
-        """The schedule with the proven-minimal makespan of each goal's best tree on ``spec``'s
-        agents, or on the keywords ``agents`` (``"arm=2,human=1"``, default one robot),
-        ``durations``, ``capabilities`` and ``resources`` (files); ``joint``: tree and schedule
-        chosen together.  One goal gives a :class:`Schedule`, several a list; ``together``: one of a meal."""
+        """The schedule with the proven-minimal makespan of each goal's best tree (docs/api.md)."""
         request = schedule_request(spec, settings)
-        found = list(
-            self.schedule_iter(jobs(self.goal_ids(goals), together), options=self.options(**settings), **request)
-        )
+        goal_ids = jobs(self.goal_ids(goals), together)
+        found = list(self.schedule_iter(goal_ids, options=self.options(**settings), **request))
         return found[0] if together or one_goal(goals) else found
 
     def schedule_iter(
-        self,
-        goal_ids: Jobs,
-        spec: ScheduleSpec | None = None,
-        options: Request = None,
-        *,
-        joint: bool = False,
-        encoding: str = DEFAULT_ENCODING,
-        progress: Callable[[dict], None] | None = None,
+        self, goal_ids: Jobs, spec: ScheduleSpec | None = None, options: Request = None, **how: Any
     ) -> Iterator[results.Schedule]:
-        """:meth:`schedule` goal after goal; ``progress``: called as each goal's schedules improve."""
+        """:meth:`schedule` goal after goal; ``how``: ``joint``, ``encoding``, ``progress`` (docs/api.md)."""
         solver = self._solver(options)
         trees = self.solve_iter(goal_ids, "asp", solver)
-        yield from results.schedule_trees(trees, solver, spec or ScheduleSpec(), joint, encoding, progress)
+        yield from results.schedule_trees(trees, solver, spec or ScheduleSpec(), **how)
 
     def check_schedules(
         self, path: str | Path, spec: ScheduleSpec | None = None, options: Options | None = None
     ) -> list[ScheduleVerdict]:
-        """Judge each schedule of a ``schedule --format json`` file on ``spec``'s agents (default one
-        robot, every unit 1 s): its first violation, as a :class:`ScheduleVerdict`."""
+        """Judge each schedule of a ``schedule --format json`` file on ``spec``'s agents (default one robot)."""
         return check_schedule_file(self.problem, partial(self.judging_problem, options), path, spec or ScheduleSpec())
