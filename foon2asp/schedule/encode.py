@@ -297,8 +297,6 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
 
 def solve(job: Job, encoding: str, time_limit: float | None = None) -> Solution:
     """Solve ``job`` with ``encoding`` (``steps`` or ``dl``)."""
-    if encoding not in ENCODINGS:
-        raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(ENCODINGS)})")
     return (solve_steps if encoding == "steps" else solve_dl)(job, time_limit)
 
 
@@ -307,31 +305,25 @@ def used(atoms: Sequence[clingo.Symbol]) -> tuple[int, ...]:
     return tuple(sorted(s.arguments[0].number for s in atoms if s.name == "use" and len(s.arguments) == 1))
 
 
-def _dl_theory():
-    try:
-        from clingodl import ClingoDLTheory
-    except ImportError:
-        raise InputError("the dl schedule encoding needs clingo-dl: pip install clingo-dl") from None
-    return ClingoDLTheory()
-
-
 def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
     """Solve with clingo-dl: descending makespan bounds from ``job.horizon`` (None: no known
     schedule) to ``job.floor``, then the tie-breakers under the optimum (when there are any).
     The solution's entries are None when the known schedule is the best (proven or not)."""
-    inst, horizon, floor, levels = job.inst, job.horizon, job.floor, job.levels
-    theory = _dl_theory()
-    step = divisor(inst)
+    try:
+        from clingodl import ClingoDLTheory
+    except ImportError:
+        raise InputError("the dl schedule encoding needs clingo-dl: pip install clingo-dl") from None
+    inst, floor = job.inst, job.floor
+    theory: Any = ClingoDLTheory()
     windows = {u: (e, e) for u, e in job.head.items() if u in job.tail}
     parts = [
         ("encodings/schedule_dl.lp", encodings.encoding("schedule_dl")),
         ("schedule facts", schedule_facts(inst, 1, windows, job.fixed, agents=True, tail=job.tail)),
-        ("priorities", _priorities(levels)),
+        ("priorities", _priorities(job.levels)),
         *job.tree_parts,
     ]
     control = Control(["--opt-mode=ignore", *job.args], theory=theory)
-    t0 = time.perf_counter()
-    left = clock(time_limit)
+    t0, left = time.perf_counter(), clock(time_limit)
     control.add_all(parts, user=job.user)
     control.ground()
     stats: dict[str, Any] = {"encoding": "dl", "ground_s": round(time.perf_counter() - t0, 6), "bounds": 0}
@@ -339,38 +331,33 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
     conf.models = "1"
     names = {(kind, int(name.rsplit("-", 1)[1])): name for name, kind in inst.agents}
     best: dict[str, Any] = {}
-
     enough: list[Callable[[list[Entry]], bool]] = []  # the tie-breakers' stop, once set
 
     def on_model(model: clingo.Model) -> bool:
         values = {str(sym): int(val) for sym, val in theory.assignment(model.thread_id)}
         zero = values.get("0", 0)
-        atoms = model.symbols(shown=True)
-        entries = []
-        for a in atoms:
+        best["atoms"] = model.symbols(shown=True)
+        best["entries"] = entries = []
+        for a in best["atoms"]:
             if a.name == "on" and len(a.arguments) == 3:
                 u, kind, i = a.arguments[0].number, a.arguments[1].string, a.arguments[2].number
                 s = values.get(f"s({u})", zero) - zero
                 entries.append(Entry(u, names[(kind, i)], s, s + inst.durations[u][kind]))
-        best["entries"], best["atoms"] = entries, atoms
         return not (enough and enough[0](entries))
 
-    grounded: set[int] = set()
-    active: list[int] = []
+    grounded: list[int] = []
 
     def switch(b: int) -> None:
-        """Ground bound(b) once; switch it on, the previous bound off."""
+        """Ground bound(b) once; switch it on, every other bound off."""
         if b not in grounded:
             control.ground([("bound", [clingo.Number(b)])])
-            grounded.add(b)
-        off = {clingo.Function("bounded", [clingo.Number(a)]): False for a in active}
-        control.assign({**off, clingo.Function("bounded", [clingo.Number(b)]): True})
-        active[:] = [b]
+            grounded.append(b)
+        control.assign({clingo.Function("bounded", [clingo.Number(a)]): a == b for a in grounded})
 
-    opt = horizon
+    opt = job.horizon
     proven = unsat = False
     while True:
-        bound = None if opt is None else opt - step
+        bound = None if opt is None else opt - divisor(inst)
         if bound is not None and bound < floor:
             proven = True
             break
@@ -378,8 +365,7 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
             switch(bound)
         stats["bounds"] += 1
         before = best.get("entries")
-        result = control.solve(on_model, left())
-        if not result.finished:
+        if not control.solve(on_model, left()).finished:
             break
         if best.get("entries") is before:  # no schedule under this bound
             proven, unsat = True, opt is None
@@ -388,25 +374,26 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
             best["entries"] = compact(inst, best["entries"])
         opt = makespan(best["entries"])
         _report(job, best["entries"], floor, None, "makespan")
-    if proven and opt is not None and job.breakers and (job.ties or best.get("entries") is not None):
-        # the tie-breakers under the proven makespan; a fixed tree stops at the fewest human units
-        # a person must do (a joint one has the tree objective after them)
+    if proven and opt is not None and job.breakers and (job.ties or "entries" in best):
+        # a fixed tree stops at the fewest human units a person must do (a joint one has the
+        # tree objective after them)
         low = None
         if job.fixed and not job.levels:
             low, few = _human_stop(job, opt, stats)
             enough.append(few)
-        met = low is not None and best.get("entries") is not None and human_units(best["entries"]) <= low
-        if met:
+
+        def met() -> bool:
+            return low is not None and "entries" in best and human_units(best["entries"]) <= low
+
+        if met():
             stats["tie_breakers"] = "proven"
         else:
             switch(opt)
             conf.opt_mode, conf.models = "opt", "0"
-            result = control.solve(on_model, left())
-            done = low is not None and best.get("entries") is not None and human_units(best["entries"]) <= low
-            stats["tie_breakers"] = "proven" if result.finished or done else "time"
+            finished = control.solve(on_model, left()).finished
+            stats["tie_breakers"] = "proven" if finished or met() else "time"
     stats.update(control.stats())
-    if best.get("entries") is None:
-        # unsatisfiable, or the known schedule (of makespan horizon) is optimal, or no time
+    if "entries" not in best:  # unsatisfiable, or the known schedule (of makespan horizon) is optimal, or no time
         return Solution(None, proven, unsat, (), stats)
     units = used(best["atoms"]) if not job.fixed else inst.units
     return Solution(best["entries"], proven, False, units, stats)
