@@ -33,14 +33,7 @@ class ScheduleVerdict:
         return self.problem is None
 
     def to_dict(self) -> dict:
-        return {
-            "file": self.path,
-            "goal": self.goal,
-            "status": self.status,
-            "valid": self.valid,
-            "problem": self.problem,
-            "makespan": self.makespan,
-        }
+        return {"file": self.path} | {k: getattr(self, k) for k in ("goal", "status", "valid", "problem", "makespan")}
 
     def to_text(self) -> str:
         if self.problem is not None:
