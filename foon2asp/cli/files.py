@@ -13,9 +13,8 @@ import click
 
 from foon2asp import api, report
 from foon2asp.cli import options as opt
-from foon2asp.cli.main import main
+from foon2asp.cli.main import EXIT_CODES, emit, exit_code, main, warn_all
 from foon2asp.cli.options import command
-from foon2asp.cli.output import EXIT_CODES, emit, exit_code, warn_all
 from foon2asp.errors import InputError
 from foon2asp.report import draw as draw_mod
 from foon2asp.report import pddl

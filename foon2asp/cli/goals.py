@@ -9,8 +9,8 @@ import click
 
 from foon2asp import api, report
 from foon2asp.cli import options as opt
+from foon2asp.cli.main import EXIT_CODES, echo_now, emit, exit_code, goal_progress, progress_bar, solver_of, warn_all
 from foon2asp.cli.options import Checked, command, goal_command
-from foon2asp.cli.output import EXIT_CODES, echo_now, emit, exit_code, goal_progress, progress_bar, solver_of, warn_all
 from foon2asp.errors import InputError
 from foon2asp.report import draw
 from foon2asp.report.trees import render, render_bytes

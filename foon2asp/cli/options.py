@@ -18,8 +18,7 @@ import click
 
 from foon2asp import api, report
 from foon2asp.api.options import NOT_A_TIME_LIMIT
-from foon2asp.cli.main import main
-from foon2asp.cli.output import EXIT_CODES, warn_all
+from foon2asp.cli.main import EXIT_CODES, main, warn_all
 from foon2asp.errors import InputError, escape
 
 # ---------------------------------------------------------------- checked option types
