@@ -165,12 +165,9 @@ def _run_in_worker(task: tuple[int, str]) -> tuple[int, str, str]:
 
 
 class Execution:
-    """Run ``tasks``; iterating yields ``(goal, method, json_line)`` as results finish.
-
-    With ``workers > 1`` a process pool runs them; with :data:`AUTO` this process
-    first, then a pool on every usable core (:attr:`workers` says how many ran them).
-    When the caller stops (:meth:`close`: an interrupt, an error) the pool's workers
-    are terminated at once."""
+    """Run ``tasks`` in a pool of ``workers`` processes (:data:`AUTO`: here, then a pool on every
+    usable core); iterating yields ``(goal, method, json_line)`` as results finish, and
+    :meth:`close` terminates the pool's workers at once."""
 
     def __init__(self, spec: BatchSpec, tasks: list[tuple[int, str]], workers: int = 1):
         self.spec, self.tasks = spec, tasks

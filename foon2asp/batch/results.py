@@ -34,12 +34,8 @@ def goal_key(problem: Problem, record: dict) -> int | None:
 
 
 def read_results(path: str | Path, repair: bool = False) -> list[dict]:
-    """The records of a results file.
-
-    A last line without its newline or not parseable (a write cut short) is
-    dropped -- and cut off the file when ``repair`` is set; a bad line
-    elsewhere is an :class:`InputError` naming file and line.
-    """
+    """The records of a results file: a cut or damaged last line is dropped (and cut off the file
+    with ``repair``), a bad line elsewhere is an :class:`InputError` naming file and line."""
     path = Path(path)
     if not path.exists():
         return []

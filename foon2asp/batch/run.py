@@ -1,9 +1,6 @@
 """Batch solving: goals x methods, one JSON line per result, resumable.
 
-:func:`run_batch` checks the methods and the grounding, opens the results file
-(:mod:`foon2asp.batch.results`), runs the pending pairs in the worker pool
-(:mod:`foon2asp.batch.pool`, or an ``executor`` such as :mod:`foon2asp.batch.cluster`'s)
-and appends each result line as it finishes.
+The results file is :mod:`foon2asp.batch.results`'s, the worker pool :mod:`foon2asp.batch.pool`'s.
 """
 
 from __future__ import annotations
@@ -35,13 +32,9 @@ def run_batch(
     sync: bool = True,
     executor: Callable[[BatchSpec, list[tuple[int, str]]], Iterable[tuple[int, str, str]]] | None = None,
 ) -> BatchReport:
-    """Solve every (goal, method) pair of ``goals`` x ``spec.methods``; append results to ``output``.
-
-    Without ``resume`` an existing, non-empty ``output`` is an error (nothing
-    is overwritten).  ``executor`` replaces the local runner (the Dask path).
-    ``workers``: processes, or :data:`foon2asp.batch.pool.AUTO` (this process, then
-    a pool on every core once the batch is long; the report says how many ran).
-    """
+    """Solve every (goal, method) pair of ``goals`` x ``spec.methods`` and append the results to
+    ``output`` (an existing, non-empty one only with ``resume``); ``workers`` as
+    :class:`~foon2asp.batch.pool.Execution` takes them, ``executor`` replaces the pool (Dask)."""
     refuse_while_starting()  # a worker running the main script again must not start its batch
     for name in spec.methods:
         methods_mod.get(name)  # unknown names fail before any work

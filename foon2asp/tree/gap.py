@@ -78,12 +78,9 @@ def settle(
     lower: Sequence[int] | None = None,
     floor: int | None = None,
 ) -> TaskTree:
-    """Set ``tree.bound`` (``{objective: value}`` per level, in the units of ``cost``) and
-    ``tree.gap`` (``(U - L) / U`` on the first objective's weights) from the solver's lower
-    bound ``lower`` (per level of ``names``, highest first; possibly shorter) and ``floor`` (a
-    lower bound on the first objective's weight, from the landmarks).  A proven answer gets its
-    own cost, a search baseline's nothing; a ``feasible`` answer the bound meets on every level
-    becomes ``optimal`` (``stats["proof"]``)."""
+    """Set ``tree.bound`` (per level, in the units of ``cost``) and ``tree.gap`` from the solver's
+    lower bound ``lower`` (per level of ``names``, possibly shorter) and ``floor`` (on the first
+    objective's weight); a ``feasible`` answer the bound meets on every level becomes ``optimal``."""
     shown = [n for n in names if n != HUMAN]
     if not shown or tree.status in ("found", "not-found", "unreachable", "infeasible"):
         return tree

@@ -292,14 +292,9 @@ def judge_alone(
     utensil_rule: str = "starter",
     numbers: list[int] | None = None,
 ) -> AloneVerdict:
-    """Judge a tree file on its own: ``units`` in file order, no FOON.
-
-    The kitchen defaults to the units' leaves, the goal to the products of the last unit
-    (one object or several).  The units are replayed in the given order, then as a set;
-    a unit that never fires is explained by an object no unit makes or by a cycle.
-    ``numbers``: each unit's number in its file, for the messages; the verdict's fields
-    hold positions.
-    """
+    """Judge a tree file's ``units`` (in file order) on its own, without a FOON: in the order
+    given, then as a set.  The kitchen defaults to the units' leaves, the goal to the products of
+    the last unit; ``numbers``: each unit's number in its file, for the messages."""
     start = list(kitchen) if kitchen is not None else leaves(units)
     goals = last_products(units) if goal is None else (goal if isinstance(goal, tuple) else (goal,))
     need = [[o for o, f in zip(u.inputs, required_flags(u, utensils, utensil_rule)) if f] for u in units]
