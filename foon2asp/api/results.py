@@ -88,6 +88,11 @@ def as_list(answer: Any, items: Iterable) -> list:
     return list(items)
 
 
+def extra(key: str) -> Callable[[Any, dict], Any]:
+    """A reader of ``key`` in a tree's ``extra`` (None when absent)."""
+    return lambda _, found: found.get(key)
+
+
 @dataclass(eq=False)
 class Answer:
     """An answer: its internal record ``raw``, read in the FOON of ``kb``."""
@@ -130,21 +135,14 @@ class Tree(Answer):
     time_s = Raw[float]()
     has_tree = Raw[bool]()
 
+    note = Raw[str | None]("What the solver says about the answer, if anything.", "extra", extra("note"))
+    substitutions = Raw[list[dict] | None]("With substitutes: the ones the tree uses.", "extra", extra("substitutions"))
+
     @property
     def valid(self) -> bool | None:
         """The independent validator's verdict where it was judged (compare, batch, :meth:`judge`); else None."""
         value = self.raw.extra.get("valid")
         return None if value is None else bool(value)
-
-    @property
-    def note(self) -> str | None:
-        """What the solver says about the answer (e.g. a budget that ended a search), if anything."""
-        return self.raw.extra.get("note")
-
-    @property
-    def substitutions(self) -> list[dict] | None:
-        """With substitutes: the ones the tree uses, ``[{"needed", "used"}]`` (else None)."""
-        return self.raw.extra.get("substitutions")
 
     @property
     def alternatives(self) -> list[Tree]:
@@ -193,6 +191,7 @@ class Tree(Answer):
 class Schedule(Answer):
     """The schedule of one goal's tree: who does which unit when, the makespan, its bounds and baseline."""
 
+    json_of, text_of = (lambda _, raw: raw.to_dict()), (lambda _, raw: raw.to_text())
     spec: ScheduleSpec = field(default_factory=ScheduleSpec)
     status = Raw[str]("``optimal`` | ``feasible`` | ``unschedulable`` | ``unreachable`` | ``unknown`` (no tree).")
     makespan = Raw[float | None]("Seconds (None without a schedule).", read=lambda _, ms: seconds(ms))
@@ -212,14 +211,6 @@ class Schedule(Answer):
     def check(self) -> str | None:
         """The first violation the independent checker finds (None: a valid schedule)."""
         return check_schedule(self.raw.problem, self.to_dict(), self.spec)
-
-    def to_dict(self) -> dict:
-        """Exactly one element of ``schedule --format json``."""
-        return self.raw.to_dict()
-
-    def to_text(self) -> str:
-        """The headline (status, makespan, baseline, bounds) and one timeline per agent."""
-        return self.raw.to_text()
 
     def render(self, fmt: str = "text") -> str | bytes:  # type: ignore[override]
         """The Gantt chart in a format of :mod:`foon2asp.report` kind ``schedule`` (svg, png, pdf, dot, html)."""
@@ -245,6 +236,10 @@ def schedules_json(schedules: list[Schedule]) -> str:
     return "[\n" + ",\n".join(json.dumps(s.to_dict()) for s in schedules) + "\n]\n"
 
 
+def _with_goal(progress: Callable[[dict], None], label: str, info: dict) -> None:
+    progress({**info, "goal": label})
+
+
 def schedule_trees(
     trees: Iterable[Tree],
     solver: AspOptions,
@@ -256,13 +251,7 @@ def schedule_trees(
     """:func:`foon2asp.schedule.schedule` of each tree, on the problem it is judged on;
     ``progress``: called with what that reports and ``goal``, the tree's goals' labels."""
     for tree in trees:
-        told = None
-        if progress is not None:
-            label = " + ".join(g.label for g in tree.goals)
-
-            def told(info: dict, label: str = label) -> None:
-                progress({**info, "goal": label})
-
+        told = None if progress is None else partial(_with_goal, progress, " + ".join(g.label for g in tree.goals))
         problem = tree.kb.judging_problem(solver, tree.raw.meal)
         found = schedule(problem, tree.raw, spec, solver, joint, None, encoding, progress=told)
         yield Schedule(tree.kb, found, spec)
@@ -362,13 +351,12 @@ class BatchRun(Answer):
         *,
         method: str | None = None,
         output: str | Path | None = None,
-        options: Options | None = None,
         **settings: Any,
     ) -> list[Schedule]:
         """Schedule the tree of every goal of the run (of ``method``; default the first asked for)
         as :meth:`Tree.schedule` does; ``output``: also write them there as ``schedule --format json``."""
         request = schedule_request(spec, settings)
-        solver = self.kb.options(options, **settings)
+        solver = self.kb.options(**settings)
         problem, view = self.kb.solving_problem(solver), partial(self.kb.judging_problem, solver)
         spec, joint, encoding = request["spec"], request["joint"], request["encoding"]
         found = schedule_records(problem, self.raw.records, spec, solver, method, joint, encoding, view)
