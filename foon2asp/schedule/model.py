@@ -135,21 +135,17 @@ def earliest(inst: Instance) -> dict[int, int]:
     of each object it needs (for joint scheduling, over every candidate); units no agent can
     do, or never ready, are left out."""
     users: dict[int, list[int]] = {}
-    for u in inst.units:
-        for o, _ in inst.needs[u]:
-            users.setdefault(o, []).append(u)
-    waiting = {u: len(inst.needs[u]) for u in inst.units}
     makes: dict[int, list[int]] = {}
     for u in inst.units:
         for o, ms in inst.needs[u]:
+            users.setdefault(o, []).append(u)
             for m in ms:
                 makes.setdefault(m, []).append(o)
+    waiting = {u: len(inst.needs[u]) for u in inst.units}
     start: dict[int, int] = {}
     made: dict[int, int] = {}
-    queue: list[tuple[int, int, int]] = []  # (time, 0: unit ready | 1: object made, id)
-    for u in inst.units:
-        if waiting[u] == 0:
-            heapq.heappush(queue, (0, 0, u))
+    # (time, 0: unit ready | 1: object made, id), units in order
+    queue: list[tuple[int, int, int]] = [(0, 0, u) for u in inst.units if waiting[u] == 0]
     while queue:
         t, what, x = heapq.heappop(queue)
         if what == 0:
@@ -214,11 +210,7 @@ def tails(inst: Instance) -> dict[int, int]:
 
 def divisor(inst: Instance) -> int:
     """The greatest common divisor of every duration (1 when all are 0)."""
-    g = 0
-    for table in inst.durations.values():
-        for d in table.values():
-            g = math.gcd(g, d)
-    return g or 1
+    return math.gcd(*(d for table in inst.durations.values() for d in table.values())) or 1
 
 
 def makespan(entries: Iterable[Entry]) -> int:

@@ -24,6 +24,7 @@ from foon2asp.schedule.baseline import TRIES, known_schedule, list_schedule
 from foon2asp.schedule.bounds import bounds, human_lower
 from foon2asp.schedule.joint import check_options
 from foon2asp.schedule.model import (
+    Entry,
     Instance,
     compact,
     designate,
@@ -83,27 +84,26 @@ def schedule_fixed(
     pairs, :func:`foon2asp.schedule.model.designate`."""
     t0 = time.perf_counter()
 
-    def none(status: str, reason: str | None) -> ScheduleResult:
+    def result(status: str, entries: Sequence[Entry] = (), **more) -> ScheduleResult:
         agents = [name for name, _ in spec.agent_list()]
-        return ScheduleResult(problem, tree, status, agents, reason=reason, time_s=time.perf_counter() - t0)
+        return ScheduleResult(problem, tree, status, agents, list(entries), time_s=time.perf_counter() - t0, **more)
 
     if not tree.has_tree:
-        return none(
-            "unreachable" if tree.status in ("unreachable", "not-found") else "unknown", tree.extra.get("reason")
-        )
+        missing = "unreachable" if tree.status in ("unreachable", "not-found") else "unknown"
+        return result(missing, reason=tree.extra.get("reason"))
     inst = designate(instance(problem, tree.units, spec), first)
-    agents = [name for name, _ in inst.agents]
     bad = inst.incapable()
     if bad:
-        return none("unschedulable", f"no agent can do unit {bad[0]} ({problem.units[bad[0]].motion})")
-    if len(earliest(inst)) < len(inst.units):
-        return none("unschedulable", "some unit of the tree never has its inputs")
+        return result("unschedulable", reason=f"no agent can do unit {bad[0]} ({problem.units[bad[0]].motion})")
+    head = earliest(inst)
+    if len(head) < len(inst.units):
+        return result("unschedulable", reason="some unit of the tree never has its inputs")
     b = bounds(inst)
     base = list_schedule(inst)
     ub = makespan(base)
     late = f"no schedule within {within} ms"
     if within is not None and b.lower > within:
-        return none("unschedulable", late)
+        return result("unschedulable", reason=late)
     # the baseline, or a shorter list schedule, or one with fewer human units; a tree of a
     # joint search tries a few only
     least = max(forced_human(inst), human_lower(inst, b.lower)) if spec.has_human() else 0
@@ -114,9 +114,7 @@ def schedule_fixed(
     stats: dict = {"encoding": encoding}
     if not over and shortcut and makespan(known) == b.lower and human_units(known) <= least:
         stats["shortcut"] = f"{which} meets the lower bound"
-        return ScheduleResult(
-            problem, tree, "optimal", agents, known, b, ub, time_s=time.perf_counter() - t0, stats=stats
-        )
+        return result("optimal", known, bounds=b, baseline=ub, stats=stats)
     if over:  # is there a schedule within ``within`` at all (dl asks below its horizon first)?
         assert within is not None
         horizon = within + divisor(inst) if encoding == "dl" else within
@@ -124,19 +122,19 @@ def schedule_fixed(
         horizon = makespan(known) if encoding == "steps" else ub
     start = known if encoding == "steps" and not over else None
     args = solver_arguments(options)
-    head, tail = earliest(inst), tails(inst)
-    job = encode.Job(inst, head, tail, horizon, b.lower, args, ties=spec.has_human(), known=start, progress=progress)
+    job = encode.Job(
+        inst, head, tails(inst), horizon, b.lower, args, ties=spec.has_human(), known=start, progress=progress
+    )
     sol = encode.solve(job, encoding, time_limit)
     stats.update(sol.stats)
     if over and sol.entries is None:
-        return none("unschedulable" if sol.proven or sol.unsatisfiable else "unknown", late)
+        return result("unschedulable" if sol.proven or sol.unsatisfiable else "unknown", reason=late)
     entries = known
     if sol.entries is not None and (over or makespan(sol.entries) <= makespan(known)):
         entries = compact(inst, sol.entries)
     # without tie-breakers a schedule at the lower bound is optimal, however the search ended
     met = not over and makespan(entries) <= b.lower and not spec.has_human()
-    status = "optimal" if sol.proven or met else "feasible"
-    return ScheduleResult(problem, tree, status, agents, entries, b, ub, time_s=time.perf_counter() - t0, stats=stats)
+    return result("optimal" if sol.proven or met else "feasible", entries, bounds=b, baseline=ub, stats=stats)
 
 
 @dataclass
@@ -277,73 +275,53 @@ def _schedule_joint(
     """:func:`schedule_joint` but the bound over every tree (``floor``)."""
     problem, tree, spec, options, fixed = job.problem, job.tree, job.spec, job.options, job.fixed
     meal = tree.meal
-    products = {u: problem.products[u] for u in inst.units}
-    if fixed.has_schedule:
-        horizon = fixed.makespan
-        assert horizon is not None
-    else:
-        horizon = sum(max(inst.durations[u].values()) for u in start)
+    horizon = fixed.makespan if fixed.has_schedule else sum(max(inst.durations[u].values()) for u in start)
+    assert horizon is not None
     stats: dict = {"encoding": job.encoding, "candidates": len(inst.units)}
-    if (
-        job.shortcut
-        and fixed.status == "optimal"
-        and tree.status == "optimal"
-        and horizon == floor
-        and not spec.has_human()
-    ):
+
+    def given(status: str) -> ScheduleResult:
+        """The given tree's schedule as the answer."""
+        return replace(fixed, status=status, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
+
+    def merged(r: ScheduleResult) -> ScheduleResult:
+        return replace(r, stats={**stats, **r.stats}, time_s=time.perf_counter() - t0)
+
+    if job.shortcut and fixed.status == tree.status == "optimal" and horizon == floor and not spec.has_human():
         stats["shortcut"] = "the given tree's makespan meets the lower bound over every tree"
-        return replace(fixed, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
-    tail = model.joint_tails(inst, meal, products)
+        return given("optimal")
+    tail = model.joint_tails(inst, meal, {u: problem.products[u] for u in inst.units})
     left = encode.clock(time_limit)
     ties = spec.has_human() or tree.status != "optimal"
     parts = joint.tree_parts(problem, meal, inst, options)
     within = horizon if len(inst.agents) == 1 or not fixed.has_schedule else horizon - model.divisor(inst)
     args = solver_arguments(options)
-    listing = joint.Listing(inst, start, tail, within, parts, args)
-    by_trees, proven, partial = _by_trees(job, listing, ties, left)
+    by_trees, proven, partial = _by_trees(job, joint.Listing(inst, start, tail, within, parts, args), ties, left)
     if by_trees is not None:
-        by_trees.stats = {**stats, **by_trees.stats}
-        by_trees.time_s = time.perf_counter() - t0
-        return by_trees
+        return merged(by_trees)
     if proven:  # no tree beats the given one's makespan: only the tie-breakers are left
         floor = horizon
     if left() == 0.0:  # no time for the one encoding (its grounding alone can take minutes): the given tree's
         stats["joint"] = "time"
         if partial is not None:
-            return replace(partial, stats={**stats, **partial.stats}, time_s=time.perf_counter() - t0)
-        status = "feasible" if fixed.has_schedule else "unknown"
-        return replace(fixed, status=status, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
+            return merged(partial)
+        return given("feasible" if fixed.has_schedule else "unknown")
     user = [name for name, _ in options.programs]
     levels = len(objectives.ranked(options))
     one = encode.Job(inst, start, tail, horizon, floor, args, parts, levels, user, ties)
     sol = encode.solve(one, job.encoding, left())
     stats.update(sol.stats, joint="tie-breakers in one encoding" if proven else "one encoding")
-    elapsed = time.perf_counter() - t0
     if sol.unsatisfiable:
-        return job.none(time_s=elapsed, stats=stats)
+        return job.none(time_s=time.perf_counter() - t0, stats=stats)
     if not sol.proven and partial is not None:
         if sol.entries is None or job.rank(partial) <= (makespan(sol.entries), 0, ()):
-            return replace(partial, stats={**stats, **partial.stats}, time_s=elapsed)
+            return merged(partial)
     if sol.entries is None:  # the given tree's schedule is the best found (proven: optimal)
-        status = "optimal" if sol.proven and fixed.status == "optimal" else "feasible"
-        return replace(fixed, status=status, joint=True, fixed=fixed, time_s=elapsed, stats=stats)
-    units = list(sol.units)
-    sub = inst.restrict(units)
-    entries = model.compact(sub, sol.entries)
+        return given("optimal" if sol.proven and fixed.status == "optimal" else "feasible")
+    sub = inst.restrict(sol.units)
     status = "optimal" if sol.proven else "feasible"
-    return ScheduleResult(
-        problem,
-        job.tree_of(units, status),
-        status,
-        fixed.agents,
-        entries,
-        bounds(sub),
-        makespan(list_schedule(sub)),
-        joint=True,
-        fixed=fixed,
-        time_s=time.perf_counter() - t0,
-        stats=stats,
-    )
+    entries = model.compact(sub, sol.entries)
+    found = ScheduleResult(problem, job.tree_of(sol.units, status), status, fixed.agents, entries, bounds(sub))
+    return merged(replace(found, baseline=makespan(list_schedule(sub)), joint=True, fixed=fixed))
 
 
 def schedule(
