@@ -7,7 +7,8 @@ without a FOON.
 
 from __future__ import annotations
 
-from functools import cached_property
+from collections.abc import Callable
+from functools import cache
 from pathlib import Path
 
 from foon2asp.errors import InputError
@@ -90,18 +91,12 @@ def infer_goal(problem: Problem, tree: TreeFile, goal_objects: list[FoonObject])
     )
 
 
-class Derivable:
+Derivable = Callable[[], set[FoonObject]]
+
+
+def lazy_derivable(problem: Problem) -> Derivable:
     """The objects derivable from the kitchen with any units of the FOON, computed when first asked."""
-
-    def __init__(self, problem: Problem) -> None:
-        self.problem = problem
-
-    @cached_property
-    def objects(self) -> set[FoonObject]:
-        return derivable_objects(self.problem)
-
-    def __contains__(self, obj: object) -> bool:
-        return obj in self.objects
+    return cache(lambda: derivable_objects(problem))
 
 
 def no_tree(
@@ -109,8 +104,8 @@ def no_tree(
 ) -> Report:
     """The report on a file with no units for ``goal``: finding ``unreachable`` when the FOON
     confirms no tree exists, else ``no-tree``; ``what`` names the goal in the message."""
-    derivable = derivable if derivable is not None else Derivable(problem)
-    if problem.objects[goal] not in derivable:
+    derivable = derivable or lazy_derivable(problem)
+    if problem.objects[goal] not in derivable():
         kind = "unreachable"
         words = (
             f"unreachable: no tree to check (confirmed: {what} is not derivable from the kitchen"
@@ -133,7 +128,7 @@ def check_tree(
     every goal is made; the first goal with a problem is explained)."""
     meal = meal_of(goal)
     if len(meal) > 1:
-        derivable = derivable if derivable is not None else Derivable(problem)
+        derivable = derivable or lazy_derivable(problem)
         if not tree.units:
             # a meal is unreachable when one of its dishes is
             empty = [
@@ -221,7 +216,7 @@ def check_trees(
 ) -> list[Report]:
     """Check each of ``trees`` for its goal (:func:`tree_goal`)."""
     index = unit_index(problem)
-    derivable = Derivable(problem)
+    derivable = lazy_derivable(problem)
     reports = []
     for tree in trees:
         goal, source = tree_goal(data, problem, tree, goal_label, among)
