@@ -222,24 +222,16 @@ def consolidate(
 def _projected(kb: KnowledgeBase, candidates: list[Candidate]) -> tuple[list[Candidate], list[list[str]]]:
     """The candidates with their units as the knowledge base's comparison sees them, and the
     files of each unit of its (projected) FOON."""
-    index = {unit.key(): uid for uid, unit in enumerate(kb.problem.units)}
-    files: list[list[str]] = [[] for _ in kb.problem.units]
     out = []
     for cand in candidates:
-        units, seen = [], set()
+        units: dict[tuple, TreeUnit] = {}
         for tu in cand.units:
             unit = kb.projection.unit(tu.unit)
-            if unit.key() not in seen:
-                seen.add(unit.key())
-                units.append(TreeUnit(unit, tu.step, tu.line))
-        out.append(replace(cand, units=units))
-    for cand in out:
-        for tu in cand.units:
-            uid = index[tu.unit.key()]
-            if cand.path not in files[uid]:
-                files[uid].append(cand.path)
-    order = [str(c.path) for c in candidates]
-    return out, [sorted(f, key=order.index) for f in files]
+            units.setdefault(unit.key(), TreeUnit(unit, tu.step, tu.line))
+        out.append(replace(cand, units=list(units.values())))
+    merged, found = consolidate_mod.merge(out)
+    files = {unit.key(): paths for unit, paths in zip(merged.units, found, strict=True)}
+    return out, [files[unit.key()] for unit in kb.problem.units]
 
 
 def _goals(
