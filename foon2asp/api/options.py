@@ -22,15 +22,13 @@ from foon2asp.foon.motioncost import MotionCosts, parse_motion_costs, read_motio
 from foon2asp.foon.substitutes import Substitute, parse_substitutes, read_substitutes
 from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec
 
-#: user constraints (an ASP file, rule texts, the forbid/require/max-units conveniences):
-#: the one value the command line fills from ``--constraint`` ... ``--max-units`` and the solver reads
+#: user constraints: an ASP file, rule texts, the forbid/require/max-units conveniences
 Constraints = ConstraintSpec
 
 #: a motion-cost table: a file (JSON object or motion<TAB>cost lines), a table read already, or motion -> cost
 MotionCostLike = str | Path | MotionCosts | Mapping[str, object]
 
-#: substitutes: a file (JSON ``{"onion": ["red onion", ...]}`` or ``onion: red onion, shallot =2``
-#: lines), a mapping needed -> list of labels (or label -> cost), or Substitute values
+#: substitutes: a file, a mapping needed -> list of labels (or label -> cost), or Substitute values
 SubstitutesLike = str | Path | Mapping[str, object] | Sequence[Substitute]
 
 #: the constraint keywords of the answers -> field of :data:`Constraints`
@@ -52,8 +50,7 @@ NOT_A_TIME_LIMIT = "is not a finite number of seconds > 0"
 
 
 def check_keywords(given: Iterable[str], known: Collection[str], where: str = "") -> None:
-    """Raise a TypeError (``where`` first) naming the keywords of ``given`` not in ``known``, each
-    with the closest known keyword ("did you mean ...?")."""
+    """Raise a TypeError naming the keywords of ``given`` not in ``known``, each with the closest known one."""
     unknown = sorted(set(given) - set(known))
     if not unknown:
         return
@@ -67,22 +64,16 @@ def check_keywords(given: Iterable[str], known: Collection[str], where: str = ""
 
 @dataclass(frozen=True)
 class Options:
-    """The settings of one request; every field has the default of a call without it.
-
-    Names (objectives, constraint programs) are checked when an answer uses the options,
-    so a value can be built before the data is read.
-    """
+    """The settings of one request; every field has the default of a call without it (docs/api.md)."""
 
     #: lexicographic, most important first: ``units``, ``success``, ``inputs``, ``depth``, ``cost``
     objective: tuple[str, ...] = ("units",)
     constraints: Constraints = field(default_factory=Constraints)
     #: seconds per goal (a finite number > 0; None: no limit); the best tree so far is then ``feasible``
     time_limit: float | None = None
-    #: stop a goal once its relative gap (first objective) is at most this, e.g. 0.05; the
-    #: answer is then ``feasible`` with its bound.  None (and 0): prove every answer
+    #: stop a goal once its relative gap (first objective) is at most this, e.g. 0.05; None (and 0): prove it
     gap: float | None = None
-    #: called while a goal is solved, at each better tree and each better lower bound, with
-    #: ``{"cost": [...], "lower": [...], "gap": g}`` (the solver's weights per objective level)
+    #: called with ``{"cost": [...], "lower": [...], "gap": g}`` at each better tree and lower bound
     on_progress: Callable[[dict], None] | None = field(default=None, compare=False, repr=False)
     #: the K best distinct trees per goal
     models: int = 1
@@ -102,8 +93,7 @@ class Options:
     shortcuts: bool = True
     #: the motion-cost table: the objective ``cost`` needs it, and with it every tree's measures include ``cost``
     motion_cost: MotionCostLike | None = None
-    #: labels that may stand in for others: a tree uses the fewest (cheapest) substitutions
-    #: first, then the objective; each result names the ones it uses
+    #: labels that may stand in for others: a tree uses the fewest (cheapest) substitutions first
     substitutes: SubstitutesLike | None = None
     #: at most this many substitutions per tree
     max_substitutions: int | None = None
@@ -126,8 +116,7 @@ class Options:
 
     @classmethod
     def of(cls, options: Options | None = None, /, **settings: Any) -> Options:
-        """``options`` (default: all defaults) with the keyword ``settings`` applied: its fields,
-        and the constraints one by one (``forbid_motions``, ..., ``max_units``, ``rules``, ``constraint_files``)."""
+        """``options`` (default: all defaults) with the keyword ``settings`` applied (fields and constraints)."""
         base = options if options is not None else cls()
         own = {f.name for f in fields(cls)}
         check_keywords(settings, own | set(CONSTRAINT_KEYWORDS))
@@ -215,9 +204,7 @@ class Options:
 
 
 def schedule_request(spec: ScheduleSpec | None, settings: dict[str, Any]) -> dict[str, Any]:
-    """The schedule keywords taken out of ``settings``: ``spec``, or the spec of ``agents``
-    (``"arm=2,human=1"`` or ``{"arm": 2, "human": 1}``; default ``robot=1``) and the ``durations``,
-    ``capabilities`` and ``resources`` files (each optional); ``joint`` and ``encoding``."""
+    """The schedule keywords taken out of ``settings``: ``spec`` (or the files that make one), ``joint``, ``encoding``."""
     agents, *files = (settings.pop(k, None) for k in SPEC_KEYWORDS)
     how = {"joint": settings.pop("joint", False), "encoding": settings.pop("encoding", DEFAULT_ENCODING)}
     if spec is not None:
