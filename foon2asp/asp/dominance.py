@@ -17,15 +17,9 @@ SUPPORTED = frozenset({"units", "success", "inputs", "depth"})
 
 def applies(options, ranked: Iterable[str]) -> bool:
     """Does a session with ``options`` (objectives ``ranked``) forbid dominated units?"""
-    return bool(
-        not options.programs
-        and not options.encodings
-        and not options.heuristic
-        and options.human_steps is None
-        and options.models <= 1
-        and not options.all_optimal
-        and set(ranked) <= SUPPORTED
-    )
+    alternatives = options.models > 1 or options.all_optimal
+    extras = options.programs or options.encodings or options.heuristic or options.human_steps is not None
+    return not (alternatives or extras) and set(ranked) <= SUPPORTED
 
 
 class Dominators:

@@ -50,6 +50,8 @@ class Predicates:
     defined: set[Signature] = field(default_factory=set)
     #: predicates in a body, ``#show``, ``#heuristic`` or ``#project``, with their first use (line, column)
     used: dict[Signature, tuple[int, int]] = field(default_factory=dict)
+    #: the program holds ``#minimize``, ``#heuristic``, ``#external``, ``#edge`` or a weak constraint
+    changes_search: bool = False
 
     def define(self, sigs: Iterable[Signature]) -> None:
         self.defined.update(sigs)
@@ -62,6 +64,7 @@ class Predicates:
         """Collect the predicates of one statement."""
         kind = stm.ast_type
         T = clingo.ast.ASTType
+        self.changes_search = self.changes_search or kind in (T.Minimize, T.Heuristic, T.External, T.Edge)
         if kind == T.Rule:
             self.visit(stm.head, head=True)
             self.visit(stm.body)
@@ -176,23 +179,12 @@ def rule_warnings(programs: Iterable[tuple[str, str]], defined: Iterable[Signatu
     ]
 
 
-def _changes_search(text: str) -> bool:
-    """Does ``text`` hold ``#minimize``, ``#heuristic``, ``#external``, ``#edge`` or a weak constraint?"""
-    T = clingo.ast.ASTType
-    kinds = (T.Minimize, T.Heuristic, T.External, T.Edge)
-    found: list[bool] = []
-    clingo.ast.parse_string(text, lambda stm: found.append(stm.ast_type in kinds), logger=lambda code, msg: None)
-    return any(found)
-
-
 def only_constraints(programs: Iterable[tuple[str, str]]) -> bool:
     """Do the user ``programs`` only remove trees (constraints, rules with heads of their own, nothing
     that changes the objective or the search)?"""
     known = known_predicates()
     for _, text in programs:
-        try:
-            if predicates(text).defined & known or _changes_search(text):
-                return False
-        except RuntimeError:
-            return False  # a syntax error: reported where the program is grounded
+        found = _parsed(text)
+        if found is None or found.defined & known or found.changes_search:
+            return False
     return True

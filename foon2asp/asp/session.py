@@ -250,7 +250,7 @@ class Session:
             self._lower = shot.lower
             if shot.last is not None and shot.finished and shot.last.proven:
                 self._lower = shot.last.cost
-            stats = self.stats()
+            stats = self.control.stats()
             answer, start = self._choose(shot, known, plain)
             if not shot.finished and known is not None and (answer is None or tuple(known[1]) < answer.cost):
                 answer = Answer(tuple(sorted(known[0])), tuple(known[1]), False)
@@ -295,7 +295,7 @@ class Session:
             answer = replace(answer, proven=True)
             shot.finished = True
         self._lower = answer.cost if answer is not None and answer.proven else lower
-        stats = self.stats()
+        stats = self.control.stats()
         if cuts:
             stats["loop_cuts"] = cuts
         if answer is not None and answer.proven and prep.known is not None and answer.cost == prep.known:
@@ -360,6 +360,3 @@ class Session:
         tree.time_s = round(time.perf_counter() - t0, 6)
         tree.stats["canonical_session"] = True
         return tree
-
-    def stats(self) -> dict:
-        return self.control.stats()

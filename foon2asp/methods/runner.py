@@ -51,14 +51,8 @@ PROVEN = ("optimal", "ranked", "unreachable", "infeasible")
 
 def plain(options: AspOptions) -> bool:
     """Is this plain optimisation of monotone objectives (nothing but the objectives asked)?"""
-    return (
-        not options.driven
-        and not options.programs
-        and not options.encodings
-        and not options.heuristic
-        and not options.substitutes
-        and all(name in MONOTONE for name in ranked(options))
-    )
+    extras = options.driven or options.programs or options.encodings or options.heuristic or options.substitutes
+    return not extras and all(name in MONOTONE for name in ranked(options))
 
 
 def preparable(options: AspOptions) -> bool:
