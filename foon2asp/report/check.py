@@ -177,7 +177,7 @@ def alone_text(report: AloneReport) -> str:
     else:
         lines.append(f"Problem: {v.problem}")
     b = v.blocked
-    if b is not None and report.kind != "order":
+    if b is not None and v.kind != "order":
         later = f"only step {v.step(b.made_by)} makes it" if b.made_by else "no unit makes it"
         lines.append(
             f"First unit that cannot fire in order: step {v.step(b.step)} ({b.unit.motion}) waits for {b.waits_for} ({later})"
@@ -205,7 +205,7 @@ def alone_json(report: AloneReport) -> dict:
         "goal_source": report.goal_source,
         "method": tree.method,
         "valid": report.valid,
-        "problem": report.kind,
+        "problem": v.kind,
         "message": v.problem if not report.valid else None,
         "cycle": [
             {"object": o.to_json(), "unit": v.step(p), "motion": tree.units[p - 1].unit.motion} for o, p in v.cycle

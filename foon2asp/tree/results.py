@@ -62,11 +62,6 @@ class AloneReport:
     def valid(self) -> bool:
         return self.verdict.in_order
 
-    @property
-    def kind(self) -> str | None:
-        """The kind of the first problem (:attr:`AloneVerdict.kind`); None when valid."""
-        return self.verdict.kind
-
 
 @dataclass
 class Candidate:
