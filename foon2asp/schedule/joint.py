@@ -1,8 +1,8 @@
 """Joint scheduling by trees: every tree that could beat a known makespan, each scheduled alone.
 
 clingo lists the *designated* trees (each needed object with one first maker) that fit within
-the known makespan (:func:`candidate_trees`); :func:`best_tree` schedules them lowest lower
-bound first, and :func:`best_by_work` asks for trees one at a time, least work first, when
+the known makespan (:func:`candidate_trees`); :meth:`Search.over` schedules them lowest lower
+bound first, and :meth:`Search.by_work` asks for trees one at a time, least work first, when
 they are too many.  Why this finds the joint optimum: docs/proofs/schedules.md.
 """
 
@@ -161,92 +161,75 @@ def tree_cost(problem: Problem, units: Sequence[int], human: Sequence[int], rank
     return tuple(out)
 
 
-class _Best:
+class Search:
     """The best result of ``solve`` (a designated tree, the time left, the best makespan so far)
-    by ``key``, ties to the first found; ``proven`` while every solve ended proven."""
+    by ``key`` over trees, ties to the first found; ``bound``: a lower bound on a tree's key."""
 
     def __init__(
         self,
         solve: Callable[[Candidate, float | None, int | None], Any],
         key: Callable[[Any], tuple],
+        bound: Callable[[Candidate], tuple],
         time_limit: float | None,
     ) -> None:
-        self.solve, self.key, self.left = solve, key, clock(time_limit)
+        self.solve, self.key, self.bound, self.left = solve, key, bound, clock(time_limit)
         self.best: Any = None
         self.proven = True
 
-    def beats(self, low: tuple) -> bool:
-        """Can a result of rank at least ``low`` beat the best?"""
-        return self.best is None or low < self.key(self.best)
+    def beats(self, cand: Candidate) -> bool:
+        """Can the schedule of ``cand`` beat the best?"""
+        return self.best is None or self.bound(cand) < self.key(self.best)
 
     def offer(self, cand: Candidate) -> None:
         r = self.solve(cand, self.left(), None if self.best is None else self.best.makespan)
         self.proven = self.proven and r.status in ("optimal", "unschedulable")
-        if r.has_schedule and self.beats(self.key(r)):
+        if r.has_schedule and (self.best is None or self.key(r) < self.key(self.best)):
             self.best = r
 
+    def over(self, trees: list[Candidate]) -> tuple[Any, bool]:
+        """The best over ``trees``, lowest bound first, stopping when the next bound is no
+        better than the best; (best, proven)."""
+        for t in sorted(trees, key=self.bound):
+            if not self.beats(t):
+                break  # sorted: no later tree can beat the best
+            if self.left() == 0.0:
+                return self.best, False
+            self.offer(t)
+        return self.best, self.proven
 
-def best_tree(
-    trees: list[Candidate],
-    bound: Callable[[Candidate], tuple],
-    solve: Callable[[Candidate, float | None, int | None], Any],
-    key: Callable[[Any], tuple],
-    time_limit: float | None,
-) -> tuple[Any, bool]:
-    """The best result of ``solve`` over ``trees`` by ``key``, lowest ``bound`` first, stopping
-    when the next bound is no better than the best; (best, proven)."""
-    found = _Best(solve, key, time_limit)
-    for t in sorted(trees, key=bound):
-        if not found.beats(bound(t)):
-            break  # sorted: no later tree can beat the best
-        if found.left() == 0.0:
-            return found.best, False
-        found.offer(t)
-    return found.best, found.proven
-
-
-def best_by_work(
-    listing: Listing,
-    levels: int,
-    bound: Callable[[Candidate], tuple],
-    solve: Callable[[Candidate, float | None, int | None], Any],
-    key: Callable[[Any], tuple],
-    time_limit: float | None,
-    first: bool = False,
-) -> tuple[Any, bool]:
-    """Like :func:`best_tree` over the undesignated trees, asked for one at a time, least work
-    first, stopping when a tree's work over the agents exceeds the best makespan.  ``first``:
-    the first tree is the best (one agent)."""
-    found = _Best(solve, key, time_limit)
-    m = len(listing.inst.agents)
-    facts = listing.bound_facts()
-    order = f"#minimize {{ D@{levels + 1},U : use(U), work(U,D) }}.\n"
-    seen: list[tuple[int, ...]] = []
-    last: list[tuple[int, ...]] = []  # the trees of one solve
-    while True:
-        left = found.left()
-        if left == 0.0:
-            return found.best, False
-        cuts = "".join(
-            ":- " + ", ".join(f"use({u})" for u in t) + f", #count {{ U : use(U) }} = {len(t)}.\n" for t in seen
-        )
-        control = Control(["--opt-mode=opt", *listing.args])
-        control.add_all([*listing.tree_parts, _TREES, ("bounds", facts), ("least work first", order + cuts)])
-        control.ground()
-        last.clear()
-        if not control.solve(lambda model: last.append(used(model.symbols(shown=True))), left).finished:
-            return found.best, False
-        if not last:
-            return found.best, found.proven  # no tree left
-        t = last[-1]
-        seen.append(t)
-        work = sum(listing.inst.min_duration(u) for u in t)
-        if found.best is not None and -(-work // m) > found.best.makespan:
-            return found.best, found.proven
-        if found.beats(bound((t, ()))):
-            found.offer((t, ()))
-        if first:
-            return found.best, found.proven
+    def by_work(self, listing: Listing, levels: int, first: bool = False) -> tuple[Any, bool]:
+        """The best over the undesignated trees, asked for one at a time, least work first,
+        stopping when a tree's work over the agents exceeds the best makespan.  ``first``: the
+        first tree is the best (one agent)."""
+        m = len(listing.inst.agents)
+        facts = listing.bound_facts()
+        order = f"#minimize {{ D@{levels + 1},U : use(U), work(U,D) }}.\n"
+        seen: list[tuple[int, ...]] = []
+        last: list[tuple[int, ...]] = []  # the trees of one solve
+        while True:
+            left = self.left()
+            if left == 0.0:
+                return self.best, False
+            cuts = "".join(
+                ":- " + ", ".join(f"use({u})" for u in t) + f", #count {{ U : use(U) }} = {len(t)}.\n" for t in seen
+            )
+            control = Control(["--opt-mode=opt", *listing.args])
+            control.add_all([*listing.tree_parts, _TREES, ("bounds", facts), ("least work first", order + cuts)])
+            control.ground()
+            last.clear()
+            if not control.solve(lambda model: last.append(used(model.symbols(shown=True))), left).finished:
+                return self.best, False
+            if not last:
+                return self.best, self.proven  # no tree left
+            t = last[-1]
+            seen.append(t)
+            work = sum(listing.inst.min_duration(u) for u in t)
+            if self.best is not None and -(-work // m) > self.best.makespan:
+                return self.best, self.proven
+            if self.beats((t, ())):
+                self.offer((t, ()))
+            if first:
+                return self.best, self.proven
 
 
 def every_tree_bound(

@@ -232,13 +232,13 @@ def _by_trees(
         return (low, 0, joint.tree_cost(problem, units, (), ranked))
 
     if found.complete:
-        best, proven = joint.best_tree(found.trees, bound, job.solve, job.rank, left())
+        best, proven = joint.Search(job.solve, job.rank, bound, left()).over(found.trees)
     else:  # too many to list: one at a time, least work first
         share = left()
         if not single and share is not None:
             share /= 4
         first = single and not spec.has_human()  # a person alone: fewest units among equal work
-        best, proven = joint.best_by_work(listing, len(ranked), bound, job.solve, job.rank, share, first)
+        best, proven = joint.Search(job.solve, job.rank, bound, share).by_work(listing, len(ranked), first)
     stats = {"joint": "tree by tree" if found.complete else "tree by tree, least work first"}
     result, proven = job.finish(best, proven, ties, stats)
     if not single and not found.complete and not proven:
