@@ -14,7 +14,7 @@ from foon2asp import methods
 from foon2asp.analysis.compare import DEFAULT_METHODS, compare_iter
 from foon2asp.asp.session import Session
 from foon2asp.cli.main import main
-from foon2asp.report.compare import render
+from foon2asp.report import render
 from foon2asp.tree.tasktree import TaskTree
 from foon2asp.tree.validate import validate
 from helpers import best, build, goal_id
@@ -81,7 +81,7 @@ def test_later_registered_methods_just_work():
         (row,) = compare_iter(p, [goal_id(p, "g")], ["ids", "test-nothing"])
         assert list(row.trees) == ["ids", "test-nothing"]
         assert row.trees["test-nothing"].extra["valid"] is False
-        assert "not-found" in render(p, [row], "text")
+        assert "not-found" in render("compare", "text", p, [row])
     finally:
         del methods.METHODS["test-nothing"]
 

@@ -8,7 +8,6 @@ import json
 from collections.abc import Callable, Iterable
 
 from foon2asp.foon.problem import Problem
-from foon2asp.report import registry
 from foon2asp.report.registry import register
 from foon2asp.tree.results import BatchReport, MealRow, Row
 from foon2asp.tree.serialize import json_list, number, tree_json
@@ -213,10 +212,6 @@ _register(
     meal_json,
 )
 _register("jsonl", "jsonl", "JSON lines: one solve-shaped result with valid per goal and method", _jsonl, meal_json)
-
-
-def render(problem: Problem, rows: list[Row], fmt: str) -> str:
-    return registry.render("compare", fmt, problem, rows)
 
 
 SUMMARY_COLUMNS = (
