@@ -96,20 +96,18 @@ def _check_kind(kind: str, path: str, text: str) -> None:
 
 def _ticks(value: object, path: str, text: str, keys: tuple[str, ...]) -> int:
     """A duration in seconds as whole milliseconds; an error names the file, line and entry."""
-    line = _line_of(text, *keys)
-    where = " / ".join(json.dumps(k, ensure_ascii=False) for k in keys)
     if isinstance(value, bool) or not isinstance(value, Decimal):
-        raise InputError(
-            f"duration {where} must be a number of seconds, not {json.dumps(value, default=str)}", path, line
-        )
-    if not value.is_finite() or value < 0:
-        raise InputError(f"duration {where} must be at least 0, not {value}", path, line)
-    if value > MAX_SECONDS:
-        raise InputError(f"duration {where} is {value} s, above the limit of {MAX_SECONDS} s", path, line)
-    ticks = value / PRECISION
-    if ticks != ticks.to_integral_value():
-        raise InputError(f"duration {where} is {value} s: finer than the precision of {PRECISION} s", path, line)
-    return int(ticks)
+        wrong = f"must be a number of seconds, not {json.dumps(value, default=str)}"
+    elif not value.is_finite() or value < 0:
+        wrong = f"must be at least 0, not {value}"
+    elif value > MAX_SECONDS:
+        wrong = f"is {value} s, above the limit of {MAX_SECONDS} s"
+    elif value / PRECISION != (value / PRECISION).to_integral_value():
+        wrong = f"is {value} s: finer than the precision of {PRECISION} s"
+    else:
+        return int(value / PRECISION)
+    where = " / ".join(json.dumps(k, ensure_ascii=False) for k in keys)
+    raise InputError(f"duration {where} {wrong}", path, _line_of(text, *keys))
 
 
 @dataclass(frozen=True)
