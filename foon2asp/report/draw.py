@@ -1,9 +1,7 @@
 """Task trees as pictures, in FOON's own drawing conventions.
 
-Objects are ellipses (label, states, ingredients, container), functional units boxes (step,
-motion), edges run input -> motion -> output.  The goal is gold, kitchen items green, a
-person's units orange, and the cycle that blocks an invalid tree red (:class:`Marks`).
-Rendering to SVG, PNG or PDF runs Graphviz.
+Objects are ellipses, functional units boxes, edges run input -> motion -> output; what is
+highlighted is a :class:`Marks`.  Rendering to SVG, PNG or PDF runs Graphviz.
 """
 
 from __future__ import annotations

@@ -1,9 +1,7 @@
 """Gantt charts of schedules: one lane per agent, units as boxes labelled by their motion.
 
-Drawn from the plain JSON record of a schedule (``ScheduleResult.to_dict()``) as a Graphviz
-graph with every node at a fixed position: lane names on the left, a time axis below, one box
-per unit as wide as it is long (a robot's blue, a person's orange), its motion inside, beside
-it or on a row under the lane.  Charts drawn together share one time scale.
+Drawn from a schedule's JSON record (``ScheduleResult.to_dict()``) as a Graphviz graph whose
+nodes sit at fixed positions; charts drawn together share one time scale.
 """
 
 from __future__ import annotations

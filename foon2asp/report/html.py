@@ -1,8 +1,7 @@
 """One self-contained HTML page: the comparison table and a drawing of every tree.
 
-``compare --format html`` writes the table and every tree's drawing, ``batch --summary html``
-the summary and the drawings of the results (and the Gantt charts of the schedules),
-``schedule --format html`` the Gantt charts.  No scripts, no external files.
+The pages of ``compare``, ``batch --summary`` and ``schedule`` (``--format html``): no scripts,
+no external files.
 """
 
 from __future__ import annotations

@@ -1,10 +1,6 @@
 """A FOON problem as PDDL: a delete-free STRIPS domain and a problem.
 
-The part of the FOON relevant to the goal(s) becomes one predicate ``(have ?o)``, a constant
-``o<id>`` per object and an action ``u<id>-<motion>`` per unit (preconditions its required
-inputs, effects its products); ``:init`` holds the kitchen items, ``:goal`` every goal.  An
-optimal plan is a fewest-units tree; other objectives become action costs.  Constraints that
-only remove units are applied as filters; any other constraint is refused.
+The mapping and what a plan means: docs/formats.md, "PDDL".
 """
 
 from __future__ import annotations
