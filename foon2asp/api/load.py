@@ -83,11 +83,8 @@ def load(
     goals: str | Path | None = None,
     **reading: Any,
 ) -> KnowledgeBase:
-    """Read a data folder (``FOON.txt``, ``kitchen.json``, ``goal_nodes.json``, ``motion.txt``,
-    ``utensils.txt``) or ``"demo"``; keyword files override its files.  With ``foon`` and no
-    folder, the others are read from beside the first FOON file (no kitchen there is an error).
-    ``reading``: the fields of :class:`Reading` (``kitchen``, ``motion``, ``utensils``,
-    ``utensil_rule``, ``strict``, ``level``, ``normalize``, ``synonyms``)."""
+    """Read a data folder or ``"demo"``, or ``foon`` files with the files beside them (docs/api.md);
+    ``reading``: the fields of :class:`Reading`."""
     check_keywords(reading, [f.name for f in fields(Reading)], "load(): ")
     how = Reading(**reading)
     seen_as = how.projection()
@@ -123,8 +120,7 @@ def load(
 def knowledge_base(
     data: Dataset, utensil_rule: str = "starter", warnings: Sequence[str] = (), seen_as: Projection | None = None
 ) -> KnowledgeBase:
-    """The knowledge base of data read already, with the warnings about it (and ``warnings``), as
-    ``seen_as`` sees it (default: level 3, texts as spelled)."""
+    """The knowledge base of data read already, with the warnings about it (and ``warnings``), as ``seen_as`` sees it."""
     seen_as = seen_as or Projection()
     if not seen_as.identity:
         data, seen_as = project_dataset(data, seen_as.level, seen_as.texts.normalize, seen_as.texts.synonyms)
@@ -156,8 +152,7 @@ def read_foons(paths: Iterable[str | Path], strict: bool = False) -> Foon:
 def match_foon(
     foon: Foon, level: int = 3, normalize: bool = False, synonyms: str | Path | Mapping[str, str] | None = None
 ) -> tuple[Foon, dict[str, list[str]]]:
-    """``foon`` as hierarchy ``level`` with ``normalize``/``synonyms`` sees it (see :func:`load`):
-    units equal there are one unit; and the spellings joined (first spelling -> every spelling)."""
+    """``foon`` as ``level``, ``normalize`` and ``synonyms`` see it (:func:`load`), and the spellings joined."""
     found = Reading(level=level, normalize=normalize, synonyms=synonyms).projection()
     if found.identity:
         return foon, {}

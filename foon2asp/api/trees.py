@@ -31,7 +31,7 @@ class TreeVerdict:
     raw: Any
     valid = Raw[bool]()
     kind = Raw[str | None](
-        "``no-goal``, ``cycle``, ``missing-input``, ``order`` or ``goal-not-made`` (None when valid)."
+        "``no-goal``, ``cycle``, ``missing-input``, ``order`` or ``goal-not-made`` (None when valid).", "verdict.kind"
     )
     valid_as_set = Raw[bool](
         "Do the units make the goal in some order (the independent validator's verdict)?", "verdict.valid"
@@ -133,9 +133,7 @@ def check_tree(
     utensil_rule: str = "starter",
     strict: bool = False,
 ) -> list[TreeVerdict]:
-    """Judge every tree of a tree file on its own, without a FOON: the kitchen is its leaves (or
-    the ``kitchen`` file), the goal ``goal`` (several: a meal), else the one the file names, else
-    the products of its last unit."""
+    """Judge every tree of a tree file on its own, without a FOON (docs/api.md)."""
     texts = () if goal is None else (goal,) if isinstance(goal, str) else tuple(goal)
     items = None if kitchen in (None, LEAVES) else read_kitchen(str(kitchen))
     source = "its leaves" if items is None else str(kitchen)
@@ -181,20 +179,14 @@ def consolidate(
     together: bool = False,
     **keywords: Any,
 ) -> Consolidation:
-    """Merge candidate trees of one recipe (files in any tree format) into one FOON and find one
-    proven-best tree per goal; the kitchen is its leaves unless ``kitchen`` names a file.
-    ``goal``: goals of the merged FOON (``together``: one meal); ``goals``: a goals file or
-    ``"all"`` (every product of a candidate's last unit); neither: the product of the last units
-    most candidates share.  ``keywords``: the fields of :class:`foon2asp.api.load.Reading` (the
-    kitchen, motion and utensils files, ``utensil_rule``, ``strict``, how objects are compared)
-    and the request (``options``, settings)."""
+    """Merge candidate trees of one recipe into one FOON and find one proven-best tree per goal
+    (docs/api.md); ``keywords``: the fields of :class:`foon2asp.api.load.Reading` and the request."""
     if not paths:
         raise InputError("no candidate tree given")
     how = Reading.of(keywords)
     seen_as = how.projection()
     candidates = consolidate_mod.read_candidates(paths, how.strict)
     foon, sources = consolidate_mod.merge(candidates)
-    names = [str(p) for p in paths]
     given = None if how.kitchen in (None, LEAVES) else str(how.kitchen)
     warnings: list[str] = []
     data = Dataset(
@@ -203,7 +195,7 @@ def consolidate(
         goals=read_goals(str(goals)) if goals not in (None, "all") else [],
         motion=read_motion(str(how.motion), warnings) if how.motion is not None else {},
         utensils=read_utensils(str(how.utensils), warnings) if how.utensils is not None else frozenset(),
-        paths={"foon": ",".join(names), "kitchen": given or LEAVES},
+        paths={"foon": ",".join(str(p) for p in paths), "kitchen": given or LEAVES},
         warnings=warnings,
     )
     kb = knowledge_base(data, how.utensil_rule, [w for c in candidates for w in c.warnings], seen_as)
@@ -211,10 +203,9 @@ def consolidate(
         candidates, sources = _projected(kb, candidates)
     solver, asked = kb.options_and_warnings(**keywords)
     ids, source = _goals(kb, candidates, goal, goals)
-    kitchen_source = "leaves" if given is None else given
-    asked_for = jobs(ids, together)
+    problem = kb.solving_problem(solver)
     raw = consolidate_mod.consolidate(
-        kb.solving_problem(solver), candidates, sources, asked_for, solver, source, kitchen_source
+        problem, candidates, sources, jobs(ids, together), solver, source, given or LEAVES
     )
     return Consolidation(kb, raw, kb.warnings + tuple(asked))
 
