@@ -89,24 +89,16 @@ class ScheduleResult:
         tree = tree_json(self.problem, self.tree)
         goal = {k: tree[k] for k in ("goal", "goals") if k in tree}
         b = self.bounds
+        base = {} if self.baseline is None else {"method": "longest-chain-first", "makespan": seconds(self.baseline)}
+        rows = [(self.problem.units[e.unit].to_json(), e.agent, seconds(e.start), seconds(e.end)) for e in self.entries]
         out: dict = {
             **goal,
             "status": self.status,
             "makespan": seconds(self.makespan),
             "bounds": {} if b is None else {k: seconds(getattr(b, k)) for k in ("chain", "work", "energy", "lower")},
-            "baseline": {}
-            if self.baseline is None
-            else {"method": "longest-chain-first", "makespan": seconds(self.baseline)},
+            "baseline": base,
             "agents": list(self.agents),
-            "schedule": [
-                {
-                    "unit": self.problem.units[e.unit].to_json(),
-                    "agent": e.agent,
-                    "start": seconds(e.start),
-                    "end": seconds(e.end),
-                }
-                for e in self.entries
-            ],
+            "schedule": [dict(zip(("unit", "agent", "start", "end"), row)) for row in rows],
             "tree": tree,
             "success": self.success(),
             "human_units": human_units(self.entries) if self.has_schedule else None,
