@@ -188,3 +188,13 @@ def only_constraints(programs: Iterable[tuple[str, str]]) -> bool:
         if found is None or found.defined & known or found.changes_search:
             return False
     return True
+
+
+def checkable(programs: Iterable[tuple[str, str]]) -> bool:
+    """Do the ``programs`` read only the facts, ``use/1`` and what they define themselves?"""
+    allowed = set(FACTS) | {("use", 1)}
+    for _, text in programs:
+        found = _parsed(text)
+        if found is None or not set(found.used) <= allowed | found.defined:
+            return False
+    return True

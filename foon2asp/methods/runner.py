@@ -12,15 +12,18 @@ docs/proofs/solving.md, "The routes".
 from __future__ import annotations
 
 import time
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import replace
 
-from foon2asp.asp.check import ConstraintCheck, checkable
+import clingo
+
+from foon2asp.asp.control import Control
 from foon2asp.asp.dominance import applies as dominance_applies
+from foon2asp.asp.facts import facts
 from foon2asp.asp.interrupts import deferred_signals
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
-from foon2asp.asp.predicates import only_constraints
+from foon2asp.asp.predicates import checkable, only_constraints
 from foon2asp.asp.prepared import Preparation
 from foon2asp.asp.session import Session
 from foon2asp.asp.substitutes import prepare as with_substitutes
@@ -63,6 +66,41 @@ def preparable(options: AspOptions) -> bool:
 def _view(problem: Problem, objects: set[int]) -> Problem:
     """``problem`` with the kitchen cut down to ``objects``."""
     return problem.with_kitchen(o for o in objects if o in problem.kitchen)
+
+
+class _Constraints(clingo.Observer):
+    """Sees whether grounding left any integrity constraint (a rule with an empty head)."""
+
+    def __init__(self) -> None:
+        self.found = False
+
+    def rule(self, choice: bool, head: Sequence[int], body: Sequence[int]) -> None:
+        self.found = self.found or (not choice and not head)
+
+    def weight_rule(self, choice: bool, head: Sequence[int], lower_bound: int, body: Sequence[tuple[int, int]]) -> None:
+        self.found = self.found or (not choice and not head)
+
+
+class ConstraintCheck:
+    """The user's ``programs`` grounded once over ``problem``'s ``units`` (None: all), asked tree by tree."""
+
+    def __init__(self, problem: Problem, programs: Sequence[tuple[str, str]], units: Iterable[int] | None = None):
+        self.control = Control(["--opt-mode=ignore"])
+        ids = sorted(set(units)) if units is not None else None
+        parts = [("facts", facts(problem, units=ids)), ("trees", "#external use(U) : unit(U).\n")]
+        self.control.add_all([*parts, *programs], user=[name for name, _ in programs])
+        seen = _Constraints()
+        self.control.ctl.register_observer(seen)
+        self.control.ground()
+        self.vacuous = not seen.found
+
+    def allows(self, tree: Iterable[int]) -> bool:
+        """Does the tree whose units are ``tree`` satisfy every program?"""
+        if self.vacuous:
+            return True
+        atoms = [clingo.Function("use", [clingo.Number(u)]) for u in tree]
+        with self.control.switched(a for a in atoms if self.control.has_atom(a)):
+            return self.control.solve().satisfiable is True
 
 
 class GoalRunner:
