@@ -202,7 +202,7 @@ def test_missing_together_matches_singles(demo_problem):
     alone = [queries.missing(p, g) for g in meal]
     assert together.status == "optimal"
     assert len(together.missing) <= sum(len(r.missing) for r in alone)
-    extended = queries.with_kitchen(p, together.missing)
+    extended = p.with_kitchen(p.kitchen.union(together.missing))
     assert all(validate(extended, g, together.units).valid for g in meal)
 
 

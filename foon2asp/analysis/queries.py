@@ -90,11 +90,6 @@ def reachable(problem: Problem, objects: Iterable[int]) -> dict[int, bool]:
     return {o: o in yes for o in objects}
 
 
-def with_kitchen(problem: Problem, extra: Iterable[int]) -> Problem:
-    """The same problem with the objects ``extra`` (ids) added to the kitchen."""
-    return problem.with_kitchen(problem.kitchen.union(extra))
-
-
 #: the tree objectives ``missing`` can use after the fewest added objects
 MISSING_OBJECTIVES = ("units", "success", "inputs", "cost")
 
@@ -153,7 +148,7 @@ def missing(problem: Problem, goal: Goals, options: AspOptions | None = None) ->
     if outcome.answers:
         shown = outcome.answers[-1].symbols
         result.missing = sorted(s.arguments[0].number for s in shown if s.name == "add")
-        extended = with_kitchen(problem, result.missing)
+        extended = problem.with_kitchen(problem.kitchen.union(result.missing))
         result.units = executable_order(extended, [s.arguments[0].number for s in shown if s.name == "use"])
         result.cost = dict(measures(extended, meal, result.units), added=len(result.missing))
         # "satisfiable": no weighted atom was grounded, so every model costs 0
