@@ -32,7 +32,7 @@ from foon2asp.report import pddl
         " (judged on its own: the products of its last unit).",
     ),
     opt.format_option("check"),
-    click.option("--optimum/--no-optimum", default=True, help="Also solve the ASP optimum to compare with."),
+    opt.option("--optimum/--no-optimum", "Also solve the ASP optimum to compare with.", default=True),
     opt.SCHEDULE,
 )
 def check(trees, data, goal, goals, fmt, optimum, spec, options):
@@ -100,18 +100,15 @@ def check(trees, data, goal, goals, fmt, optimum, spec, options):
 
 @command(
     click.argument("tree", type=click.Path()),
-    click.option(
-        "--data",
-        "data_dir",
-        type=click.Path(),
-        help="Data directory: marks kitchen items, the goal and a blocking cycle.",
+    opt.option(
+        "--data data_dir", "Data directory: marks kitchen items, the goal and a blocking cycle.", type=click.Path()
     ),
-    click.option("--goal", help="Goal label (default: the goal a JSON result names, else inferred from the tree)."),
+    opt.option("--goal", "Goal label (default: the goal a JSON result names, else inferred from the tree)."),
     opt.output_option("FILE.svg, .png, .pdf or .dot", required=True),
     opt.choice(
         "--format", "fmt", choices=draw_mod.FORMATS, default=None, help="Drawing format (default: from the extension)."
     ),
-    click.option("--strict", is_flag=True, help=opt.STRICT_HELP),
+    opt.flag("--strict", opt.STRICT_HELP),
     opt.MATCHING,
 )
 def draw(tree, data, goal, output, fmt, options):
@@ -140,7 +137,7 @@ def draw(tree, data, goal, output, fmt, options):
 @command(
     click.argument("files", nargs=-1, required=True, type=click.Path()),
     opt.output_option("The merged FOON file.", required=True),
-    click.option("--strict", is_flag=True, help="Treat skipped units (warnings) as errors."),
+    opt.flag("--strict", "Treat skipped units (warnings) as errors."),
     opt.choice(
         "--format",
         "fmt",
@@ -178,7 +175,7 @@ def merge(files, output, strict, fmt, match, options):
         "A FILE of goal objects, or 'all': every product of a candidate's last unit. Default: the product of"
         " the candidates' last units that most of them share."
     ),
-    click.option("--kitchen", type=click.Path(), help=opt.KITCHEN_HELP + " Default: leaves."),
+    opt.option("--kitchen", opt.KITCHEN_HELP + " Default: leaves.", type=click.Path()),
     opt.FILES,
     opt.CONSTRAINTS,
     opt.objective_options(),
@@ -186,7 +183,7 @@ def merge(files, output, strict, fmt, match, options):
     opt.output_option("A FILE to write the report to (default: stdout)."),
     opt.time_limit_option(),
     opt.GAP_OPTION,
-    opt.together_option("A meal: one tree that makes every goal."),
+    opt.flag("--together", "A meal: one tree that makes every goal."),
     opt.STRATEGY,
     opt.MATCHING,
     epilog=EXIT_CODES,
@@ -233,7 +230,7 @@ def export():
     ),
     opt.MOTION_COST,
     opt.output_option("Directory for domain.pddl and problem.pddl.", file=False, required=True),
-    click.option("--name", default="foon", help="Domain name (problem: NAME-task)."),
+    opt.option("--name", "Domain name (problem: NAME-task).", default="foon"),
     opt.CONSTRAINTS,
     name="pddl",
     group=export,
@@ -269,15 +266,15 @@ def export_pddl(data, goal, goals, pddl_objective, output, name, options):
 
 # ---------------------------------------------------------------- facts and queries
 
-FACT_GOALS = click.option(
-    "--goals", metavar="FILE|all|all-objects", help="Goals for goal_node/2 facts (default: the goals file)."
+FACT_GOALS = opt.option(
+    "--goals", "Goals for goal_node/2 facts (default: the goals file).", metavar="FILE|all|all-objects"
 )
 
 
 @command(
     opt.DATA,
     FACT_GOALS,
-    click.option("--goal", multiple=True, metavar="TEXT", help="Also fix goal(O) for this goal. " + opt.GOAL_HELP),
+    opt.option("--goal", "Also fix goal(O) for this goal. " + opt.GOAL_HELP, multiple=True, metavar="TEXT"),
     opt.output_option("A FILE to write the facts to (default: stdout)."),
 )
 def facts(data, goals, goal, output, options):
@@ -292,13 +289,12 @@ def facts(data, goals, goal, output, options):
     click.argument("program", type=click.Path()),
     opt.DATA,
     FACT_GOALS,
-    click.option("--goal", metavar="TEXT", help="Also add goal(O) for this goal. " + opt.GOAL_HELP),
-    click.option(
-        "--encoding",
-        "encoding_names",
-        multiple=True,
-        help="Also load a shipped encoding (tree, units, success, inputs, reachable, missing) and what it needs;"
+    opt.option("--goal", "Also add goal(O) for this goal. " + opt.GOAL_HELP, metavar="TEXT"),
+    opt.option(
+        "--encoding encoding_names",
+        "Also load a shipped encoding (tree, units, success, inputs, reachable, missing) and what it needs;"
         " repeatable.",
+        multiple=True,
     ),
     opt.models_option(0, "Models to print (0 = all); with an objective, the optimum."),
     opt.format_option("query"),
@@ -335,19 +331,13 @@ def query(program, data, goals, goal, encoding_names, fmt, options):
     opt.SOURCES,
     opt.FILES,
     opt.MATCHING,
-    click.option(
-        "--produced",
-        "only",
-        flag_value="produced",
-        help="Only objects some unit makes (without needing it as an input).",
+    opt.option(
+        "--produced only", "Only objects some unit makes (without needing it as an input).", flag_value="produced"
     ),
-    click.option("--kitchen", "only", flag_value="kitchen", help="Only kitchen items."),
-    click.option("--derivable", "only", flag_value="derivable", help="Only objects that can be made from the kitchen."),
-    click.option(
-        "--kitchen-file",
-        "kitchen",
-        metavar="FILE|leaves",
-        help=opt.KITCHEN_HELP.replace("kitchen.json", "A kitchen.json", 1),
+    opt.option("--kitchen only", "Only kitchen items.", flag_value="kitchen"),
+    opt.option("--derivable only", "Only objects that can be made from the kitchen.", flag_value="derivable"),
+    opt.option(
+        "--kitchen-file kitchen", opt.KITCHEN_HELP.replace("kitchen.json", "A kitchen.json", 1), metavar="FILE|leaves"
     ),
     opt.choice("--format", "fmt", choices=("text", "json")),
 )

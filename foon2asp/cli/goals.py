@@ -49,18 +49,18 @@ def written(trees: list) -> str:
 
 #: --max-depth, --human-steps, --models, --all-optimal and :data:`~foon2asp.cli.options.STRATEGY`
 SOLVER = [
-    click.option(
+    opt.option(
         "--max-depth",
+        "Only trees of at most N sequential rounds (the goal's level); with --objective depth, the search stops there.",
         type=opt.int32(min=1),
-        help="Only trees of at most N sequential rounds (the goal's level); with --objective depth, the search stops there.",
     ),
-    click.option(
+    opt.option(
         "--human-steps",
+        "At most M units may be done by a person (success 1.0); the solver picks them, the output marks them.",
         type=opt.int32(min=0),
-        help="At most M units may be done by a person (success 1.0); the solver picks them, the output marks them.",
     ),
     opt.models_option(1, "The K best distinct trees per goal, best first."),
-    click.option("--all-optimal", is_flag=True, help="Every optimal tree per goal (at most 100)."),
+    opt.flag("--all-optimal", "Every optimal tree per goal (at most 100)."),
     *opt.STRATEGY,
 ]
 
@@ -72,8 +72,8 @@ SOLVER = [
     ),
     opt.time_limit_option(),
     opt.GAP_OPTION,
-    opt.together_option(
-        "A meal: one tree that makes every goal, units shared between dishes counted once (ASP methods)."
+    opt.flag(
+        "--together", "A meal: one tree that makes every goal, units shared between dishes counted once (ASP methods)."
     ),
     SOLVER,
     opt.PROGRESS,
@@ -139,7 +139,7 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
     "compare",
     opt.time_limit_option("Seconds per goal for ASP methods."),
     opt.GAP_OPTION,
-    opt.together_option("A meal: the one tree for all goals beside the sum of the single optima (ASP)."),
+    opt.flag("--together", "A meal: the one tree for all goals beside the sum of the single optima (ASP)."),
     opt.STRATEGY,
     opt.PROGRESS,
     methods=",".join(api.COMPARE_METHODS),
@@ -174,7 +174,7 @@ def compare(data, goal, goals, method_list, fmt, together, options, progress):
 @goal_command(
     "missing",
     opt.time_limit_option("Seconds per goal; the best answer so far is reported as 'feasible'."),
-    opt.together_option("A meal: the fewest objects so that one tree makes every goal."),
+    opt.flag("--together", "A meal: the fewest objects so that one tree makes every goal."),
     opt.STRATEGY,
     opt.PROGRESS,
     objective_help="After the fewest added objects, the best tree by these objectives (units, success, inputs, cost"
@@ -227,10 +227,9 @@ def status_text(info: dict) -> str:
         f" solve {DEFAULT_TIME_LIMIT:g} s."
     ),
     opt.SCHEDULE,
-    click.option(
+    opt.flag(
         "--joint",
-        is_flag=True,
-        help="Choose tree and schedule together: the makespan is minimal over every valid tree (the fixed tree's"
+        "Choose tree and schedule together: the makespan is minimal over every valid tree (the fixed tree's"
         " is reported beside it).",
     ),
     opt.choice(
@@ -247,7 +246,7 @@ def status_text(info: dict) -> str:
         default=api.DEFAULT_SCHEDULE_ENCODING,
         help="Time steps in plain ASP, or clingo-dl start times (needs clingo-dl).",
     ),
-    opt.together_option("A meal: one tree that makes every goal, and one schedule of it."),
+    opt.flag("--together", "A meal: one tree that makes every goal, and one schedule of it."),
     opt.STRATEGY,
     opt.PROGRESS,
     objective_help="The tree's objective(s), comma-separated (units, success, inputs, depth, cost): the tree"
@@ -329,20 +328,16 @@ WORKERS, SCHEDULER = Checked("N|auto", _workers), Checked("address", _address)
     opt.method_option("asp"),
     opt.objective_options(),
     opt.output_option("A FILE of results, one JSON line per (goal, method).", default="results.jsonl"),
-    click.option(
-        "--resume",
-        is_flag=True,
-        help="Continue OUTPUT: skip the (goal, method) pairs it already holds for the same configuration.",
-    ),
-    click.option(
+    opt.flag("--resume", "Continue OUTPUT: skip the (goal, method) pairs it already holds for the same configuration."),
+    opt.option(
         "--workers",
+        "Worker processes; auto: this process, and once the batch has run 5 s the rest on every usable core.",
         type=WORKERS,
         metavar="N|auto",
         default="auto",
-        help="Worker processes; auto: this process, and once the batch has run 5 s the rest on every usable core.",
     ),
-    click.option(
-        "--scheduler", type=SCHEDULER, metavar="ADDRESS", help="Run on this Dask scheduler (needs the 'dask' extra)."
+    opt.option(
+        "--scheduler", "Run on this Dask scheduler (needs the 'dask' extra).", type=SCHEDULER, metavar="ADDRESS"
     ),
     opt.time_limit_option(),
     opt.GAP_OPTION,
@@ -355,27 +350,23 @@ WORKERS, SCHEDULER = Checked("N|auto", _workers), Checked("address", _address)
         " the goals' median relevant part is under 10 % of the viable units or there are over 50,000 of them"
         " (the summary says which).",
     ),
-    click.option(
+    opt.option(
         "--shortcuts/--no-shortcuts",
-        default=True,
-        help="Let preparation answer a goal it proves (one tree in the goal's part; the landmark bound met by"
+        "Let preparation answer a goal it proves (one tree in the goal's part; the landmark bound met by"
         " the bounds tree); --no-shortcuts: clingo answers every goal that can be made.",
+        default=True,
     ),
     opt.choice(
         "--summary", "summary_fmt", choices=report.names("summary"), help="Format of the summary printed at the end."
     ),
     opt.PROGRESS,
-    click.option(
-        "--fsync/--no-fsync",
-        default=True,
-        help="Sync result lines to disk (grouped: at most 0.25 s apart, and at the end).",
+    opt.option(
+        "--fsync/--no-fsync", "Sync result lines to disk (grouped: at most 0.25 s apart, and at the end).", default=True
     ),
     opt.CONSTRAINTS,
-    click.option(
-        "--schedule",
-        "with_schedules",
-        is_flag=True,
-        help="Also schedule each goal's tree (of the first method) on the agents of the schedule options, into"
+    opt.flag(
+        "--schedule with_schedules",
+        "Also schedule each goal's tree (of the first method) on the agents of the schedule options, into"
         " OUTPUT with the suffix .schedules.json (a JSON list as 'schedule --format json' writes).",
     ),
     opt.SCHEDULE,

@@ -66,6 +66,16 @@ def int32(min: int = 0, max: int = 2**31 - 1) -> click.IntRange:
     return click.IntRange(min=min, max=max)
 
 
+def option(flags: str, help: str, **kw):
+    """An option: ``flags`` its names, space-separated (then its parameter's name, when not the long name)."""
+    return click.option(*flags.split(), help=help, **kw)
+
+
+def flag(flags: str, help: str, **kw):
+    """An on/off option."""
+    return option(flags, help, is_flag=True, **kw)
+
+
 # ---------------------------------------------------------------- the gathered values
 
 #: the option parameters that are keywords of :meth:`foon2asp.api.Options.of`
@@ -183,31 +193,30 @@ KITCHEN_HELP = (
 
 #: --motion, --utensils, --utensil-rule and --strict
 FILES = [
-    click.option("--motion", type=click.Path(), help="motion.txt (motion TAB success rate)"),
-    click.option("--utensils", type=click.Path(), help="utensils.txt"),
+    option("--motion", "motion.txt (motion TAB success rate)", type=click.Path()),
+    option("--utensils", "utensils.txt", type=click.Path()),
     choice(
         "--utensil-rule",
         choices=api.UTENSIL_RULES,
         default="starter",
         help="When a utensil holding one ingredient is not a required input.",
     ),
-    click.option("--strict", is_flag=True, help=STRICT_HELP),
+    flag("--strict", STRICT_HELP),
 ]
 
 #: --level, --normalize, --synonyms FILE, --substitutes FILE and --max-substitutions N
 MATCHING = [
-    click.option(
+    option(
         "--level",
+        "FOON's hierarchy level objects are compared at: 1 labels, 2 labels and states (with the container),"
+        " 3 also ingredients.",
         type=click.IntRange(1, 3),
         default=3,
         metavar="1|2|3",
-        help="FOON's hierarchy level objects are compared at: 1 labels, 2 labels and states (with the container),"
-        " 3 also ingredients.",
     ),
-    click.option(
+    flag(
         "--normalize",
-        is_flag=True,
-        help="Compare labels, states and ingredients case-folded, white space collapsed, the last word singular.",
+        "Compare labels, states and ingredients case-folded, white space collapsed, the last word singular.",
     ),
     file_option("--synonyms", "Lines 'name = canonical name': names compared as one."),
     file_option(
@@ -215,28 +224,27 @@ MATCHING = [
         'What may stand in for a missing kitchen item: JSON {"onion": ["red onion"]} or lines'
         " 'onion: red onion, shallot =2'; trees use the fewest (cheapest) substitutions first.",
     ),
-    click.option("--max-substitutions", type=int32(min=0), metavar="N", help="At most N substitutions per tree."),
+    option("--max-substitutions", "At most N substitutions per tree.", type=int32(min=0), metavar="N"),
 ]
 
 #: --data DIR and --foon FILE
 SOURCES = [
-    click.option(
-        "--data",
-        "data_dir",
-        type=click.Path(),
-        help="Directory with FOON.txt, kitchen.json, goal_nodes.json, motion.txt, utensils.txt;"
+    option(
+        "--data data_dir",
+        "Directory with FOON.txt, kitchen.json, goal_nodes.json, motion.txt, utensils.txt;"
         " 'demo' for the demo data set shipped with foon2asp.",
+        type=click.Path(),
     ),
-    click.option(
+    option(
         "--foon",
+        "FOON file(s), several are merged; without --data the other files are read from beside the first.",
         type=click.Path(),
         multiple=True,
-        help="FOON file(s), several are merged; without --data the other files are read from beside the first.",
     ),
 ]
 
 #: every data option, as one ``data`` value
-DATA = [*SOURCES, click.option("--kitchen", type=click.Path(), help=KITCHEN_HELP), *FILES, *MATCHING]
+DATA = [*SOURCES, option("--kitchen", KITCHEN_HELP, type=click.Path()), *FILES, *MATCHING]
 
 
 def joined_lines(joined: dict[str, list[str]]) -> list[str]:
@@ -255,8 +263,8 @@ GOAL_HELP = (
 def goal_options(goals_help: str, metavar: str = "FILE|all", goal_help: str = GOAL_HELP) -> list:
     """``--goal TEXT`` (repeatable) and ``--goals`` (``metavar``)."""
     return [
-        click.option("--goal", multiple=True, metavar="TEXT", help=goal_help),
-        click.option("--goals", metavar=metavar, help=goals_help),
+        option("--goal", goal_help, multiple=True, metavar="TEXT"),
+        option("--goals", goals_help, metavar=metavar),
     ]
 
 
@@ -269,13 +277,11 @@ GOALS = goal_options(
 
 def method_option(default: str):
     """``--method``/``--methods`` (the same option): registered names, comma-separated or repeated."""
-    return click.option(
-        "--methods",
-        "--method",
-        "method_list",
+    return option(
+        "--methods --method method_list",
+        f"Registered method(s) (see 'foon2asp methods'), comma-separated or repeated (default: {default}).",
         multiple=True,
         metavar="NAME[,NAME]",
-        help=f"Registered method(s) (see 'foon2asp methods'), comma-separated or repeated (default: {default}).",
     )
 
 
@@ -287,14 +293,7 @@ def format_option(kind: str):
     return choice("--format", "fmt", choices=report.names(kind))
 
 
-PROGRESS = click.option(
-    "--progress/--no-progress", default=None, help="Progress bar on stderr (default: when it is a terminal)."
-)
-
-
-def together_option(help: str):
-    """``--together``: the goals as one meal."""
-    return click.option("--together", is_flag=True, help=help)
+PROGRESS = option("--progress/--no-progress", "Progress bar on stderr (default: when it is a terminal).", default=None)
 
 
 OBJECTIVE_HELP = (
@@ -311,25 +310,25 @@ MOTION_COST = file_option(
 
 def objective_options(help: str = OBJECTIVE_HELP) -> list:
     """``--objective`` and ``--motion-cost FILE``."""
-    return [click.option("--objective", default="units", help=help), MOTION_COST]
+    return [option("--objective", help, default="units"), MOTION_COST]
 
 
 def time_limit_option(help: str = "Seconds per goal; the best tree so far is reported as 'feasible'."):
     """``--time-limit SECONDS``."""
-    return click.option("--time-limit", type=SECONDS, help=help)
+    return option("--time-limit", help, type=SECONDS)
 
 
 def models_option(least: int, help: str):
     """``--models K`` (at least ``least``)."""
-    return click.option("--models", type=int32(min=least), default=1, help=help)
+    return option("--models", help, type=int32(min=least), default=1)
 
 
-GAP_OPTION = click.option(
+GAP_OPTION = option(
     "--gap",
+    "Stop a goal once its gap (the tree against the proven lower bound, first objective) is at"
+    " most G, e.g. 0.05 or 5%; the answer is then 'feasible' with its bound. Default: prove.",
     type=GAP,
     metavar="G",
-    help="Stop a goal once its gap (the tree against the proven lower bound, first objective) is at"
-    " most G, e.g. 0.05 or 5%; the answer is then 'feasible' with its bound. Default: prove.",
 )
 
 
@@ -355,22 +354,16 @@ def _tree_has(flag: str, which: str) -> list:
 
 #: --constraint FILE.lp, --rule TEXT and the convenience flags
 CONSTRAINTS = [
-    click.option(
-        "--constraint",
-        "constraint_files",
+    option(
+        "--constraint constraint_files",
+        "ASP file with extra rules over the vocabulary (use/1, motion/2, label/2, ...); repeatable.",
         type=click.Path(),
         multiple=True,
-        help="ASP file with extra rules over the vocabulary (use/1, motion/2, label/2, ...); repeatable.",
     ),
-    click.option(
-        "--rule",
-        "rules",
-        multiple=True,
-        help="An extra ASP rule, e.g. ':- use(U), motion(U,\"fry\").'; repeatable.",
-    ),
+    option("--rule rules", "An extra ASP rule, e.g. ':- use(U), motion(U,\"fry\").'; repeatable.", multiple=True),
     *_tree_has("forbid", "No"),
     *_tree_has("require", "Some"),
-    click.option("--max-units", type=int32(min=0), help="The tree has at most N units."),
+    option("--max-units", "The tree has at most N units.", type=int32(min=0)),
 ]
 
 
@@ -382,17 +375,17 @@ def _opt_strategy(ctx, param, value):
 
 #: --opt-strategy and --threads
 STRATEGY = [
-    click.option(
+    option(
         "--opt-strategy",
-        callback=_opt_strategy,
-        help="clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll;"
+        "clingo optimisation strategy: bb (branch and bound) or usc (core-guided), e.g. usc,oll;"
         " default usc,oll,succinct,stratify, or with --threads 2+ a portfolio of one bb and one usc solver.",
+        callback=_opt_strategy,
     ),
-    click.option(
+    option(
         "--threads",
+        "clingo solver threads (parallel mode; in a batch, per worker).",
         type=int32(min=1, max=64),
         default=1,
-        help="clingo solver threads (parallel mode; in a batch, per worker).",
     ),
 ]
 
@@ -407,12 +400,12 @@ def _agents(ctx, param, value):
 
 #: --agents, --durations, --capabilities, --resources, as one ``spec``
 SCHEDULE = [
-    click.option(
+    option(
         "--agents",
+        "The agents, numbered per kind (arm=2,human=1: arm-1, arm-2, human-1); a 'human' succeeds"
+        " for sure. Default: robot=1.",
         callback=_agents,
         metavar="KIND=N[,KIND=N...]",
-        help="The agents, numbered per kind (arm=2,human=1: arm-1, arm-2, human-1); a 'human' succeeds"
-        " for sure. Default: robot=1.",
     ),
     file_option(
         "--durations",
