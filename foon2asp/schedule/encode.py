@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import clingo
@@ -152,10 +152,10 @@ def _steps_once(
     time_limit: float | None,
     only: str | None = None,
     enough: Callable[[list[Entry]], bool] | None = None,
-):
+) -> Solution:
     """One grounding and optimisation of the time-step encoding with makespan at most
     ``horizon`` (``only``: that objective alone; ``enough``: stop at a schedule it accepts);
-    (solution, finished)."""
+    ``proven``: the search ended."""
     inst = job.inst
     scale = divisor(inst)
     steps = horizon // scale
@@ -190,13 +190,13 @@ def _steps_once(
     result = control.solve(on_model, time_limit)
     stats = {"step_ms": scale, "horizon_steps": steps, "ground_s": round(ground_s, 6), **control.stats()}
     if "atoms" not in best:
-        return Solution(None, False, bool(result.unsatisfiable), (), stats), result.finished
+        return Solution(None, result.finished, result.finished and bool(result.unsatisfiable), (), stats)
     units = used(best["atoms"]) if not job.fixed else inst.units
     entries = _entries_of_steps(inst, best["atoms"], scale, units)
     if best.get("met"):
         stats["floor"] = "met after compaction"
-        return Solution(compact(inst, entries), True, False, units, stats), True
-    return Solution(entries, result.finished, False, units, stats), result.finished
+        return Solution(compact(inst, entries), True, False, units, stats)
+    return Solution(entries, result.finished, False, units, stats)
 
 
 def solve_steps(job: Job, time_limit: float | None = None) -> Solution:
@@ -209,14 +209,12 @@ def solve_steps(job: Job, time_limit: float | None = None) -> Solution:
         return Solution(None, True, True, (), stats)
     if job.fixed and job.breakers and not job.levels:
         return _steps_in_phases(job, windows, stats, time_limit)
-    sol, finished = _steps_once(job, windows, job.horizon, job.floor, time_limit)
+    sol = _steps_once(job, windows, job.horizon, job.floor, time_limit)
     stats.update(sol.stats)
-    if sol.entries is None:
-        return Solution(None, finished, finished and bool(sol.unsatisfiable), (), stats)
-    proven = finished or makespan(sol.entries) <= job.floor
-    if not finished:
+    if sol.entries is not None and not sol.proven:
         stats["tie_breakers"] = "time"
-    return Solution(sol.entries, proven, False, sol.units, stats)
+    proven = sol.proven or (sol.entries is not None and makespan(sol.entries) <= job.floor)
+    return replace(sol, proven=proven, stats=stats)
 
 
 def _report(job: Job, entries: list[Entry], lower: int, human_low: int | None, phase: str) -> None:
@@ -263,14 +261,15 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
             _report(job, entries, floor, None, "makespan")
             return makespan(entries) <= floor
 
-        sol, finished = _steps_once(job, windows, horizon, floor, left(), "makespan", short)
+        sol = _steps_once(job, windows, horizon, floor, left(), "makespan", short)
+        finished = sol.proven
         stats.update(sol.stats)
         if sol.entries is not None:
             entries = compact(inst, sol.entries)
             if best is None or makespan(entries) < makespan(best):
                 best = entries
         if best is None:
-            return Solution(None, finished, finished and bool(sol.unsatisfiable), (), stats)
+            return replace(sol, stats=stats)
         horizon = makespan(best)
         proven = finished or horizon <= floor
         if not proven:
@@ -284,7 +283,8 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
     if within is None or left() == 0.0:
         stats["tie_breakers"] = "time"
         return Solution(best, True, False, inst.units, stats)
-    sol, finished = _steps_once(job, within, horizon, horizon, left(), "human", few)
+    sol = _steps_once(job, within, horizon, horizon, left(), "human", few)
+    finished = sol.proven
     stats["phases"] = 2
     stats.update({f"human_{k}": v for k, v in sol.stats.items() if k in ("ground_s", "solve_s", "horizon_steps")})
     if sol.entries is not None and (best is None or human_units(sol.entries) < human_units(best)):
