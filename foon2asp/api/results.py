@@ -137,12 +137,9 @@ class Tree(Answer):
 
     note = Raw[str | None]("What the solver says about the answer, if anything.", "extra", extra("note"))
     substitutions = Raw[list[dict] | None]("With substitutes: the ones the tree uses.", "extra", extra("substitutions"))
-
-    @property
-    def valid(self) -> bool | None:
-        """The independent validator's verdict where it was judged (compare, batch, :meth:`judge`); else None."""
-        value = self.raw.extra.get("valid")
-        return None if value is None else bool(value)
+    valid = Raw[bool | None](
+        "The validator's verdict where it was judged (compare, batch, :meth:`judge`).", "extra", extra("valid")
+    )
 
     @property
     def alternatives(self) -> list[Tree]:
@@ -286,9 +283,7 @@ class CheckReport(Answer):
         v = self.raw.validation
         return units_of(self, v.order) if v is not None else []
 
-    @property
-    def optimum(self) -> Tree | None:
-        return Tree(self.kb, self.raw.optimum) if self.raw.optimum is not None else None
+    optimum = Raw[Tree | None](read=lambda a, t: None if t is None else Tree(a.kb, t))
 
 
 class Comparison(Answer):
