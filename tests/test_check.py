@@ -17,7 +17,7 @@ from foon2asp.errors import InputError
 from foon2asp.foon.goals import resolve_label
 from foon2asp.foon.parser import format_units, unit_lines
 from foon2asp.foon.treefiles import read_trees
-from foon2asp.tree.validate import check_units, diagnose, validate
+from foon2asp.tree.validate import check_units
 from helpers import build, goal_id, obj
 
 
@@ -104,8 +104,7 @@ def test_diagnosis_agrees_with_validator(seed):
     for k in range(len(p.units) + 1):
         for subset in itertools.combinations(range(len(p.units)), k):
             subset = list(subset)
-            validation = validate(p, g, subset)
-            finding = diagnose(p, g, subset, validation)
+            validation, finding = check_units(p, g, subset)
             assert (finding is None) == validation.valid
             if finding is None:
                 continue

@@ -163,14 +163,15 @@ def describe_unit(problem: Problem, u: int, tree: TreeFile | None = None, ids: l
     return f"unit {u} ({problem.units[u].motion}{where})"
 
 
-def diagnose(
-    problem: Problem, goal: int, units: list[int], validation: Validation, name: Callable[[int], str] | None = None
-) -> Finding | None:
-    """The first problem of a tree that does not validate (None when it does): a missing input
-    (not in the kitchen, made by no unit of the tree) or circular support, walking back from the
-    goal, then from each stuck unit; ``name(u)`` words a unit in messages."""
+def check_units(
+    problem: Problem, goal: int, units: list[int], name: Callable[[int], str] | None = None
+) -> tuple[Validation, Finding | None]:
+    """Validate FOON unit ids for ``goal`` and explain the first problem (None when valid): a
+    missing input (not in the kitchen, made by no unit of the tree) or circular support, walking
+    back from the goal, then from each stuck unit; ``name(u)`` words a unit in messages."""
+    validation = validate(problem, goal, units)
     if validation.valid:
-        return None
+        return validation, None
     name = name or (lambda u: describe_unit(problem, u))
     have = set(problem.kitchen).union(*(problem.products[u] for u in validation.order))
     makers: dict[int, list[int]] = {}
@@ -184,28 +185,19 @@ def diagnose(
     roots = [(goal, None)] if goal not in have else []
     found = walk_back(roots + [(i, u) for u in validation.stuck for i in lacking(u)], makers, lacking)
     if found is None:
-        return Finding("goal-not-made", validation.problem or "the tree is not valid", obj=goal)
+        return validation, Finding("goal-not-made", validation.problem or "the tree is not valid", obj=goal)
     if found[0] == "cycle":
         cycle = found[1]
-        return Finding("cycle", circular_support([(problem.objects[o], u) for o, u in cycle], name), cycle)
+        return validation, Finding("cycle", circular_support([(problem.objects[o], u) for o, u in cycle], name), cycle)
     obj, needed_by = found[1]
     if needed_by is None:
-        return Finding("goal-not-made", f"no unit of the tree makes the goal {problem.objects[goal]}", obj=goal)
-    return Finding(
-        "missing-input",
+        words = f"no unit of the tree makes the goal {problem.objects[goal]}"
+        return validation, Finding("goal-not-made", words, obj=goal)
+    words = (
         f"missing input: {problem.objects[obj]} is needed by {name(needed_by)} "
-        "but is not in the kitchen and no unit of the tree makes it",
-        obj=obj,
-        unit=needed_by,
+        "but is not in the kitchen and no unit of the tree makes it"
     )
-
-
-def check_units(
-    problem: Problem, goal: int, units: list[int], name: Callable[[int], str] | None = None
-) -> tuple[Validation, Finding | None]:
-    """Validate FOON unit ids for ``goal`` and explain the first problem."""
-    validation = validate(problem, goal, units)
-    return validation, diagnose(problem, goal, units, validation, name)
+    return validation, Finding("missing-input", words, obj=obj, unit=needed_by)
 
 
 def derivable_objects(problem: Problem) -> set[FoonObject]:
