@@ -2,16 +2,14 @@
 
 :class:`Rounds` grounds each block ``bound(k,g,d)`` of ``encodings/depth.lp`` (goal ``g``
 within ``d`` rounds, switched by ``query(k)`` and ``within(k)``; a meal's ``meal(m,d)``)
-once, over the windows of :class:`Levels`; :func:`solve_depth` runs the loop over bounds
+once, over the windows of :class:`Levels`; the driver's ``level`` runs the loop over bounds
 (docs/proofs/solving.md, "Depth rounds").
 """
 
 from __future__ import annotations
 
 from collections import deque
-from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
 
 import clingo
 
@@ -126,8 +124,6 @@ class DepthSearch:
     #: ``(bound, how)``: how = "grounder" (the least fixpoint puts the goal higher: refuted
     #: without solving) or "solver" (unsatisfiable)
     refuted: list[tuple[int, str]] = field(default_factory=list)
-    #: the last result came from the solve without the depth cost (its depth was already least)
-    shortcut: bool = False
 
 
 class Rounds:
@@ -191,61 +187,3 @@ def depth_mode(options, ranked: tuple[str, ...]) -> str:
     if "depth" in ranked:
         return "first" if ranked[0] == "depth" else "later"
     return "bound" if options.max_depth is not None else "none"
-
-
-def solve_depth(
-    rounds: Rounds,
-    goal: int | tuple[int, ...],
-    shot: Callable[[dict, str | None], Any],
-    tree_depth: Callable[[Any], int],
-    mode: str,
-    state: DepthSearch,
-    max_depth: int | None,
-    single: bool = True,
-):
-    """Run the depth strategy ``mode`` for ``goal``: ``(result, bound)``.
-
-    ``shot(externals, solve_mode)`` solves once with the externals on (``solve_mode`` None:
-    as configured); ``tree_depth(answer)``: the depth of an answer's tree; ``state`` persists
-    across calls for the same goal; ``single``: one optimum is wanted.
-    """
-    least = rounds.levels.level(goal)
-    if mode == "bound":
-        assert max_depth is not None
-        return shot(rounds.externals(goal, max_depth, False), None), max_depth
-    limit = {}
-    if max_depth is not None:
-        limit = rounds.externals(goal, max_depth, False)
-    if mode == "later":
-        first = shot(limit, "opt")
-        if not first.answers:
-            return first, max_depth
-        bound = tree_depth(first.answers[0])
-        if single and (bound <= 1 or (least is not None and bound <= least)):
-            # no tree is shallower than the goal's level
-            state.shortcut = True
-            return first, bound
-        return shot(rounds.externals(goal, bound, True), None), bound
-    # depth first: raise the bound from the goal's level until the goal is derivable within it
-    if state.bound is None:
-        start = max(1, least or 1)
-        state.refuted.extend((t, "grounder") for t in range(1, start))
-        state.bound = start
-    bound = state.bound
-    ceiling = None  # the depth of some remaining tree, once a bound fails
-    while True:
-        if max_depth is not None and bound > max_depth:
-            return shot(limit, "first"), max_depth  # unsatisfiable: nothing within --max-depth
-        result = shot(rounds.externals(goal, bound, True), None)
-        if result.answers or not result.finished:
-            state.bound = bound
-            return result, bound
-        state.refuted.append((bound, "solver"))
-        if ceiling is None or bound >= ceiling:
-            # constraints or excluded trees removed the shallow trees: any remaining one bounds the search
-            feasible = shot(limit, "first")
-            if not feasible.answers:
-                return feasible, max_depth
-            ceiling = tree_depth(feasible.answers[0])
-        bound += 1
-        state.bound = bound

@@ -74,32 +74,61 @@ class Driver:
         """The best trees (up to ``count``, distinct) not yet excluded, with the depth bound used."""
         mode = "optN" if count > 1 else "opt"
 
-        def shot(externals: dict, solve_mode: str | None) -> Shot:
+        def shot(externals: dict, solve_mode: str | None = None) -> Shot:
             return self.shot(goal, {**guards, **externals}, solve_mode or mode, deadline, count, on_model)
 
         if self.depth_mode == "none":
-            return shot({}, None), None
+            return shot({}), None
 
         def tree_depth(answer: Answer) -> int:
             return measures(self.problem, goal, list(answer.units))["depth"] or 0
 
         if self.rounds is None:
             self.rounds = depth_mod.Rounds.of(self.session)
-        state = self.depth
-        max_depth = self.options.max_depth
-        result, bound = depth_mod.solve_depth(
-            self.rounds, goal, shot, tree_depth, self.depth_mode, state, max_depth, count == 1
-        )
-        if state.shortcut:
-            state.shortcut = False
-            # the depth cost was off in that solve
+        rounds, state, max_depth = self.rounds, self.depth, self.options.max_depth
+        if self.depth_mode == "bound":
+            assert max_depth is not None
+            return shot(rounds.externals(goal, max_depth, False)), max_depth
+        least = rounds.levels.level(goal)
+        limit = {} if max_depth is None else rounds.externals(goal, max_depth, False)
+        if self.depth_mode == "later":
+            first = shot(limit, "opt")
+            if not first.answers:
+                return first, max_depth
+            bound = tree_depth(first.answers[0])
+            if count != 1 or (bound > 1 and (least is None or bound > least)):
+                return shot(rounds.externals(goal, bound, True)), bound
+            # no tree is shallower than the goal's level; the depth cost was off in that solve
             at = self.ranked.index("depth")
             levels = len(self.ranked) + (self.options.human_steps is not None)
-            result.answers = [
+            first.answers = [
                 Answer(a.units, _with_depth(a.cost, at, tree_depth(a), levels), a.proven, a.human)
-                for a in result.answers
+                for a in first.answers
             ]
-        return result, bound
+            return first, bound
+        # depth first: raise the bound from the goal's level until the goal is derivable within it
+        if state.bound is None:
+            start = max(1, least or 1)
+            state.refuted.extend((t, "grounder") for t in range(1, start))
+            state.bound = start
+        bound = state.bound
+        ceiling = None  # the depth of some remaining tree, once a bound fails
+        while True:
+            if max_depth is not None and bound > max_depth:
+                return shot(limit, "first"), max_depth  # unsatisfiable: nothing within --max-depth
+            result = shot(rounds.externals(goal, bound, True))
+            if result.answers or not result.finished:
+                state.bound = bound
+                return result, bound
+            state.refuted.append((bound, "solver"))
+            if ceiling is None or bound >= ceiling:
+                # constraints or excluded trees removed the shallow trees: any remaining one bounds the search
+                feasible = shot(limit, "first")
+                if not feasible.answers:
+                    return feasible, max_depth
+                ceiling = tree_depth(feasible.answers[0])
+            bound += 1
+            state.bound = bound
 
     def solve(self, goal: Goals, on_model=None, time_limit: float | None = None) -> TaskTree:
         """The best tree for ``goal`` (the further ones as its alternatives)."""
