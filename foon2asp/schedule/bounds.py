@@ -158,11 +158,6 @@ def _classes(inst: Instance) -> list[tuple[int, dict[int, int], int, dict[int, i
     return out
 
 
-def _mandatory(length: int, b: int, a: int, r: int, e: int, p: int) -> int:
-    """The least part of a unit (window ``[r, e]``, duration ``p``) inside ``[a, b]``."""
-    return max(0, min(length, p, r + p - a, b - (e - p)))
-
-
 def _kinds_fit(inst: Instance, start: dict[int, int], tail: dict[int, int], horizon: int) -> bool:
     """Can the units end by ``horizon`` as far as energetic reasoning over two classes of
     agents (:func:`_classes`) tells?"""
@@ -214,7 +209,8 @@ class _Parts:
             return self.cache[key]
         a, b = window
         mine, other = (self.px, self.py) if x else (self.py, self.px)
-        part = {u: _mandatory(b - a, b, a, self.r[u], self.e[u], d) for u, d in mine.items()}
+        # each unit's least part inside [a, b] within its own window [r, e]
+        part = {u: max(0, min(b - a, d, self.r[u] + d - a, b - (self.e[u] - d))) for u, d in mine.items()}
         found = part, sum(m for u, m in part.items() if u not in other), sum(part[u] for u in self.both)
         if keep:
             self.cache[key] = found
@@ -269,14 +265,14 @@ def human_lower(inst: Instance, horizon: int) -> int:
     chain count (docs/proofs/schedules.md)."""
     if HUMAN not in inst.kinds:
         return 0
-    return max(_capacity_human(inst, horizon), _chain_human(inst, horizon))
+    start, tail = earliest(inst), tails(inst)
+    return max(_capacity_human(inst, horizon, start, tail), _chain_human(inst, horizon, start, tail))
 
 
-def _chain_human(inst: Instance, horizon: int) -> int:
+def _chain_human(inst: Instance, horizon: int, start: Times, tail: Times) -> int:
     """The fewest units done by a person for every unit to fit its window and precede the unit
     after it, each at the duration of the kind doing it, over a forest of the precedence;
     every unit when no assignment fits."""
-    start, tail = earliest(inst), tails(inst)
     preds = inst.preds
     after: dict[int, list[int]] = {u: [] for u in inst.units}
     for v in inst.units:
@@ -312,11 +308,10 @@ def _chain_human(inst: Instance, horizon: int) -> int:
     return len(inst.units) if math.isinf(total) else int(total)
 
 
-def _capacity_human(inst: Instance, horizon: int) -> int:
+def _capacity_human(inst: Instance, horizon: int, start: Times, tail: Times) -> int:
     """The capacity count of :func:`human_lower`."""
     others = [k for k in inst.kinds if k != HUMAN]
     servers = sum(inst.kinds[k] for k in others)
-    start, tail = earliest(inst), tails(inst)
     span = {u: (start[u], horizon - tail[u] + inst.min_duration(u)) for u in inst.units if u in start}
     robot: dict[int, int] = {}  # each unit's shortest duration on the others, if it fits its window
     for u, (x, y) in span.items():

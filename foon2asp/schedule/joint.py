@@ -150,15 +150,12 @@ def candidate_trees(listing: Listing, time_limit: float | None, cap: int | None 
 
 def tree_cost(problem: Problem, units: Sequence[int], human: Sequence[int], ranked: Sequence[str]) -> tuple:
     """The tree objective of ``units`` as the solver ranks it (a person's unit succeeds for sure)."""
-    out: list[Any] = []
-    for name in ranked:
-        if name == "units":
-            out.append(len(units))
-        elif name == "success":
-            out.append(neglog_sum(problem, units, human))
-        elif name == "inputs":
-            out.append(sum(len(problem.inputs[u]) for u in units))
-    return tuple(out)
+    measure: dict[str, Callable[[], Any]] = {
+        "units": lambda: len(units),
+        "success": lambda: neglog_sum(problem, units, human),
+        "inputs": lambda: sum(len(problem.inputs[u]) for u in units),
+    }
+    return tuple(measure[name]() for name in ranked)
 
 
 class Search:
