@@ -248,18 +248,15 @@ def summary_html(
         )
     if trees:
         body.append("</div>")
-    drawing = time.perf_counter() - started
-    scheduling = 0.0
     if schedules:
         body += ["<h2>Schedules</h2>", *schedules_body(schedules, timed=False)]
-        scheduling = sum(float(s.get("time_s") or 0.0) for s in schedules)
-        drawing = time.perf_counter() - started
     if report is not None:
         parts = [("solving", report.elapsed_s)]
-        parts += [("scheduling", scheduling)] if schedules else []
+        if schedules:
+            parts.append(("scheduling", sum(float(s.get("time_s") or 0.0) for s in schedules)))
         top.append(
             time_line(
-                parts + [("drawing this page", drawing)],
+                parts + [("drawing this page", time.perf_counter() - started)],
                 " (solving: the new results, wall clock"
                 + ("; scheduling: the schedules' own times, summed" if schedules else "")
                 + "; loading the data is not counted)",
