@@ -32,7 +32,14 @@ def cheapest_tree(
     if any(g not in sets for g in wanted):
         return None
     tree = set(frozenset().union(*(sets[g] for g in wanted)))
-    return _irredundant(problem, wanted, tree, w, time.perf_counter() + PRUNE_S)
+    deadline = time.perf_counter() + PRUNE_S
+    for u in sorted(tree, key=lambda u: (-w[u], u)):  # drop the units no goal needs, heaviest first
+        if time.perf_counter() > deadline:
+            break
+        made, _ = problem.derivation_levels(sorted(tree - {u}))
+        if all(g in made for g in wanted):
+            tree.discard(u)
+    return sorted(tree)
 
 
 def cheapest_sets(
@@ -78,15 +85,3 @@ def cheapest_sets(
             if waiting[u] == 0:
                 fire(u)
     return settled
-
-
-def _irredundant(problem: Problem, goals: set[int], tree: set[int], w: Sequence[int], deadline: float) -> list[int]:
-    """``tree`` without the units every goal can do without (heaviest by ``w`` first, until ``deadline``)."""
-    for u in sorted(tree, key=lambda u: (-w[u], u)):
-        if time.perf_counter() > deadline:
-            break
-        rest = sorted(tree - {u})
-        made, _ = problem.derivation_levels(rest)
-        if all(g in made for g in goals):
-            tree.discard(u)
-    return sorted(tree)
