@@ -23,18 +23,7 @@ from foon2asp.schedule import encode, joint, model
 from foon2asp.schedule.baseline import TRIES, known_schedule, list_schedule
 from foon2asp.schedule.bounds import bounds, human_lower
 from foon2asp.schedule.joint import check_options
-from foon2asp.schedule.model import (
-    Entry,
-    Instance,
-    compact,
-    designate,
-    divisor,
-    earliest,
-    human_units,
-    instance,
-    makespan,
-    tails,
-)
+from foon2asp.schedule.model import Entry, Instance, earliest, human_units, instance, makespan
 from foon2asp.schedule.result import ScheduleResult
 from foon2asp.schedule.spec import HUMAN, ScheduleSpec
 from foon2asp.tree.tasktree import TaskTree, executable_order, goal_fields, measures
@@ -91,7 +80,7 @@ def schedule_fixed(
     if not tree.has_tree:
         missing = "unreachable" if tree.status in ("unreachable", "not-found") else "unknown"
         return result(missing, reason=tree.extra.get("reason"))
-    inst = designate(instance(problem, tree.units, spec), first)
+    inst = model.designate(instance(problem, tree.units, spec), first)
     bad = inst.incapable()
     if bad:
         return result("unschedulable", reason=f"no agent can do unit {bad[0]} ({problem.units[bad[0]].motion})")
@@ -117,13 +106,13 @@ def schedule_fixed(
         return result("optimal", known, bounds=b, baseline=ub, stats=stats)
     if over:  # is there a schedule within ``within`` at all (dl asks below its horizon first)?
         assert within is not None
-        horizon = within + divisor(inst) if encoding == "dl" else within
+        horizon = within + model.divisor(inst) if encoding == "dl" else within
     else:
         horizon = makespan(known) if encoding == "steps" else ub
     start = known if encoding == "steps" and not over else None
     args = solver_arguments(options)
     job = encode.Job(
-        inst, head, tails(inst), horizon, b.lower, args, ties=spec.has_human(), known=start, progress=progress
+        inst, head, model.tails(inst), horizon, b.lower, args, ties=spec.has_human(), known=start, progress=progress
     )
     sol = encode.solve(job, encoding, time_limit)
     stats.update(sol.stats)
@@ -131,7 +120,7 @@ def schedule_fixed(
         return result("unschedulable" if sol.proven or sol.unsatisfiable else "unknown", reason=late)
     entries = known
     if sol.entries is not None and (over or makespan(sol.entries) <= makespan(known)):
-        entries = compact(inst, sol.entries)
+        entries = model.compact(inst, sol.entries)
     # without tie-breakers a schedule at the lower bound is optimal, however the search ended
     met = not over and makespan(entries) <= b.lower and not spec.has_human()
     return result("optimal" if sol.proven or met else "feasible", entries, bounds=b, baseline=ub, stats=stats)
