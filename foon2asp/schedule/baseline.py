@@ -8,6 +8,7 @@ priorities and of schedules that put each unit where it ends first (:func:`known
 from __future__ import annotations
 
 import random
+from functools import cache
 
 from foon2asp.schedule.bounds import human_lower
 from foon2asp.schedule.model import Entry, Instance, human_units, makespan, tails
@@ -145,17 +146,13 @@ def known_schedule(inst: Instance, target: int, tries: int = TRIES, seed: int = 
     base = tails(inst)
     rng = random.Random(seed)
     kinds = len(inst.kinds) > 1
-    low_human: list[int] = []
+    low_human = cache(lambda: human_lower(inst, target))  # computed once, when first needed
 
     def key(found: tuple[list[Entry], str]) -> tuple[int, int]:
         return makespan(found[0]), human_units(found[0])
 
     def done(entries: list[Entry]) -> bool:
-        if makespan(entries) > target:
-            return False
-        if not low_human:
-            low_human.append(human_lower(inst, target))
-        return human_units(entries) <= low_human[0]
+        return makespan(entries) <= target and human_units(entries) <= low_human()
 
     best = (list_schedule(inst), "baseline")
     if kinds and not done(best[0]):
