@@ -48,12 +48,9 @@ class Marks:
     goals: frozenset[FoonObject] = frozenset()
     kitchen: frozenset[FoonObject] = frozenset()
     human: frozenset[int] = frozenset()
-    cycle_objects: frozenset[FoonObject] = frozenset()
-    cycle_units: frozenset[int] = frozenset()
-    #: (position of the unit, object): the unit makes the object, on the cycle
-    cycle_made: frozenset[tuple[int, FoonObject]] = field(default_factory=frozenset)
-    #: (object, position of the unit): the unit needs the object, on the cycle
-    cycle_needed: frozenset[tuple[FoonObject, int]] = field(default_factory=frozenset)
+    #: the blocking cycle: (object, position of the unit that makes it and needs the next pair's
+    #: object, None when it is not drawn); the last unit needs the first object
+    cycle: tuple[tuple[FoonObject, int | None], ...] = ()
     #: one line under the title (e.g. the problem of an invalid tree)
     note: str = ""
     #: unit position -> fill colours (several: the box is striped, one stripe each; e.g. its sources)
@@ -109,6 +106,9 @@ def build_graph(
     g.attr(label="<" + "<BR/>".join(title) + ">")
     g.attr("node", fontname="Helvetica", fontsize="10")
     g.attr("edge", arrowsize="0.6")
+    cycle = marks.cycle
+    made = {(k, o) for o, k in cycle if k is not None}
+    needed = {(cycle[(i + 1) % len(cycle)][0], k) for i, (_, k) in enumerate(cycle) if k is not None}
     ids: dict[FoonObject, str] = {}
     for unit in units:
         for obj in unit.inputs + unit.outputs:
@@ -123,7 +123,7 @@ def build_graph(
         if obj == marks.goal or obj in marks.goals:
             attrs.update(fillcolor=GOAL_FILL, peripheries="2", penwidth="2")
             classes.append("goal")
-        if obj in marks.cycle_objects:
+        if any(obj == o for o, _ in cycle):
             attrs.update(color=CYCLE, penwidth="2.5", fontcolor=CYCLE)
             classes.append("cycle")
         g.node(node, object_label(obj), tooltip=_clip(str(obj), MAX_TOOLTIP), **{"class": " ".join(classes)}, **attrs)
@@ -141,31 +141,21 @@ def build_graph(
             text += "\n[human]"
             attrs.update(fillcolor=HUMAN_FILL, style="filled")
             classes.append("human")
-        if k in marks.cycle_units:
+        if any(k == p for _, p in cycle):
             attrs.update(color=CYCLE, penwidth="2.5", fontcolor=CYCLE)
             classes.append("cycle")
         tip = str(unit) + (f" -- {marks.unit_notes[k]}" if k in marks.unit_notes else "")
         g.node(node, text, tooltip=_clip(tip, MAX_TOOLTIP), **{"class": " ".join(classes)}, **attrs)
-        edges = [(ids[o], node, (o, k) in marks.cycle_needed) for o in dict.fromkeys(unit.inputs)]
-        edges += [(node, ids[o], (k, o) in marks.cycle_made) for o in dict.fromkeys(unit.outputs)]
+        edges = [(ids[o], node, (o, k) in needed) for o in dict.fromkeys(unit.inputs)]
+        edges += [(node, ids[o], (k, o) in made) for o in dict.fromkeys(unit.outputs)]
         for tail, head, red in edges:
             g.edge(tail, head, **({"color": CYCLE, "penwidth": "2.5"} if red else {}))
     return g
 
 
-def cycle_marks(problem: Problem, finding: Finding | None, position: dict[int, int]) -> dict:
-    """The Marks fields of the cycle of ``finding`` (``position``: FOON unit id -> drawn position)."""
-    if finding is None or not finding.cycle:
-        return {}
-    cycle = finding.cycle
-    # (object, drawn position of the unit making it, the object that unit needs next on the cycle)
-    on = [(o, position[u], cycle[(k + 1) % len(cycle)][0]) for k, (o, u) in enumerate(cycle) if u in position]
-    return {
-        "cycle_objects": frozenset(problem.objects[o] for o, _ in cycle),
-        "cycle_units": frozenset(k for _, k, _ in on),
-        "cycle_made": frozenset((k, problem.objects[o]) for o, k, _ in on),
-        "cycle_needed": frozenset((problem.objects[n], k) for _, k, n in on),
-    }
+def cycle_marks(problem: Problem, finding: Finding | None, position: dict[int, int]) -> tuple:
+    """The :attr:`Marks.cycle` of ``finding`` (``position``: FOON unit id -> drawn position)."""
+    return tuple((problem.objects[o], position.get(u)) for o, u in finding.cycle) if finding else ()
 
 
 def kitchen_items(problem: Problem, units: list[Unit]) -> frozenset[FoonObject]:
@@ -193,7 +183,7 @@ def tree_marks(problem: Problem, tree: TaskTree) -> Marks:
         kitchen=kitchen_items(problem, [problem.units[u] for u in tree.units]),
         human=human,
         note=finding.message if finding is not None else "",
-        **cycle_marks(problem, finding, position),
+        cycle=cycle_marks(problem, finding, position),
     )
 
 
@@ -249,7 +239,7 @@ def record_marks(record: dict, units: list[Unit], problem: Problem | None = None
                 continue
             validation, finding = check_units(problem, oid[g], known)
             if finding is not None and finding.cycle:
-                return replace(marks, **cycle_marks(problem, finding, {u: k for k, u in enumerate(known)}))
+                return replace(marks, cycle=cycle_marks(problem, finding, {u: k for k, u in enumerate(known)}))
     return marks
 
 
@@ -268,7 +258,7 @@ def tree_file_marks(tree: TreeFile, problem: Problem | None = None, report: Repo
         goal=goal,
         kitchen=kitchen_items(problem, units),
         note=report.finding.message if report.finding is not None else "",
-        **cycle_marks(problem, report.finding, position),
+        cycle=cycle_marks(problem, report.finding, position),
     )
 
 
