@@ -19,6 +19,12 @@ from foon2asp.errors import InputError
 from foon2asp.report import draw as draw_mod
 from foon2asp.report import pddl
 
+
+def joined_lines(joined: dict[str, list[str]]) -> list[str]:
+    """``joined 'Blueberries', 'blueberries' as 'blueberry'``: one line per text spelled several ways."""
+    return [f"joined {', '.join(repr(s) for s in spellings[1:])} as {first!r}" for first, spellings in joined.items()]
+
+
 # ---------------------------------------------------------------- check
 
 
@@ -161,7 +167,7 @@ def merge(files, output, strict, fmt, match, options):
     foon = api.read_foons(files, strict)
     warn_all(foon.warnings)
     foon, joined = api.match_foon(foon, **match)
-    for line in opt.joined_lines(joined):
+    for line in joined_lines(joined):
         click.echo(line, err=True)
     api.write_foon(foon, output, fmt, header=f"merged by foon2asp from {len(files)} file(s)")
     click.echo(
@@ -384,7 +390,7 @@ def objects(query, data, only, fmt, options):
         click.echo(f"{'#' + str(info['id']):<{width}}  {info['text']}" + (f"   ({', '.join(where)})" if where else ""))
     what = {None: "", "produced": " made by some unit", "kitchen": " in the kitchen", "derivable": " derivable"}[only]
     click.echo(f"{len(infos)} object{'s' if len(infos) != 1 else ''}{what}", err=True)
-    for line in opt.joined_lines(kb.joined):
+    for line in joined_lines(kb.joined):
         click.echo(line, err=True)
 
 

@@ -247,11 +247,6 @@ SOURCES = [
 DATA = [*SOURCES, option("--kitchen", KITCHEN_HELP, type=click.Path()), *FILES, *MATCHING]
 
 
-def joined_lines(joined: dict[str, list[str]]) -> list[str]:
-    """``joined 'Blueberries', 'blueberries' as 'blueberry'``: one line per text spelled several ways."""
-    return [f"joined {', '.join(repr(s) for s in spellings[1:])} as {first!r}" for first, spellings in joined.items()]
-
-
 # ---------------------------------------------------------------- goals and methods
 
 GOAL_HELP = (
@@ -332,22 +327,20 @@ GAP_OPTION = option(
 )
 
 
-def _tree_has(flag: str, which: str) -> list:
-    """``--FLAG-motion M`` and ``--FLAG-object LABEL``: ``which`` unit of the tree has it."""
+def _tree_has(name: str, which: str) -> list:
+    """``--NAME-motion M`` and ``--NAME-object LABEL``: ``which`` unit of the tree has it."""
     return [
-        click.option(
-            f"--{flag}-motion",
-            f"{flag}_motions",
+        option(
+            f"--{name}-motion {name}_motions",
+            f"{which} unit of the tree has motion M; repeatable.",
             multiple=True,
             metavar="M",
-            help=f"{which} unit of the tree has motion M; repeatable.",
         ),
-        click.option(
-            f"--{flag}-object",
-            f"{flag}_objects",
+        option(
+            f"--{name}-object {name}_objects",
+            f"{which} unit of the tree has an input or output labelled LABEL; repeatable.",
             multiple=True,
             metavar="LABEL",
-            help=f"{which} unit of the tree has an input or output labelled LABEL; repeatable.",
         ),
     ]
 
