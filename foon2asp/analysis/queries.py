@@ -181,9 +181,8 @@ def missing(problem: Problem, goal: Goals, options: AspOptions | None = None) ->
 
 
 def blocking_cycle(problem: Problem, goal: int, reach: set[int]) -> tuple[list[tuple[int, int]], list[tuple[int, int]]]:
-    """A cycle of unreachable objects that blocks ``goal``, and the path to it: the shortest
-    cycle through the goal, else the shortest through the object nearest the goal.  Every
-    unreachable object a unit makes needs an unreachable input, so a walk from the goal meets a cycle."""
+    """A cycle of unreachable objects that blocks ``goal`` (the shortest through the goal, else
+    through the object nearest it) and the path to it; ``reach``: the objects reachable."""
 
     def succ(o: int) -> Iterable[tuple[int, int]]:
         for u in problem.producers.get(o, ()):
