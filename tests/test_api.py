@@ -4,13 +4,11 @@ from __future__ import annotations
 
 import json
 import os
-import re
 
 import pytest
 from click.testing import CliRunner
 
 import foon2asp
-from conftest import REPO, SHARED
 from foon2asp.cli.main import main
 
 
@@ -81,44 +79,10 @@ def test_bad_input_is_input_error(tmp_path):
         foon2asp.load("demo").solve("tomato salad", objective="fastest")
 
 
-def test_docs_api_examples_run(shared_foon_dir, monkeypatch):
-    """Every python block of docs/api.md runs, in order, from the repository root."""
-    assert SHARED.is_dir()
-    text = (REPO / "docs" / "api.md").read_text(encoding="utf-8")
-    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
-    assert len(blocks) >= 4
-    monkeypatch.chdir(REPO)
-    namespace: dict = {}
-    for block in blocks:
-        exec(compile(block, "docs/api.md", "exec"), namespace)  # noqa: S102
-    assert namespace["t"].status == "optimal"
-
-
-def test_readme_python_example_runs(shared_foon_dir, monkeypatch):
-    text = (REPO / "README.md").read_text(encoding="utf-8")
-    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
-    assert blocks, "README has a Python API example"
-    monkeypatch.chdir(REPO)
-    namespace: dict = {}
-    for block in blocks:
-        exec(compile(block, "README.md", "exec"), namespace)  # noqa: S102
-
-
 def test_version_in_one_place():
     from importlib.metadata import version
 
     assert foon2asp.__version__ == version("foon2asp") or os.environ.get("PYTHONPATH")
-
-
-@pytest.mark.parametrize("page", ["objectives.md", "queries.md", "batch.md", "vocabulary.md", "experiment.md"])
-def test_python_examples_of_the_other_docs_run(page, shared_foon_dir, monkeypatch):
-    """No docs page shows Python that does not run."""
-    text = (REPO / "docs" / page).read_text(encoding="utf-8")
-    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
-    monkeypatch.chdir(REPO)
-    namespace: dict = {}
-    for block in blocks:
-        exec(compile(block, f"docs/{page}", "exec"), namespace)  # noqa: S102
 
 
 def test_check_of_a_file_with_one_tree_is_a_report(kb, tmp_path):
