@@ -86,7 +86,8 @@ def settle(
         return tree
     first = first_level(names)
     if tree.status in ("optimal", "ranked") and tree.has_tree:
-        tree.bound = {n: tree.cost[n] if n in tree.cost else _count(tree, n) for n in shown}
+        used = sum(s.get("cost", 1) for s in tree.extra.get("substitutions", ()))  # the substitutions level
+        tree.bound = {n: tree.cost.get(n, used if n == SUBSTITUTIONS else 0) for n in shown}
         tree.gap = 0.0
         return tree
     upper = weights(problem, tree, names) if tree.has_tree else None
@@ -114,13 +115,6 @@ def settle(
     return tree
 
 
-def _count(tree: TaskTree, name: str) -> int | float:
-    """A level not among the tree's measures (the substitutions): from its report."""
-    if name == SUBSTITUTIONS:
-        return sum(s.get("cost", 1) for s in tree.extra.get("substitutions", ()))
-    return 0
-
-
 def gap_text(tree: TaskTree) -> str:
     """``units 65, lower bound 54, gap 17%`` for an unproven answer with a bound ('' otherwise)."""
     if tree.bound is None or tree.gap is None or tree.status in ("optimal", "ranked"):
@@ -131,7 +125,9 @@ def gap_text(tree: TaskTree) -> str:
     have = tree.cost.get(name)
     words = "upper bound" if name == "success" else "lower bound"
     head = f"{name} {number(have)}, " if have is not None else ""
-    return f"{head}{words} {number(tree.bound[name])}, gap {_percent(tree.gap)}"
+    pct = 100 * tree.gap
+    percent = f"{pct:.0f}%" if pct >= 1 or pct == 0 else f"{pct:.2g}%"
+    return f"{head}{words} {number(tree.bound[name])}, gap {percent}"
 
 
 def number(value: object) -> str:
@@ -142,8 +138,3 @@ def number(value: object) -> str:
     if isinstance(value, float):
         return f"{value:.4g}"
     return str(value)
-
-
-def _percent(gap: float) -> str:
-    pct = 100 * gap
-    return f"{pct:.0f}%" if pct >= 1 or pct == 0 else f"{pct:.2g}%"
