@@ -33,13 +33,6 @@ class Shot:
     lower: tuple[int, ...] | None = None
 
 
-def _settled(answer: Answer, mode: str, finished: bool) -> Answer:
-    """``answer`` marked proven when its search ended or it has no cost (optimising modes)."""
-    if answer.proven or mode == "first" or not (finished or not any(answer.cost)):
-        return answer
-    return replace(answer, proven=True)
-
-
 def solve_shot(
     control: Control,
     mode: str = "opt",
@@ -72,7 +65,9 @@ def solve_shot(
     with control.solving(mode, count, bound):
         result = control.solve(record, time_limit, on_lower=on_lower, stop=stop)
     finished = result.finished
-    latest = _settled(last[0], mode, finished) if last else None
+    latest = last[0] if last else None
+    if latest is not None and mode != "first" and (finished or not any(latest.cost)):
+        latest = replace(latest, proven=True)  # its search ended, or it has no cost
     found = [latest] if latest is not None else []
     if mode == "optN":
         found = sorted(optimal.values(), key=lambda a: a.units) or ([] if finished else found)

@@ -93,6 +93,7 @@ class Control:
         #: keep the choices, conflicts, models and solve time of each solve (:meth:`stats`)
         self.statistics = True
         self.user_programs: list[tuple[str, str]] = []
+        self._last_stats: dict = {}
         self.theory = theory
         #: the mode set by :meth:`solving` is "first"; :meth:`stop_soon` was asked; an interrupt may be pending
         self._decision = self._stopping = self._absorb = False
@@ -222,7 +223,7 @@ class Control:
         calls: dict[str, Any] = {"on_model": on_model, "on_unsat": on_unsat, "assumptions": list(assumptions)}
         calls["on_statistics"] = self._record_stats if self.statistics else None
         with deferred_signals():
-            self._last_stats: dict = {}
+            self._last_stats = {}
             if self._absorb:
                 # an interrupt of the last call may have come after its end: this call takes it
                 self._absorb = False
@@ -332,7 +333,7 @@ class Control:
         """Choices, conflicts, models and solve time of the last solve call (none without :attr:`statistics`)."""
         if not self.statistics:
             return {}
-        if getattr(self, "_last_stats", None):
+        if self._last_stats:
             return dict(self._last_stats)
         try:
             return _summary(self.ctl.statistics)

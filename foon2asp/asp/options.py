@@ -1,10 +1,7 @@
 """How to solve: objectives, extra programs, bounds and solver settings (:class:`AspOptions`).
 
-The default solver settings live here too, chosen on the hard benchmark (BENCHMARKS.md):
-every answer that comes from clingo builds its arguments with :func:`solver_args`.  On one
-thread core-guided optimisation (:data:`DEFAULT_OPT_STRATEGY` with :data:`DEFAULT_TUNING`);
-with ``--threads N`` (N >= 2) the portfolio :data:`PORTFOLIO` (clasp's configuration-file
-format; more threads repeat its lines).  ``--opt-strategy`` always wins, for every thread.
+The default solver settings (BENCHMARKS.md) live here too: every answer that comes from
+clingo builds its arguments with :func:`solver_args`; ``--opt-strategy`` always wins.
 """
 
 from __future__ import annotations
@@ -31,6 +28,7 @@ DEFAULT_OPT_STRATEGY = "usc,oll,succinct,stratify"
 DEFAULT_TUNING = ("--opt-usc-shrink=bin", "--configuration=trendy")
 
 #: the portfolio for --threads >= 2 without --opt-strategy: one solver per line, ``[name]: <clasp options>``
+#: (more threads repeat its lines)
 PORTFOLIO = f"[bbsign]: --opt-strategy=bb --opt-heuristic=sign,model\n[usc]: --opt-strategy={DEFAULT_OPT_STRATEGY} {DEFAULT_TUNING[0]}\n"
 
 

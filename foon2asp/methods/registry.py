@@ -1,11 +1,8 @@
 """The one registry of methods: ASP objectives and the search baselines.
 
-A method is a name, a kind and what the goal runner (:mod:`foon2asp.methods.runner`)
-needs to answer with it: for an ASP method, how it adjusts the caller's options (the
-objective, the greedy heuristic); for a search baseline, a factory turning (problem,
-options) into a *runner*, a function from a goal object id to a :class:`TaskTree` (made
-once per problem, so it may keep state).  ``solve``, ``compare`` and ``batch`` all look
-methods up here.
+An ASP method adjusts the caller's options (the objective, the greedy heuristic); a search
+baseline has a factory turning (problem, options) into a function from a goal object id to a
+:class:`TaskTree`.  ``solve``, ``compare`` and ``batch`` all look methods up here.
 """
 
 from __future__ import annotations

@@ -180,10 +180,3 @@ class Rounds:
         else:
             k, names = self.meal_block(tuple(goal), bound), ("meal_query", "meal_within")
         return {clingo.Function(name, [clingo.Number(k)]): True for name in (names if count_depth else names[:1])}
-
-
-def depth_mode(options, ranked: tuple[str, ...]) -> str:
-    """``first`` | ``later`` (depth is an objective at that place) | ``bound`` (only --max-depth) | ``none``."""
-    if "depth" in ranked:
-        return "first" if ranked[0] == "depth" else "later"
-    return "bound" if options.max_depth is not None else "none"

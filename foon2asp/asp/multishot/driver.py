@@ -31,7 +31,10 @@ class Driver:
         self.options = session.options
         self.problem = session.problem
         self.ranked = objectives.ranked(self.options)
-        self.depth_mode = depth_mod.depth_mode(self.options, self.ranked)
+        #: "first" or "later" (depth is an objective at that place), "bound" (only --max-depth) or "none"
+        self.depth_mode = "none" if self.options.max_depth is None else "bound"
+        if "depth" in self.ranked:
+            self.depth_mode = "first" if self.ranked[0] == "depth" else "later"
         self.solves = 0
         self.last_stats: dict = {}
         #: "budget" when a search for the smallest optimal tree of the current goal did not end
