@@ -19,7 +19,6 @@ from foon2asp.asp.facts import facts
 from foon2asp.asp.objectives import input_node_facts
 from foon2asp.asp.options import OBJECTIVES, AspOptions, solver_args
 from foon2asp.asp.predicates import (
-    Signature,
     known_predicates,
     predicates,
     shipped_predicates,
@@ -223,17 +222,6 @@ def shows(text: str) -> bool:
     return any(found)
 
 
-def _hide_shows(text: str) -> str:
-    """A shipped encoding without its ``#show`` lines (each is one line there)."""
-    return "\n".join("" if line.lstrip().startswith("#show") else line for line in text.split("\n"))
-
-
-def _loaded(prog: Program) -> set[Signature]:
-    """The predicates with atoms after grounding ``prog``: the facts, and what was derived."""
-    atoms = prog.control.ctl.symbolic_atoms
-    return {(n, a) for n, a, _ in atoms.signatures if next(iter(atoms.by_signature(n, a)), None) is not None}
-
-
 def query_warnings(prog: Program, program: tuple[str, str], loaded: Iterable[str]) -> list[str]:
     """Warnings about the user's ``program`` (name, text) and the shipped encodings ``loaded``
     that ``prog`` grounded: each predicate used but defined by no rule head and no fact, at its
@@ -243,7 +231,8 @@ def query_warnings(prog: Program, program: tuple[str, str], loaded: Iterable[str
     shipped = shipped_predicates()
     found = [(name, user)] + [(f"encodings/{enc}.lp", shipped[enc]) for enc in loaded]
     known = known_predicates() | user.defined
-    here = _loaded(prog)
+    atoms = prog.control.ctl.symbolic_atoms  # the predicates with atoms after grounding
+    here = {(n, a) for n, a, _ in atoms.signatures if next(iter(atoms.by_signature(n, a)), None) is not None}
     for _, pred in found:
         here |= pred.defined
     out = []
@@ -287,8 +276,9 @@ def query(
             raise InputError(f"no encoding {enc!r}; have {', '.join(encodings.names())}")
     names = encodings.with_dependencies(asked)
     for enc in names:
-        body = encodings.encoding(enc)
-        parts.append((f"encodings/{enc}.lp", _hide_shows(body) if own_show else body))
+        lines = encodings.encoding(enc).split("\n")  # with the user's #show, each of its #show lines goes
+        body = "\n".join("" if own_show and line.lstrip().startswith("#show") else line for line in lines)
+        parts.append((f"encodings/{enc}.lp", body))
     if "inputs" in names:
         parts.append(("input_nodes", input_node_facts(problem)))
     # objective encodings listed first weigh most: objective(Name,P), P = n..1
