@@ -111,9 +111,7 @@ def check(trees, data, goal, goals, fmt, optimum, spec, options):
     ),
     opt.option("--goal", "Goal label (default: the goal a JSON result names, else inferred from the tree)."),
     opt.output_option("FILE.svg, .png, .pdf or .dot", required=True),
-    opt.choice(
-        "--format", "fmt", choices=draw_mod.FORMATS, default=None, help="Drawing format (default: from the extension)."
-    ),
+    opt.choice("--format fmt", "Drawing format (default: from the extension).", draw_mod.FORMATS, default=None),
     opt.flag("--strict", opt.STRICT_HELP),
     opt.MATCHING,
 )
@@ -145,12 +143,11 @@ def draw(tree, data, goal, output, fmt, options):
     opt.output_option("The merged FOON file.", required=True),
     opt.flag("--strict", "Treat skipped units (warnings) as errors."),
     opt.choice(
-        "--format",
-        "fmt",
-        choices=api.FOON_FORMATS,
-        default="foon",
-        help="foon: official dialect with ids; foon-plain: without ids; foon-json: foon_api's JSON;"
+        "--format fmt",
+        "foon: official dialect with ids; foon-plain: without ids; foon-json: foon_api's JSON;"
         " units-json: the unit-list JSON of generated trees.",
+        api.FOON_FORMATS,
+        default="foon",
     ),
     opt.MATCHING,
 )
@@ -227,12 +224,11 @@ def export():
         "Goal label; repeat for a meal (every goal in :goal).",
     ),
     opt.choice(
-        "--objective",
-        "pddl_objective",
-        choices=pddl.PDDL_OBJECTIVES,
-        default="units",
-        help="units: plan length; success: integer action costs round(-1000 ln p) (:action-costs); inputs: input"
+        "--objective pddl_objective",
+        "units: plan length; success: integer action costs round(-1000 ln p) (:action-costs); inputs: input"
         " nodes; cost: the motion costs of --motion-cost in hundredths.",
+        pddl.PDDL_OBJECTIVES,
+        default="units",
     ),
     opt.MOTION_COST,
     opt.output_option("Directory for domain.pddl and problem.pddl.", file=False, required=True),
@@ -345,7 +341,7 @@ def query(program, data, goals, goal, encoding_names, fmt, options):
     opt.option(
         "--kitchen-file kitchen", opt.KITCHEN_HELP.replace("kitchen.json", "A kitchen.json", 1), metavar="FILE|leaves"
     ),
-    opt.choice("--format", "fmt", choices=("text", "json")),
+    opt.choice("--format fmt", None, ("text", "json")),
 )
 def objects(query, data, only, fmt, options):
     """List the objects LABEL names (all objects without it), each with its #ID and text.

@@ -233,18 +233,17 @@ def status_text(info: dict) -> str:
         " is reported beside it).",
     ),
     opt.choice(
-        "--format",
-        "fmt",
-        choices=["text", "json", *report.names("schedule")],
-        help="text: a timeline per agent; json: a list, one object per goal; svg/png/pdf/dot: Gantt charts;"
+        "--format fmt",
+        "text: a timeline per agent; json: a list, one object per goal; svg/png/pdf/dot: Gantt charts;"
         " html: a page of them.",
+        ["text", "json", *report.names("schedule")],
     ),
     opt.output_option("Write to FILE instead of stdout (png, pdf: binary)."),
     opt.choice(
         "--encoding",
-        choices=api.SCHEDULE_ENCODINGS,
+        "Time steps in plain ASP, or clingo-dl start times (needs clingo-dl).",
+        api.SCHEDULE_ENCODINGS,
         default=api.DEFAULT_SCHEDULE_ENCODING,
-        help="Time steps in plain ASP, or clingo-dl start times (needs clingo-dl).",
     ),
     opt.flag("--together", "A meal: one tree that makes every goal, and one schedule of it."),
     opt.STRATEGY,
@@ -344,11 +343,11 @@ WORKERS, SCHEDULER = Checked("N|auto", _workers), Checked("address", _address)
     opt.STRATEGY,
     opt.choice(
         "--grounding",
-        choices=api.GROUNDINGS,
-        default="auto",
-        help="One grounding for all goals, or a small grounding of each goal's relevant part; auto: per-goal when"
+        "One grounding for all goals, or a small grounding of each goal's relevant part; auto: per-goal when"
         " the goals' median relevant part is under 10 % of the viable units or there are over 50,000 of them"
         " (the summary says which).",
+        api.GROUNDINGS,
+        default="auto",
     ),
     opt.option(
         "--shortcuts/--no-shortcuts",
@@ -356,9 +355,7 @@ WORKERS, SCHEDULER = Checked("N|auto", _workers), Checked("address", _address)
         " the bounds tree); --no-shortcuts: clingo answers every goal that can be made.",
         default=True,
     ),
-    opt.choice(
-        "--summary", "summary_fmt", choices=report.names("summary"), help="Format of the summary printed at the end."
-    ),
+    opt.choice("--summary summary_fmt", "Format of the summary printed at the end.", report.names("summary")),
     opt.PROGRESS,
     opt.option(
         "--fsync/--no-fsync", "Sync result lines to disk (grouped: at most 0.25 s apart, and at the end).", default=True

@@ -139,14 +139,6 @@ FLAG_WORDING = {
 }
 
 
-def flag_wording(exc: InputError) -> str:
-    """The one-line message of ``exc`` as this command line words it."""
-    key, _, value = (exc.hint or "").partition("=")
-    if key in FLAG_WORDING:
-        return str(InputError(FLAG_WORDING[key].format(value), exc.path, exc.line, exc.column))
-    return str(exc)
-
-
 def fail(message: str, code: int = EXIT_INPUT) -> NoReturn:
     click.echo(f"foon2asp: error: {escape(message)}", err=True)
     sys.exit(code)
@@ -166,7 +158,10 @@ def report_exception(exc: BaseException, debug: bool = False) -> NoReturn:
         click.echo("foon2asp: interrupted", err=True)
         sys.exit(EXIT_SIGINT)
     if isinstance(exc, InputError):
-        fail(flag_wording(exc))
+        key, _, value = (exc.hint or "").partition("=")
+        if key in FLAG_WORDING:
+            exc = InputError(FLAG_WORDING[key].format(value), exc.path, exc.line, exc.column)
+        fail(str(exc))
     if isinstance(exc, BrokenPipeError):
         sys.exit(0)
     if isinstance(exc, OSError) and exc.filename is not None:

@@ -66,7 +66,7 @@ def int32(min: int = 0, max: int = 2**31 - 1) -> click.IntRange:
     return click.IntRange(min=min, max=max)
 
 
-def option(flags: str, help: str, **kw):
+def option(flags: str, help: str | None, **kw):
     """An option: ``flags`` its names, space-separated (then its parameter's name, when not the long name)."""
     return click.option(*flags.split(), help=help, **kw)
 
@@ -169,9 +169,9 @@ def command(*opts: Callable | list, name: str | None = None, group: click.Group 
     return decorate
 
 
-def choice(*names: str, choices, default: str | None = "text", help: str | None = None):
+def choice(flags: str, help: str | None, choices, default: str | None = "text"):
     """An option taking one of ``choices`` (the default shown in the help)."""
-    return click.option(*names, type=click.Choice(choices), default=default, help=help)
+    return option(flags, help, type=click.Choice(choices), default=default)
 
 
 def file_option(flag: str, help: str):
@@ -197,9 +197,9 @@ FILES = [
     option("--utensils", "utensils.txt", type=click.Path()),
     choice(
         "--utensil-rule",
-        choices=api.UTENSIL_RULES,
+        "When a utensil holding one ingredient is not a required input.",
+        api.UTENSIL_RULES,
         default="starter",
-        help="When a utensil holding one ingredient is not a required input.",
     ),
     flag("--strict", STRICT_HELP),
 ]
@@ -285,7 +285,7 @@ def method_option(default: str):
 
 def format_option(kind: str):
     """``--format`` with the formats of the answers of ``kind`` (:func:`foon2asp.report.names`)."""
-    return choice("--format", "fmt", choices=report.names(kind))
+    return choice("--format fmt", None, report.names(kind))
 
 
 PROGRESS = option("--progress/--no-progress", "Progress bar on stderr (default: when it is a terminal).", default=None)
