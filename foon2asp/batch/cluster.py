@@ -16,16 +16,6 @@ from foon2asp.errors import InputError
 _LOCAL = threading.local()
 
 
-def _require():
-    try:
-        import distributed  # noqa: F401
-    except ModuleNotFoundError:
-        raise InputError(
-            "--scheduler needs Dask: install the extra with  pip install 'foon2asp[dask]'  (dask[distributed])"
-        ) from None
-    return distributed
-
-
 def _run_chunk(token: str, spec: BatchSpec, tasks: list[tuple[int, str]]) -> list[tuple[int, str, str]]:
     """On a Dask worker: the results of ``tasks`` (runners built once per thread and spec)."""
     if getattr(_LOCAL, "token", None) != token:
@@ -36,7 +26,12 @@ def _run_chunk(token: str, spec: BatchSpec, tasks: list[tuple[int, str]]) -> lis
 def executor(scheduler, chunk: int = 8) -> Callable[[BatchSpec, list[tuple[int, str]]], Iterator[tuple[int, str, str]]]:
     """A batch executor for :func:`foon2asp.batch.run.run_batch` on ``scheduler``
     (an address such as ``tcp://host:8786`` or a ``distributed.Client``)."""
-    distributed = _require()
+    try:
+        import distributed
+    except ModuleNotFoundError:
+        raise InputError(
+            "--scheduler needs Dask: install the extra with  pip install 'foon2asp[dask]'  (dask[distributed])"
+        ) from None
 
     def run(spec: BatchSpec, tasks: list[tuple[int, str]]) -> Iterator[tuple[int, str, str]]:
         if not tasks:
