@@ -72,7 +72,7 @@ class Job:
     @property
     def breakers(self) -> bool:
         """Are there tie-breakers: the tree objective, or a human kind?"""
-        return bool(self.levels) or any(k == HUMAN for k in self.inst.kinds)
+        return bool(self.levels) or HUMAN in self.inst.kinds
 
     def windows(self, horizon: int) -> dict[int, tuple[int, int]] | None:
         """Each unit's start window within ``horizon``; None when a given unit has none."""
@@ -262,7 +262,6 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
             return makespan(entries) <= floor
 
         sol = _steps_once(job, windows, horizon, floor, left(), "makespan", short)
-        finished = sol.proven
         stats.update(sol.stats)
         if sol.entries is not None:
             entries = compact(inst, sol.entries)
@@ -271,7 +270,7 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
         if best is None:
             return replace(sol, stats=stats)
         horizon = makespan(best)
-        proven = finished or horizon <= floor
+        proven = sol.proven or horizon <= floor
         if not proven:
             stats["tie_breakers"] = "time"
             return Solution(best, False, False, inst.units, stats)
@@ -284,14 +283,13 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
         stats["tie_breakers"] = "time"
         return Solution(best, True, False, inst.units, stats)
     sol = _steps_once(job, within, horizon, horizon, left(), "human", few)
-    finished = sol.proven
     stats["phases"] = 2
     stats.update({f"human_{k}": v for k, v in sol.stats.items() if k in ("ground_s", "solve_s", "horizon_steps")})
     if sol.entries is not None and (best is None or human_units(sol.entries) < human_units(best)):
         best = sol.entries
     if best is None:  # nothing within the horizon: it was the floor, and the floor no schedule meets
-        return Solution(None, finished, finished, (), stats)
-    stats["tie_breakers"] = "proven" if finished or human_units(best) <= low else "time"
+        return Solution(None, sol.proven, sol.proven, (), stats)
+    stats["tie_breakers"] = "proven" if sol.proven or human_units(best) <= low else "time"
     return Solution(best, True, False, inst.units, stats)
 
 
