@@ -67,20 +67,17 @@ class Levels:
                     out.append(tuple(x.number for x in args))
             return out
 
-        kitchen = {o for (o,) in numbers("kitchen", 1)}
         units = [u for (u,) in numbers("unit", 1)]
-        required: dict[int, list[int]] = {u: [] for u in units}
-        required_any: dict[int, list[int]] = {u: [] for u in units}
-        products: dict[int, list[int]] = {u: [] for u in units}
-        for table, name, facts_only in (
-            (required, "required", True),
-            (required_any, "required", False),
-            (products, "product", False),
-        ):
+
+        def table(name: str, facts_only: bool) -> dict[int, list[int]]:
+            out: dict[int, list[int]] = {u: [] for u in units}
             for u, o in numbers(name, 2, facts_only):
-                if u in table:
-                    table[u].append(o)
-        return cls(kitchen, required, products, required_any)
+                if u in out:
+                    out[u].append(o)
+            return out
+
+        kitchen = {o for (o,) in numbers("kitchen", 1)}
+        return cls(kitchen, table("required", True), table("product", False), table("required", False))
 
     def level(self, goal: int | tuple[int, ...]) -> int | None:
         """The least depth of any tree for ``goal`` (0 in the kitchen, None: no tree);
@@ -149,26 +146,26 @@ class Rounds:
 
     def block(self, goal: int, bound: int) -> int:
         """Ground the block for ``goal`` and ``bound`` (once) and return its id ``k``."""
-        if (goal, bound) in self.blocks:
-            return self.blocks[(goal, bound)]
-        k = len(self.blocks) + 1
-        text = "".join(f"window({k},{u},{lo},{hi}).\n" for u, lo, hi in self.levels.windows(goal, bound))
-        with deferred_signals():  # a signal waits until the block is grounded and known
-            self.control.extend(f"depth_windows_{k}", text, [("bound", (k, goal, bound))], "grounding the depth rounds")
-            self.blocks[(goal, bound)] = k
-        return k
+        if (goal, bound) not in self.blocks:
+            k = len(self.blocks) + 1
+            text = "".join(f"window({k},{u},{lo},{hi}).\n" for u, lo, hi in self.levels.windows(goal, bound))
+            what = "grounding the depth rounds"
+            with deferred_signals():  # a signal waits until the block is grounded and known
+                self.control.extend(f"depth_windows_{k}", text, [("bound", (k, goal, bound))], what)
+                self.blocks[(goal, bound)] = k
+        return self.blocks[(goal, bound)]
 
     def meal_block(self, meal: tuple[int, ...], bound: int) -> int:
         """Ground the blocks of ``meal``'s goals and the meal block for ``bound`` (once); its id ``m``."""
-        if (meal, bound) in self.meal_blocks:
-            return self.meal_blocks[(meal, bound)]
-        members = [self.block(g, bound) for g in meal]
-        m = len(self.meal_blocks) + 1
-        text = "".join(f"member({m},{k}).\n" for k in members)
-        with deferred_signals():
-            self.control.extend(f"depth_meal_{m}", text, [("meal", (m, bound))], "grounding the depth rounds of a meal")
-            self.meal_blocks[(meal, bound)] = m
-        return m
+        if (meal, bound) not in self.meal_blocks:
+            members = [self.block(g, bound) for g in meal]
+            m = len(self.meal_blocks) + 1
+            text = "".join(f"member({m},{k}).\n" for k in members)
+            what = "grounding the depth rounds of a meal"
+            with deferred_signals():
+                self.control.extend(f"depth_meal_{m}", text, [("meal", (m, bound))], what)
+                self.meal_blocks[(meal, bound)] = m
+        return self.meal_blocks[(meal, bound)]
 
     def externals(self, goal: int | tuple[int, ...], bound: int, count_depth: bool) -> dict[clingo.Symbol, bool]:
         """The externals for depth bound ``bound`` of ``goal`` (its block grounded if need be):
