@@ -216,8 +216,7 @@ def record_marks(record: dict, units: list[Unit], problem: Problem | None = None
     """Marks of a result record (a line of a batch's results) whose units are ``units``: its goals
     and verdict; with ``problem`` also its kitchen items and an invalid tree's blocking cycle."""
     goals = [g for g in (record.get("goals") or [record.get("goal")]) if isinstance(g, dict)]
-    objects = [record_object(g) for g in goals]
-    made = [o for o in objects if o is not None]
+    made = [o for o in map(record_object, goals) if o is not None]
     goal = made[0] if made else _top_product(units)
     valid = record.get("valid")
     label = " + ".join(str(g.get("label", "?")) for g in goals) or "?"
@@ -234,10 +233,8 @@ def record_marks(record: dict, units: list[Unit], problem: Problem | None = None
     ids = [index.get(u.key()) for u in units]
     if valid is False and None not in ids:
         known = [u for u in ids if u is not None]
-        for g in made:
-            if g not in oid:
-                continue
-            validation, finding = check_units(problem, oid[g], known)
+        for g in (g for g in made if g in oid):
+            _, finding = check_units(problem, oid[g], known)
             if finding is not None and finding.cycle:
                 return replace(marks, cycle=cycle_marks(problem, finding, {u: k for k, u in enumerate(known)}))
     return marks
