@@ -8,11 +8,12 @@ from pathlib import Path
 
 from foon2asp.analysis.check import unit_index
 from foon2asp.asp.options import AspOptions
-from foon2asp.batch.results import WITH_TREE, goal_key
+from foon2asp.batch.results import goal_key
 from foon2asp.errors import InputError
 from foon2asp.foon.foonjson import parse_json
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule import DEFAULT_ENCODING, ScheduleResult, ScheduleSpec, schedule
+from foon2asp.tree.results import WITH_TREE
 from foon2asp.tree.tasktree import TaskTree, executable_order, measures
 
 

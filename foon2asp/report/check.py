@@ -213,7 +213,6 @@ def alone_json(report: AloneReport) -> dict:
         "judged": "on its own",
         "kitchen_source": report.kitchen_source,
         "kitchen": [o.to_json() for o in v.kitchen],
-        # the leaves stood for the kitchen: a missing step cannot be detected
         "kitchen_assumed": assumes_leaves(report),
         "note": LEAVES_CAVEAT if assumes_leaves(report) else None,
         "valid_as_set": v.valid,
