@@ -73,12 +73,13 @@ def search(
     prep: Preparation,
     problem: Problem,
     closed: bool,
-    on_tree: Callable[[clingo.Model], bool],
     deadline: float | None,
     watch: Watch,
+    on_model: Callable[[clingo.Model], bool | None] | None = None,
 ) -> tuple[Shot, Answer | None, tuple[int, ...] | None, int]:
     """clingo's optimisation over the prepared part on ``control`` (with ``closed``, in rounds of loop
-    cuts); ``on_tree`` sees each model that is a tree and may end the search by answering False.
+    cuts), ended by a tree that meets the lower bound (``prep.meets``: that tree is proven);
+    ``watch`` and ``on_model`` see each model that is a tree.
 
     Returns the last round's shot, the answer (unproven when cut short), the best lower bound
     proven, and the number of cuts."""
@@ -90,12 +91,27 @@ def search(
             cuts_of[units] = prep.cut(problem, units)
         return cuts_of[units]
 
+    met = False
+
     def seen(answer: Answer, model: clingo.Model) -> bool:
+        nonlocal met
         if closed:
             if cut_of(answer.units) is not None:
                 return True
             best[:] = [answer]
-        return on_tree(model)
+        watch.on_model(model)
+        if on_model is not None:
+            on_model(model)
+        if prep.meets is not None and prep.meets(answer.cost):
+            met = True
+            return False
+        return True
+
+    def done(shot: Shot, answer: Answer | None) -> tuple[Shot, Answer | None, tuple[int, ...] | None, int]:
+        if answer is not None and met:
+            answer = replace(answer, proven=True)
+            shot.finished = True
+        return shot, answer, lower, cuts
 
     cuts = 0
     lower: tuple[int, ...] | None = None
@@ -111,16 +127,16 @@ def search(
             bound = None  # no tree within the bound: optimise instead
             continue
         if not closed or answer is None or (best and best[0].units == answer.units):
-            return shot, answer, lower, cuts
+            return done(shot, answer)
         cut = cut_of(answer.units)
         if cut is None:
-            return shot, answer, lower, cuts
+            return done(shot, answer)
         # an optimal closed set that is no tree: its cost bounds every tree from below
         if bound is None and shot.finished and (lower is None or answer.cost > lower):
             lower = answer.cost
         if not shot.finished or (deadline is not None and time.perf_counter() >= deadline):
             shot.finished = False
-            return shot, (replace(best[0], proven=False) if best else None), lower, cuts
+            return done(shot, replace(best[0], proven=False) if best else None)
         cuts += 1
         missing, outside = cut
         text = "".join(f"cut({cuts},{o}).\n" for o in missing) + "".join(f"outside({cuts},{u}).\n" for u in outside)

@@ -279,21 +279,7 @@ class Session:
         deadline = None if not time_limit else t0 + time_limit
         self._fresh = False
         watch = Watch(first_level(self.levels), self.options.gap, prep.floor, self.options.progress)
-        met: list[bool] = []
-
-        def seen(model: clingo.Model) -> bool:
-            watch.on_model(model)
-            if on_model is not None:
-                on_model(model)
-            if prep.meets is not None and prep.meets(tuple(model.cost)):
-                met.append(True)
-                return False
-            return True
-
-        shot, answer, lower, cuts = search(self.control, prep, self.problem, self._closed, seen, deadline, watch)
-        if answer is not None and met:
-            answer = replace(answer, proven=True)
-            shot.finished = True
+        shot, answer, lower, cuts = search(self.control, prep, self.problem, self._closed, deadline, watch, on_model)
         self._lower = answer.cost if answer is not None and answer.proven else lower
         stats = self.control.stats()
         if cuts:
