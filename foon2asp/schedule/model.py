@@ -125,9 +125,7 @@ def instance(problem: Problem, units: Iterable[int], spec: ScheduleSpec) -> Inst
         objs = [o for o in problem.required[u] if o not in problem.kitchen]
         needs[u] = tuple((o, tuple(m for m in makers.get(o, ()) if m != u)) for o in objs)
         uses[u] = tuple(sorted({o.label for o in unit.inputs if o.label in limited}))
-    used = {r for rs in uses.values() for r in rs}
-    capacity = {r: c for r, c in limited.items() if r in used}
-    return Instance(ids, durations, needs, uses, spec.agent_list(), kinds, capacity)
+    return Instance(ids, durations, needs, uses, spec.agent_list(), kinds, limited).restrict(ids)  # only used resources
 
 
 def earliest(inst: Instance) -> dict[int, int]:
