@@ -621,32 +621,43 @@ def test_greedy_every_picked_unit_is_used():
     )
 
 
-def test_greedy_h1_first_model_picks_rank_zero():
-    # h1 ranks by success rate: 2 is the likeliest maker of 9
-    ranks = "rank(9,2,0). rank(9,0,1). rank(9,1,2). rank(9,3,3). rank(9,6,4). rank(5,4,0). rank(5,5,1).\n"
-    check(solver(["tree", "greedy", "greedy_h1"], GREEDY, ranks, args=DOMAIN), first(use(2)))
-
-
-def test_greedy_h1_rank_zero_for_every_needed_object():
-    ranks = "rank(9,3,0). rank(9,0,1). rank(9,1,2). rank(9,2,3). rank(9,6,4). rank(5,5,0). rank(5,4,1).\n"
-    check(solver(["tree", "greedy", "greedy_h1"], GREEDY, ranks, args=DOMAIN), first(use(3, 5)))
-
-
-def test_greedy_h1_skips_a_producer_that_cannot_fire():
-    # 6 is ranked first but needs 7; the next rank is taken
-    ranks = "rank(9,6,0). rank(9,1,1). rank(9,0,2). rank(9,2,3). rank(9,3,4). rank(5,4,0). rank(5,5,1).\n"
-    check(solver(["tree", "greedy", "greedy_h1"], GREEDY, ranks, args=DOMAIN), first(use(1)))
-
-
-def test_greedy_h2_first_model_picks_rank_zero():
-    # h2 ranks by input nodes: ties to file order, 0 first
-    ranks = "rank(9,0,0). rank(9,1,1). rank(9,2,2). rank(9,3,3). rank(9,6,4). rank(5,4,0). rank(5,5,1).\n"
-    check(solver(["tree", "greedy", "greedy_h2"], GREEDY, ranks, args=DOMAIN), first(use(0)))
-
-
-def test_greedy_h2_rank_zero_for_every_needed_object():
-    ranks = "rank(9,3,0). rank(9,2,1). rank(9,1,2). rank(9,0,3). rank(9,6,4). rank(5,4,0). rank(5,5,1).\n"
-    check(solver(["tree", "greedy", "greedy_h2"], GREEDY, ranks, args=DOMAIN), first(use(3, 4)))
+@pytest.mark.parametrize(
+    "heuristic, ranks, chosen",
+    [
+        # h1 ranks by success rate: 2 is the likeliest maker of 9
+        (
+            "greedy_h1",
+            "rank(9,2,0). rank(9,0,1). rank(9,1,2). rank(9,3,3). rank(9,6,4). rank(5,4,0). rank(5,5,1).",
+            (2,),
+        ),
+        # rank 0 for every needed object
+        (
+            "greedy_h1",
+            "rank(9,3,0). rank(9,0,1). rank(9,1,2). rank(9,2,3). rank(9,6,4). rank(5,5,0). rank(5,4,1).",
+            (3, 5),
+        ),
+        # 6 is ranked first but needs 7; the next rank is taken
+        (
+            "greedy_h1",
+            "rank(9,6,0). rank(9,1,1). rank(9,0,2). rank(9,2,3). rank(9,3,4). rank(5,4,0). rank(5,5,1).",
+            (1,),
+        ),
+        # h2 ranks by input nodes: ties to file order, 0 first
+        (
+            "greedy_h2",
+            "rank(9,0,0). rank(9,1,1). rank(9,2,2). rank(9,3,3). rank(9,6,4). rank(5,4,0). rank(5,5,1).",
+            (0,),
+        ),
+        # rank 0 for every needed object
+        (
+            "greedy_h2",
+            "rank(9,3,0). rank(9,2,1). rank(9,1,2). rank(9,0,3). rank(9,6,4). rank(5,4,0). rank(5,5,1).",
+            (3, 4),
+        ),
+    ],
+)
+def test_greedy_first_model_takes_rank_zero(heuristic, ranks, chosen):
+    check(solver(["tree", "greedy", heuristic], GREEDY, ranks + "\n", args=DOMAIN), first(use(*chosen)))
 
 
 # --- missing.lp ------------------------------------------------------------------------------
