@@ -75,6 +75,18 @@ def _fireable(problem: Problem) -> list[tuple[tuple[int, ...], frozenset[FoonObj
     return _FIREABLE[key]
 
 
+def against_brute_force(problem: Problem, goals, solve):
+    """(goal, brute-force trees, answers) for each of ``goals`` that has a tree; ``solve(goal)``
+    gives the solver's answers, and a goal without a tree must be answered ``unreachable``."""
+    for g in goals:
+        trees = brute_force(problem, g)
+        found = solve(g)
+        if not trees:
+            assert found[0].status == "unreachable", (g, found[0].status)
+            continue
+        yield g, trees, found
+
+
 def best(problem: Problem, goal: int, key) -> tuple[float, list[tuple[int, ...]]]:
     """The best value of ``key(measures)`` over all valid trees, and the trees reaching it."""
     trees = brute_force(problem, goal)
