@@ -96,3 +96,19 @@ def test_check_of_a_file_with_one_tree_is_a_report(kb, tmp_path):
     reports = kb.check(both)
     assert isinstance(reports, list) and [r.valid for r in reports] == [True, True]
     assert [r.valid for r in kb.check_all(one)] == [True]
+
+
+def test_every_answer_renders_or_says_it_cannot(kb, tmp_path):
+    """A one-record answer renders as its command does for one goal; a method an answer lacks is
+    an AttributeError naming the one it has; consolidate's mistyped keyword fails before reading."""
+    missing = kb.missing("greek salad")
+    assert missing.render("text") == missing.to_text()
+    assert json.loads(missing.render("json")) == [missing.to_dict()]
+    tree = tmp_path / "tree.foon"
+    tree.write_text(kb.solve("greek salad").to_foon())
+    report = kb.check(tree)
+    assert report.valid and json.loads(report.render("json")) == [report.to_dict()]
+    with pytest.raises(AttributeError, match="use render"):
+        kb.compare("greek salad").to_dict()
+    with pytest.raises(TypeError, match="consolidate\\(\\): .*did you mean 'level'"):
+        foon2asp.consolidate([tmp_path / "absent.json"], levle=2)

@@ -83,7 +83,7 @@ class Options:
     max_depth: int | None = None
     #: at most this many units done by a person (success 1.0)
     human_steps: int | None = None
-    #: clingo's optimisation strategy (``bb``, ``usc``, with refinements); None: foon2asp.asp.settings'
+    #: clingo's optimisation strategy (``bb``, ``usc``, with refinements); None: the default of foon2asp.asp.options.solver_args
     opt_strategy: str | None = None
     #: clingo solver threads; None: one
     threads: int | None = None

@@ -99,22 +99,31 @@ class Answer:
 
     kb: Source
     raw: Any
-    #: the kind of answer :meth:`render` renders (:func:`foon2asp.report.render`)
+    #: the kind of answer :meth:`render` renders (:func:`foon2asp.report.render`; "": none)
     kind: ClassVar[str] = ""
+    #: :meth:`render` renders the record as its command renders a list of one
+    one: ClassVar[bool] = False
     #: the writers of :meth:`to_dict` and :meth:`to_text`: (problem, raw) -> JSON value, text
-    json_of: ClassVar[Callable[[Problem, Any], dict]]
-    text_of: ClassVar[Callable[[Problem, Any], str]]
+    json_of: ClassVar[Callable[[Problem, Any], dict] | None] = None
+    text_of: ClassVar[Callable[[Problem, Any], str] | None] = None
 
     def render(self, fmt: str = "text") -> str:
         """The answer in a text format of its command's ``--format``."""
-        return report.render(self.kind, fmt, self.kb.problem, self.raw)
+        if not self.kind:
+            raise AttributeError(f"{type(self).__name__} has no render(); use to_dict() or to_text()")
+        return report.render(self.kind, fmt, self.kb.problem, [self.raw] if self.one else self.raw)
 
     def to_dict(self) -> dict:
         """Exactly one element of its command's ``--format json``."""
-        return type(self).json_of(self.kb.problem, self.raw)
+        return self._written(type(self).json_of, "to_dict")
 
     def to_text(self) -> str:
-        return type(self).text_of(self.kb.problem, self.raw)
+        return self._written(type(self).text_of, "to_text")
+
+    def _written(self, writer: Callable[[Problem, Any], Any] | None, name: str) -> Any:
+        if writer is None:
+            raise AttributeError(f"{type(self).__name__} has no {name}(); use render(fmt)")
+        return writer(self.kb.problem, self.raw)
 
 
 class Tree(Answer):
@@ -257,6 +266,7 @@ def schedule_trees(
 class CheckReport(Answer):
     """What ``check`` says about one tree: valid or not, the first problem, the optimum."""
 
+    kind, one = "check", True
     json_of, text_of = report.check.report_json, report.check.report_text
     valid = Raw[bool]()
     substitutions = Raw[list[dict] | None]("With substitutes: the ones a valid tree uses (None without substitutes).")
@@ -303,6 +313,7 @@ class Comparison(Answer):
 class Missing(Answer):
     """The fewest objects to add to the kitchen so a goal can be made, and the tree then."""
 
+    kind, one = "missing", True
     json_of, text_of = report.queries.missing_json, report.queries.missing_text
     status = Raw[str]()
     missing = Raw[list[FoonObject]](read=objects_of)

@@ -4,7 +4,7 @@ and candidate trees of one recipe consolidated into one proven-best tree (:func:
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 from pathlib import Path
 from typing import Any
 
@@ -13,7 +13,7 @@ from foon2asp.analysis import check as check_mod
 from foon2asp.analysis import consolidate as consolidate_mod
 from foon2asp.api.kb import GoalLike, KnowledgeBase
 from foon2asp.api.load import Reading, knowledge_base
-from foon2asp.api.options import Options, jobs
+from foon2asp.api.options import CONSTRAINT_KEYWORDS, Options, check_keywords, jobs
 from foon2asp.api.results import Answer, Raw, Tree, as_list, object_of, objects_of, tree_of, units_of
 from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset, read_goals, read_kitchen, read_motion, read_utensils
@@ -117,7 +117,7 @@ class Consolidation(Answer):
         return len(self.raw)
 
     def __getitem__(self, k: int) -> ConsolidatedGoal:
-        return self.results[k]
+        return ConsolidatedGoal(self.kb, self.raw[k])
 
     def to_list(self) -> list[dict]:
         """``consolidate --format json`` as data: one object per goal."""
@@ -183,6 +183,8 @@ def consolidate(
     (docs/api.md); ``keywords``: the fields of :class:`foon2asp.api.load.Reading` and the request."""
     if not paths:
         raise InputError("no candidate tree given")
+    known = {f.name for f in (*fields(Reading), *fields(Options))} | set(CONSTRAINT_KEYWORDS) | {"options"}
+    check_keywords(keywords, known, "consolidate(): ")
     how = Reading.of(keywords)
     seen_as = how.projection()
     candidates = consolidate_mod.read_candidates(paths, how.strict)
