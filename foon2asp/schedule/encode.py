@@ -17,7 +17,7 @@ from typing import Any
 import clingo
 
 from foon2asp.asp import encodings
-from foon2asp.asp.control import Control
+from foon2asp.asp.control import Control, remaining
 from foon2asp.asp.facts import q
 from foon2asp.errors import InputError
 from foon2asp.schedule.bounds import human_lower
@@ -180,11 +180,12 @@ def _steps_once(
         if not (stop_at_floor or enough is not None or (job.fixed and job.progress is not None)):
             return True
         entries = _entries_of_steps(inst, best["atoms"], scale, inst.units)
-        if (stop_at_floor and makespan(compact(inst, entries)) <= floor) or (enough is not None and enough(entries)):
+        compacted = compact(inst, entries) if stop_at_floor or enough is None else entries
+        if (stop_at_floor and makespan(compacted) <= floor) or (enough is not None and enough(entries)):
             best["met"] = True
             return False
         if enough is None:
-            _report(job, compact(inst, entries), floor, None, "makespan")
+            _report(job, compacted, floor, None, "makespan")
         return True
 
     result = control.solve(on_model, time_limit)
@@ -238,7 +239,7 @@ def _human_stop(job: Job, opt: int, stats: dict) -> tuple[int, Callable[[list[En
 def clock(time_limit: float | None) -> Callable[[], float | None]:
     """The time left of ``time_limit`` from now (None: no limit)."""
     deadline = None if time_limit is None else time.perf_counter() + time_limit
-    return lambda: None if deadline is None else max(0.0, deadline - time.perf_counter())
+    return lambda: remaining(deadline)
 
 
 def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit: float | None) -> Solution:

@@ -186,8 +186,8 @@ class Search:
     def over(self, trees: list[Candidate]) -> tuple[Any, bool]:
         """The best over ``trees``, lowest bound first, stopping when the next bound is no
         better than the best; (best, proven)."""
-        for t in sorted(trees, key=self.bound):
-            if not self.beats(t):
+        for low, t in sorted(((self.bound(t), t) for t in trees), key=lambda pair: pair[0]):
+            if self.best is not None and low >= self.key(self.best):
                 break  # sorted: no later tree can beat the best
             if self.left() == 0.0:
                 return self.best, False

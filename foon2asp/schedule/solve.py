@@ -240,6 +240,7 @@ def schedule_joint(job: JointRequest, time_limit: float | None = None) -> Schedu
     answer not proven optimal carries ``joint_bound``: no tree is shorter
     (:func:`foon2asp.schedule.joint.every_tree_bound`, at most the answer's makespan)."""
     t0 = time.perf_counter()
+    left = encode.clock(time_limit)
     problem, meal = job.problem, job.tree.meal
     inst = instance(problem, problem.units_for(meal), job.spec)
     start = earliest(inst)
@@ -252,16 +253,22 @@ def schedule_joint(job: JointRequest, time_limit: float | None = None) -> Schedu
     made_by = max((t for t in made if t is not None), default=0)
     products = {u: problem.products[u] for u in inst.units}
     floor = joint.every_tree_bound(inst, meal, products, start, made_by)
-    result = _schedule_joint(job, time_limit, t0, inst, start, floor)
+    result = _schedule_joint(job, left, t0, inst, start, products, floor)
     if result.status == "feasible" and result.makespan is not None:
         result.joint_bound = min(floor, result.makespan)
     return result
 
 
 def _schedule_joint(
-    job: JointRequest, time_limit: float | None, t0: float, inst: Instance, start: dict[int, int], floor: int
+    job: JointRequest,
+    left: Callable[[], float | None],
+    t0: float,
+    inst: Instance,
+    start: dict[int, int],
+    products: dict[int, tuple[int, ...]],
+    floor: int,
 ) -> ScheduleResult:
-    """:func:`schedule_joint` but the bound over every tree (``floor``)."""
+    """:func:`schedule_joint` but the bound over every tree (``floor``); ``left()``: the time left."""
     problem, tree, spec, options, fixed = job.problem, job.tree, job.spec, job.options, job.fixed
     meal = tree.meal
     horizon = fixed.makespan if fixed.has_schedule else sum(max(inst.durations[u].values()) for u in start)
@@ -278,8 +285,7 @@ def _schedule_joint(
     if job.shortcut and fixed.status == tree.status == "optimal" and horizon == floor and not spec.has_human():
         stats["shortcut"] = "the given tree's makespan meets the lower bound over every tree"
         return given("optimal")
-    tail = model.joint_tails(inst, meal, {u: problem.products[u] for u in inst.units})
-    left = encode.clock(time_limit)
+    tail = model.joint_tails(inst, meal, products)
     ties = spec.has_human() or tree.status != "optimal"
     parts = joint.tree_parts(problem, meal, inst, options)
     within = horizon if len(inst.agents) == 1 or not fixed.has_schedule else horizon - model.divisor(inst)
