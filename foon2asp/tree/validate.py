@@ -204,8 +204,23 @@ def derivable_objects(problem: Problem) -> set[FoonObject]:
     """Every object derivable from the kitchen with any units of the FOON, replayed on plain
     objects: a goal outside it has no tree."""
     have = set(problem.kitchen_items)
-    need = [_required(problem, u) for u in range(len(problem.units))]
-    _fire_all(range(len(need)), need.__getitem__, lambda u: product_outputs(problem.units[u]), have)
+    lacking: list[set[FoonObject]] = []
+    waiting: dict[FoonObject, list[int]] = {}
+    ready = []
+    for u in range(len(problem.units)):
+        lacking.append({o for o in _required(problem, u) if o not in have})
+        for o in lacking[u]:
+            waiting.setdefault(o, []).append(u)
+        if not lacking[u]:
+            ready.append(u)
+    while ready:  # each unit fires once, when the last object it lacks is had
+        for o in product_outputs(problem.units[ready.pop()]):
+            if o not in have:
+                have.add(o)
+                for v in waiting.pop(o, ()):
+                    lacking[v].discard(o)
+                    if not lacking[v]:
+                        ready.append(v)
     return have
 
 
