@@ -230,7 +230,7 @@ class Search:
 
 
 def every_tree_bound(
-    inst: Instance, goals: Sequence[int], products: dict[int, tuple[int, ...]], start: dict[int, int], floor: int
+    inst: Instance, goals: Sequence[int], products: Sequence[tuple[int, ...]], start: dict[int, int], floor: int
 ) -> int:
     """A lower bound on the makespan of every tree of ``inst`` for ``goals`` (``start``: the
     units' earliest starts; at least ``floor``): energetic reasoning over the landmarks,

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import heapq
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field, replace
 
 from foon2asp.foon.problem import Problem
@@ -162,7 +162,7 @@ def earliest(inst: Instance) -> dict[int, int]:
     return start
 
 
-def joint_tails(inst: Instance, goals: Iterable[int], products: dict[int, tuple[int, ...]]) -> dict[int, int]:
+def joint_tails(inst: Instance, goals: Iterable[int], products: Sequence[tuple[int, ...]]) -> dict[int, int]:
     """For joint scheduling (``inst`` holds every candidate unit): each unit's minimum
     duration plus the shortest chain after it to a unit making a goal, through units that
     need what it makes.  ``products``: unit -> the objects it makes; units that lead to no

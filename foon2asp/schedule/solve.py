@@ -161,33 +161,17 @@ class JointRequest:
             **goal_fields(meal),
         )
 
-    def none(self, **more) -> ScheduleResult:
+    def none(self) -> ScheduleResult:
         """The joint answer when no valid tree of the goal can be scheduled."""
         why = "no valid tree of the goal can be scheduled"
-        agents = self.fixed.agents
         return ScheduleResult(
-            self.problem, self.tree, "unschedulable", agents, joint=True, fixed=self.fixed, reason=why, **more
+            self.problem, self.tree, "unschedulable", self.fixed.agents, joint=True, fixed=self.fixed, reason=why
         )
 
     def rank(self, r: ScheduleResult) -> tuple:
         """A joint answer's rank: makespan, human units, the tree objective."""
         ranked = objectives.ranked(self.options)
         return (r.makespan, len(r.human), joint.tree_cost(self.problem, r.tree.units, r.human, ranked))
-
-    def finish(
-        self, best: ScheduleResult | None, proven: bool, ties: bool, stats: dict
-    ) -> tuple[ScheduleResult | None, bool]:
-        """The joint answer from the best tree found and the given tree's schedule, which wins a
-        tie; (None, proven) when ``ties`` leaves the tie-breakers to the one encoding."""
-        fixed = self.fixed
-        if fixed.has_schedule and (best is None or self.rank(fixed) <= self.rank(best)):
-            if ties:
-                return None, proven and fixed.status == "optimal"
-            best = fixed
-        if best is None:
-            return (self.none(), True) if proven else (None, False)
-        status = "optimal" if proven and best.status == "optimal" else "feasible"
-        return replace(best, status=status, joint=True, fixed=fixed, stats={**best.stats, **stats}), proven
 
 
 def _by_trees(
@@ -197,8 +181,9 @@ def _by_trees(
 
     The result is None when the trees are too many to look at in time, or when ``ties`` leaves
     the tie-breakers to the one encoding (``proven``: the given makespan is the optimum); an
-    unproven answer from the trees asked for least work first is ``partial``."""
-    problem, spec, inst = job.problem, job.spec, listing.inst
+    unproven answer from the trees asked for least work first is ``partial``.  The given tree's
+    schedule wins a tie."""
+    problem, spec, inst, fixed = job.problem, job.spec, listing.inst, job.fixed
     single = len(inst.agents) == 1
     if single:  # the makespan is the tree's work: least work first, the first tree is the best
         found = joint.Trees([], False)
@@ -228,8 +213,15 @@ def _by_trees(
             share /= 4
         first = single and not spec.has_human()  # a person alone: fewest units among equal work
         best, proven = joint.Search(job.solve, job.rank, bound, share).by_work(listing, len(ranked), first)
-    stats = {"joint": "tree by tree" if found.complete else "tree by tree, least work first"}
-    result, proven = job.finish(best, proven, ties, stats)
+    if fixed.has_schedule and (best is None or job.rank(fixed) <= job.rank(best)):
+        if ties:
+            return None, proven and fixed.status == "optimal", None
+        best = fixed
+    if best is None:
+        return (job.none(), True, None) if proven else (None, False, None)
+    status = "optimal" if proven and best.status == "optimal" else "feasible"
+    way = "tree by tree" if found.complete else "tree by tree, least work first"
+    result = replace(best, status=status, joint=True, fixed=fixed, stats={**best.stats, "joint": way})
     if not single and not found.complete and not proven:
         return None, False, result
     return result, proven, None
@@ -237,12 +229,12 @@ def _by_trees(
 
 def schedule_joint(job: JointRequest, time_limit: float | None = None) -> ScheduleResult:
     """The tree and schedule chosen together; ``job.fixed`` is ``job.tree``'s own schedule.  An
-    answer not proven optimal carries ``joint_bound``: no tree is shorter
-    (:func:`foon2asp.schedule.joint.every_tree_bound`, at most the answer's makespan)."""
+    answer not proven optimal carries ``joint_bound``, a lower bound on every tree's makespan."""
     t0 = time.perf_counter()
     left = encode.clock(time_limit)
-    problem, meal = job.problem, job.tree.meal
-    inst = instance(problem, problem.units_for(meal), job.spec)
+    problem, tree, spec, options, fixed = job.problem, job.tree, job.spec, job.options, job.fixed
+    meal = tree.meal
+    inst = instance(problem, problem.units_for(meal), spec)
     start = earliest(inst)
     # the earliest every goal can be made: a lower bound on the makespan of every tree
     made = [
@@ -251,54 +243,38 @@ def schedule_joint(job: JointRequest, time_limit: float | None = None) -> Schedu
         if g not in problem.kitchen
     ]
     made_by = max((t for t in made if t is not None), default=0)
-    products = {u: problem.products[u] for u in inst.units}
-    floor = joint.every_tree_bound(inst, meal, products, start, made_by)
-    result = _schedule_joint(job, left, t0, inst, start, products, floor)
-    if result.status == "feasible" and result.makespan is not None:
-        result.joint_bound = min(floor, result.makespan)
-    return result
-
-
-def _schedule_joint(
-    job: JointRequest,
-    left: Callable[[], float | None],
-    t0: float,
-    inst: Instance,
-    start: dict[int, int],
-    products: dict[int, tuple[int, ...]],
-    floor: int,
-) -> ScheduleResult:
-    """:func:`schedule_joint` but the bound over every tree (``floor``); ``left()``: the time left."""
-    problem, tree, spec, options, fixed = job.problem, job.tree, job.spec, job.options, job.fixed
-    meal = tree.meal
+    every = joint.every_tree_bound(inst, meal, problem.products, start, made_by)
     horizon = fixed.makespan if fixed.has_schedule else sum(max(inst.durations[u].values()) for u in start)
     assert horizon is not None
     stats: dict = {"encoding": job.encoding, "candidates": len(inst.units)}
 
+    def done(r: ScheduleResult) -> ScheduleResult:
+        r = replace(r, stats={**stats, **r.stats}, time_s=time.perf_counter() - t0)
+        if r.status == "feasible" and r.makespan is not None:
+            r.joint_bound = min(every, r.makespan)
+        return r
+
     def given(status: str) -> ScheduleResult:
         """The given tree's schedule as the answer."""
-        return replace(fixed, status=status, joint=True, fixed=fixed, time_s=time.perf_counter() - t0, stats=stats)
+        return done(replace(fixed, status=status, joint=True, fixed=fixed, stats={}))
 
-    def merged(r: ScheduleResult) -> ScheduleResult:
-        return replace(r, stats={**stats, **r.stats}, time_s=time.perf_counter() - t0)
-
-    if job.shortcut and fixed.status == tree.status == "optimal" and horizon == floor and not spec.has_human():
+    if job.shortcut and fixed.status == tree.status == "optimal" and horizon == every and not spec.has_human():
         stats["shortcut"] = "the given tree's makespan meets the lower bound over every tree"
         return given("optimal")
-    tail = model.joint_tails(inst, meal, products)
+    tail = model.joint_tails(inst, meal, problem.products)
     ties = spec.has_human() or tree.status != "optimal"
     parts = joint.tree_parts(problem, meal, inst, options)
     within = horizon if len(inst.agents) == 1 or not fixed.has_schedule else horizon - model.divisor(inst)
     args = solver_arguments(options)
     by_trees, proven, partial = _by_trees(job, joint.Listing(inst, start, tail, within, parts, args), ties, left)
     if by_trees is not None:
-        return merged(by_trees)
-    if proven:  # no tree beats the given one's makespan: only the tie-breakers are left
-        floor = horizon
+        return done(by_trees)
+    # proven: no tree beats the given one's makespan, only the tie-breakers are left
+    floor = horizon if proven else every
     if left() == 0.0:  # no time for the one encoding (its grounding alone can take minutes): the given tree's
         stats["joint"] = "time"
         if partial is not None:
-            return merged(partial)
+            return done(partial)
         return given("feasible" if fixed.has_schedule else "unknown")
     user = [name for name, _ in options.programs]
     levels = len(objectives.ranked(options))
@@ -306,17 +282,17 @@ def _schedule_joint(
     sol = encode.solve(one, job.encoding, left())
     stats.update(sol.stats, joint="tie-breakers in one encoding" if proven else "one encoding")
     if sol.unsatisfiable:
-        return job.none(time_s=time.perf_counter() - t0, stats=stats)
+        return done(job.none())
     if not sol.proven and partial is not None:
         if sol.entries is None or job.rank(partial) <= (makespan(sol.entries), 0, ()):
-            return merged(partial)
+            return done(partial)
     if sol.entries is None:  # the given tree's schedule is the best found (proven: optimal)
         return given("optimal" if sol.proven and fixed.status == "optimal" else "feasible")
     sub = inst.restrict(sol.units)
     status = "optimal" if sol.proven else "feasible"
     entries = model.compact(sub, sol.entries)
     found = ScheduleResult(problem, job.tree_of(sol.units, status), status, fixed.agents, entries, bounds(sub))
-    return merged(replace(found, baseline=makespan(list_schedule(sub)), joint=True, fixed=fixed))
+    return done(replace(found, baseline=makespan(list_schedule(sub)), joint=True, fixed=fixed))
 
 
 def schedule(
