@@ -179,8 +179,12 @@ class KnowledgeBase:
             return ""
         return substitute_facts(self.problem, table, limit=options.max_substitutions if options else None)
 
-    def options_and_warnings(self, options: Options | None = None, **settings: Any) -> tuple[AspOptions, list[str]]:
+    def options_and_warnings(self, options: Request = None, **settings: Any) -> tuple[AspOptions, list[str]]:
         """The solver options of a request (:meth:`options`) and the warnings about its names."""
+        if isinstance(options, AspOptions):
+            if settings:
+                raise TypeError(f"settings {', '.join(settings)} apply to Options, not to solver options")
+            return options, []
         request = Options.of(options, **settings)
         warnings = unknown_names(self.problem, request.constraints)
         solver = request.solver()
@@ -192,12 +196,10 @@ class KnowledgeBase:
         weights, warning = unit_weights(table, [u.motion for u in self.problem.units])
         return replace(solver, motion_costs=weights), warnings + ([] if warning is None else [warning])
 
-    def options(self, options: Options | None = None, **settings: Any) -> AspOptions:
-        """The solver options of a request: names checked, programs read, motion costs as weights."""
+    def options(self, options: Request = None, **settings: Any) -> AspOptions:
+        """The solver options of a request: names checked, programs read, motion costs as weights
+        (solver options given already: themselves)."""
         return self.options_and_warnings(options, **settings)[0]
-
-    def _solver(self, options: Request) -> AspOptions:
-        return options if isinstance(options, AspOptions) else self.options(options)
 
     def solving_problem(self, solver: AspOptions) -> Problem:
         """The problem answers with ``solver`` are found on (with its motion costs: measures include ``cost``)."""
@@ -229,7 +231,7 @@ class KnowledgeBase:
 
     def solve_iter(self, goal_ids: Jobs, method: str = "asp", options: Request = None) -> Iterator[results.Tree]:
         """Trees for ``goal_ids`` one after another (a tuple of ids: a meal)."""
-        solver = self._solver(options)
+        solver = self.options(options)
         if methods.get(method).kind != "asp" and solver.programs:
             raise InputError(f"constraints apply to ASP methods only; {method!r} is a search baseline")
         for raw in solve_goals(self.solving_problem(solver), goal_ids, method, solver):
@@ -315,7 +317,7 @@ class KnowledgeBase:
         self, goal_ids: Sequence[int], methods: Sequence[str] = compare_mod.DEFAULT_METHODS, options: Request = None
     ) -> Iterator[results.Comparison]:
         """:meth:`compare` goal by goal: a one-row :class:`Comparison` as soon as each goal is done."""
-        solver = self._solver(options)
+        solver = self.options(options)
         for row in compare_mod.compare_iter(self.solving_problem(solver), list(goal_ids), list(methods), solver):
             yield results.Comparison(self, [row])
 
@@ -412,7 +414,7 @@ class KnowledgeBase:
         self, goal_ids: Jobs, spec: ScheduleSpec | None = None, options: Request = None, **how: Any
     ) -> Iterator[results.Schedule]:
         """:meth:`schedule` goal after goal; ``how``: ``joint``, ``encoding``, ``progress`` (docs/api.md)."""
-        solver = self._solver(options)
+        solver = self.options(options)
         trees = self.solve_iter(goal_ids, "asp", solver)
         yield from results.schedule_trees(trees, solver, spec or ScheduleSpec(), **how)
 

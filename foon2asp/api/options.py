@@ -116,11 +116,10 @@ class Options:
 
     @classmethod
     def of(cls, options: Options | None = None, /, **settings: Any) -> Options:
-        """``options`` (default: all defaults) with the keyword ``settings`` applied (fields and constraints)."""
+        """``options`` (default: all defaults) with the keyword ``settings`` (:data:`KEYWORDS`) applied."""
         base = options if options is not None else cls()
-        own = {f.name for f in fields(cls)}
-        check_keywords(settings, own | set(CONSTRAINT_KEYWORDS))
-        changes: dict = {k: v for k, v in settings.items() if k in own}
+        check_keywords(settings, KEYWORDS)
+        changes: dict = {k: v for k, v in settings.items() if k not in CONSTRAINT_KEYWORDS}
         spec = {
             CONSTRAINT_KEYWORDS[k]: v if k == "max_units" else tuple(str(x) for x in v)
             for k, v in settings.items()
@@ -201,6 +200,10 @@ class Options:
             opt_strategy=self.opt_strategy,
             threads=1 if self.threads is None else self.threads,
         )
+
+
+#: the keywords of a request: the fields of :class:`Options` and the constraint keywords
+KEYWORDS = frozenset(f.name for f in fields(Options)) | frozenset(CONSTRAINT_KEYWORDS)
 
 
 def schedule_request(spec: ScheduleSpec | None, settings: dict[str, Any]) -> dict[str, Any]:

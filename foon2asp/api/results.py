@@ -39,7 +39,7 @@ class Source(Protocol):
 
     problem: Problem
 
-    def options(self, options: Options | None = None, **settings: Any) -> AspOptions: ...
+    def options(self, options: Options | AspOptions | None = None, **settings: Any) -> AspOptions: ...
 
     def solving_problem(self, solver: AspOptions) -> Problem: ...
 
@@ -166,7 +166,7 @@ class Tree(Answer):
         """This tree's units scheduled with the proven-minimal makespan (the agents and ``joint``
         as in :meth:`KnowledgeBase.schedule`; ``joint``: this tree's own schedule is ``fixed``)."""
         request = schedule_request(spec, settings)
-        solver = options if isinstance(options, AspOptions) else self.kb.options(options, **settings)
+        solver = self.kb.options(options, **settings)
         return next(schedule_trees([self], solver, **request))
 
     def judge(self) -> Tree:

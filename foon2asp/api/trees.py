@@ -13,7 +13,7 @@ from foon2asp.analysis import check as check_mod
 from foon2asp.analysis import consolidate as consolidate_mod
 from foon2asp.api.kb import GoalLike, KnowledgeBase
 from foon2asp.api.load import Reading, knowledge_base
-from foon2asp.api.options import CONSTRAINT_KEYWORDS, Options, check_keywords, jobs
+from foon2asp.api.options import KEYWORDS, Options, check_keywords, jobs
 from foon2asp.api.results import Answer, Raw, Tree, as_list, object_of, objects_of, tree_of, units_of
 from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset, read_goals, read_kitchen, read_motion, read_utensils
@@ -183,8 +183,7 @@ def consolidate(
     (docs/api.md); ``keywords``: the fields of :class:`foon2asp.api.load.Reading` and the request."""
     if not paths:
         raise InputError("no candidate tree given")
-    known = {f.name for f in (*fields(Reading), *fields(Options))} | set(CONSTRAINT_KEYWORDS) | {"options"}
-    check_keywords(keywords, known, "consolidate(): ")
+    check_keywords(keywords, {f.name for f in fields(Reading)} | KEYWORDS | {"options"}, "consolidate(): ")
     how = Reading.of(keywords)
     seen_as = how.projection()
     candidates = consolidate_mod.read_candidates(paths, how.strict)

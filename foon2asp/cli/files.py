@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import sys
 from collections.abc import Callable
-from dataclasses import replace
+from dataclasses import asdict, replace
 from functools import partial
 from pathlib import Path
 
@@ -82,14 +82,16 @@ def check(trees, data, goal, goals, fmt, optimum, spec, options):
         data.require_foon(options, "a FOON (--data or --foon)")
         if goals:
             raise InputError("--goals needs a FOON (--data or --foon); to judge a tree on its own, use --goal")
-        files = {"kitchen": data.kitchen, "utensils": data.utensils, "utensil_rule": data.utensil_rule}
-        judge: Callable[[str], list] = partial(api.check_tree, goal=list(goal) or None, strict=data.strict, **files)
+        r = data.reading
+        files = {"kitchen": r.kitchen, "utensils": r.utensils, "utensil_rule": r.utensil_rule, "strict": r.strict}
+        judge: Callable[[str], list] = partial(api.check_tree, goal=list(goal) or None, **files)
         problem = None
     else:
         kb = data.load(goals)
         among = kb.select_goals((), goals) if goals else None
+        strict, solver = data.reading.strict, kb.options(options)
         judge = partial(
-            kb.check_all, goal=list(goal) or None, optimum=optimum, goals=among, strict=data.strict, options=options
+            kb.check_all, goal=list(goal) or None, optimum=optimum, goals=among, strict=strict, options=solver
         )
         problem = kb.problem
     for path in trees:
@@ -127,12 +129,12 @@ def draw(tree, data, goal, output, fmt, options):
         draw_mod.require_dot()
     kb = None
     if data.data_dir is not None:
-        kb = replace(data, strict=False).load()  # --strict is about the tree file
+        kb = replace(data, reading=replace(data.reading, strict=False)).load()  # --strict is about the tree file
     else:
         data.require_foon(options, "--data DIR")
     warnings: list[str] = []
     count = api.draw_file(
-        tree, output, fmt=fmt, kb=kb, goal=goal, strict=data.strict, warnings=warnings, options=options
+        tree, output, fmt=fmt, kb=kb, goal=goal, strict=data.reading.strict, warnings=warnings, options=options
     )
     warn_all(warnings)
     click.echo(f"drew {count} tree(s) from {tree} -> {output}", err=True)
@@ -151,7 +153,7 @@ def draw(tree, data, goal, output, fmt, options):
     ),
     opt.MATCHING,
 )
-def merge(files, output, strict, fmt, match, options):
+def merge(files, output, fmt, match, options):
     """Merge FOON subgraphs into one universal FOON (duplicate units merged).
 
     FILES may be FOON text, FOON JSON or the unit-list JSON of generated trees
@@ -161,9 +163,9 @@ def merge(files, output, strict, fmt, match, options):
     """
     if options.substitutes is not None:
         raise InputError("merge writes a FOON: --substitutes applies where trees are found (solve, check, ...)")
-    foon = api.read_foons(files, strict)
+    foon = api.read_foons(files, match.strict)
     warn_all(foon.warnings)
-    foon, joined = api.match_foon(foon, **match)
+    foon, joined = api.match_foon(foon, match.level, match.normalize, match.synonyms)
     for line in joined_lines(joined):
         click.echo(line, err=True)
     api.write_foon(foon, output, fmt, header=f"merged by foon2asp from {len(files)} file(s)")
@@ -201,8 +203,8 @@ def consolidate(trees, goal, fmt, output, options, match, **given):
     beside the optimum's and which of its units the tree uses.  An unreachable goal comes with
     the fewest objects to add to the kitchen ('missing').
     """
-    # given: --goals, --kitchen, the file options and --together, as api.consolidate names them
-    found = api.consolidate(list(trees), list(goal) or None, options=options, **given, **match)
+    # given: --goals and --together, as api.consolidate names them
+    found = api.consolidate(list(trees), list(goal) or None, options=options, **given, **asdict(match))
     warn_all(found.warnings)
     emit(found.render(fmt), output, f"wrote the {fmt} report of {len(found)} goal(s)")
     sys.exit(exit_code((r.status, None) for r in found))

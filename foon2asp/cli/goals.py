@@ -158,7 +158,7 @@ def compare(data, goal, goals, method_list, fmt, together, options, progress):
     solver = solver_of(kb, options)
     if together:
         asp = [n for n in names if not is_search(n)]
-        meal = kb.compare_meal(goal_ids, (asp or ["asp"])[0], options=options)
+        meal = kb.compare_meal(goal_ids, (asp or ["asp"])[0], options=solver)
         click.echo(report.render("compare", fmt, kb.problem, meal), nl=False)
         sys.exit(exit_code([(meal.meal.status, meal.meal.extra.get("valid"))]))
     rows = []
@@ -186,10 +186,10 @@ def missing(data, goal, goals, fmt, together, options, progress):
     Default goals: the goals file's.  With --together: the fewest objects for the whole meal.
     """
     kb, jobs = data.load_goals(goal, goals, together)
-    solver_of(kb, options)  # the request checked, its warnings first
+    solver = solver_of(kb, options)  # the request checked, its warnings first
     results = []
     for g in progress_bar(jobs, len(jobs), progress, "missing"):
-        results.append(kb.missing(g, options=options).raw)
+        results.append(kb.missing(g, options=solver).raw)
         if fmt == "jsonl":
             click.echo(report.render("missing", fmt, kb.problem, results[-1:]), nl=False)
     if fmt != "jsonl":
@@ -376,13 +376,13 @@ def batch(data, goal, goals, method_list, output, summary_fmt, with_schedules, s
     summary counts the valid trees per method. Default goals: the goals file's.
     """
     kb, goal_ids = data.load_goals(goal, goals)
-    solver_of(kb, options)  # the request checked, its warnings before the run
+    solver = solver_of(kb, options)  # the request checked, its warnings before the run
     # run_options: --workers, --resume, --progress, --fsync and --scheduler, as kb.batch names them
     run = kb.batch(goal_ids, output, methods=methods_of(method_list), options=options, **run_options)
     answers = [(r.get("status", "?"), r.get("valid")) for r in run.records]
     if with_schedules:
         path = api.schedules_path(output)
-        found = run.schedule(spec, output=path, options=options)
+        found = run.schedule(spec, output=path, options=solver)
         click.echo(f"wrote {len(found)} schedule(s) to {path}", err=True)
         answers += [("optimal" if s.status in ("optimal", "unschedulable") else s.status, None) for s in found]
     click.echo(run.render(summary_fmt), nl=False)

@@ -11,13 +11,14 @@ import functools
 import inspect
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, fields
+from dataclasses import asdict, dataclass, field
 from typing import Any
 
 import click
 
 from foon2asp import api, report
-from foon2asp.api.options import NOT_A_TIME_LIMIT
+from foon2asp.api.load import Reading
+from foon2asp.api.options import KEYWORDS, NOT_A_TIME_LIMIT, SPEC_KEYWORDS, jobs
 from foon2asp.cli.main import EXIT_CODES, main, warn_all
 from foon2asp.errors import InputError, escape
 
@@ -78,31 +79,15 @@ def flag(flags: str, help: str, **kw):
 
 # ---------------------------------------------------------------- the gathered values
 
-#: the option parameters that are keywords of :meth:`foon2asp.api.Options.of`
-SETTINGS = frozenset(
-    "objective motion_cost time_limit gap models all_optimal max_depth human_steps opt_strategy threads grounding"
-    " shortcuts constraint_files rules forbid_motions forbid_objects require_motions require_objects max_units"
-    " substitutes max_substitutions".split()
-)
-#: the looser-matching options (keywords of :func:`foon2asp.api.load`), as they are when left out
-MATCH_DEFAULTS = {"level": 3, "normalize": False, "synonyms": None}
-#: the schedule options (keywords of :meth:`foon2asp.api.ScheduleSpec.from_files`)
-SPEC = ("agents", "durations", "capabilities", "resources")
-
 
 @dataclass(frozen=True)
 class DataArgs:
-    """The data options of a command (--data, --foon, --kitchen, --motion, --utensils, --utensil-rule,
-    --strict, and the looser matching)."""
+    """The data options of a command: --data, --foon and how the files are read (--kitchen, --motion,
+    --utensils, --utensil-rule, --strict and the looser matching)."""
 
     data_dir: str | None = None
     foon: tuple[str, ...] = ()
-    kitchen: str | None = None
-    motion: str | None = None
-    utensils: str | None = None
-    utensil_rule: str = "starter"
-    strict: bool = False
-    match: dict = field(default_factory=lambda: dict(MATCH_DEFAULTS))
+    reading: Reading = field(default_factory=Reading)
 
     def load(self, goals_file: str | None = None) -> api.KnowledgeBase:
         """The knowledge base these options name (``goals_file``: a ``--goals FILE`` to read); its
@@ -111,29 +96,29 @@ class DataArgs:
             raise InputError(
                 "no data given: use --data DIR, --foon FILE (with kitchen.json ... beside it) or --data demo"
             )
-        files = {k: getattr(self, k) for k in ("kitchen", "motion", "utensils", "utensil_rule", "strict")}
         goals = goals_file if goals_file not in (None, "all", "all-objects") else None
-        kb = api.load(self.data_dir, foon=list(self.foon) or None, goals=goals, **files, **self.match)
+        kb = api.load(self.data_dir, foon=list(self.foon) or None, goals=goals, **asdict(self.reading))
         warn_all(kb.warnings)
         return kb
 
     def load_goals(self, goal: tuple[str, ...], goals: str | None, together: bool = False) -> tuple:
         """The knowledge base and the goals ``--goal`` and ``--goals`` name (``together``: one meal, a tuple)."""
         kb = self.load(goals)
-        ids = kb.select_goals(goal, goals)
-        return kb, [tuple(dict.fromkeys(ids))] if together else ids
+        return kb, jobs(kb.select_goals(goal, goals), together)
 
     def require_foon(self, options: api.Options, what: str) -> None:
         """Raise when looser matching is asked for without ``what`` (a FOON) to compare with."""
-        if self.match != MATCH_DEFAULTS or options.substitutes is not None:
+        r = self.reading
+        if (
+            Reading(level=r.level, normalize=r.normalize, synonyms=r.synonyms) != Reading()
+            or options.substitutes is not None
+        ):
             raise InputError(f"--level, --normalize, --synonyms and --substitutes need {what} to compare with")
 
 
-DATA_FIELDS = frozenset(f.name for f in fields(DataArgs)) - {"match"}
-
-
 def _gather(func: Callable) -> Callable:
-    """``func`` called with its options gathered into ``data``, ``options``, ``spec`` and ``match``."""
+    """``func`` called with its options gathered into ``data`` (or ``match``: the :class:`Reading`),
+    ``options`` and ``spec``."""
     wants = inspect.signature(func).parameters
 
     @functools.wraps(func)
@@ -142,15 +127,14 @@ def _gather(func: Callable) -> Callable:
             raise InputError("--max-substitutions needs --substitutes FILE")
         if kw.get("models", 1) > 1 and kw.get("all_optimal"):
             raise click.UsageError("--models and --all-optimal exclude each other")
-        match = {k: kw.pop(k, default) for k, default in MATCH_DEFAULTS.items()}
         if "data" in wants:
-            kw["data"] = DataArgs(**{k: kw.pop(k) for k in DATA_FIELDS & kw.keys()}, match=match)
+            kw["data"] = DataArgs(kw.pop("data_dir", None), tuple(kw.pop("foon", ())), Reading.of(kw))
         elif "match" in wants:
-            kw["match"] = match
+            kw["match"] = Reading.of(kw)
         if "options" in wants:
-            kw["options"] = api.Options.of(**{k: kw.pop(k) for k in SETTINGS & kw.keys()})
+            kw["options"] = api.Options.of(**{k: kw.pop(k) for k in KEYWORDS & kw.keys()})
         if "spec" in wants:
-            kw["spec"] = api.ScheduleSpec.from_files(**{k: kw.pop(k) for k in SPEC})
+            kw["spec"] = api.ScheduleSpec.from_files(**{k: kw.pop(k) for k in SPEC_KEYWORDS})
         return func(**kw)
 
     return wrapper
