@@ -42,7 +42,7 @@ class Instance:
     agents: list[tuple[str, str]]
     #: kind -> number of agents
     kinds: dict[str, int]
-    #: resource label -> capacity (only the resources some unit uses)
+    #: resource label -> capacity
     capacity: dict[str, int] = field(default_factory=dict)
 
     @property
@@ -74,12 +74,7 @@ class Instance:
         keep = tuple(sorted(set(units)))
         mine = set(keep)
         needs = {u: tuple((o, tuple(m for m in ms if m in mine)) for o, ms in self.needs[u]) for u in keep}
-        uses = {u: self.uses[u] for u in keep}
-        used = {r for rs in uses.values() for r in rs}
-        capacity = {r: c for r, c in self.capacity.items() if r in used}
-        return replace(
-            self, units=keep, durations={u: self.durations[u] for u in keep}, needs=needs, uses=uses, capacity=capacity
-        )
+        return replace(self, units=keep, durations={u: self.durations[u] for u in keep}, needs=needs)
 
     def incapable(self) -> list[int]:
         """The units no agent can do."""
@@ -117,15 +112,15 @@ def instance(problem: Problem, units: Iterable[int], spec: ScheduleSpec) -> Inst
         for o in problem.products[u]:
             makers.setdefault(o, []).append(u)
     durations, needs, uses = {}, {}, {}
-    labels = {o.label for o in problem.objects}
-    limited = {label: cap for label, cap in spec.resources.items() if label in labels}
     for u in ids:
         unit = problem.units[u]
         durations[u] = {k: spec.durations.of(k, unit.motion) for k in kinds if spec.can(k, unit.motion)}
         objs = [o for o in problem.required[u] if o not in problem.kitchen]
         needs[u] = tuple((o, tuple(m for m in makers.get(o, ()) if m != u)) for o in objs)
-        uses[u] = tuple(sorted({o.label for o in unit.inputs if o.label in limited}))
-    return Instance(ids, durations, needs, uses, spec.agent_list(), kinds, limited).restrict(ids)  # only used resources
+        uses[u] = tuple(sorted({o.label for o in unit.inputs if o.label in spec.resources}))
+    used = {r for rs in uses.values() for r in rs}
+    capacity = {r: c for r, c in spec.resources.items() if r in used}
+    return Instance(ids, durations, needs, uses, spec.agent_list(), kinds, capacity)
 
 
 def earliest(inst: Instance) -> dict[int, int]:
