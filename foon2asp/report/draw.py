@@ -6,12 +6,12 @@ highlighted is a :class:`Marks`.  Rendering to SVG, PNG or PDF runs Graphviz.
 
 from __future__ import annotations
 
-import html
 import re
 import shutil
 import textwrap
-from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from html import escape
 from pathlib import Path
 
 import graphviz
@@ -43,8 +43,7 @@ class Marks:
     """What a drawing highlights (unit positions index the drawn list of units)."""
 
     title: str = ""
-    goal: FoonObject | None = None
-    #: the other goals of a meal (gold like ``goal``)
+    #: the goals (gold)
     goals: frozenset[FoonObject] = frozenset()
     kitchen: frozenset[FoonObject] = frozenset()
     human: frozenset[int] = frozenset()
@@ -61,10 +60,6 @@ class Marks:
     legend: str | None = None
 
 
-def _esc(text: str) -> str:
-    return html.escape(text, quote=True)
-
-
 #: texts in a drawing are clipped to these lengths (Graphviz refuses very long strings)
 MAX_TEXT = 200
 MAX_ROWS = 12
@@ -78,15 +73,15 @@ def _clip(text: str, limit: int = MAX_TEXT) -> str:
 
 def object_label(obj: FoonObject) -> str:
     """An HTML-like Graphviz label: the label in bold, then states, ingredients, container."""
-    rows = [f"<B>{_esc(_clip(obj.label))}</B>"]
+    rows = [f"<B>{escape(_clip(obj.label))}</B>"]
     states = list(obj.states)
-    rows += [_esc(_clip(s)) for s in states[:MAX_ROWS]]
+    rows += [escape(_clip(s)) for s in states[:MAX_ROWS]]
     if len(states) > MAX_ROWS:
-        rows.append(_esc(f"\u2026 {len(states) - MAX_ROWS} more states"))
+        rows.append(escape(f"\u2026 {len(states) - MAX_ROWS} more states"))
     if obj.ingredients:
-        rows.append(_esc(_clip("{" + ", ".join(obj.ingredients) + "}", 4 * MAX_TEXT)))
+        rows.append(escape(_clip("{" + ", ".join(obj.ingredients) + "}", 4 * MAX_TEXT)))
     if obj.container:
-        rows.append(_esc(f"[{_clip(obj.container)}]"))
+        rows.append(escape(f"[{_clip(obj.container)}]"))
     return "<" + "<BR/>".join(rows) + ">"
 
 
@@ -97,12 +92,12 @@ def build_graph(
     marks = marks or Marks()
     g = graphviz.Digraph(name)
     g.attr(rankdir="TB", fontname="Helvetica", fontsize="12", labelloc="t", nodesep="0.25", ranksep="0.35")
-    title = [_esc(_clip(marks.title, MAX_TOOLTIP))] if marks.title else []
+    title = [escape(_clip(marks.title, MAX_TOOLTIP))] if marks.title else []
     note = textwrap.wrap(
         " ".join(_clip(marks.note, MAX_TOOLTIP).split()), 90, break_long_words=False, break_on_hyphens=False
     )
-    title += [f'<FONT COLOR="{CYCLE}">{_esc(line)}</FONT>' for line in note]
-    title.append(f'<FONT POINT-SIZE="9">{_esc(LEGEND if marks.legend is None else marks.legend)}</FONT>')
+    title += [f'<FONT COLOR="{CYCLE}">{escape(line)}</FONT>' for line in note]
+    title.append(f'<FONT POINT-SIZE="9">{escape(LEGEND if marks.legend is None else marks.legend)}</FONT>')
     g.attr(label="<" + "<BR/>".join(title) + ">")
     g.attr("node", fontname="Helvetica", fontsize="10")
     g.attr("edge", arrowsize="0.6")
@@ -120,7 +115,7 @@ def build_graph(
         if obj in marks.kitchen:
             attrs["fillcolor"] = KITCHEN_FILL
             classes.append("kitchen")
-        if obj == marks.goal or obj in marks.goals:
+        if obj in marks.goals:
             attrs.update(fillcolor=GOAL_FILL, peripheries="2", penwidth="2")
             classes.append("goal")
         if any(obj == o for o, _ in cycle):
@@ -153,38 +148,40 @@ def build_graph(
     return g
 
 
-def cycle_marks(problem: Problem, finding: Finding | None, position: dict[int, int]) -> tuple:
-    """The :attr:`Marks.cycle` of ``finding`` (``position``: FOON unit id -> drawn position)."""
-    return tuple((problem.objects[o], position.get(u)) for o, u in finding.cycle) if finding else ()
-
-
-def kitchen_items(problem: Problem, units: list[Unit]) -> frozenset[FoonObject]:
-    """The inputs of ``units`` that are in the problem's kitchen."""
-    return frozenset(o for u in units for o in u.inputs if problem.foon.object_ids.get(o) in problem.kitchen)
+def checked_marks(
+    problem: Problem,
+    title: str,
+    goals: Iterable[FoonObject],
+    units: list[Unit],
+    ids: list[int | None],
+    finding: Finding | None,
+) -> Marks:
+    """Marks of ``units`` checked against ``problem`` (``ids``: their FOON unit ids, None when not
+    in the FOON): the kitchen items, and the problem and blocking cycle of ``finding``."""
+    position = {u: k for k, u in enumerate(ids) if u is not None}
+    return Marks(
+        title=title,
+        goals=frozenset(goals),
+        kitchen=frozenset(o for u in units for o in u.inputs if problem.foon.object_ids.get(o) in problem.kitchen),
+        note=finding.message if finding is not None else "",
+        cycle=tuple((problem.objects[o], position.get(u)) for o, u in finding.cycle) if finding else (),
+    )
 
 
 def tree_marks(problem: Problem, tree: TaskTree) -> Marks:
-    """Marks of a solved tree: goal, kitchen items, human steps, and its blocking cycle."""
-    position = {u: k for k, u in enumerate(tree.units)}
-    valid, finding = True, None
+    """Marks of a solved tree: goals, kitchen items, human steps, and its blocking cycle."""
+    finding = None
     for goal in tree.meal if tree.units else ():  # a meal is valid when every dish is made
-        validation, finding = check_units(problem, goal, tree.units)
-        valid = validation.valid
-        if not valid:
+        _, finding = check_units(problem, goal, tree.units)
+        if finding is not None:
             break
-    human = frozenset(position[u] for u in tree.extra.get("human_steps", []) if u in position)
     title = f"{problem.objects[tree.goal]} -- {tree.method}, {tree.status}, {len(tree.units)} units"
-    if not valid:
-        title += ", INVALID"
-    return Marks(
-        title=title,
-        goal=problem.objects[tree.goal],
-        goals=frozenset(problem.objects[g] for g in tree.meal),
-        kitchen=kitchen_items(problem, [problem.units[u] for u in tree.units]),
-        human=human,
-        note=finding.message if finding is not None else "",
-        cycle=cycle_marks(problem, finding, position),
-    )
+    title += ", INVALID" if finding else ""
+    units = [problem.units[u] for u in tree.units]
+    marks = checked_marks(problem, title, [problem.objects[g] for g in tree.meal], units, list(tree.units), finding)
+    human = set(tree.extra.get("human_steps", []))
+    marks.human = frozenset(k for k, u in enumerate(tree.units) if u in human)
+    return marks
 
 
 def _graph(drawings: list[tuple[list[Unit], Marks]]) -> graphviz.Digraph:
@@ -203,40 +200,38 @@ def trees_graph(problem: Problem, trees: list[TaskTree]) -> graphviz.Digraph:
     return _graph([([problem.units[u] for u in t.units], tree_marks(problem, t)) for t in trees])
 
 
-def _top_product(units: list[Unit]) -> FoonObject | None:
-    """Without data: the one product of the last unit that no unit of the tree needs."""
+def _top_product(units: list[Unit]) -> list[FoonObject]:
+    """Without data: the one product of the last unit that no unit of the tree needs (none or one)."""
     if not units:
-        return None
+        return []
     needed = {o for u in units for o in u.inputs}
     tops = [o for o in dict.fromkeys(units[-1].outputs) if not o.is_bare() and o not in needed]
-    return tops[0] if len(tops) == 1 else None
+    return tops if len(tops) == 1 else []
 
 
-def record_marks(record: dict, units: list[Unit], problem: Problem | None = None) -> Marks:
+def record_marks(record: dict, units: list[Unit], problem: Problem | None = None, index: dict | None = None) -> Marks:
     """Marks of a result record (a line of a batch's results) whose units are ``units``: its goals
-    and verdict; with ``problem`` also its kitchen items and an invalid tree's blocking cycle."""
+    and verdict; with ``problem`` (and ``index``, its unit ids by :meth:`Unit.key`) also its
+    kitchen items and an invalid tree's blocking cycle."""
     goals = [g for g in (record.get("goals") or [record.get("goal")]) if isinstance(g, dict)]
     made = [o for o in map(record_object, goals) if o is not None]
-    goal = made[0] if made else _top_product(units)
-    valid = record.get("valid")
     label = " + ".join(str(g.get("label", "?")) for g in goals) or "?"
     method = record.get("requested_method", record.get("method", "?"))
     title = f"{label} -- {method}, {record.get('status')}, {len(units)} units"
-    if valid is False:
-        title += ", INVALID"
-    marks = Marks(title=title, goal=goal, goals=frozenset(made), note=str(record.get("problem") or ""))
+    title += ", INVALID" if record.get("valid") is False else ""
+    note = str(record.get("problem") or "")
     if problem is None:
-        return marks
-    oid = problem.foon.object_ids
-    marks.kitchen = kitchen_items(problem, units)
-    index = {u.key(): i for i, u in enumerate(problem.units)}
+        return Marks(title=title, goals=frozenset(made or _top_product(units)), note=note)
+    index = index if index is not None else {u.key(): i for i, u in enumerate(problem.units)}
     ids = [index.get(u.key()) for u in units]
-    if valid is False and None not in ids:
+    oid = problem.foon.object_ids
+    finding = None
+    if record.get("valid") is False and None not in ids:
         known = [u for u in ids if u is not None]
-        for g in (g for g in made if g in oid):
-            _, finding = check_units(problem, oid[g], known)
-            if finding is not None and finding.cycle:
-                return replace(marks, cycle=cycle_marks(problem, finding, {u: k for k, u in enumerate(known)}))
+        found = (check_units(problem, oid[g], known)[1] for g in made if g in oid)
+        finding = next((f for f in found if f is not None and f.cycle), None)
+    marks = checked_marks(problem, title, made or _top_product(units), units, ids, finding)
+    marks.note = note
     return marks
 
 
@@ -245,18 +240,11 @@ def tree_file_marks(tree: TreeFile, problem: Problem | None = None, report: Repo
     verdict and cycle."""
     units = [tu.unit for tu in tree.units]
     if problem is None or report is None:
-        top = tree.goal or _top_product(units)
-        return Marks(title=f"{top if top else tree.path} -- {len(units)} units", goal=top)
+        top = [tree.goal] if tree.goal else _top_product(units)
+        return Marks(title=f"{top[0] if top else tree.path} -- {len(units)} units", goals=frozenset(top))
     goal = problem.objects[report.meal[0]]
-    position = {u: k for k, u in enumerate(report.ids) if u is not None}
-    verdict = "valid" if report.valid else "INVALID"
-    return Marks(
-        title=f"{goal} -- {len(units)} units, {verdict}",
-        goal=goal,
-        kitchen=kitchen_items(problem, units),
-        note=report.finding.message if report.finding is not None else "",
-        cycle=cycle_marks(problem, report.finding, position),
-    )
+    title = f"{goal} -- {len(units)} units, {'valid' if report.valid else 'INVALID'}"
+    return checked_marks(problem, title, [goal], units, report.ids, report.finding)
 
 
 def file_graph(
