@@ -13,7 +13,7 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.schedule import ScheduleSpec, joint, schedule
 from foon2asp.schedule import solve as solve_mod
 from foon2asp.schedule.check import check_schedule
-from foon2asp.schedule.spec import HUMAN, Durations, agent_names
+from foon2asp.schedule.spec import HUMAN, Durations
 from foon2asp.tree.tasktree import TaskTree, executable_order
 from helpers import as_obj, best, brute_force, build, goal_id
 
@@ -37,7 +37,7 @@ def brute_schedule(problem, units, spec):
     each placed by the serial schedule generation scheme (earliest feasible start, insertion),
     which yields every active schedule; None when no agent can do some unit.  Independent of
     foon2asp.schedule.model: needs, durations and resources come straight from the FOON."""
-    agents = agent_names(spec.agents)
+    agents = spec.agent_list()
     units = list(units)
     kitchen = problem.kitchen
     needs = {u: [o for o in problem.required[u] if o not in kitchen] for u in units}
@@ -130,7 +130,7 @@ AGENT_SETS = [(("robot", 1),), (("arm", 2),), (("arm", 1), ("human", 1)), (("arm
 def test_optimal_makespan_equals_brute_force(seed):
     rng = random.Random(seed)
     kinds = AGENT_SETS[seed % len(AGENT_SETS)]
-    n = 4 if len(agent_names(kinds)) == 3 else 5
+    n = 4 if sum(k for _, k in kinds) == 3 else 5
     problem, goal, units = random_tree(rng, n)
     spec = random_spec(rng, kinds)
     want = brute_schedule(problem, units, spec)
@@ -248,9 +248,7 @@ def longer_tree_shorter_chain():
 
 JOINT_WAYS = {
     "tree by tree": None,
-    "tree by tree, least work first": lambda mp: mp.setattr(
-        joint, "candidate_trees", lambda *a, **k: joint.Trees([], False)
-    ),
+    "tree by tree, least work first": lambda mp: mp.setattr(joint, "candidate_trees", lambda *a, **k: ([], False)),
     "one encoding": lambda mp: mp.setattr(solve_mod, "_by_trees", lambda *a, **k: (None, False, None)),
 }
 

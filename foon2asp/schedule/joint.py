@@ -113,18 +113,9 @@ class Listing:
         return "\n".join(lines) + "\n"
 
 
-@dataclass
-class Trees:
-    """The designated trees found, complete unless the cap or the time limit ended it."""
-
-    trees: list[Candidate]
-    complete: bool
-
-
-def candidate_trees(listing: Listing, time_limit: float | None, cap: int | None = None) -> Trees:
+def candidate_trees(listing: Listing, time_limit: float | None) -> tuple[list[Candidate], bool]:
     """The designated trees whose work fits the agents within the horizon and whose units can
-    each end within it (at most ``cap``, default :data:`MAX_TREES`)."""
-    cap = MAX_TREES if cap is None else cap
+    each end within it, at most :data:`MAX_TREES`; and whether they are all."""
     parts = [
         *listing.tree_parts,
         ("encodings/schedule_first.lp", encodings.encoding("schedule_first")),
@@ -142,10 +133,10 @@ def candidate_trees(listing: Listing, time_limit: float | None, cap: int | None 
             (s.arguments[0].number, s.arguments[1].number) for s in atoms if s.name == "first" and len(s.arguments) == 2
         )
         found.append((units, tuple(first)))
-        return len(found) <= cap
+        return len(found) <= MAX_TREES
 
     result = control.solve(on_model, time_limit)
-    return Trees(found[:cap], result.finished and len(found) <= cap)
+    return found[:MAX_TREES], result.finished and len(found) <= MAX_TREES
 
 
 def tree_cost(problem: Problem, units: Sequence[int], human: Sequence[int], ranked: Sequence[str]) -> tuple:
@@ -172,10 +163,6 @@ class Search:
         self.solve, self.key, self.bound, self.left = solve, key, bound, clock(time_limit)
         self.best: Any = None
         self.proven = True
-
-    def beats(self, cand: Candidate) -> bool:
-        """Can the schedule of ``cand`` beat the best?"""
-        return self.best is None or self.bound(cand) < self.key(self.best)
 
     def offer(self, cand: Candidate) -> None:
         r = self.solve(cand, self.left(), None if self.best is None else self.best.makespan)
@@ -223,7 +210,7 @@ class Search:
             work = sum(listing.inst.min_duration(u) for u in t)
             if self.best is not None and -(-work // m) > self.best.makespan:
                 return self.best, self.proven
-            if self.beats((t, ())):
+            if self.best is None or self.bound((t, ())) < self.key(self.best):
                 self.offer((t, ()))
             if first:
                 return self.best, self.proven

@@ -185,13 +185,11 @@ def _by_trees(
     schedule wins a tie."""
     problem, spec, inst, fixed = job.problem, job.spec, listing.inst, job.fixed
     single = len(inst.agents) == 1
-    if single:  # the makespan is the tree's work: least work first, the first tree is the best
-        found = joint.Trees([], False)
-    else:
-        share = left()
-        found = joint.candidate_trees(listing, None if share is None else share / 3)
-        if not found.complete and left() == 0.0:
-            return None, False, None
+    share = left()
+    # one agent: the makespan is the tree's work, so the trees are asked for least work first
+    trees, complete = ([], False) if single else joint.candidate_trees(listing, None if share is None else share / 3)
+    if not single and not complete and left() == 0.0:
+        return None, False, None
     ranked = objectives.ranked(job.options)
 
     def bound(cand: joint.Candidate) -> tuple:
@@ -205,8 +203,8 @@ def _by_trees(
             return (low, forced_human(sub), ())
         return (low, 0, joint.tree_cost(problem, units, (), ranked))
 
-    if found.complete:
-        best, proven = joint.Search(job.solve, job.rank, bound, left()).over(found.trees)
+    if complete:
+        best, proven = joint.Search(job.solve, job.rank, bound, left()).over(trees)
     else:  # too many to list: one at a time, least work first
         share = left()
         if not single and share is not None:
@@ -220,9 +218,9 @@ def _by_trees(
     if best is None:
         return (job.none(), True, None) if proven else (None, False, None)
     status = "optimal" if proven and best.status == "optimal" else "feasible"
-    way = "tree by tree" if found.complete else "tree by tree, least work first"
+    way = "tree by tree" if complete else "tree by tree, least work first"
     result = replace(best, status=status, joint=True, fixed=fixed, stats={**best.stats, "joint": way})
-    if not single and not found.complete and not proven:
+    if not single and not complete and not proven:
         return None, False, result
     return result, proven, None
 

@@ -35,11 +35,6 @@ MAX_AGENTS = 64
 _KIND = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
 
 
-def agent_names(kinds: tuple[tuple[str, int], ...]) -> list[tuple[str, str]]:
-    """``(name, kind)`` of every agent, numbered per kind: ``arm-1``, ``arm-2``, ``human-1``."""
-    return [(f"{kind}-{i}", kind) for kind, n in kinds for i in range(1, n + 1)]
-
-
 def kind_of(agent: str) -> str:
     """The kind of an agent name (``arm-2`` -> ``arm``)."""
     return agent.rsplit("-", 1)[0]
@@ -206,8 +201,8 @@ class ScheduleSpec:
         )
 
     def agent_list(self) -> list[tuple[str, str]]:
-        """``(name, kind)`` of every agent."""
-        return agent_names(self.agents)
+        """``(name, kind)`` of every agent, numbered per kind: ``arm-1``, ``arm-2``, ``human-1``."""
+        return [(f"{kind}-{i}", kind) for kind, n in self.agents for i in range(1, n + 1)]
 
     def can(self, kind: str, motion: str) -> bool:
         """Can an agent of ``kind`` do ``motion``?"""
