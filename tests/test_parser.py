@@ -163,3 +163,20 @@ def test_parser_fast_path_errors_and_ids():
     ):
         with pytest.raises(InputError, match=needle):
             parse_text(text)
+
+
+def test_read_foon_streams_lines(tmp_path):
+    """Reading a large FOON holds its text, not also a list of its lines."""
+    import tracemalloc
+
+    path = tmp_path / "big.txt"
+    path.write_text(IDLESS * (2_000_000 // len(IDLESS)))
+    size = path.stat().st_size
+    tracemalloc.start()
+    try:
+        foon = read_foon(path)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert len(foon.units) == 1
+    assert peak < 3 * size

@@ -29,9 +29,13 @@ def position(text: str, pos: int) -> tuple[int, int]:
     return text.count("\n", 0, pos) + 1, pos - text.rfind("\n", 0, pos)
 
 
-def lines_of(text: str) -> list[str]:
-    """The lines of ``text`` split at LF, CRLF or CR only (not at VT, FF, NEL, U+2028)."""
-    return LINE_END.split(text)
+def lines_of(text: str) -> Iterator[str]:
+    """The lines of ``text``, one at a time, split at LF, CRLF or CR only (not at VT, FF, NEL, U+2028)."""
+    start = 0
+    for m in LINE_END.finditer(text):
+        yield text[start : m.start()]
+        start = m.end()
+    yield text[start:]
 
 
 def content_lines(text: str) -> Iterator[tuple[int, str]]:
@@ -70,7 +74,9 @@ def read_text(path: str | Path, what: str, checked: bool = True) -> str:
         if size > MAX_FILE_BYTES:
             raise InputError(f"{what} file is too large ({size} bytes; at most {MAX_FILE_BYTES})", str(path))
         with open(path, "rb") as fh:
-            data = fh.read(MAX_FILE_BYTES + 1)
+            data = fh.read(size + 1)
+            if len(data) > size:  # not a regular file, or one still growing
+                data += fh.read(MAX_FILE_BYTES + 1 - len(data))
     except FileNotFoundError:
         raise InputError(f"{what} file not found", str(path)) from None
     except IsADirectoryError:

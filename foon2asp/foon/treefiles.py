@@ -135,7 +135,7 @@ _HEADER = re.compile(
 def _read_foon_tree(text: str, path: str) -> list[TreeFile]:
     """One tree, or one per ``# task tree for GOAL (...)`` line (``solve --format foon``
     for several goals); the goal and method of such a line are kept."""
-    lines = lines_of(text)
+    lines = list(lines_of(text))
     starts = [i for i, line in enumerate(lines) if _HEADER.match(line)]
     if not starts or starts[0] != 0 and any(ln.strip() and not ln.startswith("#") for ln in lines[: starts[0]]):
         starts = [0, *starts]
