@@ -18,8 +18,7 @@ import foon2asp
 from foon2asp import methods
 from foon2asp.asp.session import AspOptions, Session
 from foon2asp.batch.pool import BatchSpec
-from foon2asp.batch.results import read_results, summarize
-from foon2asp.batch.run import run_batch
+from foon2asp.batch.results import read_results, run_batch, summarize
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.methods.runner import GoalRunner

@@ -41,7 +41,7 @@ from foon2asp.api.trees import (
     draw_file,
 )
 from foon2asp.asp.options import OBJECTIVES as _OBJECTIVES
-from foon2asp.batch.schedules import schedules_path
+from foon2asp.batch.results import schedules_path
 from foon2asp.foon.goals import OBJECT_FILTERS
 from foon2asp.foon.motioncost import PRECISION_TEXT as MOTION_COST_PRECISION
 from foon2asp.foon.problem import UTENSIL_RULES

@@ -26,8 +26,8 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.asp.substitutes import report as report_substitutions
 from foon2asp.asp.substitutes import substitute_facts
 from foon2asp.batch import cluster
-from foon2asp.batch import run as batch_run
 from foon2asp.batch.pool import BatchSpec
+from foon2asp.batch.results import run_batch
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.loaders import Dataset, read_goals
@@ -398,7 +398,7 @@ class KnowledgeBase:
         )
         executor = cluster.executor(scheduler) if scheduler else None
         count = workers_count(workers)
-        outcome = batch_run.run_batch(spec, self.goal_ids(goals), output, resume, count, progress, fsync, executor)
+        outcome = run_batch(spec, self.goal_ids(goals), output, resume, count, progress, fsync, executor)
         return results.BatchRun(self, outcome)
 
     def schedule(

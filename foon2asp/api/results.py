@@ -19,8 +19,7 @@ from foon2asp.analysis import compare as compare_mod
 from foon2asp.api.options import Options, schedule_request
 from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.options import AspOptions
-from foon2asp.batch.results import summarize
-from foon2asp.batch.schedules import schedule_records
+from foon2asp.batch.results import schedule_records, summarize
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem

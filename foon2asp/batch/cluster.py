@@ -24,7 +24,7 @@ def _run_chunk(token: str, spec: BatchSpec, tasks: list[tuple[int, str]]) -> lis
 
 
 def executor(scheduler, chunk: int = 8) -> Callable[[BatchSpec, list[tuple[int, str]]], Iterator[tuple[int, str, str]]]:
-    """A batch executor for :func:`foon2asp.batch.run.run_batch` on ``scheduler``
+    """A batch executor for :func:`foon2asp.batch.results.run_batch` on ``scheduler``
     (an address such as ``tcp://host:8786`` or a ``distributed.Client``)."""
     try:
         import distributed

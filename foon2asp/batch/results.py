@@ -1,4 +1,5 @@
-"""The results file of a batch: one JSON line per result, a header, resumable.
+"""A batch's results file (one JSON line per result, a header, resumable), the run that fills it
+and the schedules of its trees (``batch --schedule``).
 
 What survives a kill or a crash, and what ``--resume`` refuses: docs/batch.md, "The results file".
 """
@@ -9,22 +10,34 @@ import hashlib
 import json
 import os
 import statistics
+import sys
 import time
 from collections import Counter
+from collections.abc import Callable, Iterable
+from dataclasses import replace
 from pathlib import Path
+
+from tqdm import tqdm
 
 try:
     import fcntl
 except ModuleNotFoundError:  # pragma: no cover - not POSIX
     fcntl = None  # type: ignore[assignment]
 
+from foon2asp import methods as methods_mod
+from foon2asp.analysis.check import unit_index
 from foon2asp.asp.facts import facts
 from foon2asp.asp.interrupts import deferred_signals
-from foon2asp.batch.pool import BatchSpec
+from foon2asp.asp.options import AspOptions
+from foon2asp.batch.pool import AUTO, BatchSpec, Execution, refuse_while_starting
 from foon2asp.errors import InputError
+from foon2asp.foon.foonjson import parse_json
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.reading import loads as safe_loads
-from foon2asp.tree.results import WITH_TREE, record_object
+from foon2asp.methods.parts import GROUNDING_CHOICES, GROUNDINGS, choose_grounding
+from foon2asp.schedule import DEFAULT_ENCODING, ScheduleResult, ScheduleSpec, schedule
+from foon2asp.tree.results import WITH_TREE, BatchReport, record_object
+from foon2asp.tree.tasktree import TaskTree, executable_order, measures
 
 
 def goal_key(problem: Problem, record: dict) -> int | None:
@@ -257,3 +270,117 @@ def summarize(records: list[dict]) -> list[dict]:
             }
         )
     return rows
+
+
+def run_batch(
+    spec: BatchSpec,
+    goals: list[int],
+    output: str | Path | None,
+    resume: bool = False,
+    workers: int = 1,
+    progress: bool | None = None,
+    sync: bool = True,
+    executor: Callable[[BatchSpec, list[tuple[int, str]]], Iterable[tuple[int, str, str]]] | None = None,
+) -> BatchReport:
+    """Solve every (goal, method) pair of ``goals`` x ``spec.methods`` and append the results to
+    ``output`` (an existing, non-empty one only with ``resume``); ``workers`` as
+    :class:`~foon2asp.batch.pool.Execution` takes them, ``executor`` replaces the pool (Dask)."""
+    refuse_while_starting()  # a worker running the main script again must not start its batch
+    for name in spec.methods:
+        methods_mod.get(name)  # unknown names fail before any work
+    reason = ""
+    if spec.options.substitutes:  # the goal runner grounds the whole FOON with substitutes
+        spec = replace(spec, grounding="whole")
+        reason = "with substitutes, a goal's part would leave out the kitchen items that stand in"
+    elif spec.grounding == "auto":
+        grounding, reason = choose_grounding(spec.problem, goals)
+        spec = replace(spec, grounding=grounding)
+    elif spec.grounding not in GROUNDINGS:
+        raise InputError(f"unknown grounding {spec.grounding!r} (have {', '.join(GROUNDING_CHOICES)})")
+    out, previous = (None, []) if output is None else open_results(output, configuration(spec), resume, sync)
+    try:
+        todo, skipped = pending_tasks(spec.problem, goals, spec.methods, previous)
+        t0 = time.perf_counter()
+        new_records: list[dict] = []
+        disable = not sys.stderr.isatty() if progress is None else not progress
+        bar = tqdm(total=len(todo), unit="result", desc="batch", file=sys.stderr, disable=disable, smoothing=0.05)
+        results: Iterable[tuple[int, str, str]] = ()
+        used = 1 if workers == AUTO else workers  # the processes that ran tasks (the pool's, once it started)
+        try:
+            results = executor(spec, todo) if executor is not None else Execution(spec, todo, workers)
+            for _goal, _method, line in results:
+                if out is not None:
+                    out.append(line)
+                new_records.append(json.loads(line))
+                bar.update(1)
+            used = getattr(results, "workers", used)
+        finally:
+            close = getattr(results, "close", None)
+            if close is not None:
+                close()  # stops a pool at once
+            bar.close()
+    finally:
+        if out is not None:
+            out.close()
+    elapsed = time.perf_counter() - t0
+    wanted = {(g, m) for g in goals for m in spec.methods}
+    kept = [r for r in previous if record_key(spec.problem, r) in wanted]
+    output = str(output) if output else None
+    return BatchReport(len(new_records), skipped, elapsed, kept + new_records, used, output, spec.grounding, reason)
+
+
+def schedules_path(output: str | Path) -> Path:
+    """Where the schedules of the results file ``output`` go: beside it, ``.schedules.json``."""
+    return Path(output).with_suffix(".schedules.json")
+
+
+def record_tree(problem: Problem, record: dict) -> TaskTree | None:
+    """The task tree of a result record, its units found in the FOON by motion, inputs and
+    outputs (None: its goal is not an object of this FOON; no tree: status unreachable or unknown)."""
+    goal = goal_key(problem, record)
+    if goal is None:
+        return None
+    status = str(record.get("status", "unknown"))
+    if status not in WITH_TREE or not record.get("units"):
+        status = "unreachable" if status in ("unreachable", "not-found") else "unknown"
+        return TaskTree(goal=goal, method=str(record.get("method", "?")), status=status)
+    ids = unit_index(problem)
+    units = []
+    for unit in parse_json(json.dumps(record["units"]), "results").units:
+        uid = ids.get(unit.key())
+        if uid is None:
+            raise InputError(f"a unit ({unit.motion}) of the tree for {problem.objects[goal]} is not in the FOON")
+        units.append(uid)
+    return TaskTree(
+        goal=goal,
+        method=str(record.get("method", "?")),
+        status="optimal" if status == "ranked" else status,
+        units=executable_order(problem, units),
+        cost=measures(problem, goal, units),
+    )
+
+
+def schedule_records(
+    problem: Problem,
+    records: list[dict],
+    spec: ScheduleSpec,
+    options: AspOptions,
+    method: str | None = None,
+    joint: bool = False,
+    encoding: str = DEFAULT_ENCODING,
+    view: Callable[[tuple[int, ...]], Problem] | None = None,
+) -> list[ScheduleResult]:
+    """One schedule per goal of ``records`` (those of ``method``; default: the first method in
+    them); ``view``: the problem a tree of these goals is scheduled on (with substitutes)."""
+    if method is None:
+        method = next((str(r.get("requested_method", r.get("method"))) for r in records), None)
+    out: dict[int, ScheduleResult] = {}
+    for r in records:
+        if str(r.get("requested_method", r.get("method"))) != method:
+            continue
+        tree = record_tree(problem, r)
+        if tree is None or tree.goal in out:
+            continue
+        on = problem if view is None else view(tree.meal)
+        out[tree.goal] = schedule(on, tree, spec, options, joint, options.time_limit, encoding)
+    return list(out.values())
