@@ -7,7 +7,6 @@ Each answer wraps one internal record (``raw``, of object and unit ids) once; it
 
 from __future__ import annotations
 
-import json
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from functools import partial
@@ -27,7 +26,7 @@ from foon2asp.report import draw, gantt
 from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec, schedule
 from foon2asp.schedule.check import check_schedule
 from foon2asp.schedule.result import seconds, seconds_text
-from foon2asp.tree.serialize import tree_foon, tree_json, tree_text
+from foon2asp.tree.serialize import json_list, tree_foon, tree_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
 
 T = TypeVar("T")
@@ -236,9 +235,7 @@ class Schedule(Answer):
 
 def schedules_json(schedules: list[Schedule]) -> str:
     """``schedule --format json``: a JSON list, one schedule per line."""
-    if not schedules:
-        return "[]\n"
-    return "[\n" + ",\n".join(json.dumps(s.to_dict()) for s in schedules) + "\n]\n"
+    return json_list([s.to_dict() for s in schedules]) + "\n"
 
 
 def _with_goal(progress: Callable[[dict], None], label: str, info: dict) -> None:

@@ -62,22 +62,17 @@ def is_schedule_file(path: str | Path) -> bool:
     return _records(path) is not None
 
 
-def _goal_label(record: dict) -> str:
+def _record_goals(problem: Problem, record: dict) -> tuple[str, list[int]]:
+    """The labels of the goals a record names (joined by " + ") and the ids of those in the FOON."""
     goals = record.get("goals") if "goals" in record else [record.get("goal")]
-    return " + ".join(str(g.get("label", "?")) if isinstance(g, dict) else "?" for g in goals or [])
-
-
-def _goal_ids(problem: Problem, record: dict) -> list[int]:
-    """The object ids of the goals a record names (those of the FOON)."""
-    goals = record.get("goals") if "goals" in record else [record.get("goal")]
-    ids = problem.foon.object_ids
-    out = []
-    for g in goals if isinstance(goals, list) else []:
-        if isinstance(g, dict) and isinstance(g.get("label"), str):
-            obj = FoonObject.make(g["label"], g.get("states") or (), g.get("ingredients") or (), g.get("container"))
-            if obj in ids:
-                out.append(ids[obj])
-    return out
+    goals = goals if isinstance(goals, list) else []
+    label = " + ".join(str(g.get("label", "?")) if isinstance(g, dict) else "?" for g in goals)
+    found = [
+        FoonObject.make(g["label"], g.get("states") or (), g.get("ingredients") or (), g.get("container"))
+        for g in goals
+        if isinstance(g, dict) and isinstance(g.get("label"), str)
+    ]
+    return label, [problem.foon.object_ids[obj] for obj in found if obj in problem.foon.object_ids]
 
 
 def check_schedule_file(
@@ -92,13 +87,13 @@ def check_schedule_file(
     out = []
     for r in records:
         status = str(r.get("status"))
+        label, goals = _record_goals(problem, r)
         if status in ("unschedulable", "unreachable", "unknown"):
-            out.append(ScheduleVerdict(_goal_label(r), None, None, str(path), status))
+            out.append(ScheduleVerdict(label, None, None, str(path), status))
             continue
-        found = check_mod.check_schedule(view(_goal_ids(problem, r)), r, spec)
         made = r.get("makespan")
         number = made if isinstance(made, int | float) and not isinstance(made, bool) else None
-        out.append(ScheduleVerdict(_goal_label(r), found, number, str(path), status))
+        out.append(ScheduleVerdict(label, check_mod.check_schedule(view(goals), r, spec), number, str(path), status))
     return out
 
 
