@@ -13,7 +13,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from foon2asp.schedule.model import Instance, divisor, earliest, tails
+from foon2asp.schedule.model import Instance, divisor, earliest, successors, tails
 from foon2asp.schedule.spec import HUMAN
 
 
@@ -273,11 +273,7 @@ def _chain_human(inst: Instance, horizon: int, start: Times, tail: Times) -> int
     """The fewest units done by a person for every unit to fit its window and precede the unit
     after it, each at the duration of the kind doing it, over a forest of the precedence;
     every unit when no assignment fits."""
-    preds = inst.preds
-    after: dict[int, list[int]] = {u: [] for u in inst.units}
-    for v in inst.units:
-        for p in preds[v]:
-            after[p].append(v)
+    after = successors(inst.preds)
     before: dict[int, list[int]] = {u: [] for u in inst.units}
     roots = []
     for u in inst.units:

@@ -1,10 +1,8 @@
 """The two schedule encodings and their solving: time steps (plain ASP) and clingo-dl.
 
-``steps`` (``schedule_steps.lp``, or ``schedule_order.lp`` for a fixed tree without durations
-0): start steps chosen, clasp minimising the late steps, then the human units (and, joint, the
-tree objective); a fixed tree with a person in two phases, the makespan then the human units.
-``dl`` (``schedule_dl.lp``): clingo-dl start times, the makespan minimised by descending
-bounds.  Both read the facts of :func:`schedule_facts`.
+``steps``: ``schedule_steps.lp`` (``schedule_order.lp`` for a fixed tree without durations 0),
+start steps chosen by clasp; ``dl``: ``schedule_dl.lp``, clingo-dl start times, the makespan
+minimised by descending bounds.  Both read the facts of :func:`schedule_facts`.
 """
 
 from __future__ import annotations
@@ -45,14 +43,13 @@ class Solution:
 @dataclass
 class Job:
     """What both encodings solve: an instance, each unit's earliest start (``head``) and least
-    time from its start to the end (``tail``), a known makespan (``horizon``, ms; None: none)
-    and a lower bound (``floor``); for joint scheduling ``tree_parts`` (tree.lp, its
-    objectives and facts; ``levels`` objectives, ``user`` the names of user programs)."""
+    time from its start to the end (``tail``), a known makespan (``horizon``) and a lower bound
+    (``floor``), in ms; joint: ``tree_parts``, ``levels`` tree objectives and ``user`` programs."""
 
     inst: Instance
     head: dict[int, int]
     tail: dict[int, int]
-    horizon: int | None
+    horizon: int
     floor: int = 0
     args: Sequence[str] = ()
     tree_parts: Sequence[tuple[str, str]] = ()
@@ -203,7 +200,6 @@ def _steps_once(
 def solve_steps(job: Job, time_limit: float | None = None) -> Solution:
     """Solve with the time-step encoding within the known makespan ``job.horizon``: one
     lexicographic optimisation, or for a fixed tree with a person :func:`_steps_in_phases`."""
-    assert job.horizon is not None
     stats: dict[str, Any] = {"encoding": "steps"}
     windows = job.windows(job.horizon)
     if windows is None:  # a unit cannot start and still end in time: no schedule within the horizon
@@ -246,7 +242,6 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
     """A fixed tree with a person, in two solves each stopping at its bound: the makespan alone
     from the known schedule down to ``job.floor``, then the human units within it
     (``stats["tie_breakers"]``: ``proven`` or ``time``)."""
-    assert job.horizon is not None
     inst, floor = job.inst, job.floor
     left = clock(time_limit)
     stats["phases"] = 1
@@ -305,9 +300,9 @@ def used(atoms: Sequence[clingo.Symbol]) -> tuple[int, ...]:
 
 
 def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
-    """Solve with clingo-dl: descending makespan bounds from ``job.horizon`` (None: no known
-    schedule) to ``job.floor``, then the tie-breakers under the optimum (when there are any).
-    The solution's entries are None when the known schedule is the best (proven or not)."""
+    """Solve with clingo-dl: descending makespan bounds from ``job.horizon`` to ``job.floor``,
+    then the tie-breakers under the optimum (when there are any).  The solution's entries are
+    None when the known schedule is the best (proven or not)."""
     try:
         from clingodl import ClingoDLTheory
     except ImportError:
@@ -353,27 +348,21 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
             grounded.append(b)
         control.assign({clingo.Function("bounded", [clingo.Number(a)]): a == b for a in grounded})
 
-    opt = job.horizon
-    proven = unsat = False
-    while True:
-        bound = None if opt is None else opt - divisor(inst)
-        if bound is not None and bound < floor:
-            proven = True
-            break
-        if bound is not None:
-            switch(bound)
+    opt, step, proven = job.horizon, divisor(inst), True
+    while opt - step >= floor:
+        switch(opt - step)
         stats["bounds"] += 1
         before = best.get("entries")
         if not control.solve(on_model, left()).finished:
+            proven = False
             break
         if best.get("entries") is before:  # no schedule under this bound
-            proven, unsat = True, opt is None
             break
         if job.fixed:  # compacted, a schedule may be shorter still: the next bound is below that
             best["entries"] = compact(inst, best["entries"])
         opt = makespan(best["entries"])
         _report(job, best["entries"], floor, None, "makespan")
-    if proven and opt is not None and job.breakers and (job.ties or "entries" in best):
+    if proven and job.breakers and (job.ties or "entries" in best):
         # a fixed tree stops at the fewest human units a person must do (a joint one has the
         # tree objective after them)
         low = None
@@ -393,6 +382,6 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
             stats["tie_breakers"] = "proven" if finished or met() else "time"
     stats.update(control.stats())
     if "entries" not in best:  # unsatisfiable, or the known schedule (of makespan horizon) is optimal, or no time
-        return Solution(None, proven, unsat, (), stats)
+        return Solution(None, proven, False, (), stats)
     units = used(best["atoms"]) if not job.fixed else inst.units
     return Solution(best["entries"], proven, False, units, stats)

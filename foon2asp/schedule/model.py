@@ -1,16 +1,15 @@
 """The scheduling problem of a set of units: the instance, precedence, compaction, agents dealt.
 
-An :class:`Instance` holds, for the units of a tree (or every candidate unit of a goal), each
-unit's duration on each kind of agent that can do it (milliseconds), the units that must end
-before it starts, and the limited resources its inputs use; an :class:`Entry` places one unit
-on one agent over ``[start, end)``.  Precedence with several makers: docs/proofs/schedules.md.
+An :class:`Instance` holds the units of a tree (or every candidate unit of a goal) with their
+durations per kind of agent, the objects they need and the resources they use; an
+:class:`Entry` places one unit on one agent.  Times are in milliseconds.
 """
 
 from __future__ import annotations
 
 import heapq
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 
 from foon2asp.foon.problem import Problem
@@ -54,10 +53,7 @@ class Instance:
         changed = bool(several)
         while changed:
             changed = False
-            succs: dict[int, set[int]] = {u: set() for u in self.units}
-            for v, ps in preds.items():
-                for p in ps:
-                    succs.setdefault(p, set()).add(v)
+            succs = successors(preds)
             for v, ms in several:
                 after = _reach(succs, v)
                 left = [m for m in ms if m != v and m not in after]
@@ -91,7 +87,16 @@ def designate(inst: Instance, first: Iterable[tuple[int, int]]) -> Instance:
     return replace(inst, needs=needs)
 
 
-def _reach(succs: dict[int, set[int]], start: int) -> set[int]:
+def successors(preds: Mapping[int, Iterable[int]]) -> dict[int, list[int]]:
+    """unit -> the units that list it in ``preds``."""
+    out: dict[int, list[int]] = {u: [] for u in preds}
+    for v, ps in preds.items():
+        for p in ps:
+            out[p].append(v)
+    return out
+
+
+def _reach(succs: dict[int, list[int]], start: int) -> set[int]:
     """The units reachable from ``start`` along ``succs`` (not ``start`` itself unless on a cycle)."""
     out: set[int] = set()
     stack = list(succs.get(start, ()))
@@ -182,10 +187,7 @@ def tails(inst: Instance) -> dict[int, int]:
     that must wait for it (:attr:`Instance.preds`): a lower bound on the time from its start
     to the end, and the priority of list scheduling."""
     preds = inst.preds
-    succs: dict[int, list[int]] = {u: [] for u in inst.units}
-    for v in inst.units:
-        for u in preds[v]:
-            succs[u].append(v)
+    succs = successors(preds)
     left = {u: len(succs[u]) for u in inst.units}
     stack = [u for u in inst.units if left[u] == 0]
     out: dict[int, int] = {}

@@ -1,11 +1,8 @@
 """The library entry point: :func:`schedule` a goal's task tree, or choose tree and schedule together.
 
-Objective (lexicographic): the shortest makespan, proven; then the fewest units done by a
-``human`` agent; then (``joint``) the tree objective of the options.  Statuses: ``optimal``
-(makespan proven minimal), ``feasible`` (the time limit ended the search), ``unschedulable``
-(a unit of the tree no agent can do; joint: no valid tree can be scheduled), ``unreachable``
-(no tree makes the goal), ``unknown`` (no tree was found in time).  How the trees are
-searched: docs/schedules.md, "How it is solved".
+Statuses: ``optimal`` (makespan proven minimal), ``feasible`` (the time limit ended the
+search), ``unschedulable`` (no agent can do a unit; joint: no valid tree can be scheduled),
+``unreachable`` (no tree makes the goal), ``unknown`` (no tree was found in time).
 """
 
 from __future__ import annotations
@@ -30,8 +27,7 @@ from foon2asp.tree.tasktree import TaskTree, executable_order, goal_fields, meas
 
 __all__ = ["DEFAULT_ENCODING", "DEFAULT_TIME_LIMIT", "schedule", "schedule_fixed", "schedule_joint"]
 
-#: seconds per solve (the fixed tree's schedule, the joint search) when no time limit is given:
-#: a goal never runs unbounded, and one cut short answers with its best schedule and bound
+#: seconds per solve (the fixed tree's schedule, the joint search) when no time limit is given
 DEFAULT_TIME_LIMIT = 60.0
 
 #: the encoding chosen by measurement (BENCHMARKS.md, "Schedules")
@@ -67,10 +63,8 @@ def schedule_fixed(
 ) -> ScheduleResult:
     """The optimal schedule of ``tree``'s units.
 
-    ``within`` (ms; joint scheduling): only a schedule of at most that makespan matters; when
-    there is none the status is ``unschedulable``.  ``progress``: as for
-    :class:`foon2asp.schedule.encode.Job`.  ``first`` (joint scheduling): (object, maker)
-    pairs, :func:`foon2asp.schedule.model.designate`."""
+    Joint scheduling: ``within`` (ms), only a schedule of at most that makespan matters (none:
+    ``unschedulable``); ``first``, (object, maker) pairs for :func:`model.designate`."""
     t0 = time.perf_counter()
 
     def result(status: str, entries: Sequence[Entry] = (), **more) -> ScheduleResult:
@@ -93,8 +87,6 @@ def schedule_fixed(
     late = f"no schedule within {within} ms"
     if within is not None and b.lower > within:
         return result("unschedulable", reason=late)
-    # the baseline, or a shorter list schedule, or one with fewer human units; a tree of a
-    # joint search tries a few only
     least = max(forced_human(inst), human_lower(inst, b.lower)) if spec.has_human() else 0
     done = ub <= b.lower and human_units(base) <= least
     tries = TRIES if within is None else JOINT_TRIES
@@ -128,8 +120,7 @@ def schedule_fixed(
 
 @dataclass
 class JointRequest:
-    """One joint scheduling request: the given tree, its own (``fixed``) schedule and how to
-    schedule the trees looked at."""
+    """One joint scheduling request: the given tree, its own (``fixed``) schedule, the settings."""
 
     problem: Problem
     tree: TaskTree
@@ -304,17 +295,13 @@ def schedule(
     shortcut: bool = True,
     progress: Callable[[dict], None] | None = None,
 ) -> ScheduleResult:
-    """Schedule ``tree`` (a goal's task tree, e.g. the optimal one for ``options``) on the agents
-    of ``spec`` (default: one robot, every unit 1 s).
+    """Schedule ``tree`` on the agents of ``spec`` (default: one robot, every unit 1 s).
 
-    ``joint``: choose the tree with the schedule (the tree objective of ``options`` breaks
-    ties), the result's ``fixed`` holding ``tree``'s own schedule.  ``time_limit`` (seconds;
-    default ``options.time_limit``, else :data:`DEFAULT_TIME_LIMIT`; ``math.inf``: none)
-    bounds each of the two solves; a solve it stops answers with its best schedule
-    (``feasible``) and the lower bound.  ``encoding``: ``steps`` or ``dl``
-    (:mod:`foon2asp.schedule.encode`).  ``shortcut=False`` always runs the solver.
-    ``progress``: called with ``{"makespan", "lower", "human", "human_lower", "phase"}``
-    (milliseconds; ``phase`` ``makespan`` or ``human``) as the fixed tree's schedules improve.
+    ``joint``: choose the tree with the schedule (``fixed``: ``tree``'s own schedule).
+    ``time_limit``: seconds per solve (default ``options.time_limit``, else
+    :data:`DEFAULT_TIME_LIMIT`; ``math.inf``: none); a solve it stops answers ``feasible``.
+    ``shortcut=False`` always runs the solver.  ``progress``: called with ``{"makespan",
+    "lower", "human", "human_lower", "phase"}`` (ms) as the fixed tree's schedules improve.
     """
     spec = spec or ScheduleSpec()
     options = options or AspOptions()
