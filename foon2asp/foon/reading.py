@@ -21,7 +21,7 @@ MAX_FILE_BYTES = 512 * 1024 * 1024
 MAX_DEPTH = 100
 MAX_NUMBER_CHARS = 100
 
-_TOKEN = re.compile(r'"(?:[^"\\]|\\.)*"|[\[\]{}]|-?[0-9][0-9.eE+\-]*', re.S)
+_TOKEN = re.compile(r'"(?:[^"\\]|\\.)*"|[\[\]{}]|-?[0-9][0-9.eE+\-]*|-?[A-Za-z]+', re.S)
 
 
 def position(text: str, pos: int) -> tuple[int, int]:
@@ -102,12 +102,16 @@ def read_text(path: str | Path, what: str, checked: bool = True) -> str:
     return text
 
 
-def scan(text: str, path: str) -> None:
+def scan(text: str, path: str) -> list[int]:
     """Refuse nesting deeper than :data:`MAX_DEPTH`, numbers longer than
-    :data:`MAX_NUMBER_CHARS` and strings holding bad characters."""
+    :data:`MAX_NUMBER_CHARS` and strings holding bad characters; return the offsets of the
+    values at depth 1 (the elements of a top-level list)."""
     depth = 0
+    tops: list[int] = []
     for m in _TOKEN.finditer(text):
         tok = m.group(0)
+        if depth == 1 and tok not in "]}":
+            tops.append(m.start())
         if tok[0] == '"':
             if "\\u" in tok:
                 try:
@@ -123,20 +127,36 @@ def scan(text: str, path: str) -> None:
                 raise InputError(f"JSON nested deeper than {MAX_DEPTH} levels", path, *position(text, m.start()))
         elif tok in "]}":
             depth -= 1
-        elif len(tok) > MAX_NUMBER_CHARS:
+        elif len(tok) > MAX_NUMBER_CHARS and not tok.lstrip("-")[0].isalpha():
             raise InputError(f"number longer than {MAX_NUMBER_CHARS} characters", path, *position(text, m.start()))
+    return tops
+
+
+def located(text: str, path: str, checked: bool = False) -> tuple[object, list[int]]:
+    """The JSON value of ``text`` (from file ``path``), decoded once, and the offsets of its
+    elements when it is a list; ``checked``: the text already passed :func:`check_text`."""
+    if not checked:
+        check_text(text, path)
+    tops = scan(text, path)
+    try:
+        return json.loads(text), tops
+    except json.JSONDecodeError as exc:
+        raise InputError(f"bad JSON: {exc.msg}", path, exc.lineno, exc.colno) from None
 
 
 def loads(text: str, path: str, checked: bool = False) -> object:
-    """The JSON value of ``text`` (from file ``path``); ``checked``: the text already passed
-    :func:`check_text`."""
-    if not checked:
-        check_text(text, path)
-    scan(text, path)
-    try:
-        return json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise InputError(f"bad JSON: {exc.msg}", path, exc.lineno, exc.colno) from None
+    """The JSON value of ``text`` (see :func:`located`)."""
+    return located(text, path, checked)[0]
+
+
+def line_numbers(text: str, offsets: list[int]) -> list[int]:
+    """The line (from 1) of each of the ascending ``offsets`` of ``text``."""
+    lines, line, counted = [], 1, 0
+    for pos in offsets:
+        line += text.count("\n", counted, pos)
+        counted = pos
+        lines.append(line)
+    return lines
 
 
 def load(path: str | Path, what: str) -> tuple[str, object]:
@@ -145,15 +165,9 @@ def load(path: str | Path, what: str) -> tuple[str, object]:
     return text, loads(text, str(path), checked=True)
 
 
-def list_elements(text: str, path: str, start: int | None = None) -> list[tuple[object, int, int]]:
-    """The elements of a JSON list with the line and the offset each starts at.  ``start``:
-    the offset of the list's ``[`` in ``text`` already read by :func:`loads`; None: the
-    top-level value of ``text``, read here, which must be a list."""
-    if start is None:
-        loads(text, path, checked=True)
-        start = len(text) - len(text.lstrip())
-        if text[start : start + 1] != "[":
-            raise InputError("expected a JSON list of objects", path, text.count("\n", 0, start) + 1)
+def list_elements(text: str, path: str, start: int) -> list[tuple[object, int, int]]:
+    """The elements of the JSON list at offset ``start`` of ``text`` (already read by
+    :func:`loads`) with the line and the offset each starts at."""
     dec = json.JSONDecoder()
     pos = start + 1
     line, counted = text.count("\n", 0, start) + 1, start

@@ -20,8 +20,7 @@ from foon2asp.foon.goals import parse_object_text
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.parser import parse_lines
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.reading import lines_of, list_elements, read_text
-from foon2asp.foon.reading import loads as safe_loads
+from foon2asp.foon.reading import line_numbers, lines_of, located, read_text
 
 
 @dataclass
@@ -184,7 +183,7 @@ def _read_unit_list_trees(text: str, path: str, strict: bool) -> list[TreeFile]:
 
 
 def _read_json_tree(text: str, path: str, strict: bool = False) -> list[TreeFile]:
-    data = safe_loads(text, path, checked=True)
+    data, tops = located(text, path, checked=True)
     if unitlist.is_unit_list(data) or unitlist.is_unit_lists(data):
         return _read_unit_list_trees(text, path, strict)
     results = data if isinstance(data, list) else [data]
@@ -192,7 +191,7 @@ def _read_json_tree(text: str, path: str, strict: bool = False) -> list[TreeFile
         return _read_foon_json_trees(results, path)
     start = len(text) - len(text.lstrip())  # the line each result starts on, for messages
     if isinstance(data, list):
-        starts = [line for _, line, _ in list_elements(text, path, start)]
+        starts = line_numbers(text, tops)
     else:
         starts = [text.count("\n", 0, start) + 1]
     trees = []

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject, Unit, motion_key
-from foon2asp.foon.reading import list_elements, loads, read_text
+from foon2asp.foon.reading import line_numbers, list_elements, located, read_text
 
 #: the keys of one unit, in the order generators write them
 KEYS = ("input_nodes", "motion_node", "output_nodes")
@@ -175,15 +175,14 @@ def _lists(value_or_text: object, path: str) -> tuple[list[_Entries], bool]:
             raise InputError("expected a JSON list of units {input_nodes, motion_node, output_nodes}", path)
         return [([(v, None) for v in value_or_text], None)], False
     text = value_or_text
-    value = loads(text, path)
-    start = len(text) - len(text.lstrip())
-    first = text.count("\n", 0, start) + 1
+    value, tops = located(text, path)
+    first = text.count("\n", 0, len(text) - len(text.lstrip())) + 1
     if not isinstance(value, list):
         raise InputError("expected a JSON list of objects", path, first)
-    top = list_elements(text, path, start)
+    lines = line_numbers(text, tops)
     if not is_unit_lists(value):
-        return [([(v, line) for v, line, _ in top], first)], False
-    return [([(v, at) for v, at, _ in list_elements(text, path, pos)], line) for _, line, pos in top], True
+        return [(list(zip(value, lines)), first)], False
+    return [([(v, at) for v, at, _ in list_elements(text, path, pos)], line) for pos, line in zip(tops, lines)], True
 
 
 def read_unit_lists(
