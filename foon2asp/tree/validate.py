@@ -77,7 +77,7 @@ def circular_support(cycle: Iterable[tuple[object, int]], name: Callable[[int], 
     return "circular support: " + "; ".join(steps)
 
 
-def walk_back(
+def find_missing_or_cycle(
     roots: Iterable[tuple[Any, Any]], makers: dict[Any, list[Any]], lacking: Callable[[Any], list[Any]]
 ) -> tuple[str, Any] | None:
     """Walk back from each (object not had, unit that needs it) of ``roots``, depth first, through
@@ -183,7 +183,7 @@ def check_units(
         return [i for i in problem.required[u] if i not in have]
 
     roots = [(goal, None)] if goal not in have else []
-    found = walk_back(roots + [(i, u) for u in validation.stuck for i in lacking(u)], makers, lacking)
+    found = find_missing_or_cycle(roots + [(i, u) for u in validation.stuck for i in lacking(u)], makers, lacking)
     if found is None:
         return validation, Finding("goal-not-made", validation.problem or "the tree is not valid", obj=goal)
     if found[0] == "cycle":
@@ -332,7 +332,7 @@ def judge_alone(
     if pending:
         k = pending[0]
         first = [(o, k) for o in need[k] if o not in have][:1]
-        found = walk_back(first, makers, lambda m: [o for o in need[m] if o not in have])
+        found = find_missing_or_cycle(first, makers, lambda m: [o for o in need[m] if o not in have])
         if found is not None and found[0] == "cycle":
             verdict.cycle = [(o, m + 1) for o, m in found[1]]
         elif found is not None:
