@@ -1,7 +1,7 @@
 """Schedules: a task tree's units on robot arms and people, with a proven-minimal makespan.
 
 The modules follow the data: spec -> model -> bounds/baseline -> encode -> joint/solve -> result;
-:mod:`foon2asp.schedule.check` checks schedule JSON on its own.
+check reads schedule JSON on its own.
 """
 
 from foon2asp.schedule.result import ScheduleResult

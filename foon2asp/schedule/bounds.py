@@ -16,6 +16,10 @@ from dataclasses import dataclass
 from foon2asp.schedule.model import Instance, divisor, earliest, successors, tails
 from foon2asp.schedule.spec import HUMAN
 
+#: unit -> milliseconds (durations, earliest starts, tails)
+Times = dict[int, int]
+Gaps = list[tuple[float, float]]
+
 
 @dataclass(frozen=True)
 class Bounds:
@@ -34,23 +38,17 @@ class Bounds:
 
 
 def energy_over(
-    parts: list[list[int]],
-    d: dict[int, int],
-    start: dict[int, int],
-    tail: dict[int, int],
-    servers: int,
-    floor: int,
-    step: int,
+    parts: list[list[int]], d: Times, start: Times, tail: Times, servers: int, floor: int, step: int
 ) -> int:
     """Energetic reasoning: the least makespan at least ``floor``, a multiple of ``step``, at
     which every window between a unit's earliest start and a tail can hold the parts of
     ``parts`` (lists of units of which one runs, durations ``d``) on ``servers``."""
-    return _clear([_gaps(parts, d, start, tail, servers)], floor, step)
+    return _clear(_gaps(parts, d, start, tail, servers), floor, step)
 
 
 def pools(inst: Instance) -> list[tuple[list[int], dict[int, int], int]]:
     """Sets of units sharing fewer servers than the agents, as ``(units, durations, servers)``:
-    for each set of kinds but all, and for each resource (docs/proofs/schedules.md)."""
+    for each set of kinds but all, and for each resource."""
     kinds = sorted(inst.kinds)
     out = []
     for r in range(1, len(kinds)):
@@ -84,11 +82,6 @@ def window_length(c: Sequence[float], m: int) -> float:
     return math.inf
 
 
-Gaps = list[tuple[float, float]]
-#: unit -> milliseconds (durations, earliest starts, tails)
-Times = dict[int, int]
-
-
 def _gaps(parts: list[list[int]], d: Times, start: Times, tail: Times, servers: int) -> Gaps:
     """The makespans :func:`energy_over` rules out: open intervals (low, high)."""
     units = [u for g in parts for u in g]
@@ -109,12 +102,11 @@ def _gaps(parts: list[list[int]], d: Times, start: Times, tail: Times, servers: 
     return out
 
 
-def _clear(gaps: list[Gaps], floor: int, step: int) -> int:
+def _clear(gaps: Gaps, floor: int, step: int) -> int:
     """The least multiple of ``step`` at least ``floor`` in none of the open intervals ``gaps``."""
-    every = [g for gs in gaps for g in gs]
     best = -(-floor // step) * step
     while True:
-        inside = [high for low, high in every if low < best < high]
+        inside = [high for low, high in gaps if low < best < high]
         if not inside:
             return best
         best = math.ceil(max(inside) / step) * step
@@ -130,10 +122,10 @@ def bounds(inst: Instance) -> Bounds:
     work = -(-sum(inst.min_duration(u) for u in inst.units) // len(inst.agents))
     tail = tails(inst)
     d = {u: inst.min_duration(u) for u in inst.units}
-    gaps = [_gaps([[u] for u in inst.units], d, start, tail, len(inst.agents))]
+    gaps = _gaps([[u] for u in inst.units], d, start, tail, len(inst.agents))
     floor = max(chain, work)
     for units, pd, servers in pools(inst):
-        gaps.append(_gaps([[u] for u in units], pd, start, tail, servers))
+        gaps += _gaps([[u] for u in units], pd, start, tail, servers)
         floor = max(floor, -(-sum(pd.values()) // servers))
     step = divisor(inst)
     energy = _clear(gaps, floor, step)
@@ -143,7 +135,7 @@ def bounds(inst: Instance) -> Bounds:
 # ---------------------------------------------------------------- kinds of agents
 
 
-def _classes(inst: Instance) -> list[tuple[int, dict[int, int], int, dict[int, int]]]:
+def _classes(inst: Instance) -> list[tuple[int, Times, int, Times]]:
     """Two classes of agents per test of :func:`kind_energy`, one kind and the other kinds as
     one: ``(agents, durations, agents, durations)`` (a unit missing where nobody can do it)."""
     kinds = sorted(inst.kinds)
@@ -158,7 +150,7 @@ def _classes(inst: Instance) -> list[tuple[int, dict[int, int], int, dict[int, i
     return out
 
 
-def _kinds_fit(inst: Instance, start: dict[int, int], tail: dict[int, int], horizon: int) -> bool:
+def _kinds_fit(inst: Instance, start: Times, tail: Times, horizon: int) -> bool:
     """Can the units end by ``horizon`` as far as energetic reasoning over two classes of
     agents (:func:`_classes`) tells?"""
     units = [u for u in inst.units if inst.durations[u]]
@@ -182,7 +174,7 @@ def _kinds_fit(inst: Instance, start: dict[int, int], tail: dict[int, int], hori
             if not all(parts.fit((a, b), (a, b), n_x, n_y, keep=False) for b in rights if b > a):
                 return False
         if all(px.get(u) == py.get(u) for u in units):
-            continue  # alike on both classes: no windows per class (fewer windows, still a bound)
+            continue  # alike on both classes: no windows per class
         lo, hi = lefts[0], rights[-1]
         ends = [(lo, b) for b in sorted(set(e.values())) if b > lo]
         begins = [(a, hi) for a in sorted(set(r.values())) if a < hi]
@@ -209,7 +201,6 @@ class _Parts:
             return self.cache[key]
         a, b = window
         mine, other = (self.px, self.py) if x else (self.py, self.px)
-        # each unit's least part inside [a, b] within its own window [r, e]
         part = {u: max(0, min(b - a, d, self.r[u] + d - a, b - (self.e[u] - d))) for u, d in mine.items()}
         found = part, sum(m for u, m in part.items() if u not in other), sum(part[u] for u in self.both)
         if keep:
@@ -229,8 +220,7 @@ class _Parts:
 
 
 def _split(work: list[tuple[int, int]], cap_x: int, cap_y: int) -> bool:
-    """Can parts of ``(work on x, work on y)`` be split, fractionally, within the capacities?
-    The first class takes the units saving the second class most per its own work."""
+    """Can parts of ``(work on x, work on y)`` be split, fractionally, within the capacities?"""
     work = sorted(work, key=lambda w: -(w[1] / w[0]) if w[0] > 0 else -math.inf)
     room, left = float(cap_x), 0.0
     for x, y in work:
@@ -240,7 +230,7 @@ def _split(work: list[tuple[int, int]], cap_x: int, cap_y: int) -> bool:
     return left <= cap_y + 1e-6
 
 
-def kind_energy(inst: Instance, start: dict[int, int], tail: dict[int, int], floor: int, step: int) -> int:
+def kind_energy(inst: Instance, start: Times, tail: Times, floor: int, step: int) -> int:
     """The least makespan at least ``floor``, a multiple of ``step``, that :func:`_kinds_fit`
     allows (``floor`` itself with a single kind)."""
     low = -(-floor // step) * step

@@ -1,9 +1,7 @@
 """An independent checker of schedules in the JSON shape of :mod:`foon2asp.schedule.result`.
 
-It uses neither clingo nor :mod:`foon2asp.schedule.model`: units are matched by their motion,
-inputs and outputs against the FOON and the schedule is replayed in time.
-:func:`check_schedule` returns the first violation in words (None for a valid schedule), in
-the order of docs/schedules.md, "Checking schedules", the shape of the JSON first.
+It uses neither clingo nor :mod:`foon2asp.schedule.model`: units are matched against the FOON
+and the schedule is replayed in time; the checks run in the order of docs/schedules.md.
 """
 
 from __future__ import annotations

@@ -1,9 +1,8 @@
 """Joint scheduling by trees: every tree that could beat a known makespan, each scheduled alone.
 
 clingo lists the *designated* trees (each needed object with one first maker) that fit within
-the known makespan (:func:`candidate_trees`); :meth:`Search.over` schedules them lowest lower
-bound first, and :meth:`Search.by_work` asks for trees one at a time, least work first, when
-they are too many.  Why this finds the joint optimum: docs/proofs/schedules.md.
+the known makespan; :class:`Search` schedules them lowest lower bound first, or asks for them
+one at a time, least work first, when they are too many (docs/proofs/schedules.md).
 """
 
 from __future__ import annotations
@@ -88,9 +87,8 @@ Candidate = tuple[tuple[int, ...], tuple[tuple[int, int], ...]]
 
 @dataclass(frozen=True)
 class Listing:
-    """What the trees are listed from: the candidate units, their earliest starts (``head``) and
-    least times to the end (``tail``), the makespan a tree must fit, tree.lp with its facts and
-    clingo's arguments."""
+    """What the trees are listed from: the candidate units with their earliest starts and least
+    times to the end, the makespan a tree must fit, tree.lp with its facts, clingo's arguments."""
 
     inst: Instance
     head: dict[int, int]
@@ -219,10 +217,8 @@ class Search:
 def every_tree_bound(
     inst: Instance, goals: Sequence[int], products: Sequence[tuple[int, ...]], start: dict[int, int], floor: int
 ) -> int:
-    """A lower bound on the makespan of every tree of ``inst`` for ``goals`` (``start``: the
-    units' earliest starts; at least ``floor``): energetic reasoning over the landmarks,
-    the units every tree holds, and the objects they need that no landmark makes
-    (docs/proofs/schedules.md)."""
+    """A lower bound, at least ``floor``, on the makespan of every tree of ``inst`` for ``goals``
+    (``start``: the units' earliest starts)."""
     makers: dict[int, list[int]] = {}
     for u in inst.units:
         for o, ms in inst.needs[u]:
