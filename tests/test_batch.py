@@ -17,7 +17,7 @@ import pytest
 import foon2asp
 from foon2asp import methods
 from foon2asp.asp.session import AspOptions, Session
-from foon2asp.batch.pool import BatchSpec
+from foon2asp.batch.pool import BatchSpec, dask_executor
 from foon2asp.batch.results import read_results, run_batch, summarize
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
@@ -350,7 +350,6 @@ def test_guarded_script_runs_its_pool_with_spawned_workers(tmp_path):
 
 def test_dask_local_cluster(shared_problem, tmp_path):
     distributed = pytest.importorskip("distributed")
-    from foon2asp.batch.cluster import executor
 
     _, p = shared_problem
     goal_ids = _subset(p, 40)
@@ -359,7 +358,7 @@ def test_dask_local_cluster(shared_problem, tmp_path):
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None, processes=True) as cluster:
         with distributed.Client(cluster) as client:
             remote = run_batch(
-                spec, goal_ids, tmp_path / "dask.jsonl", progress=False, executor=executor(client, chunk=5)
+                spec, goal_ids, tmp_path / "dask.jsonl", progress=False, executor=dask_executor(client, chunk=5)
             )
     assert remote.done == local.done == 80
     a = {key(r): outcome(r) for r in read_results(tmp_path / "local.jsonl")}
@@ -375,8 +374,6 @@ def test_dask_local_cluster(shared_problem, tmp_path):
 def test_dask_missing_is_a_clear_error(monkeypatch):
     import builtins
 
-    from foon2asp.batch import cluster as dask_runner
-
     real = builtins.__import__
 
     def fake(name, *args, **kwargs):
@@ -386,7 +383,7 @@ def test_dask_missing_is_a_clear_error(monkeypatch):
 
     monkeypatch.setattr(builtins, "__import__", fake)
     with pytest.raises(InputError, match=r"foon2asp\[dask\]"):
-        dask_runner.executor("tcp://127.0.0.1:1")
+        dask_executor("tcp://127.0.0.1:1")
 
 
 # ---------------------------------------------------------------- summary

@@ -25,8 +25,7 @@ from foon2asp.asp.facts import facts as facts_text
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.substitutes import report as report_substitutions
 from foon2asp.asp.substitutes import substitute_facts
-from foon2asp.batch import cluster
-from foon2asp.batch.pool import BatchSpec
+from foon2asp.batch.pool import BatchSpec, dask_executor
 from foon2asp.batch.results import run_batch
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
@@ -396,7 +395,7 @@ class KnowledgeBase:
         spec = BatchSpec(
             self.solving_problem(solver), list(dict.fromkeys(methods)), solver, request.grounding, request.shortcuts
         )
-        executor = cluster.executor(scheduler) if scheduler else None
+        executor = dask_executor(scheduler) if scheduler else None
         count = workers_count(workers)
         outcome = run_batch(spec, self.goal_ids(goals), output, resume, count, progress, fsync, executor)
         return results.BatchRun(self, outcome)

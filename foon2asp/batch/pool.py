@@ -1,6 +1,6 @@
-"""The worker pool of a batch: runners built once per process, asked goal after goal.
+"""Where a batch's goals run: a pool of worker processes or a Dask cluster, runners built once per worker.
 
-How workers start, stop and exit with their parent: docs/batch.md, "Workers and Dask".
+How workers start, stop and exit with their parent, and how Dask is used: docs/batch.md, "Workers and Dask".
 """
 
 from __future__ import annotations
@@ -13,7 +13,8 @@ import signal
 import sys
 import threading
 import time
-from collections.abc import Generator, Iterator
+import uuid
+from collections.abc import Callable, Generator, Iterator
 from dataclasses import dataclass, field
 
 from foon2asp.analysis.compare import judge
@@ -208,3 +209,50 @@ class Execution:
         finally:
             pool.terminate()
             pool.join()
+
+
+#: the runners of this thread of a Dask worker: ``token`` (the batch's) and ``worker``
+_LOCAL = threading.local()
+
+
+def _run_chunk(token: str, spec: BatchSpec, tasks: list[tuple[int, str]]) -> list[tuple[int, str, str]]:
+    """On a Dask worker: the results of ``tasks`` (runners built once per thread and batch)."""
+    if getattr(_LOCAL, "token", None) != token:
+        _LOCAL.token, _LOCAL.worker = token, Worker(spec)
+    return [(goal, method, _LOCAL.worker.run(goal, method)) for goal, method in tasks]
+
+
+def dask_executor(
+    scheduler, chunk: int = 8
+) -> Callable[[BatchSpec, list[tuple[int, str]]], Iterator[tuple[int, str, str]]]:
+    """A batch executor for :func:`foon2asp.batch.results.run_batch` on the Dask ``scheduler``
+    (an address such as ``tcp://host:8786`` or a ``distributed.Client``; the extra ``dask``)."""
+    try:
+        import distributed
+    except ModuleNotFoundError:
+        raise InputError(
+            "--scheduler needs Dask: install the extra with  pip install 'foon2asp[dask]'  (dask[distributed])"
+        ) from None
+
+    def run(spec: BatchSpec, tasks: list[tuple[int, str]]) -> Iterator[tuple[int, str, str]]:
+        if not tasks:
+            return
+        own = not isinstance(scheduler, distributed.Client)
+        try:
+            client = distributed.Client(scheduler) if own else scheduler
+        except (OSError, ValueError, TypeError) as exc:
+            raise InputError(f"cannot reach the Dask scheduler {scheduler}: {exc}") from None
+        try:
+            token = uuid.uuid4().hex
+            [shared] = client.scatter([spec], broadcast=True)
+            futures = [
+                client.submit(_run_chunk, token, shared, tasks[i : i + chunk], pure=False)
+                for i in range(0, len(tasks), chunk)
+            ]
+            for future in distributed.as_completed(futures):
+                yield from future.result()
+        finally:
+            if own:
+                client.close()
+
+    return run
