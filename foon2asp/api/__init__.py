@@ -1,11 +1,5 @@
 """The Python API: load a FOON with its kitchen, then ask it for task trees.
 
->>> import foon2asp
->>> kb = foon2asp.load("demo")
->>> t = kb.solve("tomato salad")
->>> t.status, t.cost["units"]
-('optimal', 1)
-
 Every command of ``foon2asp`` is a thin layer over these calls: :func:`load` reads the data,
 :class:`KnowledgeBase` answers with the settings of one request (:class:`Options`), and the
 answers render themselves in the formats of :mod:`foon2asp.report`.  The modules import each

@@ -300,7 +300,7 @@ def facts(data, goals, goal, output, options):
         " repeatable.",
         multiple=True,
     ),
-    opt.models_option(0, "Models to print (0 = all); with an objective, the optimum."),
+    opt.option("--models", "Models to print (0 = all); with an objective, the optimum.", type=opt.int32(), default=1),
     opt.format_option("query"),
     opt.time_limit_option("Seconds for the solve."),
 )

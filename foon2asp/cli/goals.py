@@ -59,7 +59,7 @@ SOLVER = [
         "At most M units may be done by a person (success 1.0); the solver picks them, the output marks them.",
         type=opt.int32(min=0),
     ),
-    opt.models_option(1, "The K best distinct trees per goal, best first."),
+    opt.option("--models", "The K best distinct trees per goal, best first.", type=opt.int32(min=1), default=1),
     opt.flag("--all-optimal", "Every optimal tree per goal (at most 100)."),
     *opt.STRATEGY,
 ]

@@ -297,11 +297,6 @@ def time_limit_option(help: str = "Seconds per goal; the best tree so far is rep
     return option("--time-limit", help, type=SECONDS)
 
 
-def models_option(least: int, help: str):
-    """``--models K`` (at least ``least``)."""
-    return option("--models", help, type=int32(min=least), default=1)
-
-
 GAP_OPTION = option(
     "--gap",
     "Stop a goal once its gap (the tree against the proven lower bound, first objective) is at"
