@@ -16,9 +16,8 @@ from click.testing import CliRunner
 import foon2asp
 from foon2asp.cli.main import main
 from foon2asp.foon.model import Foon, FoonObject, Unit
-from foon2asp.foon.parser import read_foons
+from foon2asp.foon.parser import read_foon, read_foons
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.unitlist import read_unit_list_file
 from foon2asp.tree.validate import check_order, validate
 from helpers import brute_force
 from test_objectives import random_foon
@@ -91,7 +90,8 @@ def test_merge_reads_unit_lists_and_writes_every_format(tmp_path):
     assert len(warnings) == 2 and all("smoothie-3.json" in w for w in warnings)
     assert "unit 6 cannot be used" in warnings[0] and "unit 3 repeats unit 2" in warnings[1]
     expected = read_foons(SMOOTHIES)
-    units, extra = read_unit_list_file(out)
+    merged = read_foon(out)
+    units, extra = merged.units, merged.warnings
     assert extra == [] and [u.key() for u in units] == [u.key() for u in expected.units]
     # the other formats read back to the same units
     for fmt in ("foon", "foon-plain", "foon-json"):
@@ -124,7 +124,7 @@ def test_units_json_round_trip_through_solve_and_check(seed, tmp_path):
     for goal, entries, tree in zip(goals, trees, kb.solve(goals)):
         path = tmp_path / "tree.json"
         path.write_text(json.dumps(entries))
-        units, _ = read_unit_list_file(path)
+        units = read_foon(path).units
         assert units == tree.units
         report = kb.check(path, str(goal), optimum=False)
         assert report.valid

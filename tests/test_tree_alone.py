@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 
 from foon2asp.foon.model import Foon, FoonObject, Unit, leaves, made
+from foon2asp.foon.parser import read_foon
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.unitlist import read_unit_list_file
 from foon2asp.tree.validate import check_order, judge_alone, validate
 
 LLM = Path(__file__).resolve().parent.parent / "data" / "llm"
@@ -167,7 +167,7 @@ def test_leaves():
 def test_demo_candidates_on_their_own():
     verdicts = {}
     for path in sorted(LLM.glob("smoothie-*.json")):
-        units, _ = read_unit_list_file(path)
+        units = read_foon(path).units
         verdicts[path.name] = (units, judge_alone(units))
     smoothie = FoonObject.make("smoothie", ["blended"], container="glass")
     assert all(v.goals == (smoothie,) for _, v in verdicts.values())

@@ -171,9 +171,9 @@ def _read_foon_json_trees(docs: list, path: str) -> list[TreeFile]:
     return trees
 
 
-def _read_unit_list_trees(text: str, path: str, strict: bool) -> list[TreeFile]:
+def _read_unit_list_trees(text: str, path: str, strict: bool, parsed: tuple[object, list[int]]) -> list[TreeFile]:
     """The unit-list form: one tree, or one per inner list; each unit's step is its number in its list."""
-    trees, warnings = unitlist.read_unit_lists(text, path, strict)
+    trees, warnings = unitlist.read_unit_lists(text, path, strict, parsed)
     out = [TreeFile(path, [TreeUnit(u, k, line) for u, k, line in units], line=start) for units, start in trees]
     out = [t for t in out if t.units] or out[:1]
     if not any(t.units for t in out):
@@ -185,7 +185,7 @@ def _read_unit_list_trees(text: str, path: str, strict: bool) -> list[TreeFile]:
 def _read_json_tree(text: str, path: str, strict: bool = False) -> list[TreeFile]:
     data, tops = located(text, path, checked=True)
     if unitlist.is_unit_list(data) or unitlist.is_unit_lists(data):
-        return _read_unit_list_trees(text, path, strict)
+        return _read_unit_list_trees(text, path, strict, (data, tops))
     results = data if isinstance(data, list) else [data]
     if results and all(foonjson.is_foon_json(d) for d in results):
         return _read_foon_json_trees(results, path)

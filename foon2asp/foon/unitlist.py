@@ -10,11 +10,10 @@ from __future__ import annotations
 
 import json
 from collections.abc import Iterable, Sequence
-from pathlib import Path
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject, Unit, motion_key
-from foon2asp.foon.reading import line_numbers, list_elements, located, read_text
+from foon2asp.foon.reading import line_numbers, list_elements, located
 
 #: the keys of one unit, in the order generators write them
 KEYS = ("input_nodes", "motion_node", "output_nodes")
@@ -129,14 +128,14 @@ def _where(k: int, tree: int | None) -> str:
     return f"tree {tree}, unit {k}" if tree is not None else f"unit {k}"
 
 
-#: a unit read: (unit, its number in the list from 1, the line it starts on or None)
-Located = tuple[Unit, int, int | None]
-#: the entries of one list, each with the line it starts on (None when given a value), and the list's first line
-_Entries = tuple[list[tuple[object, int | None]], int | None]
+#: a unit read: (unit, its number in the list from 1, the line it starts on)
+Located = tuple[Unit, int, int]
+#: the entries of one list, each with the line it starts on, and the list's first line
+_Entries = tuple[list[tuple[object, int]], int]
 
 
 def _read(
-    entries: list[tuple[object, int | None]], path: str, strict: bool, tree: int | None
+    entries: list[tuple[object, int]], path: str, strict: bool, tree: int | None
 ) -> tuple[list[Located], list[str]]:
     """The distinct usable units of one list's ``entries``, and the warnings."""
     warnings: list[str] = []
@@ -164,18 +163,9 @@ def _read(
     return out, warnings
 
 
-def _lists(value_or_text: object, path: str) -> tuple[list[_Entries], bool]:
-    """The lists of a unit list (one) or of a list of unit lists (JSON text or its parsed
-    value), and whether there are several."""
-    if not isinstance(value_or_text, str):
-        if is_unit_lists(value_or_text):
-            assert isinstance(value_or_text, list)
-            return [([(v, None) for v in entries], None) for entries in value_or_text], True
-        if not isinstance(value_or_text, list):
-            raise InputError("expected a JSON list of units {input_nodes, motion_node, output_nodes}", path)
-        return [([(v, None) for v in value_or_text], None)], False
-    text = value_or_text
-    value, tops = located(text, path)
+def _lists(text: str, path: str, parsed: tuple[object, list[int]] | None) -> tuple[list[_Entries], bool]:
+    """The lists of a unit list (one) or of a list of unit lists, and whether there are several."""
+    value, tops = parsed or located(text, path)
     first = text.count("\n", 0, len(text) - len(text.lstrip())) + 1
     if not isinstance(value, list):
         raise InputError("expected a JSON list of objects", path, first)
@@ -186,13 +176,13 @@ def _lists(value_or_text: object, path: str) -> tuple[list[_Entries], bool]:
 
 
 def read_unit_lists(
-    value_or_text: object, path: str, strict: bool = False
-) -> tuple[list[tuple[list[Located], int | None]], list[str]]:
-    """The trees of a unit list (one tree) or of a list of unit lists (one each), JSON text or
-    its parsed value: per tree its distinct usable units ``(unit, k, line)`` in file order
-    (``k`` from 1) and its first line (None when given a value); and all the warnings."""
-    lists, several = _lists(value_or_text, path)
-    trees: list[tuple[list[Located], int | None]] = []
+    text: str, path: str, strict: bool = False, parsed: tuple[object, list[int]] | None = None
+) -> tuple[list[tuple[list[Located], int]], list[str]]:
+    """The trees of a unit list (one tree) or of a list of unit lists (one each): per tree its
+    distinct usable units ``(unit, k, line)`` in file order (``k`` from 1) and its first line;
+    and all the warnings.  ``parsed``: the value and offsets :func:`located` gave for ``text``."""
+    lists, several = _lists(text, path, parsed)
+    trees: list[tuple[list[Located], int]] = []
     warnings: list[str] = []
     for t, (entries, line) in enumerate(lists, 1):
         units, more = _read(entries, path, strict, t if several else None)
@@ -201,26 +191,14 @@ def read_unit_lists(
     return trees, warnings
 
 
-def read_unit_list(value_or_text: object, path: str, strict: bool = False) -> tuple[list[Unit], list[str]]:
-    """The distinct usable units of a unit list (of every list of a list of them) and the warnings."""
-    trees, warnings = read_unit_lists(value_or_text, path, strict)
-    return [u for units, _ in trees for u, _, _ in units], warnings
-
-
-def read_unit_list_file(path: str | Path, strict: bool = False) -> tuple[list[Unit], list[str]]:
-    """:func:`read_unit_list` of a file."""
-    return read_unit_list(read_text(path, "tree"), str(path), strict)
-
-
-def unit_list_foon(value_or_text: object, path: str, strict: bool = False, foon: Foon | None = None) -> Foon:
-    """The units of a unit list (or of a list of them) added to ``foon`` (a new one by default);
-    each unit's origin is ``(path, line)`` (the unit's number when no line is known); the
-    warnings go to ``foon.warnings``."""
+def unit_list_foon(text: str, path: str, strict: bool = False, foon: Foon | None = None) -> Foon:
+    """The units of a unit list (or of a list of them) added to ``foon`` (a new one by default),
+    each with its origin ``(path, line)``; the warnings go to ``foon.warnings``."""
     foon = foon if foon is not None else Foon()
-    trees, warnings = read_unit_lists(value_or_text, path, strict)
+    trees, warnings = read_unit_lists(text, path, strict)
     for units, _ in trees:
-        for unit, k, line in units:
-            foon.add_unit(unit, (path, line if line is not None else k))
+        for unit, _, line in units:
+            foon.add_unit(unit, (path, line))
     foon.warnings.extend(warnings)
     return foon
 
