@@ -6,16 +6,13 @@ import csv
 import io
 import json
 from collections.abc import Callable, Iterable
+from functools import partial
 
 from foon2asp.foon.problem import Problem
 from foon2asp.report.registry import register
 from foon2asp.tree.results import BatchReport, MealRow, Row
 from foon2asp.tree.serialize import json_list, number, tree_json
 from foon2asp.tree.tasktree import TaskTree
-
-
-def _label(problem: Problem, goal: int) -> str:
-    return problem.objects[goal].label
 
 
 def units_cell(tree: TaskTree) -> str:
@@ -71,7 +68,7 @@ def csv_text(rows: Iterable[Iterable[object]]) -> str:
 def _table(problem: Problem, rows: list[Row], cell, markdown: bool) -> list[str]:
     names = list(rows[0].trees) if rows else []
     head = ["goal"] + [method_header(n) for n in names]
-    body = [[_label(problem, r.goal)] + [cell(r.trees[n]) for n in names] for r in rows]
+    body = [[problem.objects[r.goal].label] + [cell(r.trees[n]) for n in names] for r in rows]
     return grid(head, body, markdown)
 
 
@@ -148,7 +145,7 @@ def render_meal(problem: Problem, row: MealRow, markdown: bool = False) -> str:
         depth = cost.get("depth")
         return [str(cost["units"]), number(cost["success"]), str(cost["inputs"]), "-" if depth is None else str(depth)]
 
-    body = [[_label(problem, t.goal) + " (alone)"] + cells(t.cost, t.status) for t in row.singles]
+    body = [[problem.objects[t.goal].label + " (alone)"] + cells(t.cost, t.status) for t in row.singles]
     total = row.total()
     body.append(["sum of single optima"] + cells(total, "-"))
     status = "" if row.meal.status == "optimal" else f" ({row.meal.status})"
@@ -183,10 +180,6 @@ def meal_csv(problem: Problem, row: MealRow) -> str:
     )
 
 
-def _jsonl(problem: Problem, rows: list[Row]) -> str:
-    return "".join(json.dumps(tree_json(problem, t)) + "\n" for r in rows for t in r.trees.values())
-
-
 def _register(name: str, ext: str, what: str, table: Callable[..., str], meal: Callable[..., str]) -> None:
     """Register format ``name`` of ``compare``: ``table`` renders rows of goals, ``meal`` a meal's row."""
     register("compare", name, ext, what)(
@@ -200,8 +193,8 @@ _register(
     "markdown",
     "md",
     f"Markdown table, {_BOTH}",
-    lambda problem, rows: render_table(problem, rows, True),
-    lambda problem, row: render_meal(problem, row, True),
+    partial(render_table, markdown=True),
+    partial(render_meal, markdown=True),
 )
 _register("csv", "csv", "one row per goal and method", render_csv, meal_csv)
 _register(
@@ -211,7 +204,13 @@ _register(
     lambda problem, rows: json_list([tree_json(problem, t) for r in rows for t in r.trees.values()]) + "\n",
     meal_json,
 )
-_register("jsonl", "jsonl", "JSON lines: one solve-shaped result with valid per goal and method", _jsonl, meal_json)
+_register(
+    "jsonl",
+    "jsonl",
+    "JSON lines: one solve-shaped result with valid per goal and method",
+    lambda problem, rows: "".join(json.dumps(tree_json(problem, t)) + "\n" for r in rows for t in r.trees.values()),
+    meal_json,
+)
 
 
 SUMMARY_COLUMNS = (

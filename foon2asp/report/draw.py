@@ -85,11 +85,8 @@ def object_label(obj: FoonObject) -> str:
     return "<" + "<BR/>".join(rows) + ">"
 
 
-def build_graph(
-    units: list[Unit], marks: Marks | None = None, name: str = "task_tree", prefix: str = ""
-) -> graphviz.Digraph:
+def build_graph(units: list[Unit], marks: Marks, name: str = "task_tree", prefix: str = "") -> graphviz.Digraph:
     """The drawing of ``units`` (in executable order) as a Graphviz graph (node names start with ``prefix``)."""
-    marks = marks or Marks()
     g = graphviz.Digraph(name)
     g.attr(rankdir="TB", fontname="Helvetica", fontsize="12", labelloc="t", nodesep="0.25", ranksep="0.35")
     title = [escape(_clip(marks.title, MAX_TOOLTIP))] if marks.title else []

@@ -9,7 +9,7 @@ import clingo
 from foon2asp.foon.problem import Problem
 from foon2asp.report.registry import register
 from foon2asp.tree.results import MissingResult, QueryResult
-from foon2asp.tree.serialize import tree_text
+from foon2asp.tree.serialize import goal_heading, tree_text
 from foon2asp.tree.tasktree import TaskTree
 
 #: argument kinds of the vocabulary predicates: o = object id, u = unit id, - = other
@@ -123,12 +123,9 @@ def _needs(problem: Problem, o: int, u: int, nxt: int) -> str:
 
 
 def missing_text(problem: Problem, result: MissingResult) -> str:
-    goal = problem.objects[result.goal]
+    tree = TaskTree(result.goal, "missing", result.status, result.units, result.cost, result.time_s, goals=result.goals)
     if not result.has_tree:
-        heading = [f"Goal: {goal}"]
-        if result.goals:
-            heading = [f"Meal of {len(result.goals)} goals:"] + [f"  + {problem.objects[g]}" for g in result.goals]
-        lines = heading + [f"Status: {result.status}: {result.reason or 'no tree'}"]
+        lines = [goal_heading(problem, tree), f"Status: {result.status}: {result.reason or 'no tree'}"]
         if result.cycle:
             chain = result.path + result.cycle
             if result.path:
@@ -142,14 +139,13 @@ def missing_text(problem: Problem, result: MissingResult) -> str:
                     _needs(problem, o, u, nxt) + (" (back to the start)" if k == len(result.cycle) - 1 else "")
                 )
         return "\n".join(lines) + "\n"
-    tree = TaskTree(result.goal, "missing", result.status, result.units, result.cost, result.time_s, goals=result.goals)
     body = tree_text(problem, tree).splitlines()
     top = 2 + len(result.goals)  # the heading (one line per goal of a meal) and the method line
     if result.missing:
         add = [f"  Missing {len(result.missing)} object(s); add to the kitchen:"]
         add += [f"    + {problem.objects[o]}" for o in result.missing]
         add.append("  Then:")
-    elif all(g in problem.kitchen for g in (result.goals or (result.goal,))):
+    elif all(g in problem.kitchen for g in tree.meal):
         add = ["  Nothing is missing: the goal is in the kitchen."]
     else:
         add = ["  Nothing is missing: the goal can be made from the kitchen."]
