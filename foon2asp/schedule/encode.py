@@ -204,7 +204,7 @@ def solve_steps(job: Job, time_limit: float | None = None) -> Solution:
     windows = job.windows(job.horizon)
     if windows is None:  # a unit cannot start and still end in time: no schedule within the horizon
         return Solution(None, True, True, (), stats)
-    if job.fixed and job.breakers and not job.levels:
+    if job.fixed and job.breakers:
         return _steps_in_phases(job, windows, stats, time_limit)
     sol = _steps_once(job, windows, job.horizon, job.floor, time_limit)
     stats.update(sol.stats)
@@ -366,7 +366,7 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
         # a fixed tree stops at the fewest human units a person must do (a joint one has the
         # tree objective after them)
         low = None
-        if job.fixed and not job.levels:
+        if job.fixed:
             low, few = _human_stop(job, opt, stats)
             enough.append(few)
 

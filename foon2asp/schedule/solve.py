@@ -49,14 +49,21 @@ def forced_human(inst: Instance) -> int:
     return sum(1 for u in inst.units if inst.durations[u] and set(inst.durations[u]) == {HUMAN})
 
 
+@dataclass(frozen=True)
+class Request:
+    """What every schedule of one call shares: the problem, the agents, the solver's settings."""
+
+    problem: Problem
+    spec: ScheduleSpec
+    options: AspOptions
+    encoding: str
+    shortcut: bool
+
+
 def schedule_fixed(
-    problem: Problem,
+    req: Request,
     tree: TaskTree,
-    spec: ScheduleSpec,
-    options: AspOptions,
-    encoding: str = DEFAULT_ENCODING,
-    time_limit: float | None = None,
-    shortcut: bool = True,
+    time_limit: float | None,
     within: int | None = None,
     progress: Callable[[dict], None] | None = None,
     first: Sequence[tuple[int, int]] = (),
@@ -66,6 +73,7 @@ def schedule_fixed(
     Joint scheduling: ``within`` (ms), only a schedule of at most that makespan matters (none:
     ``unschedulable``); ``first``, (object, maker) pairs for :func:`model.designate`."""
     t0 = time.perf_counter()
+    problem, spec, encoding = req.problem, req.spec, req.encoding
 
     def result(status: str, entries: Sequence[Entry] = (), **more) -> ScheduleResult:
         agents = [name for name, _ in spec.agent_list()]
@@ -93,7 +101,7 @@ def schedule_fixed(
     known, which = (base, "baseline") if done else known_schedule(inst, b.lower, tries)
     over = within is not None and makespan(known) > within
     stats: dict = {"encoding": encoding}
-    if not over and shortcut and makespan(known) == b.lower and human_units(known) <= least:
+    if not over and req.shortcut and makespan(known) == b.lower and human_units(known) <= least:
         stats["shortcut"] = f"{which} meets the lower bound"
         return result("optimal", known, bounds=b, baseline=ub, stats=stats)
     if over:  # is there a schedule within ``within`` at all (dl asks below its horizon first)?
@@ -102,10 +110,8 @@ def schedule_fixed(
     else:
         horizon = makespan(known) if encoding == "steps" else ub
     start = known if encoding == "steps" and not over else None
-    args = solver_arguments(options)
-    job = encode.Job(
-        inst, head, model.tails(inst), horizon, b.lower, args, ties=spec.has_human(), known=start, progress=progress
-    )
+    args = solver_arguments(req.options)
+    job = encode.Job(inst, head, model.tails(inst), horizon, b.lower, args, known=start, progress=progress)
     sol = encode.solve(job, encoding, time_limit)
     stats.update(sol.stats)
     if over and sol.entries is None:
@@ -118,17 +124,12 @@ def schedule_fixed(
     return result("optimal" if sol.proven or met else "feasible", entries, bounds=b, baseline=ub, stats=stats)
 
 
-@dataclass
-class JointRequest:
-    """One joint scheduling request: the given tree, its own (``fixed``) schedule, the settings."""
+@dataclass(frozen=True)
+class JointRequest(Request):
+    """A joint scheduling request: the given tree and its own (``fixed``) schedule."""
 
-    problem: Problem
     tree: TaskTree
-    spec: ScheduleSpec
-    options: AspOptions
     fixed: ScheduleResult
-    encoding: str
-    shortcut: bool
 
     def solve(self, cand: joint.Candidate, limit: float | None, within: int | None) -> ScheduleResult:
         """The schedule of a designated tree (time left ``limit``; only one of at most ``within``
@@ -136,10 +137,7 @@ class JointRequest:
         units, first = cand
         if units == tuple(sorted(self.tree.units)) and self.fixed.status == "optimal":
             return self.fixed
-        tree = self.tree_of(units, "optimal")
-        return schedule_fixed(
-            self.problem, tree, self.spec, self.options, self.encoding, limit, self.shortcut, within, first=first
-        )
+        return schedule_fixed(self, self.tree_of(units, "optimal"), limit, within, first=first)
 
     def tree_of(self, units: Sequence[int], status: str) -> TaskTree:
         """The task tree of ``units`` for the goals of the given tree."""
@@ -314,7 +312,8 @@ def schedule(
         limit = DEFAULT_TIME_LIMIT
     elif math.isinf(limit):
         limit = None
-    fixed = schedule_fixed(problem, tree, spec, options, encoding, limit, shortcut, progress=progress)
+    req = Request(problem, spec, options, encoding, shortcut)
+    fixed = schedule_fixed(req, tree, limit, progress=progress)
     if not joint or not tree.has_tree:
         return replace(fixed, joint=joint) if joint else fixed
-    return schedule_joint(JointRequest(problem, tree, spec, options, fixed, encoding, shortcut), limit)
+    return schedule_joint(JointRequest(**vars(req), tree=tree, fixed=fixed), limit)
