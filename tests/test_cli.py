@@ -11,7 +11,7 @@ from click.testing import CliRunner
 
 from conftest import DEMO
 from foon2asp.cli.main import main
-from foon2asp.foon.parser import parse_text
+from foon2asp.foon.parser import parse_lines
 
 OBJ_KEYS = {"label", "states", "ingredients", "container"}
 SMOOTHIE = DEMO / "llm" / "smoothie-2.json"
@@ -68,7 +68,7 @@ def test_foon_format_round_trips(shared_foon_dir):
     js = json.loads(run("solve", "--data", shared_foon_dir, "--goal", "macaroni", "--format", "json").stdout)[0]
     text = run("solve", "--data", shared_foon_dir, "--goal", "macaroni", "--format", "foon").stdout
     assert text.count("//") == len(js["units"]) + 1
-    foon = parse_text(text)
+    foon = parse_lines(text)
     assert [u.to_json() for u in foon.units] == js["units"]
 
 

@@ -35,7 +35,7 @@ from foon2asp.cli.options import SECONDS, int32  # noqa: E402
 from foon2asp.errors import BAD_CHAR, InputError  # noqa: E402
 from foon2asp.foon.loaders import read_goals, read_kitchen, read_motion, read_utensils  # noqa: E402
 from foon2asp.foon.model import Foon  # noqa: E402
-from foon2asp.foon.parser import format_units, parse_text, read_foon  # noqa: E402
+from foon2asp.foon.parser import format_units, parse_lines, read_foon  # noqa: E402
 from foon2asp.foon.treefiles import read_trees  # noqa: E402
 
 EXAMPLES = int(os.environ.get("FUZZ_EXAMPLES", "25"))
@@ -235,7 +235,7 @@ def test_state_brackets_pair_up_or_the_line_is_named(relation, arg, official):
     assume(relation or arg.strip())
     fields = f"{relation}\t{arg}" if relation else arg
     text = f"O\tbowl\nS\tempty\nM\tpour\nO\tbowl\nS{'5' if official else ''}\t{fields}\n//\n"
-    result = outcome(lambda: parse_text(text, "f.txt"))
+    result = outcome(lambda: parse_lines(text, "f.txt"))
     if not pairs_up(arg) or (relation in ("in", "contains") and not one_list(arg)):
         assert isinstance(result, InputError), (text, result)
         assert (result.path, result.line) == ("f.txt", 5) and result.column is not None, str(result)
@@ -244,7 +244,7 @@ def test_state_brackets_pair_up_or_the_line_is_named(relation, arg, official):
     assert isinstance(result, Foon), (text, str(result))
     (out,) = result.units[0].outputs
     assert not any(c in label for label in (*out.ingredients, out.container or "") for c in "[]{}")
-    assert parse_text(format_units(result.units), "again.txt").units == result.units
+    assert parse_lines(format_units(result.units), "again.txt").units == result.units
 
 
 LABEL = st.text(

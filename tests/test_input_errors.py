@@ -14,7 +14,7 @@ from foon2asp import api
 from foon2asp.api.options import Options
 from foon2asp.cli.main import main
 from foon2asp.errors import InputError
-from foon2asp.foon.parser import parse_text
+from foon2asp.foon.parser import parse_lines
 from helpers import one_line_error
 
 DEMO = Path(__file__).resolve().parent.parent / "data"
@@ -72,7 +72,7 @@ def small_data(tmp_path: Path, state: str) -> Path:
 )
 def test_brackets_that_do_not_pair_up_are_located(state, column, words):
     with pytest.raises(InputError) as err:
-        parse_text(UNIT.format(state=state), "f.txt")
+        parse_lines(UNIT.format(state=state), "f.txt")
     assert (err.value.path, err.value.line, err.value.column) == ("f.txt", 8, column)
     assert str(err.value).startswith(f"f.txt:8:{column}: {words}")
 
@@ -98,13 +98,13 @@ def test_unbalanced_container_is_an_error_not_an_unreachable_goal(tmp_path):
     ],
 )
 def test_brackets_that_pair_up_are_read(state, container, states):
-    foon = parse_text(UNIT.format(state=state), "f.txt")
+    foon = parse_lines(UNIT.format(state=state), "f.txt")
     (out,) = foon.units[0].outputs
     assert (out.container, out.states) == (container, states)
 
 
 def test_ingredients_in_braces_are_read():
-    foon = parse_text(UNIT.format(state="S\tcontains\t{flour, sugar}"), "f.txt")
+    foon = parse_lines(UNIT.format(state="S\tcontains\t{flour, sugar}"), "f.txt")
     assert foon.units[0].outputs[0].ingredients == ("flour", "sugar")
 
 

@@ -24,7 +24,7 @@ from foon2asp.cli.main import main
 from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.model import FoonObject
-from foon2asp.foon.parser import parse_text
+from foon2asp.foon.parser import parse_lines
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.substitutes import candidates, parse_substitutes
 from test_matching import optimum, rewrite_foon, rewrite_object
@@ -170,7 +170,7 @@ def test_every_command_accepts_the_flags(name, tmp_path, onion_tree):
 def test_cli_level_2_on_the_universal_foon_matches_the_rewritten_foon(shared_foon_dir):
     data = Dataset.load(shared_foon_dir)
     text = (shared_foon_dir / "FOON.txt").read_text(encoding="utf-8")
-    reference = Problem(parse_text(rewrite_foon(text, 2), "rewritten"), [rewrite_object(o, 2) for o in data.kitchen])
+    reference = Problem(parse_lines(rewrite_foon(text, 2), "rewritten"), [rewrite_object(o, 2) for o in data.kitchen])
     reference.motion, reference.utensils = data.motion, data.utensils
     want = optimum(reference, [rewrite_object(g, 2) for g, _ in data.goals])
     result = ok("solve", "--data", shared_foon_dir, "--level", "2", "--goals", "all", "--format", "json")
@@ -184,7 +184,7 @@ def test_library_level_1_on_the_universal_foon_matches_the_rewritten_foon(shared
     data = Dataset.load(shared_foon_dir)
     text = (shared_foon_dir / "FOON.txt").read_text(encoding="utf-8")
     reference = Problem(
-        parse_text(rewrite_foon(text, 1), "rewritten"), [rewrite_object(o, 1) for o in data.kitchen], data.motion
+        parse_lines(rewrite_foon(text, 1), "rewritten"), [rewrite_object(o, 1) for o in data.kitchen], data.motion
     )
     reference.utensils = data.utensils
     want = optimum(reference, [rewrite_object(g, 1) for g, _ in data.goals])

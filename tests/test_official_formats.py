@@ -23,7 +23,7 @@ from click.testing import CliRunner
 from foon2asp.cli.main import main
 from foon2asp.foon import foonjson
 from foon2asp.foon.model import Foon, FoonObject, Unit
-from foon2asp.foon.parser import IdMap, format_units, id_map, parse_text, read_foon, write_foon
+from foon2asp.foon.parser import IdMap, format_units, id_map, parse_lines, read_foon, write_foon
 from foon2asp.tree.serialize import tree_foon
 
 O_LINE = re.compile(r"^O(\d+)\t([^\t]+)\t([01])$")
@@ -127,15 +127,15 @@ def test_official_dialect_conforms_and_round_trips():
     assert set(ids["O"]) == {"tomato", "knife", "bowl", "onion", "pot", "steak"}
     assert len(set(ids["O"].values())) == 6  # distinct per label
     assert text.getvalue().startswith("//\nO")  # a leading // then the units
-    again = parse_text(text.getvalue())
+    again = parse_lines(text.getvalue())
     assert [u.key() for u in again.units] == [u.key() for u in foon.units]
     plain = format_units(foon.units)
     assert "\tAssumed" not in plain and "O\ttomato" in plain
-    assert [u.key() for u in parse_text(plain).units] == [u.key() for u in foon.units]
+    assert [u.key() for u in parse_lines(plain).units] == [u.key() for u in foon.units]
     # CRLF, as the official files have it
     crlf = text.getvalue().replace("\n", "\r\n")
     assert official_units(crlf)[:2] == (3, 3)
-    assert [u.key() for u in parse_text(crlf).units] == [u.key() for u in foon.units]
+    assert [u.key() for u in parse_lines(crlf).units] == [u.key() for u in foon.units]
 
 
 def test_conformance_checker_catches_placeholder_ids():
@@ -156,7 +156,7 @@ def test_ids_of_official_files_are_reused_and_others_assigned_deterministically(
     fresh = ids.get("O", "a label never seen")
     assert fresh > max(foon.ids["O"].values())
     # a FOON without ids: the same ids every time, sorted by label
-    plain = parse_text(format_units(foon.units))
+    plain = parse_lines(format_units(foon.units))
     a, b = IdMap(plain.ids, {"O": {"b", "a"}}), IdMap({}, {"O": {"a", "b"}})
     assert a.get("O", "a") == b.get("O", "a") == 1 and a.get("O", "b") == 2
     # a label whose id another label holds gets a fresh one
@@ -197,7 +197,7 @@ def test_tree_round_trips_through_both_dialects_and_json(shared_problem):
     keys = [problem.units[u].key() for u in tree.units]
     assert len(keys) == 25
     for dialect in ("official", "plain"):
-        assert [u.key() for u in parse_text(tree_foon(problem, tree, dialect)).units] == keys
+        assert [u.key() for u in parse_lines(tree_foon(problem, tree, dialect)).units] == keys
     doc = foonjson.to_foon_json((problem.units[u] for u in tree.units), id_map(problem.foon))
     assert set(doc["functional_units"][0]) == {"input_nodes", "motion_node", "output_nodes"}
     node = doc["functional_units"][0]["input_nodes"][0]
@@ -255,11 +255,11 @@ def test_111_files_rewritten_and_reread_unchanged(shared_111_dir):
         write_foon(foon, text)
         written, loaded, ids = official_units(text.getvalue())
         assert written == loaded == len(keys), f
-        again = parse_text(text.getvalue())
+        again = parse_lines(text.getvalue())
         assert [u.key() for u in again.units] == keys, f
         for kind, table in again.ids.items():  # the file's own ids are kept
             assert all(foon.ids[kind][k] == v for k, v in table.items()), f
-        plain = parse_text(format_units(foon.units))
+        plain = parse_lines(format_units(foon.units))
         assert [u.key() for u in plain.units] == keys, f
         doc = foonjson.dumps(foon.units, id_map(foon))
         assert [u.key() for u in foonjson.parse_json(doc).units] == keys, f

@@ -6,7 +6,7 @@ import pytest
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject
-from foon2asp.foon.parser import format_units, parse_lines, parse_text, read_foon, read_foons
+from foon2asp.foon.parser import format_units, parse_lines, read_foon, read_foons
 
 IDLESS = """# a comment
 //
@@ -39,7 +39,7 @@ OFFICIAL = (
 
 
 def test_idless_format():
-    foon = parse_text(IDLESS)
+    foon = parse_lines(IDLESS)
     assert len(foon.units) == 1
     unit = foon.units[0]
     assert unit.motion == "chop"
@@ -49,7 +49,7 @@ def test_idless_format():
 
 
 def test_official_format_relations_kept_as_states():
-    foon = parse_text(OFFICIAL)
+    foon = parse_lines(OFFICIAL)
     unit = foon.units[0]
     assert unit.motion == "attach"  # trailing * dropped
     mixer, bowl = unit.outputs
@@ -70,10 +70,10 @@ def test_identity_is_order_insensitive():
 
 def test_duplicate_units_merged():
     reordered = "O\tknife\nO\tonion\nS\twhole\nM\tchop\nO\tknife\nO\tonion\nS\tin\t[cutting board]\nS\tchopped\n//\n"
-    foon = parse_text(IDLESS + reordered)
+    foon = parse_lines(IDLESS + reordered)
     # the second copy lists the inputs in another order: same unit
     assert len(foon.units) == 1
-    other = parse_text(IDLESS.replace("chop", "slice"))
+    other = parse_lines(IDLESS.replace("chop", "slice"))
     merged = Foon()
     for part in (foon, other, foon):  # the units of several FOONs in one
         parse_lines(format_units(part.units).splitlines(), foon=merged)
@@ -81,8 +81,8 @@ def test_duplicate_units_merged():
 
 
 def test_round_trip_string():
-    foon = parse_text(OFFICIAL + IDLESS)
-    again = parse_text(format_units(foon.units))
+    foon = parse_lines(OFFICIAL + IDLESS)
+    again = parse_lines(format_units(foon.units))
     assert again.units == foon.units
 
 
@@ -99,7 +99,7 @@ def test_round_trip_string():
 )
 def test_errors_name_line(text, line, words):
     with pytest.raises(InputError) as err:
-        parse_text(text, "f.txt")
+        parse_lines(text, "f.txt")
     assert err.value.path == "f.txt" and err.value.line == line
     assert words in str(err.value)
     assert str(err.value).startswith(f"f.txt:{line}: ")
@@ -108,11 +108,11 @@ def test_errors_name_line(text, line, words):
 
 def test_unit_without_motion_warns_or_fails_when_strict():
     text = "//\nO\tegg\nS\tuncracked\nO\tegg\nS\tcracked\n//\n" + IDLESS
-    foon = parse_text(text, "f.txt")
+    foon = parse_lines(text, "f.txt")
     assert len(foon.units) == 1
     assert foon.warnings == ["f.txt:2: functional unit has no motion (M) line; unit skipped"]
     with pytest.raises(InputError) as err:
-        parse_text(text, "f.txt", strict=True)
+        parse_lines(text, "f.txt", strict=True)
     assert err.value.line == 2
 
 
@@ -147,12 +147,12 @@ def test_universal_foon(shared_foon_dir):
     foon = read_foon(shared_foon_dir / "FOON.txt")
     assert len(foon.units) == 2376
     assert not foon.warnings
-    again = parse_text(format_units(foon.units))
+    again = parse_lines(format_units(foon.units))
     assert again.units == foon.units
 
 
 def test_parser_fast_path_errors_and_ids():
-    foon = parse_text("O12\tegg\t0\nS3\twhole\nM7\tcrack*\t0\t1\nO1\tegg\nS\tcracked\n//\n")
+    foon = parse_lines("O12\tegg\t0\nS3\twhole\nM7\tcrack*\t0\t1\nO1\tegg\nS\tcracked\n//\n")
     assert len(foon.units) == 1 and foon.units[0].motion == "crack"
     assert foon.units[0].outputs[0].states == ("cracked",)
     for text, needle in (
@@ -162,7 +162,7 @@ def test_parser_fast_path_errors_and_ids():
         ("X\tegg\n", "unknown line type"),
     ):
         with pytest.raises(InputError, match=needle):
-            parse_text(text)
+            parse_lines(text)
 
 
 def test_read_foon_streams_lines(tmp_path):

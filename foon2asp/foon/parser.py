@@ -72,14 +72,16 @@ class _Obj:
     container: str | None = None
 
 
-def parse_lines(lines: Iterable[str], path: str = "<string>", foon: Foon | None = None, strict: bool = False) -> Foon:
-    """Parse FOON text from ``lines`` into ``foon`` (a new one by default).  A unit without a
-    motion line is skipped with a warning in ``foon.warnings`` (an error when ``strict``)."""
+def parse_lines(
+    lines: str | Iterable[str], path: str = "<string>", foon: Foon | None = None, strict: bool = False
+) -> Foon:
+    """Parse FOON text (a string, or its lines) into ``foon`` (a new one by default).  A unit without
+    a motion line is skipped with a warning in ``foon.warnings`` (an error when ``strict``)."""
     foon = foon if foon is not None else Foon()
     gc_enabled = gc.isenabled()
     gc.disable()  # many small long-lived objects: collection passes only cost time here
     try:
-        return _parse(lines, path, foon, strict)
+        return _parse(lines_of(lines) if isinstance(lines, str) else lines, path, foon, strict)
     finally:
         if gc_enabled:
             gc.enable()
@@ -180,7 +182,7 @@ def read_foon(path: str | Path, foon: Foon | None = None, strict: bool = False) 
     text = read_text(path, "FOON", checked=False)  # FOON text is checked line by line
     if looks_like_json(path, text[:64]):
         return _json_foon(text, str(path), foon, strict)
-    return parse_lines(lines_of(text), str(path), foon, strict)
+    return parse_lines(text, str(path), foon, strict)
 
 
 def _json_foon(text: str, path: str, foon: Foon | None, strict: bool) -> Foon:
@@ -202,10 +204,6 @@ def read_foons(paths: Iterable[str | Path], strict: bool = False) -> Foon:
     for path in paths:
         read_foon(path, foon, strict)
     return foon
-
-
-def parse_text(text: str, path: str = "<string>", strict: bool = False) -> Foon:
-    return parse_lines(lines_of(text), path, strict=strict)
 
 
 def object_fields(obj: FoonObject) -> list[tuple[str, str | None]]:
