@@ -24,6 +24,7 @@ from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.substitutes import (
     Substitute,
+    by_needed,
     candidates,
     parse_substitutes,
     read_substitutes,
@@ -95,7 +96,7 @@ def test_candidates_by_label_and_by_ingredient():
         [obj("red onion", "chopped"), obj("salt"), obj("bowl", "mixed", contains=("salt", "shallot"))],
     )
     subs = parse_substitutes("onion: red onion, shallot=2\n")
-    assert [(o.text, c) for o, c in stand_ins(obj("onion", "chopped"), subs)] == [
+    assert [(o.text, c) for o, c in stand_ins(obj("onion", "chopped"), by_needed(subs))] == [
         ("red onion, chopped", 1),
         ("shallot, chopped", 2),
     ]

@@ -258,10 +258,6 @@ class Projection:
                     out.units[uid] = replace(kept, made=kept.made | projected.made)
         return out
 
-    def joined(self) -> dict[FoonObject, list[str]]:
-        """Projected objects that stand for more than one object text."""
-        return {o: texts for o, texts in self.sources.items() if len(texts) > 1}
-
     def utensils(self, utensils: Iterable[str]) -> frozenset[str]:
         """Utensil labels spelled as the projection spells labels."""
         return frozenset(self.label(u) for u in utensils)

@@ -115,20 +115,17 @@ def read_substitutes(path: str | Path) -> tuple[Substitute, ...]:
     return parse_substitutes(read_text(path, "substitutes"), str(path))
 
 
-def _table(substitutes: Iterable[Substitute]) -> dict[str, list[Substitute]]:
+def by_needed(substitutes: Iterable[Substitute]) -> dict[str, list[Substitute]]:
+    """The substitutes of each needed label, in order."""
     table: dict[str, list[Substitute]] = {}
     for s in substitutes:
         table.setdefault(s.needed, []).append(s)
     return table
 
 
-def stand_ins(obj: FoonObject, substitutes: Iterable[Substitute]) -> list[tuple[FoonObject, int]]:
+def stand_ins(obj: FoonObject, table: dict[str, list[Substitute]]) -> list[tuple[FoonObject, int]]:
     """The objects that may stand in for ``obj`` with their costs: ``obj`` with its label,
-    or one of its ingredients, replaced by a substitute (in the order of the substitutes)."""
-    return _stand_ins(obj, _table(substitutes))
-
-
-def _stand_ins(obj: FoonObject, table: dict[str, list[Substitute]]) -> list[tuple[FoonObject, int]]:
+    or one of its ingredients, replaced by a substitute of ``table`` (:func:`by_needed`)."""
     out: list[tuple[FoonObject, int]] = []
     for s in table.get(obj.label, ()):
         out.append((FoonObject(s.used, obj.states, obj.ingredients, obj.container), s.cost))
@@ -155,7 +152,7 @@ def candidates(problem: Problem, substitutes: Iterable[Substitute]) -> list[Cand
     """Every (needed object, kitchen item, cost) where the kitchen item may stand in for
     an object of the FOON that is not a kitchen item; by object id, then substitute order.
     A kitchen item reached by two substitutions of one object keeps the cheaper."""
-    table = _table(substitutes)
+    table = by_needed(substitutes)
     if not table:
         return []
     by_used: dict[str, list[Substitute]] = {}
@@ -171,7 +168,7 @@ def candidates(problem: Problem, substitutes: Iterable[Substitute]) -> list[Cand
     out: list[Candidate] = []
     for oid in sorted(needed):
         best: dict[FoonObject, int] = {}
-        for used, cost in _stand_ins(problem.objects[oid], table):
+        for used, cost in stand_ins(problem.objects[oid], table):
             if used in kitchen and cost < best.get(used, cost + 1):
                 best[used] = cost
         out += [Candidate(oid, used, cost) for used, cost in best.items()]
