@@ -160,14 +160,14 @@ def _init_worker(spec: BatchSpec) -> None:
     _WORKER = Worker(spec)
 
 
-def _run_in_worker(task: tuple[int, str]) -> tuple[int, str, str]:
+def _run_in_worker(task: tuple[int, str]) -> str:
     assert _WORKER is not None, "worker not initialised"
-    return (*task, _WORKER.run(*task))
+    return _WORKER.run(*task)
 
 
 class Execution:
     """Run ``tasks`` in a pool of ``workers`` processes (:data:`AUTO`: here, then a pool on every
-    usable core); iterating yields ``(goal, method, json_line)`` as results finish, and
+    usable core); iterating yields the JSON lines of the results as they finish, and
     :meth:`close` terminates the pool's workers at once."""
 
     def __init__(self, spec: BatchSpec, tasks: list[tuple[int, str]], workers: int = 1):
@@ -177,13 +177,13 @@ class Execution:
         self.workers = 1 if workers == AUTO else workers
         self._results = self._run()
 
-    def __iter__(self) -> Iterator[tuple[int, str, str]]:
+    def __iter__(self) -> Iterator[str]:
         return self._results
 
     def close(self) -> None:
         self._results.close()
 
-    def _run(self) -> Generator[tuple[int, str, str], None, None]:
+    def _run(self) -> Generator[str, None, None]:
         tasks, workers = self.tasks, self.requested
         if workers <= 1:
             cores = usable_cores() if workers == AUTO else 1
@@ -193,7 +193,7 @@ class Execution:
             for goal, method in tasks:
                 if cores > 1 and time.perf_counter() - t0 >= SWITCH_S:
                     break
-                yield goal, method, worker.run(goal, method)
+                yield worker.run(goal, method)
                 done += 1
             del worker
             tasks, workers = tasks[done:], cores
@@ -215,16 +215,18 @@ class Execution:
 _LOCAL = threading.local()
 
 
-def _run_chunk(token: str, spec: BatchSpec, tasks: list[tuple[int, str]]) -> list[tuple[int, str, str]]:
+def _run_chunk(token: str, spec: BatchSpec, tasks: list[tuple[int, str]]) -> list[str]:
     """On a Dask worker: the results of ``tasks`` (runners built once per thread and batch)."""
     if getattr(_LOCAL, "token", None) != token:
         _LOCAL.token, _LOCAL.worker = token, Worker(spec)
-    return [(goal, method, _LOCAL.worker.run(goal, method)) for goal, method in tasks]
+    return [_LOCAL.worker.run(goal, method) for goal, method in tasks]
 
 
-def dask_executor(
-    scheduler, chunk: int = 8
-) -> Callable[[BatchSpec, list[tuple[int, str]]], Iterator[tuple[int, str, str]]]:
+#: runs a batch's (goal, method) pairs somewhere, yielding their JSON lines as they finish
+Executor = Callable[[BatchSpec, list[tuple[int, str]]], Generator[str, None, None]]
+
+
+def dask_executor(scheduler, chunk: int = 8) -> Executor:
     """A batch executor for :func:`foon2asp.batch.results.run_batch` on the Dask ``scheduler``
     (an address such as ``tcp://host:8786`` or a ``distributed.Client``; the extra ``dask``)."""
     try:
@@ -234,7 +236,7 @@ def dask_executor(
             "--scheduler needs Dask: install the extra with  pip install 'foon2asp[dask]'  (dask[distributed])"
         ) from None
 
-    def run(spec: BatchSpec, tasks: list[tuple[int, str]]) -> Iterator[tuple[int, str, str]]:
+    def run(spec: BatchSpec, tasks: list[tuple[int, str]]) -> Generator[str, None, None]:
         if not tasks:
             return
         own = not isinstance(scheduler, distributed.Client)

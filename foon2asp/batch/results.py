@@ -13,7 +13,7 @@ import statistics
 import sys
 import time
 from collections import Counter
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
@@ -29,7 +29,7 @@ from foon2asp.analysis.check import unit_index
 from foon2asp.asp.facts import facts
 from foon2asp.asp.interrupts import deferred_signals
 from foon2asp.asp.options import AspOptions
-from foon2asp.batch.pool import AUTO, BatchSpec, Execution, refuse_while_starting
+from foon2asp.batch.pool import AUTO, BatchSpec, Execution, Executor, refuse_while_starting
 from foon2asp.errors import InputError
 from foon2asp.foon.foonjson import parse_json
 from foon2asp.foon.problem import Problem
@@ -280,7 +280,7 @@ def run_batch(
     workers: int = 1,
     progress: bool | None = None,
     sync: bool = True,
-    executor: Callable[[BatchSpec, list[tuple[int, str]]], Iterable[tuple[int, str, str]]] | None = None,
+    executor: Executor | None = None,
 ) -> BatchReport:
     """Solve every (goal, method) pair of ``goals`` x ``spec.methods`` and append the results to
     ``output`` (an existing, non-empty one only with ``resume``); ``workers`` as
@@ -304,21 +304,18 @@ def run_batch(
         new_records: list[dict] = []
         disable = not sys.stderr.isatty() if progress is None else not progress
         bar = tqdm(total=len(todo), unit="result", desc="batch", file=sys.stderr, disable=disable, smoothing=0.05)
-        results: Iterable[tuple[int, str, str]] = ()
-        used = 1 if workers == AUTO else workers  # the processes that ran tasks (the pool's, once it started)
+        results = executor(spec, todo) if executor is not None else Execution(spec, todo, workers)
         try:
-            results = executor(spec, todo) if executor is not None else Execution(spec, todo, workers)
-            for _goal, _method, line in results:
+            for line in results:
                 if out is not None:
                     out.append(line)
                 new_records.append(json.loads(line))
                 bar.update(1)
-            used = getattr(results, "workers", used)
         finally:
-            close = getattr(results, "close", None)
-            if close is not None:
-                close()  # stops a pool at once
+            results.close()  # stops a pool at once
             bar.close()
+        # the processes that ran tasks (the pool's, once it started)
+        used = getattr(results, "workers", 1 if workers == AUTO else workers)
     finally:
         if out is not None:
             out.close()
