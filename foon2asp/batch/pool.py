@@ -49,9 +49,8 @@ def usable_cores() -> int:
 
 
 def reruns_main() -> bool:
-    """Whether a ``spawn`` or ``forkserver`` worker runs this process's main module again
-    (as Python prepares one: a script run by its path, or a module run with ``-m`` that is
-    not a package's ``__main__``)."""
+    """Whether a ``spawn`` or ``forkserver`` worker runs this process's main module again (a script
+    run by its path, or a module run with ``-m`` that is not a package's ``__main__``)."""
     main = sys.modules.get("__main__")
     name = getattr(getattr(main, "__spec__", None), "name", None)
     if name is not None:
@@ -60,9 +59,8 @@ def reruns_main() -> bool:
 
 
 def start_method() -> str:
-    """The start method of a pool's workers: :data:`START_METHOD` if set; ``fork`` on Linux
-    when a spawned worker would run the main script again and no other thread runs here;
-    ``spawn`` otherwise."""
+    """The start method of a pool's workers: :data:`START_METHOD` if set; ``fork`` on Linux when a
+    spawned worker would run the main script again and no other thread runs here; else ``spawn``."""
     if START_METHOD is not None:
         return START_METHOD
     # tqdm's monitor and the solve watchdog wait holding no lock a forked worker could need

@@ -1,8 +1,4 @@
-"""The ``foon2asp`` command group and what every command shares: errors, exit codes, warnings, progress bars.
-
-The commands are declared in :mod:`foon2asp.cli.goals` and :mod:`foon2asp.cli.files`, their
-options once in :mod:`foon2asp.cli.options`.
-"""
+"""The ``foon2asp`` command group and what every command shares: errors, exit codes, warnings, progress bars."""
 
 from __future__ import annotations
 
