@@ -169,7 +169,7 @@ def _steps_once(
     control.ground()
     ground_s = time.perf_counter() - t0
     best: dict[str, Any] = {}
-    # a fixed tree without tie-breakers: a schedule that compacts to the floor is optimal, so stop there
+    # a fixed tree without tie-breakers stops at a schedule that compacts to the floor
     stop_at_floor = job.fixed and not job.breakers
 
     def on_model(model: clingo.Model) -> bool:
@@ -363,8 +363,7 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
         opt = makespan(best["entries"])
         _report(job, best["entries"], floor, None, "makespan")
     if proven and job.breakers and (job.ties or "entries" in best):
-        # a fixed tree stops at the fewest human units a person must do (a joint one has the
-        # tree objective after them)
+        # a fixed tree stops at the fewest human units a person must do
         low = None
         if job.fixed:
             low, few = _human_stop(job, opt, stats)

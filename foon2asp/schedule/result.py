@@ -11,7 +11,7 @@ from decimal import Decimal
 from foon2asp.asp.objectives import success_product
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule.bounds import Bounds
-from foon2asp.schedule.model import Entry, human_units
+from foon2asp.schedule.model import Entry
 from foon2asp.schedule.spec import HUMAN, TICKS, kind_of
 from foon2asp.tree.serialize import goal_heading, tree_json
 from foon2asp.tree.tasktree import TaskTree
@@ -101,7 +101,7 @@ class ScheduleResult:
             "schedule": [dict(zip(("unit", "agent", "start", "end"), row)) for row in rows],
             "tree": tree,
             "success": self.success(),
-            "human_units": human_units(self.entries) if self.has_schedule else None,
+            "human_units": len(self.human) if self.has_schedule else None,
             "joint": self.joint,
             "encoding": self.stats.get("encoding"),
             "time_s": round(self.time_s, 6),

@@ -119,7 +119,7 @@ def schedule_fixed(
     entries = known
     if sol.entries is not None and (over or makespan(sol.entries) <= makespan(known)):
         entries = model.compact(inst, sol.entries)
-    # without tie-breakers a schedule at the lower bound is optimal, however the search ended
+    # without tie-breakers a schedule at the lower bound is optimal
     met = not over and makespan(entries) <= b.lower and not spec.has_human()
     return result("optimal" if sol.proven or met else "feasible", entries, bounds=b, baseline=ub, stats=stats)
 
