@@ -217,12 +217,9 @@ class Problem:
     def _view(self) -> Problem:
         """A problem sharing this one's tables and kitchen, with no cached value."""
         view = Problem.__new__(Problem)
-        view.foon, view.motion_rates = self.foon, self.motion_rates
-        view.utensils, view.utensil_rule = self.utensils, self.utensil_rule
-        view.motion_costs, view.substitutable = self.motion_costs, self.substitutable
-        view.inputs, view.required, view.outputs = self.inputs, self.required, self.outputs
-        view.products, view.producers, view.rates = self.products, self.producers, self.rates
-        view.kitchen, view.kitchen_items = self.kitchen, list(self.kitchen_items)
+        cached = {name for name, value in vars(Problem).items() if isinstance(value, cached_property)}
+        vars(view).update((name, value) for name, value in vars(self).items() if name not in cached)
+        view.kitchen_items = list(self.kitchen_items)
         return view
 
     @property
