@@ -1,8 +1,4 @@
-"""Consolidating candidate trees of one recipe into one proven-best tree.
-
-A candidate executable on its own is a tree of the merged FOON (:func:`merge`), so the
-optimum :func:`consolidate` gives is never worse than it.
-"""
+"""Consolidating candidate trees of one recipe into one proven-best tree."""
 
 from __future__ import annotations
 

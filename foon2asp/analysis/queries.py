@@ -1,8 +1,4 @@
-"""Declarative queries over a FOON: reachability, missing items, user programs.
-
-:func:`reachable` answers which objects can be made from the kitchen, :func:`missing` the
-fewest objects to add so a goal can be made, :func:`query` runs a user's program with the facts.
-"""
+"""Declarative queries over a FOON: reachability, missing items, user programs."""
 
 from __future__ import annotations
 

@@ -10,7 +10,7 @@ from foon2asp.foon.treefiles import TreeFile
 from foon2asp.report.registry import register
 from foon2asp.tree.results import AloneReport, Report
 from foon2asp.tree.serialize import number
-from foon2asp.tree.validate import AloneVerdict, describe_unit
+from foon2asp.tree.validate import describe_unit
 
 
 def unreachable(report: Report | AloneReport) -> bool:
@@ -52,9 +52,13 @@ def _goal_lines(goals: list, source: str) -> list[str]:
     return [f"Goal: {goals[0] if goals else '-'}{source}"]
 
 
-def _fire_lines(can: str, never: str) -> list[str]:
-    return [f"Units that can fire (in order, steps): {can or '-'}"] + (
-        [f"Units that never fire (steps): {never}"] if never else []
+def _steps(numbers: list[int]) -> str:
+    return " ".join(map(str, numbers)) or "-"
+
+
+def _fire_lines(can: list[int], never: list[int]) -> list[str]:
+    return [f"Units that can fire (in order, steps): {_steps(can)}"] + (
+        [f"Units that never fire (steps): {_steps(never)}"] if never else []
     )
 
 
@@ -64,14 +68,11 @@ def report_text(problem: Problem, report: Report) -> str:
     lines = [_tree_head(tree), *_goal_lines([problem.objects[g] for g in report.meal], report.goal_source)]
     n_known = sum(u is not None for u in ids)
     lines.append(f"Units: {len(ids)} read, {n_known} found in the FOON, {len(ids) - n_known} unknown")
-    if unreachable(report):
-        assert report.finding is not None
-        lines.append(f"Verdict: {report.finding.message}")
-    else:
-        lines.append(f"Verdict: {'VALID' if report.valid else 'INVALID'}")
+    f = report.finding
+    gone = f is not None and f.kind == "unreachable"
+    lines.append(f"Verdict: {f.message if f is not None and gone else 'VALID' if report.valid else 'INVALID'}")
     lines += [f"uses {s['used']} for {s['needed']}" for s in report.substitutions or []]
-    if report.finding and not unreachable(report):
-        f = report.finding
+    if f is not None and not gone:
         if f.kind == "cycle":
             lines += _cycle_lines(
                 [(problem.objects[o], "in this tree by " + describe_unit(problem, u, tree, ids)) for o, u in f.cycle]
@@ -80,14 +81,15 @@ def report_text(problem: Problem, report: Report) -> str:
             lines.append(f"Problem: {f.message}")
     v = report.validation
     if v is not None:
+        order = [ids.index(u) + 1 for u in v.order]
         if report.valid:
             if report.order_problem is None:
                 lines.append("Order: the steps as written are executable")
             else:
                 lines.append(f"Order: not executable as written ({report.order_problem})")
-                lines.append("Executable order (steps): " + " ".join(_steps(v.order, ids)))
+                lines.append(f"Executable order (steps): {_steps(order)}")
         else:
-            lines += _fire_lines(" ".join(_steps(v.order, ids)), " ".join(_steps(v.stuck, ids)))
+            lines += _fire_lines(order, [ids.index(u) + 1 for u in v.stuck])
     if report.cost:
         lines.append(f"Size: {_cost_text(report.cost)}")
     opt = report.optimum
@@ -102,10 +104,6 @@ def report_text(problem: Problem, report: Report) -> str:
             why = ": no well-founded tree exists for this goal" if opt.status == "unreachable" else ""
             lines.append(f"ASP optimum: none ({opt.status}{why})")
     return "\n".join(lines) + "\n"
-
-
-def _steps(units: list[int], ids: list[int | None]) -> list[str]:
-    return [str(ids.index(u) + 1) for u in units]
 
 
 def report_json(problem: Problem, report: Report) -> dict:
@@ -130,7 +128,7 @@ def report_json(problem: Problem, report: Report) -> dict:
         ],
         "unknown_steps": [tu.step for tu, u in zip(report.tree.units, report.ids) if u is None],
         "order_as_written_ok": report.order_problem is None if v is not None and report.valid else None,
-        "executable_order_steps": [int(s) for s in _steps(v.order, report.ids)] if v is not None else [],
+        "executable_order_steps": [report.ids.index(u) + 1 for u in v.order] if v is not None else [],
         "cost": report.cost,
     }
     if report.substitutions is not None:
@@ -141,10 +139,6 @@ def report_json(problem: Problem, report: Report) -> dict:
             optimum["substitutions"] = report.optimum.extra["substitutions"]
         out["optimum"] = optimum
     return out
-
-
-def _alone_steps(v: AloneVerdict, positions: list[int]) -> str:
-    return " ".join(str(v.step(p)) for p in positions) or "-"
 
 
 #: what judging a tree on its own cannot see, said whenever its leaves stand for the kitchen
@@ -182,10 +176,11 @@ def alone_text(report: AloneReport) -> str:
         lines.append(
             f"First unit that cannot fire in order: step {v.step(b.step)} ({b.unit.motion}) waits for {b.waits_for} ({later})"
         )
+    order = [v.step(p) for p in v.order]
     if v.valid:
-        lines.append(f"As a set: the units make the goal in another order (steps {_alone_steps(v, v.order)})")
+        lines.append(f"As a set: the units make the goal in another order (steps {_steps(order)})")
     else:
-        lines += _fire_lines(_alone_steps(v, v.order), _alone_steps(v, v.stuck) if v.stuck else "")
+        lines += _fire_lines(order, [v.step(p) for p in v.stuck])
     return "\n".join(lines) + "\n"
 
 

@@ -32,25 +32,29 @@ class PddlTask:
 
 
 def exported_units(problem: Problem, goals: Iterable[int], spec: ConstraintSpec | None = None) -> list[int]:
-    """The units a tree for ``goals`` can use once the filters of ``spec`` removed units; raises
-    InputError for constraints that are not unit filters."""
-    given = (
-        {}
-        if spec is None
-        else {
-            "--constraint": spec.files or spec.extra,
-            "--rule": spec.rules,
-            "--require-motion": spec.require_motion,
-            "--require-object": spec.require_object,
-            "--max-units": spec.max_units is not None,
-        }
-    )
+    """The units a tree for ``goals`` can use once the filters of ``spec`` (forbidden motions and
+    objects, as the ASP constraints read them) removed units; raises InputError for constraints
+    that are not unit filters."""
+    spec = spec or ConstraintSpec()
+    given = {
+        "--constraint": spec.files or spec.extra,
+        "--rule": spec.rules,
+        "--require-motion": spec.require_motion,
+        "--require-object": spec.require_object,
+        "--max-units": spec.max_units is not None,
+    }
     bad = [flag for flag, on in given.items() if on]
     if bad:
         raise InputError(
             f"{', '.join(bad)} cannot be exported to PDDL (only --forbid-motion and --forbid-object, which remove units)"
         )
-    keep = [u for u in range(len(problem.units)) if allowed(problem, u, spec)]
+    motions = {motion_name(m) for m in spec.forbid_motion}
+    labels = {normalise(x) for x in spec.forbid_object}
+    keep = [
+        u
+        for u, unit in enumerate(problem.units)
+        if unit.motion not in motions and not any(o.label in labels for o in (*unit.inputs, *unit.outputs))
+    ]
     _, unit_level = problem.derivation_levels(keep)  # fires from the kitchen without the removed units
     producers: dict[int, list[int]] = {}
     for u in sorted(unit_level):
@@ -58,17 +62,6 @@ def exported_units(problem: Problem, goals: Iterable[int], spec: ConstraintSpec 
             producers.setdefault(o, []).append(u)
     units, _, _ = walk_back(list(goals), problem.kitchen, producers, problem.required)
     return sorted(units)
-
-
-def allowed(problem: Problem, u: int, spec: ConstraintSpec | None) -> bool:
-    """Does unit ``u`` pass the unit filters of ``spec`` (the same rules as the ASP constraints)?"""
-    if spec is None:
-        return True
-    unit = problem.units[u]
-    if unit.motion in {motion_name(m) for m in spec.forbid_motion}:
-        return False
-    labels = {normalise(x) for x in spec.forbid_object}
-    return not any(o.label in labels for o in (*unit.inputs, *unit.outputs))
 
 
 def _comment(text: object) -> str:
