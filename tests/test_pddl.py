@@ -20,7 +20,7 @@ from foon2asp.asp.session import Session
 from foon2asp.cli import main
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
-from foon2asp.foon.treefiles import action_name, looks_like_plan, parse_plan, read_trees, unit_of_action
+from foon2asp.foon.treefiles import action_name, looks_like_plan, read_trees, unit_of_action
 from foon2asp.report import pddl
 
 
@@ -129,8 +129,9 @@ def test_plan_reading_and_check_cli(shared_foon_dir, shared_problem, tmp_path):
     (g,) = resolve(data, p, "macaroni")
     tree = Session(p).solve(g)
     good = "".join(f"({action_name(p, u)} )\n" for u in tree.units) + "; cost = 5 (unit cost)\n"
-    assert looks_like_plan(good) and parse_plan(good, "x").cost == 5
     (tmp_path / "good.plan").write_text(good)
+    (plan,) = read_trees(tmp_path / "good.plan", p)
+    assert looks_like_plan(good) and plan.method == "plan, reported cost 5"
     res = CliRunner().invoke(
         main, ["check", str(tmp_path / "good.plan"), "--data", str(shared_foon_dir), "--goal", "macaroni"]
     )

@@ -71,58 +71,10 @@ def unit_of_action(name: str) -> int | None:
     return int(m.group(1)) if m else None
 
 
-@dataclass
-class PlanStep:
-    action: str
-    line: int
-    unit: int | None
-
-
-@dataclass
-class Plan:
-    path: str
-    steps: list[PlanStep] = field(default_factory=list)
-    #: the cost the planner reported in a ``; cost = N`` comment, if any
-    cost: float | None = None
-
-
 def looks_like_plan(text: str) -> bool:
     """Does ``text`` look like a plan file: ``(name ...)`` lines and ``;`` comments only?"""
     steps = [line for line in map(str.strip, text.splitlines()) if line and not line.startswith(";")]
     return bool(steps) and all(_STEP.match(line) for line in steps)
-
-
-def parse_plan(text: str, path: str) -> Plan:
-    """The steps and reported cost of a plan file (bad lines are an InputError naming the line)."""
-    plan = Plan(path)
-    for number, raw in enumerate(text.splitlines(), 1):
-        line = raw.strip()
-        if not line:
-            continue
-        if line.startswith(";"):
-            m = _COST.search(line)
-            if m:
-                plan.cost = float(m.group(1))
-            continue
-        m = _STEP.match(line)
-        if not m:
-            raise InputError(f"not a plan step (expected '(action-name)'): {line[:60]!r}", path, number)
-        name = m.group(1).lower()
-        plan.steps.append(PlanStep(name, number, unit_of_action(name)))
-    return plan
-
-
-def plan_units(problem: Problem, plan: Plan) -> list[tuple[Unit, int]]:
-    """``(unit, line)`` per step: the FOON unit the action names; an unknown action (or an id
-    whose motion does not match, a plan for another FOON) becomes a unit that matches nothing
-    in the FOON, so ``check`` reports it as unknown, with its line."""
-    out = []
-    for s in plan.steps:
-        if s.unit is not None and 0 <= s.unit < len(problem.units) and action_name(problem, s.unit) == s.action:
-            out.append((problem.units[s.unit], s.line))
-        else:
-            out.append((Unit(f"action {s.action}", (), ()), s.line))
-    return out
 
 
 #: the line ``solve --format foon`` writes before each tree (serialize.tree_foon)
@@ -215,9 +167,26 @@ def _read_json_tree(text: str, path: str, strict: bool = False) -> list[TreeFile
 
 
 def _read_plan(problem: Problem, text: str, path: str) -> list[TreeFile]:
-    plan = parse_plan(text, path)
-    units = [TreeUnit(unit, step, line) for step, (unit, line) in enumerate(plan_units(problem, plan), 1)]
-    method = "plan" if plan.cost is None else f"plan, reported cost {plan.cost:g}"
+    """A plan (:func:`looks_like_plan`): per step the FOON unit its action names; an unknown
+    action (or an id whose motion does not match, a plan for another FOON) becomes a unit that
+    matches nothing in the FOON, so ``check`` reports it as unknown, with its line."""
+    units: list[TreeUnit] = []
+    cost = None
+    for number, raw in enumerate(text.splitlines(), 1):
+        line = raw.strip()
+        if line.startswith(";"):
+            m = _COST.search(line)
+            cost = float(m.group(1)) if m else cost
+        elif line:
+            step = _STEP.match(line)
+            assert step is not None  # looks_like_plan matched every step
+            name = step.group(1).lower()
+            u = unit_of_action(name)
+            if u is not None and 0 <= u < len(problem.units) and action_name(problem, u) == name:
+                units.append(TreeUnit(problem.units[u], len(units) + 1, number))
+            else:
+                units.append(TreeUnit(Unit(f"action {name}", (), ()), len(units) + 1, number))
+    method = "plan" if cost is None else f"plan, reported cost {cost:g}"
     return [TreeFile(path, units, method=method)]
 
 
