@@ -56,8 +56,7 @@ class Marks:
     unit_colors: dict[int, tuple[str, ...]] = field(default_factory=dict)
     #: unit position -> a line added to its tooltip
     unit_notes: dict[int, str] = field(default_factory=dict)
-    #: the legend under the title (None: :data:`LEGEND`)
-    legend: str | None = None
+    legend: str = LEGEND
 
 
 #: texts in a drawing are clipped to these lengths (Graphviz refuses very long strings)
@@ -94,7 +93,7 @@ def build_graph(units: list[Unit], marks: Marks, name: str = "task_tree", prefix
         " ".join(_clip(marks.note, MAX_TOOLTIP).split()), 90, break_long_words=False, break_on_hyphens=False
     )
     title += [f'<FONT COLOR="{CYCLE}">{escape(line)}</FONT>' for line in note]
-    title.append(f'<FONT POINT-SIZE="9">{escape(LEGEND if marks.legend is None else marks.legend)}</FONT>')
+    title.append(f'<FONT POINT-SIZE="9">{escape(marks.legend)}</FONT>')
     g.attr(label="<" + "<BR/>".join(title) + ">")
     g.attr("node", fontname="Helvetica", fontsize="10")
     g.attr("edge", arrowsize="0.6")
