@@ -127,6 +127,7 @@ class Answer:
 class Tree(Answer):
     """A task tree for one goal by one method, with its status and measures; ``units`` in executable order."""
 
+    kind, one = "trees", True
     json_of, text_of = tree_json, tree_text
     method = Raw[str]()
     goal = Raw[FoonObject](read=object_of)
@@ -171,10 +172,6 @@ class Tree(Answer):
         """Judge the tree with the independent validator (sets :attr:`valid`); returns the tree."""
         compare_mod.judge(self.kb.problem, self.raw)
         return self
-
-    def render(self, fmt: str = "text") -> str:
-        """The tree in a text format of ``solve --format``."""
-        return report.render("trees", fmt, self.kb.problem, [self.raw])
 
     def to_foon(self) -> str:
         """The tree as FOON text (``solve --format foon``)."""
