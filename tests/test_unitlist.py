@@ -330,3 +330,18 @@ def test_trees_with_many_states_or_long_labels_are_read_not_refused(tmp_path):
             (read,) = read_trees(path)
             assert len(read.units) == 1
             assert read.units[0].unit.outputs[0] == FoonObject.make(out["label"], out["states"])
+
+
+def test_several_trees_keep_the_lines_of_their_units(tmp_path):
+    cut = dict(PEEL, input_nodes=[node("banana", ["peeled"]), node("knife")], motion_node="cut")
+    text = (
+        "[\n" + json.dumps([PEEL, {"motion_node": "x"}, cut], indent=1) + ",\n  [],\n" + json.dumps([cut, PEEL]) + "\n]"
+    )
+    path = tmp_path / "t.json"
+    path.write_text(text)
+    first, second = read_trees(path)
+    assert (first.line, [(tu.step, tu.line) for tu in first.units]) == (2, [(1, 3), (3, 35)])
+    assert (second.line, [(tu.step, tu.line) for tu in second.units]) == (66, [(1, 66), (2, 66)])
+    assert first.warnings == [
+        f"{path}:32: tree 1, unit 2 cannot be used: no 'input_nodes', no 'output_nodes' (skipped)"
+    ]

@@ -163,22 +163,3 @@ def load(path: str | Path, what: str) -> tuple[str, object]:
     """The checked text of the JSON file ``path`` and its value."""
     text = read_text(path, what)
     return text, loads(text, str(path), checked=True)
-
-
-def list_elements(text: str, path: str, start: int) -> list[tuple[object, int, int]]:
-    """The elements of the JSON list at offset ``start`` of ``text`` (already read by
-    :func:`loads`) with the line and the offset each starts at."""
-    dec = json.JSONDecoder()
-    pos = start + 1
-    line, counted = text.count("\n", 0, start) + 1, start
-    out: list[tuple[object, int, int]] = []
-    while True:
-        while pos < len(text) and text[pos] in " \t\r\n,":
-            pos += 1
-        if pos >= len(text) or text[pos] == "]":
-            return out
-        value, end = dec.raw_decode(text, pos)
-        line += text.count("\n", counted, pos)
-        counted = pos
-        out.append((value, line, pos))
-        pos = end

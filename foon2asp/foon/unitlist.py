@@ -13,7 +13,7 @@ from collections.abc import Iterable, Sequence
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject, Unit, motion_key
-from foon2asp.foon.reading import line_numbers, list_elements, located
+from foon2asp.foon.reading import line_numbers, located, scan
 
 #: the keys of one unit, in the order generators write them
 KEYS = ("input_nodes", "motion_node", "output_nodes")
@@ -172,7 +172,11 @@ def _lists(text: str, path: str, parsed: tuple[object, list[int]] | None) -> tup
     lines = line_numbers(text, tops)
     if not is_unit_lists(value):
         return [(list(zip(value, lines)), first)], False
-    return [([(v, at) for v, at, _ in list_elements(text, path, pos)], line) for pos, line in zip(tops, lines)], True
+    out = []
+    for inner, pos, end, line in zip(value, tops, [*tops[1:], len(text)], lines):
+        offsets = [pos + at for at in scan(text[pos:end], path)]  # the inner list's elements
+        out.append((list(zip(inner, line_numbers(text, offsets))), line))
+    return out, True
 
 
 def read_unit_lists(
