@@ -8,7 +8,7 @@ of order (docs/proofs/preparation.md, "Object identity"); relations other than
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 #: a bracket of a state's argument (``on [plate]``, ``contains {a,b}``)
@@ -179,12 +179,6 @@ class Foon:
         for obj in unit.inputs + unit.outputs:
             self.object_id(obj)
         return uid
-
-    def __len__(self) -> int:
-        return len(self.units)
-
-    def __iter__(self) -> Iterator[Unit]:
-        return iter(self.units)
 
     def labels(self) -> set[str]:
         return {o.label for o in self.objects}
