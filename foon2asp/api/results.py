@@ -18,7 +18,7 @@ from foon2asp.analysis import compare as compare_mod
 from foon2asp.api.options import Options, schedule_request
 from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.options import AspOptions
-from foon2asp.batch.results import schedule_records, summarize
+from foon2asp.batch.results import record_trees, summarize
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem
@@ -356,10 +356,8 @@ class BatchRun(Answer):
         as :meth:`Tree.schedule` does; ``output``: also write them there as ``schedule --format json``."""
         request = schedule_request(spec, settings)
         solver = self.kb.options(**settings)
-        problem, view = self.kb.solving_problem(solver), partial(self.kb.judging_problem, solver)
-        spec, joint, encoding = request["spec"], request["joint"], request["encoding"]
-        found = schedule_records(problem, self.raw.records, spec, solver, method, joint, encoding, view)
-        self.schedules = [Schedule(self.kb, r, spec) for r in found]
+        found = record_trees(self.kb.solving_problem(solver), self.raw.records, method)
+        self.schedules = list(schedule_trees([Tree(self.kb, t) for t in found], solver, **request))
         if output is not None:
             write_file(Path(output), schedules_json(self.schedules).encode("utf-8"))
         return self.schedules

@@ -1,5 +1,5 @@
 """A batch's results file (one JSON line per result, a header, resumable), the run that fills it
-and the schedules of its trees (``batch --schedule``).
+and the task trees its records hold (scheduled by ``batch --schedule``).
 
 What survives a kill or a crash, and what ``--resume`` refuses: docs/batch.md, "The results file".
 """
@@ -13,7 +13,6 @@ import statistics
 import sys
 import time
 from collections import Counter
-from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
@@ -28,14 +27,12 @@ from foon2asp import methods as methods_mod
 from foon2asp.analysis.check import unit_index
 from foon2asp.asp.facts import facts
 from foon2asp.asp.interrupts import deferred_signals
-from foon2asp.asp.options import AspOptions
 from foon2asp.batch.pool import AUTO, BatchSpec, Execution, Executor, refuse_while_starting
 from foon2asp.errors import InputError
 from foon2asp.foon.foonjson import parse_json
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.reading import loads as safe_loads
 from foon2asp.methods.parts import GROUNDING_CHOICES, GROUNDINGS, choose_grounding
-from foon2asp.schedule import DEFAULT_ENCODING, ScheduleResult, ScheduleSpec, schedule
 from foon2asp.tree.results import WITH_TREE, BatchReport, record_object
 from foon2asp.tree.tasktree import TaskTree, executable_order, measures
 
@@ -357,27 +354,14 @@ def record_tree(problem: Problem, record: dict) -> TaskTree | None:
     )
 
 
-def schedule_records(
-    problem: Problem,
-    records: list[dict],
-    spec: ScheduleSpec,
-    options: AspOptions,
-    method: str | None = None,
-    joint: bool = False,
-    encoding: str = DEFAULT_ENCODING,
-    view: Callable[[tuple[int, ...]], Problem] | None = None,
-) -> list[ScheduleResult]:
-    """One schedule per goal of ``records`` (those of ``method``; default: the first method in
-    them); ``view``: the problem a tree of these goals is scheduled on (with substitutes)."""
+def record_trees(problem: Problem, records: list[dict], method: str | None = None) -> list[TaskTree]:
+    """The task tree of each goal of ``records``, from its first record of ``method`` (default: the
+    first method in them)."""
     if method is None:
         method = next((str(r.get("requested_method", r.get("method"))) for r in records), None)
-    out: dict[int, ScheduleResult] = {}
+    out: dict[int, TaskTree] = {}
     for r in records:
-        if str(r.get("requested_method", r.get("method"))) != method:
-            continue
-        tree = record_tree(problem, r)
-        if tree is None or tree.goal in out:
-            continue
-        on = problem if view is None else view(tree.meal)
-        out[tree.goal] = schedule(on, tree, spec, options, joint, options.time_limit, encoding)
+        tree = record_tree(problem, r) if str(r.get("requested_method", r.get("method"))) == method else None
+        if tree is not None:
+            out.setdefault(tree.goal, tree)
     return list(out.values())
