@@ -44,6 +44,7 @@ from foon2asp.methods.registry import Method
 from foon2asp.schedule import DEFAULT_ENCODING as DEFAULT_SCHEDULE_ENCODING
 from foon2asp.schedule import ScheduleSpec, parse_agents
 from foon2asp.schedule.encode import ENCODINGS as SCHEDULE_ENCODINGS
+from foon2asp.tree.results import WITH_TREE
 
 #: objective names, for ``objective=`` (lexicographic lists of them)
 OBJECTIVES: tuple[str, ...] = tuple(_OBJECTIVES)
@@ -65,4 +66,4 @@ __all__ += ["DEFAULT_SCHEDULE_ENCODING", "parse_agents", "is_schedule_file", "sc
 __all__ += ["verdicts_json", "check_tree", "TreeVerdict", "consolidate", "Consolidation", "ConsolidatedGoal"]
 __all__ += ["CandidateReport", "read_foons", "match_foon", "write_foon", "FOON_FORMATS", "read_program", "draw_file"]
 __all__ += ["writable_dir", "write_file", "methods", "method", "OBJECTIVES", "UTENSIL_RULES", "GROUNDINGS"]
-__all__ += ["COMPARE_METHODS", "OBJECT_FILTERS", "MOTION_COST_PRECISION"]
+__all__ += ["COMPARE_METHODS", "OBJECT_FILTERS", "MOTION_COST_PRECISION", "WITH_TREE"]

@@ -26,13 +26,10 @@ Exit codes: 0 every goal answered as asked (a tree, or proven unreachable);
 #: or a search method's tree (judged separately by "valid")
 ANSWERED = frozenset({"optimal", "ranked", "unreachable", "infeasible", "found", "satisfiable", "unsatisfiable"})
 
-#: statuses that come with a tree (whose "valid" counts)
-WITH_TREE = frozenset({"optimal", "ranked", "feasible", "found"})
-
 
 def exit_code(answers: Iterable[tuple[str, Any]]) -> int:
     """0 when every (status, valid) pair answers its goal, else 1 (``valid`` None: not judged)."""
-    ok = all(status in ANSWERED and not (valid is False and status in WITH_TREE) for status, valid in answers)
+    ok = all(status in ANSWERED and not (valid is False and status in api.WITH_TREE) for status, valid in answers)
     return 0 if ok else 1
 
 
