@@ -384,6 +384,6 @@ def batch(data, goal, goals, method_list, output, summary_fmt, with_schedules, s
         path = api.schedules_path(output)
         found = run.schedule(spec, output=path, options=solver)
         click.echo(f"wrote {len(found)} schedule(s) to {path}", err=True)
-        answers += [("optimal" if s.status in ("optimal", "unschedulable") else s.status, None) for s in found]
+        answers += [("optimal" if s.status in SCHEDULED else s.status, None) for s in found]
     click.echo(run.render(summary_fmt), nl=False)
     sys.exit(exit_code(answers))
