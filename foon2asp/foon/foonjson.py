@@ -19,7 +19,6 @@ from __future__ import annotations
 import json
 from collections.abc import Callable, Iterable
 from functools import partial
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 from foon2asp.errors import InputError
@@ -236,8 +235,3 @@ def parse_json(text: str, path: str = "<string>", foon: Foon | None = None) -> F
             raise InputError(f"unit {k}: a unit without inputs", path)
         foon.add_unit(unit, (path, k))
     return foon
-
-
-def looks_like_json(path: str | Path, head: str) -> bool:
-    """Is this FOON file JSON (by extension, else by its first character)?"""
-    return str(path).lower().endswith(".json") or head.lstrip()[:1] in ("{", "[")

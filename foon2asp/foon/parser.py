@@ -17,7 +17,7 @@ from typing import TextIO
 
 from foon2asp.errors import InputError
 from foon2asp.foon import unitlist
-from foon2asp.foon.foonjson import looks_like_json, parse_json
+from foon2asp.foon.foonjson import parse_json
 from foon2asp.foon.model import BRACKET, Foon, FoonObject, Unit, bracket_problem, norm, state_parts
 from foon2asp.foon.reading import check_line, lines_of, read_text
 
@@ -180,7 +180,7 @@ def _parse(lines: Iterable[str], path: str, foon: Foon, strict: bool) -> Foon:
 def read_foon(path: str | Path, foon: Foon | None = None, strict: bool = False) -> Foon:
     """Read one FOON file: FOON text (either dialect) or FOON JSON (``.json``, or text starting with ``{``/``[``)."""
     text = read_text(path, "FOON", checked=False)  # FOON text is checked line by line
-    if looks_like_json(path, text[:64]):
+    if str(path).lower().endswith(".json") or text[:64].lstrip()[:1] in ("{", "["):
         return _json_foon(text, str(path), foon, strict)
     return parse_lines(text, str(path), foon, strict)
 
