@@ -8,7 +8,6 @@ one at a time, least work first, when they are too many (docs/proofs/schedules.m
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import clingo
@@ -21,7 +20,7 @@ from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule.bounds import energy_over
-from foon2asp.schedule.encode import clock, used
+from foon2asp.schedule.encode import Job, clock, used
 from foon2asp.schedule.model import Instance, divisor, joint_tails
 
 #: tree objectives joint scheduling supports (depth needs the multi-shot driver)
@@ -85,39 +84,24 @@ _TREES = ("encodings/schedule_trees.lp", encodings.encoding("schedule_trees"))
 Candidate = tuple[tuple[int, ...], tuple[tuple[int, int], ...]]
 
 
-@dataclass(frozen=True)
-class Listing:
-    """What the trees are listed from: the candidate units with their earliest starts and least
-    times to the end, the makespan a tree must fit, tree.lp with its facts, clingo's arguments."""
-
-    inst: Instance
-    head: dict[int, int]
-    tail: dict[int, int]
-    horizon: int
-    tree_parts: Sequence[tuple[str, str]]
-    args: Sequence[str]
-
-    def bound_facts(self) -> str:
-        """work/2, too_late/1 and capacity/1 for ``schedule_trees.lp`` (times in steps of the divisor)."""
-        inst, g = self.inst, divisor(self.inst)
-        late = [
-            u
-            for u in inst.units
-            if u not in self.head or u not in self.tail or self.head[u] + self.tail[u] > self.horizon
-        ]
-        lines = [f"work({u},{inst.min_duration(u) // g})." for u in inst.units if inst.durations[u]]
-        lines += [f"too_late({u})." for u in late]
-        lines.append(f"capacity({len(inst.agents) * (self.horizon // g)}).")
-        return "\n".join(lines) + "\n"
+def bound_facts(listing: Job) -> str:
+    """work/2, too_late/1 and capacity/1 for ``schedule_trees.lp``: which trees of the candidate
+    units fit the agents within ``listing.horizon`` (times in steps of the divisor)."""
+    inst, head, tail, g = listing.inst, listing.head, listing.tail, divisor(listing.inst)
+    late = [u for u in inst.units if u not in head or u not in tail or head[u] + tail[u] > listing.horizon]
+    lines = [f"work({u},{inst.min_duration(u) // g})." for u in inst.units if inst.durations[u]]
+    lines += [f"too_late({u})." for u in late]
+    lines.append(f"capacity({len(inst.agents) * (listing.horizon // g)}).")
+    return "\n".join(lines) + "\n"
 
 
-def candidate_trees(listing: Listing, time_limit: float | None) -> tuple[list[Candidate], bool]:
+def candidate_trees(listing: Job, time_limit: float | None) -> tuple[list[Candidate], bool]:
     """The designated trees whose work fits the agents within the horizon and whose units can
     each end within it, at most :data:`MAX_TREES`; and whether they are all."""
     parts = [
         *listing.tree_parts,
         ("encodings/schedule_first.lp", encodings.encoding("schedule_first")),
-        ("bounds", listing.bound_facts()),
+        ("bounds", bound_facts(listing)),
     ]
     control = Control(["--opt-mode=ignore", "--models=0", *listing.args])
     control.add_all(parts)
@@ -179,12 +163,12 @@ class Search:
             self.offer(t)
         return self.best, self.proven
 
-    def by_work(self, listing: Listing, levels: int, first: bool = False) -> tuple[Any, bool]:
+    def by_work(self, listing: Job, levels: int, first: bool = False) -> tuple[Any, bool]:
         """The best over the undesignated trees, asked for one at a time, least work first,
         stopping when a tree's work over the agents exceeds the best makespan.  ``first``: the
         first tree is the best (one agent)."""
         m = len(listing.inst.agents)
-        facts = listing.bound_facts()
+        facts = bound_facts(listing)
         order = f"#minimize {{ D@{levels + 1},U : use(U), work(U,D) }}.\n"
         seen: list[tuple[int, ...]] = []
         last: list[tuple[int, ...]] = []  # the trees of one solve

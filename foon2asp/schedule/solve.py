@@ -164,12 +164,12 @@ class JointRequest(Request):
 
 
 def _by_trees(
-    job: JointRequest, listing: joint.Listing, ties: bool, left: Callable[[], float | None]
+    job: JointRequest, listing: encode.Job, left: Callable[[], float | None]
 ) -> tuple[ScheduleResult | None, bool, ScheduleResult | None]:
     """Joint scheduling tree by tree (:mod:`foon2asp.schedule.joint`): (result, proven, partial).
 
     The result is None when the trees are too many to look at in time, or when ``ties`` leaves
-    the tie-breakers to the one encoding (``proven``: the given makespan is the optimum); an
+    the tie-breakers to the one encoding (``listing.ties``) (``proven``: the given makespan is the optimum); an
     unproven answer from the trees asked for least work first is ``partial``.  The given tree's
     schedule wins a tie."""
     problem, spec, inst, fixed = job.problem, job.spec, listing.inst, job.fixed
@@ -201,7 +201,7 @@ def _by_trees(
         first = single and not spec.has_human()  # a person alone: fewest units among equal work
         best, proven = joint.Search(job.solve, job.rank, bound, share).by_work(listing, len(ranked), first)
     if fixed.has_schedule and (best is None or job.rank(fixed) <= job.rank(best)):
-        if ties:
+        if listing.ties:
             return None, proven and fixed.status == "optimal", None
         best = fixed
     if best is None:
@@ -252,8 +252,9 @@ def schedule_joint(job: JointRequest, time_limit: float | None = None) -> Schedu
     ties = spec.has_human() or tree.status != "optimal"
     parts = joint.tree_parts(problem, meal, inst, options)
     within = horizon if len(inst.agents) == 1 or not fixed.has_schedule else horizon - model.divisor(inst)
-    args = solver_arguments(options)
-    by_trees, proven, partial = _by_trees(job, joint.Listing(inst, start, tail, within, parts, args), ties, left)
+    levels, user = len(objectives.ranked(options)), [name for name, _ in options.programs]
+    listing = encode.Job(inst, start, tail, within, 0, solver_arguments(options), parts, levels, user, ties)
+    by_trees, proven, partial = _by_trees(job, listing, left)
     if by_trees is not None:
         return done(by_trees)
     # proven: no tree beats the given one's makespan, only the tie-breakers are left
@@ -263,10 +264,7 @@ def schedule_joint(job: JointRequest, time_limit: float | None = None) -> Schedu
         if partial is not None:
             return done(partial)
         return given("feasible" if fixed.has_schedule else "unknown")
-    user = [name for name, _ in options.programs]
-    levels = len(objectives.ranked(options))
-    one = encode.Job(inst, start, tail, horizon, floor, args, parts, levels, user, ties)
-    sol = encode.solve(one, job.encoding, left())
+    sol = encode.solve(replace(listing, horizon=horizon, floor=floor), job.encoding, left())
     stats.update(sol.stats, joint="tie-breakers in one encoding" if proven else "one encoding")
     if sol.unsatisfiable:
         return done(job.none())
