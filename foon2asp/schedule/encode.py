@@ -155,19 +155,16 @@ def _steps_once(
     ``proven``: the search ended."""
     inst = job.inst
     scale = divisor(inst)
-    steps = horizon // scale
     name = "schedule_order" if job.fixed and not _zeros(inst) else "schedule_steps"
     parts = [
         (f"encodings/{name}.lp", encodings.encoding(name)),
         ("schedule facts", schedule_facts(inst, scale, windows, job.fixed, False, job.tail if job.fixed else None)),
-        ("horizon", f"horizon({steps}).\nfloor({-(-floor // scale)}).\n" + _priorities(job.levels, only)),
+        ("horizon", f"horizon({horizon // scale}).\nfloor({-(-floor // scale)}).\n" + _priorities(job.levels, only)),
         *job.tree_parts,
     ]
     control = Control(["--opt-mode=opt", *job.args])
-    t0 = time.perf_counter()
     control.add_all(parts, user=job.user)
     control.ground()
-    ground_s = time.perf_counter() - t0
     best: dict[str, Any] = {}
     # a fixed tree without tie-breakers stops at a schedule that compacts to the floor
     stop_at_floor = job.fixed and not job.breakers
@@ -186,13 +183,12 @@ def _steps_once(
         return True
 
     result = control.solve(on_model, time_limit)
-    stats = {"step_ms": scale, "horizon_steps": steps, "ground_s": round(ground_s, 6), **control.stats()}
+    stats = control.stats()
     if "atoms" not in best:
         return Solution(None, result.finished, result.finished and bool(result.unsatisfiable), (), stats)
     units = used(best["atoms"]) if not job.fixed else inst.units
     entries = _entries_of_steps(inst, best["atoms"], scale, units)
     if best.get("met"):
-        stats["floor"] = "met after compaction"
         return Solution(compact(inst, entries), True, False, units, stats)
     return Solution(entries, result.finished, False, units, stats)
 
@@ -220,10 +216,9 @@ def _report(job: Job, entries: list[Entry], lower: int, human_low: int | None, p
         job.progress({**made, "human_lower": human_low, "phase": phase})
 
 
-def _human_stop(job: Job, opt: int, stats: dict) -> tuple[int, Callable[[list[Entry]], bool]]:
-    """The fewest human units at makespan ``opt`` (into ``stats``) and a stop at a schedule with no more."""
+def _human_stop(job: Job, opt: int) -> tuple[int, Callable[[list[Entry]], bool]]:
+    """The fewest human units at makespan ``opt`` and a stop at a schedule with no more."""
     low = human_lower(job.inst, opt)
-    stats["human_lower"] = low
 
     def few(entries: list[Entry]) -> bool:
         _report(job, entries, opt, low, "human")
@@ -244,7 +239,6 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
     (``stats["tie_breakers"]``: ``proven`` or ``time``)."""
     inst, floor = job.inst, job.floor
     left = clock(time_limit)
-    stats["phases"] = 1
     best = job.known
     horizon = job.horizon if best is None else min(job.horizon, makespan(best))
     proven = horizon <= floor
@@ -270,7 +264,7 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
         if not proven:
             stats["tie_breakers"] = "time"
             return Solution(best, False, False, inst.units, stats)
-    low, few = _human_stop(job, horizon, stats)
+    low, few = _human_stop(job, horizon)
     if best is not None and human_units(best) <= low:
         stats["tie_breakers"] = "proven"
         return Solution(best, True, False, inst.units, stats)
@@ -279,8 +273,6 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
         stats["tie_breakers"] = "time"
         return Solution(best, True, False, inst.units, stats)
     sol = _steps_once(job, within, horizon, horizon, left(), "human", few)
-    stats["phases"] = 2
-    stats.update({f"human_{k}": v for k, v in sol.stats.items() if k in ("ground_s", "solve_s", "horizon_steps")})
     if sol.entries is not None and (best is None or human_units(sol.entries) < human_units(best)):
         best = sol.entries
     if best is None:  # nothing within the horizon: it was the floor, and the floor no schedule meets
@@ -317,10 +309,10 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
         *job.tree_parts,
     ]
     control = Control(["--opt-mode=ignore", *job.args], theory=theory)
-    t0, left = time.perf_counter(), clock(time_limit)
+    left = clock(time_limit)
     control.add_all(parts, user=job.user)
     control.ground()
-    stats: dict[str, Any] = {"encoding": "dl", "ground_s": round(time.perf_counter() - t0, 6), "bounds": 0}
+    stats: dict[str, Any] = {"encoding": "dl"}
     conf: Any = control.ctl.configuration.solve
     conf.models = "1"
     names = {(kind, int(name.rsplit("-", 1)[1])): name for name, kind in inst.agents}
@@ -351,7 +343,6 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
     opt, step, proven = job.horizon, divisor(inst), True
     while opt - step >= floor:
         switch(opt - step)
-        stats["bounds"] += 1
         before = best.get("entries")
         if not control.solve(on_model, left()).finished:
             proven = False
@@ -366,7 +357,7 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
         # a fixed tree stops at the fewest human units a person must do
         low = None
         if job.fixed:
-            low, few = _human_stop(job, opt, stats)
+            low, few = _human_stop(job, opt)
             enough.append(few)
 
         def met() -> bool:

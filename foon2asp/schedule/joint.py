@@ -8,6 +8,7 @@ one at a time, least work first, when they are too many (docs/proofs/schedules.m
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import clingo
@@ -20,7 +21,7 @@ from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule.bounds import energy_over
-from foon2asp.schedule.encode import Job, clock, used
+from foon2asp.schedule.encode import Job, used
 from foon2asp.schedule.model import Instance, divisor, joint_tails
 
 #: tree objectives joint scheduling supports (depth needs the multi-shot driver)
@@ -131,20 +132,18 @@ def tree_cost(problem: Problem, units: Sequence[int], human: Sequence[int], rank
     return tuple(measure[name]() for name in ranked)
 
 
+@dataclass
 class Search:
     """The best result of ``solve`` (a designated tree, the time left, the best makespan so far)
-    by ``key`` over trees, ties to the first found; ``bound``: a lower bound on a tree's key."""
+    by ``key`` over trees, ties to the first found; ``bound``: a lower bound on a tree's key;
+    ``left``: the time left."""
 
-    def __init__(
-        self,
-        solve: Callable[[Candidate, float | None, int | None], Any],
-        key: Callable[[Any], tuple],
-        bound: Callable[[Candidate], tuple],
-        time_limit: float | None,
-    ) -> None:
-        self.solve, self.key, self.bound, self.left = solve, key, bound, clock(time_limit)
-        self.best: Any = None
-        self.proven = True
+    solve: Callable[[Candidate, float | None, int | None], Any]
+    key: Callable[[Any], tuple]
+    bound: Callable[[Candidate], tuple]
+    left: Callable[[], float | None]
+    best: Any = None
+    proven: bool = True
 
     def offer(self, cand: Candidate) -> None:
         r = self.solve(cand, self.left(), None if self.best is None else self.best.makespan)

@@ -193,13 +193,14 @@ def _by_trees(
         return (low, 0, joint.tree_cost(problem, units, (), ranked))
 
     if complete:
-        best, proven = joint.Search(job.solve, job.rank, bound, left()).over(trees)
+        best, proven = joint.Search(job.solve, job.rank, bound, encode.clock(left())).over(trees)
     else:  # too many to list: one at a time, least work first
         share = left()
         if not single and share is not None:
             share /= 4
         first = single and not spec.has_human()  # a person alone: fewest units among equal work
-        best, proven = joint.Search(job.solve, job.rank, bound, share).by_work(listing, len(ranked), first)
+        search = joint.Search(job.solve, job.rank, bound, encode.clock(share))
+        best, proven = search.by_work(listing, len(ranked), first)
     if fixed.has_schedule and (best is None or job.rank(fixed) <= job.rank(best)):
         if listing.ties:
             return None, proven and fixed.status == "optimal", None
@@ -233,7 +234,7 @@ def schedule_joint(job: JointRequest, time_limit: float | None = None) -> Schedu
     every = joint.every_tree_bound(inst, meal, problem.products, start, made_by)
     horizon = fixed.makespan if fixed.has_schedule else sum(max(inst.durations[u].values()) for u in start)
     assert horizon is not None
-    stats: dict = {"encoding": job.encoding, "candidates": len(inst.units)}
+    stats: dict = {"encoding": job.encoding}
 
     def done(r: ScheduleResult) -> ScheduleResult:
         r = replace(r, stats={**stats, **r.stats}, time_s=time.perf_counter() - t0)
