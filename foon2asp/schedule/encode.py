@@ -152,7 +152,7 @@ def _steps_once(
 ) -> Solution:
     """One grounding and optimisation of the time-step encoding with makespan at most
     ``horizon`` (``only``: that objective alone; ``enough``: stop at a schedule it accepts);
-    ``proven``: the search ended."""
+    ``proven``: the search ended, or ``enough`` accepted a schedule (returned compacted)."""
     inst = job.inst
     scale = divisor(inst)
     name = "schedule_order" if job.fixed and not _zeros(inst) else "schedule_steps"
@@ -166,21 +166,11 @@ def _steps_once(
     control.add_all(parts, user=job.user)
     control.ground()
     best: dict[str, Any] = {}
-    # a fixed tree without tie-breakers stops at a schedule that compacts to the floor
-    stop_at_floor = job.fixed and not job.breakers
 
     def on_model(model: clingo.Model) -> bool:
         best["atoms"] = model.symbols(shown=True)
-        if not (stop_at_floor or enough is not None or (job.fixed and job.progress is not None)):
-            return True
-        entries = _entries_of_steps(inst, best["atoms"], scale, inst.units)
-        compacted = compact(inst, entries) if stop_at_floor or enough is None else entries
-        if (stop_at_floor and makespan(compacted) <= floor) or (enough is not None and enough(entries)):
-            best["met"] = True
-            return False
-        if enough is None:
-            _report(job, compacted, floor, None, "makespan")
-        return True
+        best["met"] = enough is not None and enough(_entries_of_steps(inst, best["atoms"], scale, inst.units))
+        return not best["met"]
 
     result = control.solve(on_model, time_limit)
     stats = control.stats()
@@ -188,7 +178,7 @@ def _steps_once(
         return Solution(None, result.finished, result.finished and bool(result.unsatisfiable), (), stats)
     units = used(best["atoms"]) if not job.fixed else inst.units
     entries = _entries_of_steps(inst, best["atoms"], scale, units)
-    if best.get("met"):
+    if best["met"]:
         return Solution(compact(inst, entries), True, False, units, stats)
     return Solution(entries, result.finished, False, units, stats)
 
@@ -202,7 +192,7 @@ def solve_steps(job: Job, time_limit: float | None = None) -> Solution:
         return Solution(None, True, True, (), stats)
     if job.fixed and job.breakers:
         return _steps_in_phases(job, windows, stats, time_limit)
-    sol = _steps_once(job, windows, job.horizon, job.floor, time_limit)
+    sol = _steps_once(job, windows, job.horizon, job.floor, time_limit, enough=_short(job) if job.fixed else None)
     stats.update(sol.stats)
     if sol.entries is not None and not sol.proven:
         stats["tie_breakers"] = "time"
@@ -214,6 +204,17 @@ def _report(job: Job, entries: list[Entry], lower: int, human_low: int | None, p
     if job.progress is not None:
         made = {"makespan": makespan(entries), "lower": lower, "human": human_units(entries)}
         job.progress({**made, "human_lower": human_low, "phase": phase})
+
+
+def _short(job: Job) -> Callable[[list[Entry]], bool]:
+    """A stop at a schedule that compacts to ``job.floor`` (each one reported)."""
+
+    def short(entries: list[Entry]) -> bool:
+        entries = compact(job.inst, entries)
+        _report(job, entries, job.floor, None, "makespan")
+        return makespan(entries) <= job.floor
+
+    return short
 
 
 def _human_stop(job: Job, opt: int) -> tuple[int, Callable[[list[Entry]], bool]]:
@@ -245,13 +246,7 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
     if not proven:
         if best is not None:
             _report(job, best, floor, None, "makespan")
-
-        def short(entries: list[Entry]) -> bool:
-            entries = compact(inst, entries)
-            _report(job, entries, floor, None, "makespan")
-            return makespan(entries) <= floor
-
-        sol = _steps_once(job, windows, horizon, floor, left(), "makespan", short)
+        sol = _steps_once(job, windows, horizon, floor, left(), "makespan", _short(job))
         stats.update(sol.stats)
         if sol.entries is not None:
             entries = compact(inst, sol.entries)
