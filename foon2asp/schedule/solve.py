@@ -168,10 +168,10 @@ def _by_trees(
 ) -> tuple[ScheduleResult | None, bool, ScheduleResult | None]:
     """Joint scheduling tree by tree (:mod:`foon2asp.schedule.joint`): (result, proven, partial).
 
-    The result is None when the trees are too many to look at in time, or when ``ties`` leaves
-    the tie-breakers to the one encoding (``listing.ties``) (``proven``: the given makespan is the optimum); an
-    unproven answer from the trees asked for least work first is ``partial``.  The given tree's
-    schedule wins a tie."""
+    The result is None when the trees are too many to look at in time, or when ``listing.ties``
+    leaves the tie-breakers to the one encoding (``proven``: the given makespan is the optimum);
+    an unproven answer from the trees asked for least work first is ``partial``.  The given
+    tree's schedule wins a tie."""
     problem, spec, inst, fixed = job.problem, job.spec, listing.inst, job.fixed
     single = len(inst.agents) == 1
     share = left()
