@@ -127,9 +127,7 @@ def _priorities(levels: int, only: str | None = None) -> str:
     return both[only] if only else "".join(both.values())
 
 
-def _entries_of_steps(
-    inst: Instance, atoms: Sequence[clingo.Symbol], scale: int, units: tuple[int, ...]
-) -> list[Entry]:
+def _entries_of_steps(inst: Instance, atoms: Sequence[clingo.Symbol], scale: int) -> list[Entry]:
     """The schedule of a model: kinds and start steps, the agents dealt per kind."""
     kind: dict[int, str] = {}
     start: dict[int, int] = {}
@@ -138,7 +136,7 @@ def _entries_of_steps(
             kind[s.arguments[0].number] = s.arguments[1].string
         elif s.name == "start" and len(s.arguments) == 2:
             start[s.arguments[0].number] = s.arguments[1].number * scale
-    return assign_agents(inst.restrict(units), kind, start)
+    return assign_agents(inst, kind, start)
 
 
 def _steps_once(
@@ -169,7 +167,7 @@ def _steps_once(
 
     def on_model(model: clingo.Model) -> bool:
         best["atoms"] = model.symbols(shown=True)
-        best["met"] = enough is not None and enough(_entries_of_steps(inst, best["atoms"], scale, inst.units))
+        best["met"] = enough is not None and enough(_entries_of_steps(inst, best["atoms"], scale))
         return not best["met"]
 
     result = control.solve(on_model, time_limit)
@@ -177,7 +175,7 @@ def _steps_once(
     if "atoms" not in best:
         return Solution(None, result.finished, result.finished and bool(result.unsatisfiable), (), stats)
     units = used(best["atoms"]) if not job.fixed else inst.units
-    entries = _entries_of_steps(inst, best["atoms"], scale, units)
+    entries = _entries_of_steps(inst, best["atoms"], scale)
     if best["met"]:
         return Solution(compact(inst, entries), True, False, units, stats)
     return Solution(entries, result.finished, False, units, stats)

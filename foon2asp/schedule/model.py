@@ -262,7 +262,7 @@ def assign_agents(inst: Instance, kind_of_unit: dict[int, str], start: dict[int,
             raise ValueError(f"more than {n} units of kind {kind!r} run at once")
         names = [name for name, k in inst.agents if k == kind]
         out += [Entry(e.unit, names[i], e.start, e.end) for i, lane in enumerate(lanes) for e in lane]
-    return sequence(inst, out)
+    return out
 
 
 def compact(inst: Instance, entries: list[Entry]) -> list[Entry]:
