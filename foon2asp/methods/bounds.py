@@ -14,6 +14,9 @@ from foon2asp.foon.problem import Problem, least_fixpoint, walk_back
 from foon2asp.tree.upper import cheapest_sets
 from foon2asp.tree.weights import lexicographic, total
 
+#: a set of units with the objects they make and the objects they need
+Within = tuple[frozenset[int], frozenset[int], frozenset[int]]
+
 #: ranked objective lists (as :func:`foon2asp.asp.objectives.ranked` gives them) the bounds handle
 SUPPORTED = (("units",), ("success", "units"), ("inputs", "units"))
 
@@ -83,10 +86,13 @@ class Bounds:
         self.w = lexicographic(problem, self.ranked[0]) if w is None else w
         self._sets = cheapest_sets(problem, self.w, pool)
         self.lm, self.ulm = landmarks(problem, pool)
-        self._producers: dict[int, list[int]] = {}
+        producers: dict[int, list[int]] = {}
         for u in sorted(self.ulm):
             for o in problem.products[u]:
-                self._producers.setdefault(o, []).append(u)
+                producers.setdefault(o, []).append(u)
+        self._producers: dict[int, tuple[int, ...]] = {o: tuple(us) for o, us in producers.items()}
+        #: producer group -> its lightest weight
+        self._lightest: dict[tuple[int, ...], int] = {}
         self._levels = problem.derivation_levels(pool)[0] if self.ranked == ("units",) else {}
         self._trees: dict[int, tuple[int, ...]] = {}
         self._lower: dict[int, int] = {}
@@ -108,8 +114,9 @@ class Bounds:
         if start is None:
             return None
         tree = set(start)
+        landmarks = self.landmarks(goal)  # every tree uses them: none can go
         for u in sorted(tree, key=lambda u: (-self.w[u], -u)):
-            if self._derives(tree - {u}, goal):
+            if u not in landmarks and self._derives(tree - {u}, goal):
                 tree.discard(u)
         self._trees[goal] = result = tuple(sorted(tree))
         return result
@@ -124,35 +131,59 @@ class Bounds:
         made, _ = least_fixpoint(kitchen, self.problem.required, self.problem.products, units)
         return goal in made or goal in kitchen
 
-    def closure(self, units: frozenset[int]) -> int:
-        """A lower bound on the weight of any tree that contains ``units``."""
+    def closure(self, units: frozenset[int], within: Within | None = None) -> int:
+        """A lower bound on the weight of any tree that contains ``units``; ``within``: a subset of
+        them with the objects it makes and needs (:meth:`_within`), read instead of recomputed."""
         value = self._closures.get(units)
         if value is None:
-            value = self._closures[units] = self._closure(units, set())
+            value = self._closures[units] = self._closure(units, set(), within)
         return value
 
-    def _closure(self, units: frozenset[int], need: set[int]) -> int:
+    def _within(self, units: frozenset[int]) -> Within:
+        """``units`` with the objects they make and the objects they need."""
+        made: set[int] = set()
+        need: set[int] = set()
+        for u in units:
+            made.update(self.problem.products[u])
+            need.update(self.problem.required[u])
+        return units, frozenset(made), frozenset(need)
+
+    def _closure(self, units: frozenset[int], need: set[int], within: Within | None = None) -> int:
         """``closure(units)`` where the objects ``need`` must be had too."""
         problem = self.problem
-        made = set().union(*(problem.products[u] for u in units))
-        need = need.union(*(problem.required[u] for u in units))
+        products, required = problem.products, problem.required
+        sub, made_in, need_in = within if within is not None else (frozenset(), frozenset(), frozenset())
+        made = set(made_in)
+        need = need | need_in
+        for u in units:
+            if u not in sub:
+                made.update(products[u])
+                need.update(required[u])
         kitchen, producers = problem.kitchen, self._producers
         # identical groups count once: a second copy is never disjoint from the first
-        groups = {
-            tuple(u for u in producers.get(i, ()) if u not in units) for i in need if i not in kitchen and i not in made
-        }
+        groups: set[tuple[int, ...]] = set()
+        for i in need:
+            if i in kitchen or i in made:
+                continue
+            group = producers.get(i)
+            if group and not units.isdisjoint(group):
+                group = tuple(u for u in group if u not in units)
+            if group:
+                groups.add(group)
         return self.weight(units) + self._packing(groups)
 
     def _packing(self, groups: Iterable[tuple[int, ...]]) -> int:
         """The summed lightest weights of pairwise disjoint producer groups, taken smallest first."""
-        w = self.w
-        sets = sorted((len(g), min(w[u] for u in g), g) for g in groups if g)
+        lightest = self._lightest
+        for g in groups:
+            if g not in lightest:
+                lightest[g] = min(self.w[u] for u in g)
         used: set[int] = set()
         extra = 0
-        for _, lightest, group in sets:
+        for group in sorted(groups, key=lambda g: (len(g), lightest[g], g)):
             if used.isdisjoint(group):
                 used.update(group)
-                extra += lightest
+                extra += lightest[group]
         return extra
 
     def lower(self, goal: int) -> int:
@@ -161,15 +192,15 @@ class Bounds:
             return self._lower[goal]
         kitchen = self.problem.kitchen
         LM = self.lm.get(goal, frozenset())
-        lb = self._closure(LM, {goal})
-        made = {o for u in LM for o in self.problem.products[u]}
-        need = {goal} | {i for u in LM for i in self.problem.required[u]}
-        for i in sorted(need):
+        within = self._within(LM)
+        _, made, need = within
+        lb = self._closure(LM, {goal}, within)
+        for i in sorted(need | {goal}):
             if i in kitchen or i in made:
                 continue
-            prods = self._producers.get(i, [])
+            prods = self._producers.get(i, ())
             if prods:
-                lb = max(lb, min(self.closure(self.ulm[u] | LM) for u in prods))
+                lb = max(lb, min(self.closure(self.ulm[u] | LM, within) for u in prods))
         if self.ranked == ("units",):
             lb = max(lb, self._levels.get(goal, 0))
         self._lower[goal] = lb
@@ -191,12 +222,15 @@ class Bounds:
             return sorted(units)
         LM = self.landmarks(goal)
         base = self.weight(LM)
+        # the bounds tree holds what every tree using one of its units uses: those units stay
+        tree = set(self.tree(goal) or ())
+        within = self._within(LM)
         keep = []
         for u in units:
-            if u in LM:
+            if u in LM or u in tree:
                 keep.append(u)
             elif u in self.ulm and base + self.weight(self.ulm[u] - LM) <= ub:
-                if self.closure(self.ulm[u] | LM) <= ub:
+                if self.closure(self.ulm[u] | LM, within) <= ub:
                     keep.append(u)
         # only units still relevant and viable through kept producers
         producers: dict[int, list[int]] = {}
