@@ -6,6 +6,7 @@ What survives a kill or a crash, and what ``--resume`` refuses: docs/batch.md, "
 
 from __future__ import annotations
 
+import gc
 import hashlib
 import json
 import os
@@ -298,7 +299,7 @@ def run_batch(
     try:
         todo, skipped = pending_tasks(spec.problem, goals, spec.methods, previous)
         t0 = time.perf_counter()
-        new_records: list[dict] = []
+        lines: list[str] = []
         disable = not sys.stderr.isatty() if progress is None else not progress
         bar = tqdm(total=len(todo), unit="result", desc="batch", file=sys.stderr, disable=disable, smoothing=0.05)
         results = executor(spec, todo) if executor is not None else Execution(spec, todo, workers)
@@ -306,7 +307,7 @@ def run_batch(
             for line in results:
                 if out is not None:
                     out.append(line)
-                new_records.append(json.loads(line))
+                lines.append(line)  # parsed at the end: records kept meanwhile slow the collector down
                 bar.update(1)
         finally:
             results.close()  # stops a pool at once
@@ -317,10 +318,22 @@ def run_batch(
         if out is not None:
             out.close()
     elapsed = time.perf_counter() - t0
+    new_records = parse_records(lines)
     wanted = {(g, m) for g in goals for m in spec.methods}
     kept = [r for r in previous if record_key(spec.problem, r) in wanted]
     output = str(output) if output else None
     return BatchReport(len(new_records), skipped, elapsed, kept + new_records, used, output, spec.grounding, reason)
+
+
+def parse_records(lines: list[str]) -> list[dict]:
+    """The records of result lines, parsed with the cycle collector paused (they hold no cycles)."""
+    was_on = gc.isenabled()
+    gc.disable()
+    try:
+        return [json.loads(line) for line in lines]
+    finally:
+        if was_on:
+            gc.enable()
 
 
 def schedules_path(output: str | Path) -> Path:
