@@ -139,12 +139,12 @@ def earliest_finish(inst: Instance, prio: dict[int, float] | None = None) -> lis
     return list(placed.values())
 
 
-def known_schedule(inst: Instance, target: int, tries: int = TRIES, seed: int = 0) -> tuple[list[Entry], str]:
+def known_schedule(inst: Instance, target: int, tries: int = TRIES) -> tuple[list[Entry], str]:
     """The best list schedule by makespan, then human units, and what made it: the baseline and,
     under ``tries`` seeded perturbations of its priorities, list and :func:`earliest_finish`
     schedules; it stops at one that reaches ``target`` with the fewest human units there."""
     base = tails(inst)
-    rng = random.Random(seed)
+    rng = random.Random(0)
     kinds = len(inst.kinds) > 1
     low_human = cache(lambda: human_lower(inst, target))  # computed once, when first needed
 

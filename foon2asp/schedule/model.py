@@ -231,9 +231,8 @@ def sequence(inst: Instance, entries: Iterable[Entry]) -> list[Entry]:
 
 
 def partition(entries: list[Entry], slots: int) -> list[list[Entry]] | None:
-    """``entries`` (by start) in ``slots`` lanes with no overlap in a lane (None: more than
-    ``slots`` overlap somewhere); greedy by start, which needs no more.  Units of duration 0
-    occupy nobody: they go in the first lane, outside its order."""
+    """``entries`` (by start) in ``slots`` lanes with no overlap in a lane, greedily (None: more
+    than ``slots`` overlap somewhere).  Units of duration 0 go in the first lane, outside its order."""
     lanes: list[list[Entry]] = [[] for _ in range(slots)]
     instant = []
     for e in entries:
