@@ -1,8 +1,7 @@
 """The list-scheduling baseline and the schedule a solver starts from (times in milliseconds).
 
-The baseline is list scheduling, longest remaining chain first (:func:`list_schedule`);
-the schedule a solver starts from is the best of it, of list schedules under perturbed
-priorities and of schedules that put each unit where it ends first (:func:`known_schedule`).
+The baseline is list scheduling, longest remaining chain first; a solver starts from the best
+of it and of perturbed and earliest-finish list schedules (:func:`known_schedule`).
 """
 
 from __future__ import annotations

@@ -1,8 +1,7 @@
 """Lower bounds on the makespan of an instance (:class:`foon2asp.schedule.model.Instance`; ms).
 
-The chain, work and energy bounds (:func:`bounds`; energetic reasoning over windows, pools
-of units sharing fewer servers and kinds of agents), and the fewest units a person must do
-at a makespan (:func:`human_lower`).  Why each is a bound: docs/proofs/schedules.md.
+The chain, work and energy bounds (:func:`bounds`) and the fewest units a person must do at a
+makespan (:func:`human_lower`); why each is a bound: docs/proofs/schedules.md.
 """
 
 from __future__ import annotations
