@@ -76,10 +76,12 @@ def search(
     deadline: float | None,
     watch: Watch,
     on_model: Callable[[clingo.Model], bool | None] | None = None,
+    renew: Callable[[], Control] | None = None,
 ) -> tuple[Shot, Answer | None, tuple[int, ...] | None, int]:
     """clingo's optimisation over the prepared part on ``control`` (with ``closed``, in rounds of loop
     cuts), ended by a tree that meets the lower bound (``prep.meets``: that tree is proven);
-    ``watch`` and ``on_model`` see each model that is a tree.
+    ``watch`` and ``on_model`` see each model that is a tree; ``renew``: a fresh grounding for each
+    round after the first (``control`` solves once), which gets the cuts so far.
 
     Returns the last round's shot, the answer (unproven when cut short), the best lower bound
     proven, and the number of cuts."""
@@ -114,6 +116,7 @@ def search(
         return shot, answer, lower, cuts
 
     cuts = 0
+    texts: list[str] = []  # the loop cuts' facts
     lower: tuple[int, ...] | None = None
     bound = prep.bound
     while True:
@@ -139,5 +142,11 @@ def search(
             return done(shot, replace(best[0], proven=False) if best else None)
         cuts += 1
         missing, outside = cut
-        text = "".join(f"cut({cuts},{o}).\n" for o in missing) + "".join(f"outside({cuts},{u}).\n" for u in outside)
-        control.extend(f"cut {cuts}", text, [("cut", [cuts])], what="a loop cut")
+        texts.append(
+            "".join(f"cut({cuts},{o}).\n" for o in missing) + "".join(f"outside({cuts},{u}).\n" for u in outside)
+        )
+        if renew is not None:
+            control = renew()
+        for k, text in enumerate(texts, 1):
+            if renew is not None or k == cuts:
+                control.extend(f"cut {k}", text, [("cut", [k])], what="a loop cut")

@@ -82,8 +82,11 @@ class Session:
         ):
             # the hint steers a decision or a search from above (core-guided search climbs from below)
             args.append("--heuristic=Domain")
-        self.control = Control(args)
-        self.control.statistics = prepared is None
+        #: an optimisation over the prepared part is one solve call: clingo may preprocess as for one shot
+        self._single = prepared is not None and prepared.bound is None and self.options.threads == 1
+        if self._single:
+            args.append("--single-shot")
+        self._args = args
         if units is None:
             units = sorted(problem.viable_units)
         self.units = tuple(units)
@@ -92,9 +95,22 @@ class Session:
         self._driver: Driver | None = None
         #: the lower bound the last solve proved (solver weights per level)
         self._lower: tuple[int, ...] | None = None
-        self.control.add_all(self._parts(), user=[name for name, _ in self.options.programs])
-        self.control.ground()
+        self._programs = self._parts()
+        self.control = self._grounded()
         self.goal_atoms = self._goal_atoms()
+
+    def _grounded(self) -> Control:
+        """A control with this session's programs, grounded."""
+        control = Control(self._args)
+        control.statistics = self.prepared is None
+        control.add_all(self._programs, user=[name for name, _ in self.options.programs])
+        control.ground()
+        return control
+
+    def _renew(self) -> Control:
+        """A fresh grounding for another solve call (a single-shot control solves once)."""
+        self.control = self._grounded()
+        return self.control
 
     def _parts(self) -> list[tuple[str, str]]:
         """The named programs of the grounding: facts, encodings, objective, goal, extras."""
@@ -279,7 +295,10 @@ class Session:
         deadline = None if not time_limit else t0 + time_limit
         self._fresh = False
         watch = Watch(first_level(self.levels), self.options.gap, prep.floor, self.options.progress)
-        shot, answer, lower, cuts = search(self.control, prep, self.problem, self._closed, deadline, watch, on_model)
+        renew = self._renew if self._single else None
+        shot, answer, lower, cuts = search(
+            self.control, prep, self.problem, self._closed, deadline, watch, on_model, renew
+        )
         self._lower = answer.cost if answer is not None and answer.proven else lower
         stats = self.control.stats()
         if cuts:
