@@ -133,8 +133,11 @@ class Session:
             rules.append(("encodings/canonical.lp", encodings.encoding("canonical")))
             rules.append(("unit order", chain_facts(units)))
         rules += list(options.programs)
-        # facts nobody reads are left out
-        read = set().union(*(_mentions(text) for name, text in rules if name != "input nodes"))
+        # facts nobody reads are left out (only encodings and user programs read facts)
+        readers = {name for name, _ in options.programs}
+        read = set().union(
+            *(_mentions(text) for name, text in rules if name.startswith("encodings/") or name in readers)
+        )
         rules = [(name, text) for name, text in rules if name != "input nodes" or "input_nodes" in read]
         leave_out = [p for p in OPTIONAL if p not in read]
         whole = self.prepared is None
