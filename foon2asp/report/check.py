@@ -233,7 +233,7 @@ def _one(problem: Problem | None, report: Report | AloneReport, as_json: bool = 
     return report_json(problem, report) if as_json else report_text(problem, report)
 
 
-@register("check", "text", "txt", "readable report per tree; with several, a last line counting them")
+@register("check", "text", "txt")
 def check_text(problem: Problem | None, reports: list[Report | AloneReport]) -> str:
     out = "\n".join(_one(problem, r) for r in reports)
     if len(reports) < 2:
@@ -244,6 +244,6 @@ def check_text(problem: Problem | None, reports: list[Report | AloneReport]) -> 
     return out + (f", {gone} unreachable (no tree to check)" if gone else "") + "\n"
 
 
-@register("check", "json", "json", "a list of reports")
+@register("check", "json", "json")
 def check_json(problem: Problem | None, reports: list[Report | AloneReport]) -> str:
     return json.dumps([_one(problem, r, as_json=True) for r in reports], indent=2) + "\n"

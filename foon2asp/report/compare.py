@@ -180,34 +180,25 @@ def meal_csv(problem: Problem, row: MealRow) -> str:
     )
 
 
-def _register(name: str, ext: str, what: str, table: Callable[..., str], meal: Callable[..., str]) -> None:
+def _register(name: str, ext: str, table: Callable[..., str], meal: Callable[..., str]) -> None:
     """Register format ``name`` of ``compare``: ``table`` renders rows of goals, ``meal`` a meal's row."""
-    register("compare", name, ext, what)(
+    register("compare", name, ext)(
         lambda problem, rows: meal(problem, rows) if isinstance(rows, MealRow) else table(problem, rows)
     )
 
 
-_BOTH = "goals x methods (a meal: beside the single optima)"
-_register("text", "txt", f"aligned table, {_BOTH}", render_table, render_meal)
-_register(
-    "markdown",
-    "md",
-    f"Markdown table, {_BOTH}",
-    partial(render_table, markdown=True),
-    partial(render_meal, markdown=True),
-)
-_register("csv", "csv", "one row per goal and method", render_csv, meal_csv)
+_register("text", "txt", render_table, render_meal)
+_register("markdown", "md", partial(render_table, markdown=True), partial(render_meal, markdown=True))
+_register("csv", "csv", render_csv, meal_csv)
 _register(
     "json",
     "json",
-    "solve-shaped results, each with valid",
     lambda problem, rows: json_list([tree_json(problem, t) for r in rows for t in r.trees.values()]) + "\n",
     meal_json,
 )
 _register(
     "jsonl",
     "jsonl",
-    "JSON lines: one solve-shaped result with valid per goal and method",
     lambda problem, rows: "".join(json.dumps(tree_json(problem, t)) + "\n" for r in rows for t in r.trees.values()),
     meal_json,
 )
@@ -245,11 +236,5 @@ def render_summary(rows: list[dict], fmt: str = "text", report: BatchReport | No
     return (head + "\n" if head and fmt == "markdown" else head) + "\n".join(lines) + "\n"
 
 
-for _fmt, _ext, _what in (
-    ("text", "txt", "aligned table"),
-    ("markdown", "md", "Markdown table"),
-    ("csv", "csv", "CSV"),
-):
-    register("summary", _fmt, _ext, f"per-method counts and sizes as {_what}")(
-        lambda rows, report=None, _f=_fmt: render_summary(rows, _f, report)
-    )
+for _fmt, _ext in (("text", "txt"), ("markdown", "md"), ("csv", "csv")):
+    register("summary", _fmt, _ext)(lambda rows, report=None, _f=_fmt: render_summary(rows, _f, report))

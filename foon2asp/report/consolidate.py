@@ -100,13 +100,13 @@ def consolidation_text(problem: Problem, c: Consolidation) -> str:
     return "\n".join(head) + "\n"
 
 
-register("consolidate", "text", "txt", "readable report per goal: the tree, each unit's sources, the candidates")(
+register("consolidate", "text", "txt")(
     lambda problem, results: "\n".join(consolidation_text(problem, c) for c in results)
 )
-register("consolidate", "json", "json", "a list with one object per goal (see foon2asp.report.consolidate)")(
+register("consolidate", "json", "json")(
     lambda problem, results: json_list([consolidation_json(problem, c) for c in results]) + "\n"
 )
-register("consolidate", "units-json", "json", "the tree of each goal in the unit-list form of generated trees")(
+register("consolidate", "units-json", "json")(
     lambda problem, results: dumps_trees([[problem.units[u] for u in c.tree.units] for c in results])
 )
 
@@ -144,7 +144,7 @@ def _table(c: Consolidation, fill: dict[str, str]) -> str:
     return table('class="candidates"', head, rows)
 
 
-@register("consolidate", "html", "html", "HTML page: the candidates table and the drawing of the result by source")
+@register("consolidate", "html", "html")
 def consolidate_html(problem: Problem, results: list[Consolidation]) -> str:
     fill = colors(results)
     body = [""]  # the time it took, once the drawings are made

@@ -286,17 +286,15 @@ def render(graph: graphviz.Graph | graphviz.Digraph, fmt: str) -> bytes:
         raise InputError(f"Graphviz '{engine}' failed: {err[-1] if err else exc}") from None
 
 
-def register_pictures(kind: str, picture: Callable[..., bytes], source: str, what: str, needs: str) -> None:
-    """Register the formats dot, svg, png and pdf of answers of ``kind``, ``picture(fmt, *answer)``
-    rendering one; ``source`` describes the dot format, ``what`` and ``needs`` the others."""
+def register_pictures(kind: str, picture: Callable[..., bytes]) -> None:
+    """Register the formats dot, svg, png and pdf of answers of ``kind``, ``picture(fmt, *answer)`` rendering one."""
     for fmt in FORMATS:
 
         def render_picture(*answer: object, fmt: str = fmt) -> str | bytes:
             out = picture(fmt, *answer)
             return out if fmt in BINARY else out.decode("utf-8")
 
-        text = source if fmt == "dot" else f"{what} as {fmt.upper()} (needs {needs})"
-        register(kind, fmt, fmt, text, binary=fmt in BINARY)(render_picture)
+        register(kind, fmt, fmt, binary=fmt in BINARY)(render_picture)
 
 
 def svg_text(graph: graphviz.Graph | graphviz.Digraph) -> str:

@@ -255,10 +255,4 @@ def draw_gantt(record: Mapping, path: str | Path) -> Path:
     return path
 
 
-register_pictures(
-    "schedule",
-    lambda fmt, records: render(charts(list(records)), fmt),
-    "Graphviz source of the Gantt chart",
-    "the Gantt chart",
-    "Graphviz",
-)
+register_pictures("schedule", lambda fmt, records: render(charts(list(records)), fmt))

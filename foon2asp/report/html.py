@@ -266,8 +266,6 @@ def summary_html(
     return page("foon2asp: batch summary", top + body)
 
 
-register("compare", "html", "html", "one self-contained HTML page: the table and a drawing of every tree")(compare_html)
-register("summary", "html", "html", "HTML page: the summary and a drawing of every tree")(summary_html)
-register("schedule", "html", "html", "HTML page: the schedules and their Gantt charts")(
-    lambda records: page("foon2asp: schedules", schedules_body(list(records)))
-)
+register("compare", "html", "html")(compare_html)
+register("summary", "html", "html")(summary_html)
+register("schedule", "html", "html")(lambda records: page("foon2asp: schedules", schedules_body(list(records))))

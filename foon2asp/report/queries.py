@@ -184,23 +184,19 @@ def query_text(problem: Problem, result: QueryResult) -> str:
     return "\n".join(lines) + "\n"
 
 
-register("reachable", "text", "txt", "yes/no per goal and a count")(reachable_text)
-register("reachable", "json", "json", "[{goal, reachable}]")(
+register("reachable", "text", "txt")(reachable_text)
+register("reachable", "json", "json")(
     lambda problem, answers: json.dumps(reachable_json(problem, answers), indent=2) + "\n"
 )
-register("missing", "text", "txt", "objects to add and the tree, per goal")(
-    lambda problem, results: "\n".join(missing_text(problem, r) for r in results)
-)
-register("reachable", "jsonl", "jsonl", "JSON lines: {goal, reachable} per goal")(
+register("missing", "text", "txt")(lambda problem, results: "\n".join(missing_text(problem, r) for r in results))
+register("reachable", "jsonl", "jsonl")(
     lambda problem, answers: "".join(json.dumps(r) + "\n" for r in reachable_json(problem, answers))
 )
-register("missing", "jsonl", "jsonl", "JSON lines: {goal, status, missing, units, cost} per goal")(
+register("missing", "jsonl", "jsonl")(
     lambda problem, results: "".join(json.dumps(missing_json(problem, r)) + "\n" for r in results)
 )
-register("missing", "json", "json", "a list of {goal, status, missing, units, cost}")(
+register("missing", "json", "json")(
     lambda problem, results: json.dumps([missing_json(problem, r) for r in results], indent=2) + "\n"
 )
-register("query", "text", "txt", "shown atoms, ids decoded")(query_text)
-register("query", "json", "json", "{status, models: [{cost, atoms}]}")(
-    lambda problem, result: json.dumps(query_json(problem, result), indent=2) + "\n"
-)
+register("query", "text", "txt")(query_text)
+register("query", "json", "json")(lambda problem, result: json.dumps(query_json(problem, result), indent=2) + "\n")

@@ -16,12 +16,9 @@ Renderer = Callable[..., str | bytes]
 
 @dataclass(frozen=True)
 class Format:
-    kind: str
-    name: str
     render: Renderer
     #: file name extension when written to a folder
     extension: str
-    description: str
     #: renders bytes (write them to a file or to stdout.buffer), not text
     binary: bool = False
 
@@ -29,13 +26,11 @@ class Format:
 FORMATS: dict[tuple[str, str], Format] = {}
 
 
-def register(
-    kind: str, name: str, extension: str, description: str, binary: bool = False
-) -> Callable[[Renderer], Renderer]:
+def register(kind: str, name: str, extension: str, binary: bool = False) -> Callable[[Renderer], Renderer]:
     """Decorator: ``render`` is format ``name`` of answers of ``kind`` (``binary``: it returns bytes)."""
 
     def deco(render: Renderer) -> Renderer:
-        FORMATS[(kind, name)] = Format(kind, name, render, extension, description, binary)
+        FORMATS[(kind, name)] = Format(render, extension, binary)
         return render
 
     return deco

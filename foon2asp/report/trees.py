@@ -12,41 +12,25 @@ from foon2asp.report.registry import register
 from foon2asp.tree.serialize import to_json, tree_foon, tree_foon_json, tree_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
 
-register("trees", "text", "txt", "readable steps")(
-    lambda problem, trees: "\n".join(tree_text(problem, t) for t in trees)
-)
-register("trees", "json", "json", "a list of results in the stable JSON shape")(
-    lambda problem, trees: to_json(problem, trees) + "\n"
-)
-register("trees", "foon", "foon.txt", "FOON text in the official dialect (ids), as FOON_view and foon_api load it")(
-    lambda problem, trees: "".join(tree_foon(problem, t) for t in trees)
-)
-register("trees", "foon-plain", "foon.txt", "FOON text without ids (the earlier course programs' dialect)")(
+register("trees", "text", "txt")(lambda problem, trees: "\n".join(tree_text(problem, t) for t in trees))
+register("trees", "json", "json")(lambda problem, trees: to_json(problem, trees) + "\n")
+register("trees", "foon", "foon.txt")(lambda problem, trees: "".join(tree_foon(problem, t) for t in trees))
+register("trees", "foon-plain", "foon.txt")(
     lambda problem, trees: "".join(tree_foon(problem, t, "plain") for t in trees)
 )
 
 
-@register("trees", "foon-json", "foon.json", "FOON JSON (foon_api's schema); a list when there are several trees")
+@register("trees", "foon-json", "foon.json")
 def _foon_json(problem: Problem, trees: list[TaskTree]) -> str:
     docs = [tree_foon_json(problem, t) for t in trees]
     return json.dumps(docs[0] if len(docs) == 1 else docs, indent=1) + "\n"
 
 
-register(
-    "trees",
-    "units-json",
-    "json",
-    "the unit-list JSON of generated trees ({input_nodes, motion_node, output_nodes} per unit);"
-    " a list of them when there are several trees",
-)(lambda problem, trees: dumps_trees([[problem.units[u] for u in t.units] for t in trees]))
-draw.register_pictures(
-    "trees",
-    lambda fmt, problem, trees: draw.render(draw.trees_graph(problem, trees), fmt),
-    "Graphviz DOT source of the drawing",
-    "the drawing",
-    "Graphviz 'dot'",
+register("trees", "units-json", "json")(
+    lambda problem, trees: dumps_trees([[problem.units[u] for u in t.units] for t in trees])
 )
-register("trees", "jsonl", "jsonl", "JSON lines: one result per line, written as each goal is solved")(
+draw.register_pictures("trees", lambda fmt, problem, trees: draw.render(draw.trees_graph(problem, trees), fmt))
+register("trees", "jsonl", "jsonl")(
     lambda problem, trees: "".join(json.dumps(tree_json(problem, t), ensure_ascii=False) + "\n" for t in trees)
 )
 
