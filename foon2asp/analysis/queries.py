@@ -43,13 +43,13 @@ class Program:
         The status is optimal, satisfiable (no objective), feasible (stopped early), unsatisfiable
         or unknown.  The control must run with ``--models=0``."""
         answers: list[Answer] = []
-        proven = [False]
 
         def on_model(model: clingo.Model) -> bool:
-            answer = Answer(symbols=list(model.symbols(shown=True)), cost=tuple(model.cost))
+            answer = Answer(
+                cost=tuple(model.cost), proven=model.optimality_proven, symbols=list(model.symbols(shown=True))
+            )
             if answer.cost:
                 answers[:] = [answer]
-                proven[0] = model.optimality_proven
                 return True
             answers.append(answer)
             return not (limit and len(answers) >= limit)
@@ -58,7 +58,7 @@ class Program:
         if not answers:
             status = "unsatisfiable" if result.unsatisfiable and result.finished else "unknown"
         elif any(a.cost for a in answers):
-            done = (result.exhausted and not result.interrupted and result.finished) or proven[0]
+            done = (result.exhausted and not result.interrupted and result.finished) or answers[-1].proven
             status = "optimal" if done else "feasible"
         else:
             status = "satisfiable"
