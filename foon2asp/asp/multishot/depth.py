@@ -167,7 +167,7 @@ class Rounds:
                 self.meal_blocks[(meal, bound)] = m
         return self.meal_blocks[(meal, bound)]
 
-    def externals(self, goal: int | tuple[int, ...], bound: int, count_depth: bool) -> dict[clingo.Symbol, bool]:
+    def externals(self, goal: int | tuple[int, ...], bound: int, count_depth: bool) -> list[clingo.Symbol]:
         """The externals for depth bound ``bound`` of ``goal`` (its block grounded if need be):
         query(k), and within(k) when the depth cost is counted; meal_query(m), meal_within(m) for a meal."""
         if not isinstance(goal, int) and len(goal) == 1:
@@ -176,4 +176,4 @@ class Rounds:
             k, names = self.block(goal, bound), ("query", "within")
         else:
             k, names = self.meal_block(tuple(goal), bound), ("meal_query", "meal_within")
-        return {clingo.Function(name, [clingo.Number(k)]): True for name in (names if count_depth else names[:1])}
+        return [clingo.Function(name, [clingo.Number(k)]) for name in (names if count_depth else names[:1])]

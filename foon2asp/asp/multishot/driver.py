@@ -10,7 +10,7 @@ clean; the further trees are the best tree's ``alternatives`` (docs/proofs/solvi
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
 import clingo
 
@@ -45,7 +45,7 @@ class Driver:
     def shot(
         self,
         goal: Goals,
-        externals: dict,
+        externals: Sequence[clingo.Symbol | int],
         mode: str | None,
         deadline: float | None,
         count: int = 1,
@@ -73,15 +73,15 @@ class Driver:
         """With depth the first objective: a lower bound on the depth of the current goal's trees."""
         return self.depth.bound if self.depth_mode == "first" and self.depth.bound else None
 
-    def level(self, goal: Goals, guards: dict, count: int, deadline, on_model) -> tuple[Shot, int | None]:
+    def level(self, goal: Goals, guards: list[int], count: int, deadline, on_model) -> tuple[Shot, int | None]:
         """The best trees (up to ``count``, distinct) not yet excluded, with the depth bound used."""
         mode = "optN" if count > 1 else "opt"
 
-        def shot(externals: dict, solve_mode: str | None = None) -> Shot:
-            return self.shot(goal, {**guards, **externals}, solve_mode or mode, deadline, count, on_model)
+        def shot(externals: Sequence[clingo.Symbol], solve_mode: str | None = None) -> Shot:
+            return self.shot(goal, [*guards, *externals], solve_mode or mode, deadline, count, on_model)
 
         if self.depth_mode == "none":
-            return shot({}), None
+            return shot([]), None
 
         def tree_depth(answer: Answer) -> int:
             return measures(self.problem, goal, list(answer.units))["depth"] or 0
@@ -93,7 +93,7 @@ class Driver:
             assert max_depth is not None
             return shot(rounds.externals(goal, max_depth, False)), max_depth
         least = rounds.levels.level(goal)
-        limit = {} if max_depth is None else rounds.externals(goal, max_depth, False)
+        limit = [] if max_depth is None else rounds.externals(goal, max_depth, False)
         if self.depth_mode == "later":
             first = shot(limit, "opt")
             if not first.answers:
@@ -178,7 +178,7 @@ class Driver:
         options = self.options
         want = max(1, int(options.models))
         cap = int(options.all_optimal_cap)
-        guards: dict = {}
+        guards: list[int] = []
         found: list[tuple[Answer, int | None]] = []
         first: Shot | None = None
         capped = False
@@ -195,14 +195,14 @@ class Driver:
                 if len(found) >= want or not shot.answers or not shot.finished:
                     break
                 for answer in shot.answers:  # the tree and its supersets
-                    guards[self.control.guard(clingo.Function("use", [clingo.Number(u)]) for u in answer.units)] = True
+                    guards.append(self.control.guard(clingo.Function("use", [clingo.Number(u)]) for u in answer.units))
         finally:
             self.control.release(guards)
         assert first is not None  # the loop solves at least once
         return found, first, capped
 
     def _greedy(self, goal: Goals, deadline, t0: float, on_model) -> TaskTree:
-        shot = self.shot(goal, {}, "first", deadline, 1, on_model)
+        shot = self.shot(goal, [], "first", deadline, 1, on_model)
         if shot.answers:
             return self._tree(goal, shot.answers[0], "found", t0)
         return self._tree(goal, None, status(None, shot), t0)
