@@ -7,10 +7,14 @@ import subprocess
 import sys
 
 import clingo
+import pytest
 from click.testing import CliRunner
 
+import foon2asp
 from conftest import DEMO
+from foon2asp.asp.options import AspOptions
 from foon2asp.cli.main import main
+from foon2asp.errors import InputError
 from foon2asp.foon.parser import parse_lines
 
 OBJ_KEYS = {"label", "states", "ingredients", "container"}
@@ -270,3 +274,60 @@ def test_solve_into_a_folder_with_several_methods_and_formats(tmp_path):
             f"wrote {out / f'001-scrambled_egg-gbfs-h1.{ext}'} (found, INVALID)",
         ]
         assert len(list(out.iterdir())) == 2
+
+
+def test_clingo_options_go_to_clingo_replacing_foon2asps_own():
+    """Options not foon2asp's go to clingo as its application takes them; one of foon2asp's
+    defaults given again replaces it; the answer stays the proven optimum."""
+    plain = json.loads(run("solve", "--data", DEMO, "--goal", "tomato salad", "--format", "json").stdout)
+    tuned = run(
+        "solve", "--data", DEMO, "--goal", "tomato salad", "--format", "json",
+        "--configuration=crafty", "--opt-usc-shrink=inv", "--heuristic=Vsids",
+    )  # fmt: skip
+    tuned = json.loads(tuned.stdout)
+    assert [(t["status"], t["cost"]) for t in tuned] == [(t["status"], t["cost"]) for t in plain]
+    assert {t["proven_by"] for t in tuned} == {"clingo"}
+    args = AspOptions(clingo_args=["--configuration=crafty", "--single-shot"]).args(["--single-shot"])
+    assert args.count("--configuration=crafty") == 1 and "--configuration=trendy" not in args
+    assert args.count("--single-shot") == 1 and args[-2:] == ["--configuration=crafty", "--single-shot"]
+
+
+@pytest.mark.parametrize(
+    ("command", "arg", "words"),
+    [
+        ("solve", "--nonsense=3", ["no such option: --nonsense;", "clingo does not know it either"]),
+        ("solve", "--goall", ["no such option: --goall (did you mean --goal or --goals?)"]),
+        ("solve", "--configuration=no-such-file", ["clingo option '--configuration=no-such-file'"]),
+        ("schedule", "--nonsense=3", ["no such option: --nonsense;"]),
+        ("batch", "--nonsense=3", ["no such option: --nonsense;"]),
+        ("solve", "stray", ["unexpected argument 'stray'"]),
+    ],
+)
+def test_bad_clingo_options_are_one_line(command, arg, words, tmp_path):
+    args = [command, "--data", DEMO, "--goal", "tomato salad", arg]
+    if command == "batch":
+        args += ["-o", tmp_path / "r.jsonl"]
+    result = run(*args, ok=False)
+    assert_one_line_error(result, *words)
+    assert not (tmp_path / "r.jsonl").exists()
+
+
+def test_clingo_options_reach_the_schedule_solver():
+    """The schedule solver's controls get the clingo options of the request, replacing its own."""
+    from foon2asp.schedule.solve import solver_arguments
+
+    args = solver_arguments(AspOptions(clingo_args=["--configuration=crafty"]))
+    assert "--configuration=crafty" in args and not any(
+        a.startswith("--configuration=") and "crafty" not in a for a in args
+    )
+    assert solver_arguments(AspOptions()) != args
+
+
+def test_the_library_checks_clingo_options_as_the_command_line_does():
+    kb = foon2asp.load(DEMO)
+    with pytest.raises(InputError, match=r"clingo option '--nonsense': .*unknown option: 'nonsense'"):
+        kb.solve("tomato salad", clingo_args=["--nonsense"])
+    with pytest.raises(InputError, match="clingo's options start with '-'"):
+        kb.solve("tomato salad", clingo_args="crafty")
+    tree = kb.solve("tomato salad", clingo_args=("--configuration=crafty",))
+    assert (tree.status, tree.cost["units"], tree.proven_by) == ("optimal", 4, "clingo")

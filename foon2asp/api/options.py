@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from foon2asp.asp.constraints import ConstraintSpec
-from foon2asp.asp.options import OBJECTIVES, AspOptions
+from foon2asp.asp.options import OBJECTIVES, AspOptions, clingo_options
 from foon2asp.batch.pool import AUTO
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject
@@ -87,6 +87,8 @@ class Options:
     opt_strategy: str | None = None
     #: clingo solver threads; None: one
     threads: int | None = None
+    #: more of clingo's own command-line options, passed as they are, e.g. ``("--configuration=crafty",)``
+    clingo_args: tuple[str, ...] = ()
     #: batch: ``whole``, ``per-goal`` or ``auto`` (foon2asp.methods.parts.choose_grounding)
     grounding: str = "auto"
     #: batch: answer without the solver when the answer is forced
@@ -108,6 +110,8 @@ class Options:
         object.__setattr__(self, "objective", tuple(p for p in parts if p) or ("units",))
         if self.constraints is None:
             object.__setattr__(self, "constraints", Constraints())
+        given = self.clingo_args
+        object.__setattr__(self, "clingo_args", (given,) if isinstance(given, str) else tuple(given or ()))
         limit = self.time_limit
         if limit is not None and (isinstance(limit, bool) or not isinstance(limit, int | float)):
             raise InputError(f"time_limit: {limit!r} is not a number of seconds (None: no limit)")
@@ -160,6 +164,8 @@ class Options:
         given = {k: getattr(self, k) for k, v in defaults.items() if getattr(self, k) != v}
         if self.threads not in (None, 1):
             given["threads"] = self.threads
+        if self.clingo_args:
+            given["clingo_args"] = self.clingo_args
         return given
 
     def solver(self) -> AspOptions:
@@ -199,6 +205,7 @@ class Options:
             max_substitutions=self.max_substitutions,
             opt_strategy=self.opt_strategy,
             threads=1 if self.threads is None else self.threads,
+            clingo_args=clingo_options(self.clingo_args),
         )
 
 

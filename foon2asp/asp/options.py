@@ -9,9 +9,12 @@ from __future__ import annotations
 import hashlib
 import os
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
+import clingo
+
+from foon2asp.errors import InputError
 from foon2asp.foon.substitutes import Substitute
 
 #: objective name -> encoding that defines it (all use objective(Name,Priority)); ``cost`` is
@@ -61,6 +64,32 @@ def solver_args(opt_strategy: str | None = None, threads: int = 1, portfolio: st
     return [f"--opt-strategy={DEFAULT_OPT_STRATEGY}", *DEFAULT_TUNING]
 
 
+def clingo_options(args: Iterable[str]) -> list[str]:
+    """``args`` checked as clingo's own command-line options (each ``--name=value`` or a flag);
+    raises InputError naming the first clingo refuses."""
+    args = [str(a) for a in args]
+    for arg in args:
+        if not arg.startswith("-"):
+            raise InputError(f"clingo option {arg!r}: clingo's options start with '-' (e.g. --configuration=crafty)")
+        try:
+            clingo.Control([arg], logger=lambda code, message: None)
+        except RuntimeError as exc:
+            raise InputError(f"clingo option {arg!r}: {' '.join(str(exc).split())}") from None
+    return args
+
+
+def with_clingo_args(args: Iterable[str], extra: Iterable[str]) -> list[str]:
+    """``args`` and then ``extra``, whose options replace the same options in ``args`` (clingo
+    takes an option once)."""
+    extra = list(extra)
+
+    def name(arg: str) -> str:
+        return arg.lstrip("-").split("=", 1)[0]
+
+    given = {name(a) for a in extra}
+    return [a for a in args if name(a) not in given] + extra
+
+
 @dataclass
 class AspOptions:
     """How to solve: objectives (lexicographic, first = most important) and solver settings."""
@@ -76,6 +105,7 @@ class AspOptions:
     threads: int = 1
     #: threads > 1 without opt_strategy: the portfolio (clasp's configuration-file text); None: the default
     portfolio: str | None = None
+    #: more of clingo's own options, after foon2asp's (clingo's last occurrence of an option wins)
     clingo_args: list[str] = field(default_factory=list)
     #: ground only these units (e.g. the goals' relevant units); None: all units
     units: tuple[int, ...] | None = None
@@ -121,9 +151,11 @@ class AspOptions:
             or "depth" in self.objective
         )
 
-    def args(self) -> list[str]:
+    def args(self, more: Iterable[str] = ()) -> list[str]:
+        """clingo's arguments: foon2asp's, then ``more``, then :attr:`clingo_args` (each replacing
+        the same option before it)."""
         args = ["--opt-mode=opt"]
         if self.heuristic:
             args.append("--heuristic=Domain")
         args += solver_args(self.opt_strategy, self.threads, self.portfolio)
-        return args + list(self.clingo_args)
+        return with_clingo_args([*args, *more], self.clingo_args)

@@ -74,19 +74,19 @@ class Session:
         self.goal = None if goal is None else meal_of(goal)
         self.options = options or AspOptions()
         problem = self.problem = substitutes.prepare(problem, self.options)
-        args = self.options.args()
+        own = []
         if (
             prepared is not None
             and prepared.hint
             and (prepared.bound is not None or (self.options.opt_strategy or "").startswith("bb"))
         ):
             # the hint steers a decision or a search from above (core-guided search climbs from below)
-            args.append("--heuristic=Domain")
+            own.append("--heuristic=Domain")
         #: an optimisation over the prepared part is one solve call: clingo may preprocess as for one shot
         self._single = prepared is not None and prepared.bound is None and self.options.threads == 1
         if self._single:
-            args.append("--single-shot")
-        self._args = args
+            own.append("--single-shot")
+        self._args = self.options.args(own)
         if units is None:
             units = sorted(problem.viable_units)
         self.units = tuple(units)

@@ -7,6 +7,7 @@ options as one ``data`` (:class:`DataArgs`), the request's settings as one ``opt
 
 from __future__ import annotations
 
+import difflib
 import functools
 import inspect
 import math
@@ -18,7 +19,7 @@ import click
 
 from foon2asp import api, report
 from foon2asp.api.load import Reading
-from foon2asp.api.options import KEYWORDS, NOT_A_TIME_LIMIT, SPEC_KEYWORDS, jobs
+from foon2asp.api.options import KEYWORDS, NOT_A_TIME_LIMIT, SPEC_KEYWORDS, clingo_options, jobs
 from foon2asp.cli.main import EXIT_CODES, main, warn_all
 from foon2asp.errors import InputError, escape
 
@@ -131,6 +132,20 @@ def _gather(func: Callable) -> Callable:
             kw["data"] = DataArgs(kw.pop("data_dir", None), tuple(kw.pop("foon", ())), Reading.of(kw))
         elif "match" in wants:
             kw["match"] = Reading.of(kw)
+        ctx = click.get_current_context()
+        extra = list(ctx.args)
+        for param in ctx.command.params:  # a list of files takes the options it does not know: clingo's
+            if isinstance(param, click.Argument) and param.nargs == -1 and param.name in kw:
+                extra += [v for v in kw[param.name] if v.startswith("--")]
+                kw[param.name] = tuple(v for v in kw[param.name] if not v.startswith("--"))
+        if extra:
+            for arg in extra:
+                if arg.startswith("-"):
+                    _known_to_clingo(arg, ctx.command)
+            stray = [a for a in extra if not a.startswith("-")]
+            if stray or "options" not in wants:
+                raise click.UsageError(f"unexpected argument {(stray or extra)[0]!r}")
+            kw["clingo_args"] = tuple(extra)
         if "options" in wants:
             kw["options"] = api.Options.of(**{k: kw.pop(k) for k in KEYWORDS & kw.keys()})
         if "spec" in wants:
@@ -140,15 +155,35 @@ def _gather(func: Callable) -> Callable:
     return wrapper
 
 
+def _known_to_clingo(arg: str, command: click.Command) -> None:
+    """Raise a usage error for an option neither this command nor clingo knows (with the command's
+    closest options)."""
+    try:
+        clingo_options([arg])
+    except InputError as exc:
+        if "unknown option" not in str(exc):
+            raise
+        name = arg.split("=", 1)[0]
+        ours = [o for p in command.params if isinstance(p, click.Option) for o in p.opts if o.startswith("--")]
+        close = difflib.get_close_matches(name, ours, n=2, cutoff=0.8)
+        hint = f" (did you mean {' or '.join(close)}?)" if close else ""
+        raise click.UsageError(f"no such option: {name}{hint}; clingo does not know it either") from None
+
+
 def command(*opts: Callable | list, name: str | None = None, group: click.Group = main, epilog: str | None = None):
     """A command of ``group`` with the options ``opts`` (decorators or lists of them, in the order
     of its help), its function called with the values gathered (:func:`_gather`)."""
 
     def decorate(func):
         func = _gather(func)
-        for option in reversed([o for opt in opts for o in (opt if isinstance(opt, list) else [opt])]):
+        flat = [o for opt in opts for o in (opt if isinstance(opt, list) else [opt])]
+        for option in reversed(flat):
             func = option(func)
-        return group.command(name, epilog=epilog)(func)
+        cmd = group.command(name, epilog=epilog)(func)
+        if any(o is STRATEGY[-1] for o in flat):
+            # clingo's own options, as its application takes them: any option not foon2asp's goes to clingo
+            cmd.context_settings.update(ignore_unknown_options=True, allow_extra_args=True)
+        return cmd
 
     return decorate
 
@@ -355,7 +390,8 @@ STRATEGY = [
     ),
     option(
         "--threads",
-        "clingo solver threads (parallel mode; in a batch, per worker).",
+        "clingo solver threads (parallel mode; in a batch, per worker). Any other option of clingo's"
+        " goes to clingo as it is, e.g. --configuration=crafty.",
         type=int32(min=1, max=64),
         default=1,
     ),

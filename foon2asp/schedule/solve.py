@@ -13,7 +13,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 from foon2asp.asp import objectives
-from foon2asp.asp.options import AspOptions, solver_args
+from foon2asp.asp.options import AspOptions, solver_args, with_clingo_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule import encode, joint, model
@@ -41,7 +41,9 @@ JOINT_TRIES = 4
 
 
 def solver_arguments(options: AspOptions) -> list[str]:
-    return solver_args(options.opt_strategy or OPT_STRATEGY, options.threads, options.portfolio)
+    return with_clingo_args(
+        solver_args(options.opt_strategy or OPT_STRATEGY, options.threads, options.portfolio), options.clingo_args
+    )
 
 
 def forced_human(inst: Instance) -> int:
