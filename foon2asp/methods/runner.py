@@ -253,7 +253,12 @@ class GoalRunner:
             weight = cost[0] if len(cost) == 1 else cost[0] * scale + cost[1]
             return weight <= lower
 
-        prep = Preparation(
+        if not self._constrained:  # user programs may need any relevant unit
+            units = bounds.keep(goal, units)
+            if dominance_applies(self._effective, self._ranked):
+                dominated = self.parts.dominators(self._ranked).dominated(goal, units)
+                units = [u for u in units if u not in dominated or u in tree]
+        return Preparation(
             goal,
             tuple(units),
             tuple(sorted(bounds.landmarks(goal))),
@@ -262,13 +267,6 @@ class GoalRunner:
             floor=bounds.first_lower(goal),
             meets=meets if len(self._ranked) <= 2 else None,
         )
-        if self._constrained:
-            return prep
-        units = bounds.keep(goal, units)
-        if dominance_applies(self._effective, self._ranked):
-            dominated = self.parts.dominators(self._ranked).dominated(goal, units)
-            units = [u for u in units if u not in dominated or u in tree]
-        return replace(prep, candidates=tuple(units))
 
     def _prepared(self, goal: int, t0: float) -> TaskTree:
         """clingo on the goal's prepared part; under checkable user programs, the optimum without
