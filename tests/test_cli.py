@@ -295,11 +295,11 @@ def test_clingo_options_go_to_clingo_replacing_foon2asps_own():
 @pytest.mark.parametrize(
     ("command", "arg", "words"),
     [
-        ("solve", "--nonsense=3", ["no such option: --nonsense;", "clingo does not know it either"]),
-        ("solve", "--goall", ["no such option: --goall (did you mean --goal or --goals?)"]),
+        ("solve", "--nonsense=3", ["No such option '--nonsense' (not foon2asp's, not clingo's)."]),
+        ("solve", "--goall", ["No such option '--goall'", "Did you mean '--goal' or '--goals'?"]),
         ("solve", "--configuration=no-such-file", ["clingo option '--configuration=no-such-file'"]),
-        ("schedule", "--nonsense=3", ["no such option: --nonsense;"]),
-        ("batch", "--nonsense=3", ["no such option: --nonsense;"]),
+        ("schedule", "--nonsense=3", ["No such option '--nonsense'"]),
+        ("batch", "--nonsense=3", ["No such option '--nonsense'"]),
         ("solve", "stray", ["unexpected argument 'stray'"]),
     ],
 )

@@ -166,8 +166,8 @@ def _known_to_clingo(arg: str, command: click.Command) -> None:
         name = arg.split("=", 1)[0]
         ours = [o for p in command.params if isinstance(p, click.Option) for o in p.opts if o.startswith("--")]
         close = difflib.get_close_matches(name, ours, n=2, cutoff=0.8)
-        hint = f" (did you mean {' or '.join(close)}?)" if close else ""
-        raise click.UsageError(f"no such option: {name}{hint}; clingo does not know it either") from None
+        hint = f" Did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
+        raise click.UsageError(f"No such option {name!r} (not foon2asp's, not clingo's).{hint}") from None
 
 
 def command(*opts: Callable | list, name: str | None = None, group: click.Group = main, epilog: str | None = None):
