@@ -268,3 +268,17 @@ def test_unknown_keyword_without_a_close_one_lists_the_keywords():
         Options.of(zzz=1)  # type: ignore[call-arg]
     assert str(err.value).startswith("unexpected keyword argument 'zzz'; the keywords are all_optimal, ")
     assert "time_limit" in str(err.value)
+
+
+def test_a_foon_json_nested_too_deeply_is_named(tmp_path):
+    """Deep nesting reaches Python's recursion limit while decoding: the library and the command
+    line both name the file, in one line."""
+    foon = tmp_path / "FOON.json"
+    foon.write_text("[" * 100_000 + "]" * 100_000)
+    kitchen = tmp_path / "kitchen.json"
+    kitchen.write_text('[{"label": "egg"}]')
+    with pytest.raises(InputError, match="JSON nested too deeply") as err:
+        api.load(foon=str(foon), kitchen=str(kitchen))
+    assert err.value.path == str(foon)
+    res = CliRunner().invoke(main, ["objects", "--foon", str(foon), "--kitchen", str(kitchen)])
+    assert one_line_error(res) == f"foon2asp: error: {foon}: JSON nested too deeply"

@@ -217,6 +217,8 @@ def parse_json(text: str, path: str = "<string>", foon: Foon | None = None) -> F
         data = json.loads(text)
     except json.JSONDecodeError as exc:
         raise InputError(f"bad JSON: {exc.msg}", path, exc.lineno) from None
+    except RecursionError:
+        raise InputError("JSON nested too deeply", path) from None
     docs = data if isinstance(data, list) and data else [data]
     if all(is_foon_json(d) for d in docs):
         for doc in docs:
