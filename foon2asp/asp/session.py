@@ -95,21 +95,24 @@ class Session:
         self._driver: Driver | None = None
         #: the lower bound the last solve proved (solver weights per level)
         self._lower: tuple[int, ...] | None = None
-        self._programs = self._parts()
-        self.control = self._grounded()
+        programs = self._parts()
+        self.control = self._grounded(programs)
+        #: the programs again for a fresh grounding (a single-shot control solves once)
+        self._programs = programs if self._single else None
         self.goal_atoms = self._goal_atoms()
 
-    def _grounded(self) -> Control:
-        """A control with this session's programs, grounded."""
+    def _grounded(self, programs: list[tuple[str, str]]) -> Control:
+        """A control with ``programs`` (this session's), grounded."""
         control = Control(self._args)
         control.statistics = self.prepared is None
-        control.add_all(self._programs, user=[name for name, _ in self.options.programs])
+        control.add_all(programs, user=[name for name, _ in self.options.programs])
         control.ground()
         return control
 
     def _renew(self) -> Control:
-        """A fresh grounding for another solve call (a single-shot control solves once)."""
-        self.control = self._grounded()
+        """A fresh grounding of this single-shot session for another solve call."""
+        assert self._programs is not None
+        self.control = self._grounded(self._programs)
         return self.control
 
     def _parts(self) -> list[tuple[str, str]]:
