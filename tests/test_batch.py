@@ -471,34 +471,3 @@ def test_a_pool_ends_without_a_traceback(shared_foon_dir, tmp_path):
     assert done.returncode == 0, done.stderr
     assert "Traceback" not in done.stderr and "Terminated" not in done.stderr, done.stderr
     assert len(out.read_text().splitlines()) > 25
-
-
-def test_a_worker_that_dies_ends_the_batch_with_one_line(shared_problem, tmp_path, monkeypatch):
-    """A pool worker killed mid-batch (as by the out-of-memory killer) ends the batch at once with
-    an error naming the signal; the lines written before stay in the results file."""
-    from foon2asp.batch import pool
-
-    _, p = shared_problem
-    goal_ids = _subset(p, 12)
-    doomed = goal_ids[5]
-    real_run = pool.Worker.run
-
-    def run(self, goal, method):
-        if goal == doomed:
-            os.kill(os.getpid(), signal.SIGKILL)
-        return real_run(self, goal, method)
-
-    monkeypatch.setattr(pool, "START_METHOD", "fork")  # the workers inherit the patched run
-    monkeypatch.setattr(pool.Worker, "run", run)
-    monkeypatch.setattr(pool, "POLL_S", 0.2)
-    out = tmp_path / "r.jsonl"
-    previous = signal.signal(signal.SIGALRM, lambda *_: pytest.fail("the batch hung after its worker died"))
-    signal.alarm(120)
-    try:
-        with pytest.raises(InputError, match=r"worker process ended unexpectedly \(killed by signal 9 \(out of memory"):
-            run_batch(BatchSpec(p, ["asp"], AspOptions()), goal_ids, out, workers=2, progress=False)
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, previous)
-    kept = read_results(out)
-    assert p.objects[doomed].to_json() not in [r["goal"] for r in kept] and len(kept) < len(goal_ids)

@@ -29,8 +29,6 @@ from foon2asp.tree.serialize import tree_json
 AUTO = 0
 #: seconds in this process before ``AUTO`` hands the remaining tasks to a pool
 SWITCH_S = 5.0
-#: seconds between checks that a pool's workers are alive, while no result comes
-POLL_S = 1.0
 #: the start method of the pool's workers; None: :func:`start_method` chooses
 START_METHOD: str | None = None
 #: why a pool could not start: its workers ran the main script again and reached the batch
@@ -204,34 +202,11 @@ class Execution:
         _check_start(context)
         pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec,))
         try:
-            # the pool's own processes: none ends before the pool does, unless it dies
-            started = list(pool._pool)  # type: ignore[attr-defined]
-            results = pool.imap_unordered(_run_in_worker, tasks)
-            for _ in tasks:
-                while True:
-                    try:
-                        line = results.next(timeout=POLL_S)
-                        break
-                    except multiprocessing.TimeoutError:
-                        _check_alive(started)
-                yield line
+            yield from pool.imap_unordered(_run_in_worker, tasks)
             pool.close()
         finally:
             pool.terminate()
             pool.join()
-
-
-def _check_alive(processes: list) -> None:
-    """Raise when a worker process has ended: the pool would replace it, but its task is lost."""
-    ended = [p.exitcode for p in processes if p.exitcode is not None]
-    if ended:
-        code = ended[0]
-        how = f"killed by signal {-code}" if code < 0 else f"exit status {code}"
-        memory = " (out of memory?)" if code == -signal.SIGKILL else ""
-        raise InputError(
-            f"a worker process ended unexpectedly ({how}{memory}); the results so far are kept: "
-            "run again with --resume, or with fewer workers"
-        )
 
 
 #: the runners of this thread of a Dask worker: ``token`` (the batch's) and ``worker``
