@@ -301,11 +301,12 @@ def test_clingo_options_go_to_clingo_replacing_foon2asps_own():
         ("schedule", "--nonsense=3", ["No such option '--nonsense'"]),
         ("batch", "--nonsense=3", ["No such option '--nonsense'"]),
         ("solve", "stray", ["unexpected argument 'stray'"]),
+        ("batch --methods gbfs-h1", "--configuration=crafty", ["solver settings apply to ASP methods only"]),
     ],
 )
 def test_bad_clingo_options_are_one_line(command, arg, words, tmp_path):
-    args = [command, "--data", DEMO, "--goal", "tomato salad", arg]
-    if command == "batch":
+    args = [*command.split(), "--data", DEMO, "--goal", "tomato salad", arg]
+    if command.startswith("batch"):
         args += ["-o", tmp_path / "r.jsonl"]
     result = run(*args, ok=False)
     assert_one_line_error(result, *words)

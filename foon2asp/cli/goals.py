@@ -375,10 +375,13 @@ def batch(data, goal, goals, method_list, output, summary_fmt, with_schedules, s
     Every result line carries "valid" (the independent validator's verdict); the
     summary counts the valid trees per method. Default goals: the goals file's.
     """
+    names = methods_of(method_list)
+    if options.solver_settings and all(is_search(m) for m in names):
+        raise InputError(f"solver settings apply to ASP methods only; {', '.join(names)} are search baselines")
     kb, goal_ids = data.load_goals(goal, goals)
     solver = solver_of(kb, options)  # the request checked, its warnings before the run
     # run_options: --workers, --resume, --progress, --fsync and --scheduler, as kb.batch names them
-    run = kb.batch(goal_ids, output, methods=methods_of(method_list), options=options, **run_options)
+    run = kb.batch(goal_ids, output, methods=names, options=options, **run_options)
     answers = [(r.get("status", "?"), r.get("valid")) for r in run.records]
     if with_schedules:
         path = api.schedules_path(output)
