@@ -101,3 +101,11 @@ def test_two_identical_arms_and_a_person_equal_brute_force():
     assert (r.makespan, len(r.human)) == want == (4000, 3)
     assert r.stats["encoding"] == "steps"
     assert check_schedule(problem, r.to_dict(), spec) is None
+
+
+def test_an_unknown_encoding_is_refused_where_jobs_are_solved():
+    from foon2asp.errors import InputError
+    from foon2asp.schedule import encode
+
+    with pytest.raises(InputError, match=r"unknown schedule encoding 'dll' \(have steps, dl\)"):
+        encode.solve(None, "dll")  # type: ignore[arg-type]

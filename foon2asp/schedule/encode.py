@@ -276,7 +276,10 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
 
 def solve(job: Job, encoding: str, time_limit: float | None = None) -> Solution:
     """Solve ``job`` with ``encoding`` (``steps`` or ``dl``)."""
-    return (solve_steps if encoding == "steps" else solve_dl)(job, time_limit)
+    solvers = {"steps": solve_steps, "dl": solve_dl}
+    if encoding not in solvers:
+        raise InputError(f"unknown schedule encoding {encoding!r} (have {', '.join(ENCODINGS)})")
+    return solvers[encoding](job, time_limit)
 
 
 def used(atoms: Sequence[clingo.Symbol]) -> tuple[int, ...]:
