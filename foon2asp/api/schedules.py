@@ -9,10 +9,10 @@ from pathlib import Path
 
 from foon2asp.errors import InputError
 from foon2asp.foon import reading
-from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule import ScheduleSpec
 from foon2asp.schedule import check as check_mod
+from foon2asp.tree.results import record_object
 
 
 @dataclass
@@ -67,12 +67,8 @@ def _record_goals(problem: Problem, record: dict) -> tuple[str, list[int]]:
     goals = record.get("goals") if "goals" in record else [record.get("goal")]
     goals = goals if isinstance(goals, list) else []
     label = " + ".join(str(g.get("label", "?")) if isinstance(g, dict) else "?" for g in goals)
-    found = [
-        FoonObject.make(g["label"], g.get("states") or (), g.get("ingredients") or (), g.get("container"))
-        for g in goals
-        if isinstance(g, dict) and isinstance(g.get("label"), str)
-    ]
-    return label, [problem.foon.object_ids[obj] for obj in found if obj in problem.foon.object_ids]
+    ids = problem.foon.object_ids
+    return label, [ids[obj] for obj in map(record_object, goals) if obj is not None and obj in ids]
 
 
 def check_schedule_file(

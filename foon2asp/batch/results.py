@@ -341,9 +341,10 @@ def schedules_path(output: str | Path) -> Path:
     return Path(output).with_suffix(".schedules.json")
 
 
-def record_tree(problem: Problem, record: dict) -> TaskTree | None:
+def record_tree(problem: Problem, record: dict, ids: dict[tuple, int]) -> TaskTree | None:
     """The task tree of a result record, its units found in the FOON by motion, inputs and
-    outputs (None: its goal is not an object of this FOON; no tree: status unreachable or unknown)."""
+    outputs (``ids``: :func:`unit_index`; None: its goal is not an object of this FOON; no tree:
+    status unreachable or unknown)."""
     goal = goal_key(problem, record)
     if goal is None:
         return None
@@ -351,7 +352,6 @@ def record_tree(problem: Problem, record: dict) -> TaskTree | None:
     if status not in WITH_TREE or not record.get("units"):
         status = "unreachable" if status in ("unreachable", "not-found") else "unknown"
         return TaskTree(goal=goal, method=str(record.get("method", "?")), status=status)
-    ids = unit_index(problem)
     units = []
     for unit in parse_json(json.dumps(record["units"]), "results").units:
         uid = ids.get(unit.key())
@@ -373,8 +373,11 @@ def record_trees(problem: Problem, records: list[dict], method: str | None = Non
     if method is None:
         method = next((str(r.get("requested_method", r.get("method"))) for r in records), None)
     out: dict[int, TaskTree] = {}
+    ids = unit_index(problem)
     for r in records:
-        tree = record_tree(problem, r) if str(r.get("requested_method", r.get("method"))) == method else None
+        if str(r.get("requested_method", r.get("method"))) != method or goal_key(problem, r) in out:
+            continue
+        tree = record_tree(problem, r, ids)
         if tree is not None:
-            out.setdefault(tree.goal, tree)
+            out[tree.goal] = tree
     return list(out.values())
