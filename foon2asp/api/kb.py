@@ -37,7 +37,7 @@ from foon2asp.foon.problem import Problem
 from foon2asp.foon.substitutes import Substitute, candidates, substituted_kitchen, with_substitutes
 from foon2asp.foon.treefiles import TreeFile, TreeUnit, read_trees
 from foon2asp.methods.runner import solve_goals
-from foon2asp.schedule import ScheduleSpec
+from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec
 from foon2asp.tree.results import MealRow, QueryResult
 from foon2asp.tree.tasktree import meal_of
 
@@ -410,12 +410,19 @@ class KnowledgeBase:
         return found[0] if together or one_goal(goals) else found
 
     def schedule_iter(
-        self, goal_ids: Jobs, spec: ScheduleSpec | None = None, options: Request = None, **how: Any
+        self,
+        goal_ids: Jobs,
+        spec: ScheduleSpec | None = None,
+        options: Request = None,
+        *,
+        joint: bool = False,
+        encoding: str = DEFAULT_ENCODING,
+        progress: Callable[[dict], None] | None = None,
     ) -> Iterator[results.Schedule]:
-        """:meth:`schedule` goal after goal; ``how``: ``joint``, ``encoding``, ``progress`` (docs/api.md)."""
+        """:meth:`schedule` goal after goal (docs/api.md)."""
         solver = self.options(options)
         trees = self.solve_iter(goal_ids, "asp", solver)
-        yield from results.schedule_trees(trees, solver, spec or ScheduleSpec(), **how)
+        yield from results.schedule_trees(trees, solver, spec or ScheduleSpec(), joint, encoding, progress)
 
     def check_schedules(
         self, path: str | Path, spec: ScheduleSpec | None = None, options: Options | None = None
