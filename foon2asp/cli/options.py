@@ -134,8 +134,9 @@ def _gather(func: Callable) -> Callable:
             kw["match"] = Reading.of(kw)
         ctx = click.get_current_context()
         extra = list(ctx.args)
+        passes = ctx.command.context_settings.get("ignore_unknown_options", False)
         for param in ctx.command.params:  # a list of files takes the options it does not know: clingo's
-            if isinstance(param, click.Argument) and param.nargs == -1 and param.name in kw:
+            if passes and isinstance(param, click.Argument) and param.nargs == -1 and param.name in kw:
                 extra += [v for v in kw[param.name] if v.startswith("--")]
                 kw[param.name] = tuple(v for v in kw[param.name] if not v.startswith("--"))
         if extra:
