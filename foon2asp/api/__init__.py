@@ -44,7 +44,7 @@ from foon2asp.methods.registry import Method
 from foon2asp.schedule import DEFAULT_ENCODING as DEFAULT_SCHEDULE_ENCODING
 from foon2asp.schedule import ScheduleSpec, parse_agents
 from foon2asp.schedule.encode import ENCODINGS as SCHEDULE_ENCODINGS
-from foon2asp.tree.results import WITH_TREE
+from foon2asp.tree.tasktree import WITH_TREE
 
 #: objective names, for ``objective=`` (lexicographic lists of them)
 OBJECTIVES: tuple[str, ...] = tuple(_OBJECTIVES)

@@ -69,7 +69,7 @@ def report_text(problem: Problem, report: Report) -> str:
     n_known = sum(u is not None for u in ids)
     lines.append(f"Units: {len(ids)} read, {n_known} found in the FOON, {len(ids) - n_known} unknown")
     f = report.finding
-    gone = f is not None and f.kind == "unreachable"
+    gone = unreachable(report)
     lines.append(f"Verdict: {f.message if f is not None and gone else 'VALID' if report.valid else 'INVALID'}")
     lines += [f"uses {s['used']} for {s['needed']}" for s in report.substitutions or []]
     if f is not None and not gone:

@@ -16,7 +16,8 @@ from foon2asp.foon.problem import Problem
 from foon2asp.report import draw, gantt
 from foon2asp.report.compare import SUMMARY_COLUMNS, method_header, summary, summary_cell, units_cell
 from foon2asp.report.registry import register
-from foon2asp.tree.results import WITH_TREE, BatchReport, Row
+from foon2asp.tree.results import BatchReport, Row
+from foon2asp.tree.tasktree import WITH_TREE
 
 _STYLE = """
 body { font-family: Helvetica, Arial, sans-serif; margin: 1.5em; color: #222; }

@@ -140,10 +140,6 @@ class MealRow:
         return total
 
 
-#: statuses of result records with a tree
-WITH_TREE = ("optimal", "ranked", "feasible", "found")
-
-
 def record_object(value: object) -> FoonObject | None:
     """The object a result record's ``goal`` (``{"label", "states", ...}``) names (None: not one)."""
     if not isinstance(value, dict) or not isinstance(value.get("label"), str):

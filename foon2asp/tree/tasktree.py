@@ -10,6 +10,9 @@ from decimal import Decimal
 from foon2asp.foon.motioncost import as_number
 from foon2asp.foon.problem import Problem
 
+#: statuses of an answer with a tree (result records too)
+WITH_TREE = ("optimal", "ranked", "feasible", "found")
+
 
 @dataclass
 class TaskTree:
@@ -43,7 +46,7 @@ class TaskTree:
 
     @property
     def has_tree(self) -> bool:
-        return self.status in ("optimal", "ranked", "feasible", "found")
+        return self.status in WITH_TREE
 
     @property
     def meal(self) -> tuple[int, ...]:
