@@ -172,10 +172,10 @@ def _lists(text: str, path: str, parsed: tuple[object, list[int]] | None) -> tup
     lines = line_numbers(text, tops)
     if not is_unit_lists(value):
         return [(list(zip(value, lines)), first)], False
-    out = []
-    for inner, pos, end, line in zip(value, tops, [*tops[1:], len(text)], lines):
-        offsets = [pos + at for at in scan(text[pos:end], path)]  # the inner list's elements
-        out.append((list(zip(inner, line_numbers(text, offsets))), line))
+    # each inner list's elements, their lines counted in one pass over the text
+    offsets = [[pos + at for at in scan(text[pos:end], path)] for pos, end in zip(tops, [*tops[1:], len(text)])]
+    every = iter(line_numbers(text, [o for inner in offsets for o in inner]))
+    out = [(list(zip(inner, [next(every) for _ in at])), line) for inner, at, line in zip(value, offsets, lines)]
     return out, True
 
 
