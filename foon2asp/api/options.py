@@ -111,7 +111,9 @@ class Options:
         if self.constraints is None:
             object.__setattr__(self, "constraints", Constraints())
         given = self.clingo_args
-        object.__setattr__(self, "clingo_args", (given,) if isinstance(given, str) else tuple(given or ()))
+        object.__setattr__(
+            self, "clingo_args", tuple(clingo_options([given] if isinstance(given, str) else given or ()))
+        )
         limit = self.time_limit
         if limit is not None and (isinstance(limit, bool) or not isinstance(limit, int | float)):
             raise InputError(f"time_limit: {limit!r} is not a number of seconds (None: no limit)")
@@ -205,7 +207,7 @@ class Options:
             max_substitutions=self.max_substitutions,
             opt_strategy=self.opt_strategy,
             threads=1 if self.threads is None else self.threads,
-            clingo_args=clingo_options(self.clingo_args),
+            clingo_args=list(self.clingo_args),
         )
 
 

@@ -65,8 +65,11 @@ def solver_args(opt_strategy: str | None = None, threads: int = 1, portfolio: st
 
 
 def clingo_options(args: Iterable[str]) -> list[str]:
-    """``args`` checked as clingo's own command-line options (each ``--name=value`` or a flag);
-    raises InputError naming the first clingo refuses."""
+    """``args`` checked as clingo's own command-line options (each ``--name=value`` or a flag).
+
+    Raises InputError naming the first clingo refuses; for an option clingo does not know, its
+    hint is ``unknown-option=ARG``.
+    """
     args = [str(a) for a in args]
     for arg in args:
         if not arg.startswith("-"):
@@ -74,7 +77,9 @@ def clingo_options(args: Iterable[str]) -> list[str]:
         try:
             clingo.Control([arg], logger=lambda code, message: None)
         except RuntimeError as exc:
-            raise InputError(f"clingo option {arg!r}: {' '.join(str(exc).split())}") from None
+            text = " ".join(str(exc).split())
+            hint = f"unknown-option={arg}" if "unknown option" in text else None
+            raise InputError(f"clingo option {arg!r}: {text}", hint=hint) from None
     return args
 
 

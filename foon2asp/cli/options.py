@@ -19,7 +19,7 @@ import click
 
 from foon2asp import api, report
 from foon2asp.api.load import Reading
-from foon2asp.api.options import KEYWORDS, NOT_A_TIME_LIMIT, SPEC_KEYWORDS, clingo_options, jobs
+from foon2asp.api.options import KEYWORDS, NOT_A_TIME_LIMIT, SPEC_KEYWORDS, jobs
 from foon2asp.cli.main import EXIT_CODES, main, warn_all
 from foon2asp.errors import InputError, escape
 
@@ -140,15 +140,18 @@ def _gather(func: Callable) -> Callable:
                 extra += [v for v in kw[param.name] if v.startswith("--")]
                 kw[param.name] = tuple(v for v in kw[param.name] if not v.startswith("--"))
         if extra:
-            for arg in extra:
-                if arg.startswith("-"):
-                    _known_to_clingo(arg, ctx.command)
-            stray = [a for a in extra if not a.startswith("-")]
-            if stray or "options" not in wants:
-                raise click.UsageError(f"unexpected argument {(stray or extra)[0]!r}")
-            kw["clingo_args"] = tuple(extra)
+            kw["clingo_args"] = tuple(a for a in extra if a.startswith("-"))
         if "options" in wants:
-            kw["options"] = api.Options.of(**{k: kw.pop(k) for k in KEYWORDS & kw.keys()})
+            try:
+                kw["options"] = api.Options.of(**{k: kw.pop(k) for k in KEYWORDS & kw.keys()})
+            except InputError as exc:
+                key, _, arg = (exc.hint or "").partition("=")
+                if key != "unknown-option":
+                    raise
+                raise click.UsageError(_no_such_option(arg, ctx.command)) from None
+        stray = [a for a in extra if not a.startswith("-")]
+        if stray or (extra and "options" not in wants):
+            raise click.UsageError(f"unexpected argument {(stray or extra)[0]!r}")
         if "spec" in wants:
             kw["spec"] = api.ScheduleSpec.from_files(**{k: kw.pop(k) for k in SPEC_KEYWORDS})
         return func(**kw)
@@ -156,19 +159,13 @@ def _gather(func: Callable) -> Callable:
     return wrapper
 
 
-def _known_to_clingo(arg: str, command: click.Command) -> None:
-    """Raise a usage error for an option neither this command nor clingo knows (with the command's
-    closest options)."""
-    try:
-        clingo_options([arg])
-    except InputError as exc:
-        if "unknown option" not in str(exc):
-            raise
-        name = arg.split("=", 1)[0]
-        ours = [o for p in command.params if isinstance(p, click.Option) for o in p.opts if o.startswith("--")]
-        close = difflib.get_close_matches(name, ours, n=2, cutoff=0.8)
-        hint = f" Did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
-        raise click.UsageError(f"No such option {name!r} (not foon2asp's, not clingo's).{hint}") from None
+def _no_such_option(arg: str, command: click.Command) -> str:
+    """The message for an option neither this command nor clingo knows (with the command's closest options)."""
+    name = arg.split("=", 1)[0]
+    ours = [o for p in command.params if isinstance(p, click.Option) for o in p.opts if o.startswith("--")]
+    close = difflib.get_close_matches(name, ours, n=2, cutoff=0.8)
+    hint = f" Did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
+    return f"No such option {name!r} (not foon2asp's, not clingo's).{hint}"
 
 
 def command(*opts: Callable | list, name: str | None = None, group: click.Group = main, epilog: str | None = None):
