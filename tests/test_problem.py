@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import clingo
 
 from foon2asp.asp import encodings
@@ -30,3 +32,14 @@ def test_units_for_matches_its_definition(shared_problem):
     _, unit_level = problem.derivation_levels()
     relevant = {u for g in goals for u in problem.relevant_units(g)}
     assert set(expected) <= {u for u in relevant if u in unit_level}
+
+
+def test_unit_id_finds_the_equal_unit(shared_problem):
+    _, problem = shared_problem
+    for uid in (0, len(problem.units) // 2, len(problem.units) - 1):
+        unit = problem.units[uid]
+        # an equal unit with its objects in another order is the same unit
+        turned = replace(unit, inputs=unit.inputs[::-1], outputs=unit.outputs[::-1])
+        assert problem.unit_id(turned) == uid
+    unit = problem.units[0]
+    assert problem.unit_id(replace(unit, motion=unit.motion + " twice")) is None

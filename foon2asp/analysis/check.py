@@ -117,13 +117,7 @@ def no_tree(
     return Report(tree, goal, [], False, Finding(kind, words, obj=goal), None, None, {})
 
 
-def check_tree(
-    problem: Problem,
-    tree: TreeFile,
-    goal: Goals,
-    index: dict[tuple, int] | None = None,
-    derivable: Derivable | None = None,
-) -> Report:
+def check_tree(problem: Problem, tree: TreeFile, goal: Goals, derivable: Derivable | None = None) -> Report:
     """Match the units of ``tree`` to the FOON and judge them for ``goal`` (a meal: valid when
     every goal is made; the first goal with a problem is explained)."""
     meal = meal_of(goal)
@@ -138,7 +132,7 @@ def check_tree(
                 first = next((r for r in empty if r.finding and r.finding.kind == "unreachable"), empty[0])
                 first.goals = meal
                 return first
-        reports = [check_tree(problem, tree, g, index, derivable) for g in meal]
+        reports = [check_tree(problem, tree, g, derivable) for g in meal]
         first = next((r for r in reports if not r.valid), reports[0])
         first.goals = meal
         first.valid = all(r.valid for r in reports)
@@ -149,8 +143,7 @@ def check_tree(
     goal = meal[0]
     if not tree.units and goal not in problem.kitchen:
         return no_tree(problem, tree, goal, derivable)
-    index = index if index is not None else unit_index(problem)
-    ids = [index.get(tu.unit.key()) for tu in tree.units]
+    ids = [problem.unit_id(tu.unit) for tu in tree.units]
     unknown = [tu for tu, u in zip(tree.units, ids) if u is None]
     known = list(dict.fromkeys(u for u in ids if u is not None))
     if unknown:
@@ -215,12 +208,11 @@ def check_trees(
     among: list[int] | None = None,
 ) -> list[Report]:
     """Check each of ``trees`` for its goal (:func:`tree_goal`)."""
-    index = unit_index(problem)
     derivable = lazy_derivable(problem)
     reports = []
     for tree in trees:
         goal, source = tree_goal(data, problem, tree, goal_label, among)
-        report = check_tree(problem, tree, goal, index, derivable)
+        report = check_tree(problem, tree, goal, derivable)
         report.goal_source = source
         reports.append(report)
     return reports

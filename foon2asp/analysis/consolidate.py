@@ -8,7 +8,6 @@ from dataclasses import replace
 from pathlib import Path
 
 from foon2asp.analysis import queries
-from foon2asp.analysis.check import unit_index
 from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject
@@ -70,13 +69,10 @@ def shared_goal(candidates: Sequence[Candidate]) -> tuple[FoonObject, str]:
     return obj, f"the product of the last unit of {n} of {len(candidates)} candidates"
 
 
-def judge(
-    problem: Problem, goals: tuple[int, ...], cand: Candidate, tree_units: Iterable[int], index: dict[tuple, int]
-) -> CandidateVerdict:
-    """``cand`` for ``goals``: on its own units, in file order, from the problem's kitchen
-    (``index``: the problem's unit ids by :meth:`Unit.key`)."""
+def judge(problem: Problem, goals: tuple[int, ...], cand: Candidate, tree_units: Iterable[int]) -> CandidateVerdict:
+    """``cand`` for ``goals``: on its own units, in file order, from the problem's kitchen."""
     units = [tu.unit for tu in cand.units]
-    ids = [index[u.key()] for u in units]
+    ids = [uid for uid in map(problem.unit_id, units) if uid is not None]  # all: the FOON merges the candidates
     objects = tuple(problem.objects[g] for g in goals)
     numbers = [tu.step for tu in cand.units]
     verdict = judge_alone(units, objects, problem.kitchen_items, problem.utensils, problem.utensil_rule, numbers)
@@ -97,7 +93,6 @@ def consolidate(
     """For each of ``goals`` (a meal: a tuple) of the merged FOON ``problem``: the best tree,
     every candidate's verdict and, when unreachable, what to add."""
     options = options or AspOptions()
-    index = unit_index(problem)
     out = []
     for goal, tree in zip(goals, solve_goals(problem, goals, "asp", options)):
         meal = meal_of(goal)
@@ -107,7 +102,7 @@ def consolidate(
             objective = tuple(o for o in options.objective if o in queries.MISSING_OBJECTIVES) or ("units",)
             missing = queries.missing(problem, target, replace(options, objective=objective))
         seen = judged_on(problem, options.substitutes, meal)  # with substitutes, what they stand in for is had
-        verdicts = [judge(seen, meal, c, tree.units, index) for c in candidates]
+        verdicts = [judge(seen, meal, c, tree.units) for c in candidates]
         out.append(
             Consolidation(
                 meal, tree, sources, verdicts, missing, goal_source, kitchen_source, list(problem.kitchen_items)

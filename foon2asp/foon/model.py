@@ -166,6 +166,10 @@ class Foon:
             self.object_ids[obj] = oid
         return oid
 
+    def unit_id(self, unit: Unit) -> int | None:
+        """Id of the unit equal to ``unit`` (same :meth:`Unit.key`), None when there is none."""
+        return self._keys.get(unit.key())
+
     def add_unit(self, unit: Unit, origin: tuple[str, int] = ("", 0)) -> int:
         """Add ``unit`` unless an equal one exists; return its id."""
         key = unit.key()

@@ -205,10 +205,9 @@ def _top_product(units: list[Unit]) -> list[FoonObject]:
     return tops if len(tops) == 1 else []
 
 
-def record_marks(record: dict, units: list[Unit], problem: Problem | None = None, index: dict | None = None) -> Marks:
+def record_marks(record: dict, units: list[Unit], problem: Problem | None = None) -> Marks:
     """Marks of a result record (a line of a batch's results) whose units are ``units``: its goals
-    and verdict; with ``problem`` (and ``index``, its unit ids by :meth:`Unit.key`) also its
-    kitchen items and an invalid tree's blocking cycle."""
+    and verdict; with ``problem`` also its kitchen items and an invalid tree's blocking cycle."""
     goals = [g for g in (record.get("goals") or [record.get("goal")]) if isinstance(g, dict)]
     made = [o for o in map(record_object, goals) if o is not None]
     label = " + ".join(str(g.get("label", "?")) for g in goals) or "?"
@@ -218,8 +217,7 @@ def record_marks(record: dict, units: list[Unit], problem: Problem | None = None
     note = str(record.get("problem") or "")
     if problem is None:
         return Marks(title=title, goals=frozenset(made or _top_product(units)), note=note)
-    index = index if index is not None else {u.key(): i for i, u in enumerate(problem.units)}
-    ids = [index.get(u.key()) for u in units]
+    ids = [problem.unit_id(u) for u in units]
     oid = problem.foon.object_ids
     finding = None
     if record.get("valid") is False and None not in ids:

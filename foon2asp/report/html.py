@@ -235,12 +235,11 @@ def summary_html(
     if trees:
         draw.require_dot()
         body.append('<h2>Task trees</h2><div class="trees">')
-    index = {u.key(): i for i, u in enumerate(problem.units)} if problem is not None else {}
     for k, r in enumerate(trees, 1):
         units = parse_json(json.dumps(r["units"]), "results").units
         goal = r.get("goal") or {}
         method = r.get("requested_method", r.get("method", "?"))
-        marks = draw.record_marks(r, units, problem, index)
+        marks = draw.record_marks(r, units, problem)
         svg = draw.svg_text(draw.build_graph(units, marks))
         label = f"<b>{esc(goal.get('label', '?'))}</b>: "
         body.append(
