@@ -13,7 +13,7 @@ from foon2asp.errors import InputError
 from foon2asp.foon.foonjson import object_from_json
 from foon2asp.foon.model import LEAVES, Foon, FoonObject, leaves, norm
 from foon2asp.foon.parser import read_foons
-from foon2asp.foon.reading import content_lines, line_numbers, lines_of, located, name_and_value, read_text
+from foon2asp.foon.reading import content_lines, json_list, line_numbers, lines_of, name_and_value, read_text
 
 #: the files of a data directory
 FILE_NAMES = {
@@ -70,11 +70,7 @@ def read_foon_files(paths: list[str], strict: bool = False) -> Foon:
 def read_objects(path: str | Path, what: str) -> list[tuple[FoonObject, int]]:
     """The objects of a JSON list (goal_nodes.json, kitchen.json), each with the line it starts on."""
     text = read_text(path, what)
-    value, tops = located(text, str(path), checked=True)
-    if not isinstance(value, list):
-        raise InputError(
-            "expected a JSON list of objects", str(path), text.count("\n", 0, len(text) - len(text.lstrip())) + 1
-        )
+    value, tops = json_list(text, str(path), checked=True)
     lines = line_numbers(text, tops)
     return [(object_from_json(v, str(path), line), line) for v, line in zip(value, lines)]
 

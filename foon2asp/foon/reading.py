@@ -144,6 +144,22 @@ def located(text: str, path: str, checked: bool = False) -> tuple[object, list[i
         raise InputError(f"bad JSON: {exc.msg}", path, exc.lineno, exc.colno) from None
 
 
+def first_line(text: str) -> int:
+    """The line (from 1) of the first character of ``text`` that is not white space."""
+    return text.count("\n", 0, len(text) - len(text.lstrip())) + 1
+
+
+def json_list(
+    text: str, path: str, checked: bool = False, parsed: tuple[object, list[int]] | None = None
+) -> tuple[list, list[int]]:
+    """The JSON list of ``text`` and the offsets of its elements, as :func:`located` gives them
+    (or ``parsed``, what it gave); an error at the first line when the value is not a list."""
+    value, tops = parsed or located(text, path, checked)
+    if not isinstance(value, list):
+        raise InputError("expected a JSON list of objects", path, first_line(text))
+    return value, tops
+
+
 def loads(text: str, path: str, checked: bool = False) -> object:
     """The JSON value of ``text`` (see :func:`located`)."""
     return located(text, path, checked)[0]

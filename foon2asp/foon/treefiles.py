@@ -20,7 +20,7 @@ from foon2asp.foon.goals import parse_object_text
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.parser import parse_lines
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.reading import line_numbers, lines_of, located, read_text
+from foon2asp.foon.reading import first_line, line_numbers, lines_of, located, read_text
 
 
 @dataclass
@@ -141,11 +141,8 @@ def _read_json_tree(text: str, path: str, strict: bool = False) -> list[TreeFile
     results = data if isinstance(data, list) else [data]
     if results and all(foonjson.is_foon_json(d) for d in results):
         return _read_foon_json_trees(results, path)
-    start = len(text) - len(text.lstrip())  # the line each result starts on, for messages
-    if isinstance(data, list):
-        starts = line_numbers(text, tops)
-    else:
-        starts = [text.count("\n", 0, start) + 1]
+    # the line each result starts on, for messages
+    starts = line_numbers(text, tops) if isinstance(data, list) else [first_line(text)]
     trees = []
     for result, line in zip(results, starts):
         if not isinstance(result, dict) or not isinstance(result.get("units"), list):

@@ -13,7 +13,7 @@ from collections.abc import Iterable, Sequence
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject, Unit, motion_key
-from foon2asp.foon.reading import line_numbers, located, scan
+from foon2asp.foon.reading import first_line, json_list, line_numbers, scan
 
 #: the keys of one unit, in the order generators write them
 KEYS = ("input_nodes", "motion_node", "output_nodes")
@@ -165,10 +165,8 @@ def _read(
 
 def _lists(text: str, path: str, parsed: tuple[object, list[int]] | None) -> tuple[list[_Entries], bool]:
     """The lists of a unit list (one) or of a list of unit lists, and whether there are several."""
-    value, tops = parsed or located(text, path)
-    first = text.count("\n", 0, len(text) - len(text.lstrip())) + 1
-    if not isinstance(value, list):
-        raise InputError("expected a JSON list of objects", path, first)
+    value, tops = json_list(text, path, parsed=parsed)
+    first = first_line(text)
     lines = line_numbers(text, tops)
     if not is_unit_lists(value):
         return [(list(zip(value, lines)), first)], False
