@@ -212,14 +212,19 @@ def _lab_units(data: object) -> list | None:
 
 def parse_json(text: str, path: str = "<string>", foon: Foon | None = None) -> Foon:
     """FOON JSON (one document or a list of them) or foon2asp's units into ``foon`` (a new one by default)."""
-    foon = foon if foon is not None else Foon()
     try:
         data = json.loads(text)
     except json.JSONDecodeError as exc:
         raise InputError(f"bad JSON: {exc.msg}", path, exc.lineno) from None
     except RecursionError:
         raise InputError("JSON nested too deeply", path) from None
-    docs = data if isinstance(data, list) and data else [data]
+    return read_json(data, path, foon)
+
+
+def read_json(data: object, path: str = "<string>", foon: Foon | None = None) -> Foon:
+    """:func:`parse_json` of the decoded value ``data``."""
+    foon = foon if foon is not None else Foon()
+    docs: list = data if isinstance(data, list) and data else [data]
     if all(is_foon_json(d) for d in docs):
         for doc in docs:
             read_official(doc, path, foon)

@@ -17,9 +17,9 @@ from typing import TextIO
 
 from foon2asp.errors import InputError
 from foon2asp.foon import unitlist
-from foon2asp.foon.foonjson import parse_json
+from foon2asp.foon.foonjson import parse_json, read_json
 from foon2asp.foon.model import BRACKET, Foon, FoonObject, Unit, bracket_problem, norm, state_parts
-from foon2asp.foon.reading import check_line, lines_of, read_text
+from foon2asp.foon.reading import check_line, check_text, lines_of, read_text, scan
 
 _KINDS = frozenset("OSM")
 #: the usual state line with brackets (``in\t[bowl]``, ``contains\t{a,b}``): checked without a scan
@@ -188,14 +188,14 @@ def read_foon(path: str | Path, foon: Foon | None = None, strict: bool = False) 
 def _json_foon(text: str, path: str, foon: Foon | None, strict: bool) -> Foon:
     """A JSON FOON file: the unit-list form of generated trees (:mod:`foon2asp.foon.unitlist`;
     ``strict``: a unit it skips is an error), else FOON JSON (:func:`foonjson.parse_json`)."""
-    if text.lstrip()[:1] == "[":
-        try:
-            value = json.loads(text)
-        except (ValueError, RecursionError):
-            value = None  # the readers below report it, located
-        if unitlist.is_unit_list(value) or unitlist.is_unit_lists(value):
-            return unitlist.unit_list_foon(text, path, strict, foon)
-    return parse_json(text, path, foon)
+    try:
+        value = json.loads(text)
+    except (ValueError, RecursionError):
+        return parse_json(text, path, foon)  # it reports the error, located
+    if unitlist.is_unit_list(value) or unitlist.is_unit_lists(value):
+        check_text(text, path)  # what reading.located checks besides decoding
+        return unitlist.unit_list_foon(text, path, strict, foon, (value, scan(text, path)))
+    return read_json(value, path, foon)
 
 
 def read_foons(paths: Iterable[str | Path], strict: bool = False) -> Foon:

@@ -193,11 +193,18 @@ def read_unit_lists(
     return trees, warnings
 
 
-def unit_list_foon(text: str, path: str, strict: bool = False, foon: Foon | None = None) -> Foon:
+def unit_list_foon(
+    text: str,
+    path: str,
+    strict: bool = False,
+    foon: Foon | None = None,
+    parsed: tuple[object, list[int]] | None = None,
+) -> Foon:
     """The units of a unit list (or of a list of them) added to ``foon`` (a new one by default),
-    each with its origin ``(path, line)``; the warnings go to ``foon.warnings``."""
+    each with its origin ``(path, line)``; the warnings go to ``foon.warnings``.  ``parsed``: as
+    :func:`read_unit_lists` takes it."""
     foon = foon if foon is not None else Foon()
-    trees, warnings = read_unit_lists(text, path, strict)
+    trees, warnings = read_unit_lists(text, path, strict, parsed)
     for units, _ in trees:
         for unit, _, line in units:
             foon.add_unit(unit, (path, line))

@@ -7,11 +7,10 @@ no external files.
 from __future__ import annotations
 
 import html
-import json
 import re
 import time
 
-from foon2asp.foon.foonjson import parse_json
+from foon2asp.foon.foonjson import read_json
 from foon2asp.foon.problem import Problem
 from foon2asp.report import draw, gantt
 from foon2asp.report.compare import SUMMARY_COLUMNS, method_header, summary, summary_cell, units_cell
@@ -236,7 +235,7 @@ def summary_html(
         draw.require_dot()
         body.append('<h2>Task trees</h2><div class="trees">')
     for k, r in enumerate(trees, 1):
-        units = parse_json(json.dumps(r["units"]), "results").units
+        units = read_json(r["units"], "results").units
         goal = r.get("goal") or {}
         method = r.get("requested_method", r.get("method", "?"))
         marks = draw.record_marks(r, units, problem)
