@@ -3,7 +3,7 @@
 >>> import foon2asp
 >>> kb = foon2asp.load("demo")
 >>> kb.solve("tomato salad").cost["units"]
-1
+4
 
 See :mod:`foon2asp.api` and docs/api.md.
 """

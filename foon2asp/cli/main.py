@@ -171,8 +171,7 @@ def report_exception(exc: BaseException, debug: bool = False) -> NoReturn:
 
 
 class Main(click.Group):
-    """The command group: every error is one line on stderr with a documented exit status
-    (2 bad input, 3 an internal error, 130 SIGINT, 143 SIGTERM), never a traceback without --debug."""
+    """The command group: every error is one line on stderr with a documented exit status, never a traceback."""
 
     def invoke(self, ctx: click.Context) -> Any:
         try:
@@ -215,24 +214,21 @@ class Main(click.Group):
         sys.exit(rv if isinstance(rv, int) else 0)
 
 
-@click.group(
-    cls=Main, context_settings={"help_option_names": ["-h", "--help"], "show_default": True}, epilog=EXIT_CODES
-)
+@click.group(cls=Main, context_settings={"help_option_names": ["-h", "--help"], "show_default": True})
 @click.version_option(package_name="foon2asp")
 @click.option("--debug", is_flag=True, help="On an internal error (exit status 3), also print the traceback.")
 def main(debug):
     """foon2asp: minimal, well-founded FOON task trees with answer-set programming.
 
-    Exit status: 0 success, 1 a negative answer (check: invalid tree; query:
-    unsatisfiable), 2 bad input or usage, 3 an internal error, 130 interrupted
-    (SIGINT), 143 terminated (SIGTERM).
+    Exit status: 0 every goal answered as asked (a tree, or proven unreachable); 1 a negative
+    answer (not proven within the time limit; check: invalid tree; query: unsatisfiable); 2 bad
+    input or usage; 3 an internal error; 130 interrupted (SIGINT); 143 terminated (SIGTERM).
     """
 
 
 def run(prog_name: str = "foon2asp") -> None:
     """The process's entry point (the ``foon2asp`` script, ``python -m foon2asp``): the command
-    group, then an exit no signal can turn into a kill by the default action -- the command
-    is over and its output written, so SIGINT and SIGTERM are ignored from then on."""
+    group; SIGINT and SIGTERM are ignored once it is over."""
     try:
         main(prog_name=prog_name)
     finally:
