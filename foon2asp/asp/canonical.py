@@ -55,7 +55,7 @@ def canonicalise(
     proven within ``conflicts`` (None: :data:`CONFLICTS`) and the ``deadline``."""
     if not answer.cost:
         return answer, True
-    if control.ctl.symbolic_atoms[LEX_ON] is None:
+    if not control.has_atom(LEX_ON):
         return answer, False  # the session was grounded without encodings/canonical.lp
     best = answer
     complete = False

@@ -1,8 +1,7 @@
 """User constraints: ASP files, rule texts and convenience flags as programs.
 
-In the flags' programs every motion or label is an escaped string constant, so it can never
-add code; files and ``--rule`` texts are checked on their own first, so an error is one line
-naming the file (or rule) and line.
+A flag's motion or label enters as an escaped string constant; files and ``--rule`` texts are
+checked on their own, an error naming the file (or rule) and line.
 """
 
 from __future__ import annotations

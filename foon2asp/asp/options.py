@@ -1,7 +1,6 @@
 """How to solve: objectives, extra programs, bounds and solver settings (:class:`AspOptions`).
 
-The default solver settings (BENCHMARKS.md) live here too: every answer that comes from
-clingo builds its arguments with :func:`solver_args`; ``--opt-strategy`` always wins.
+The default solver settings (BENCHMARKS.md) live here too (:func:`solver_args`).
 """
 
 from __future__ import annotations

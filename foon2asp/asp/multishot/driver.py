@@ -1,10 +1,8 @@
-"""Solving one goal on a grounded :class:`~foon2asp.asp.session.Session` with the
-features beyond a single optimisation: depth bounds, human steps, the K best trees, all
-optimal trees and greedy retrieval.
+"""One goal on a grounded Session with the features beyond a single optimisation.
 
-Every solve switches the externals it needs on and off again, so the next goal starts
-clean; the further trees are the best tree's ``alternatives`` (docs/proofs/solving.md,
-"Alternatives").
+Depth bounds, human steps, the K best trees, all optimal trees and greedy retrieval; each
+solve switches its externals off again, so the next goal starts clean (the further trees:
+docs/proofs/solving.md, "Alternatives").
 """
 
 from __future__ import annotations
