@@ -55,7 +55,7 @@ def check_foon_file(path: str | Path) -> None:
 
 def read_foon_files(paths: list[str], strict: bool = False) -> Foon:
     """The FOON files ``paths`` merged (:func:`foon2asp.foon.parser.read_foons`); an error naming
-    them when there is no functional unit in them (an empty file would leave every goal unknown)."""
+    them when there is no functional unit in them."""
     for p in paths:
         check_foon_file(p)
     foon = read_foons(paths, strict)

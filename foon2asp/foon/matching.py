@@ -30,9 +30,8 @@ _WORD = re.compile(r"[^\W\d_]+(?:['-][^\W\d_]+)*")
 
 @lru_cache(maxsize=1)
 def _engine() -> Any:
-    """inflect's engine, imported on first use (only ``--normalize`` needs it), with
-    typeguard's ``@typechecked`` as the identity while inflect's module runs: its checks
-    (non-empty strings) are what :func:`noun_key` ensures, and instrumenting is slow."""
+    """inflect's engine, imported on first use (only ``--normalize`` needs it) with typeguard's
+    ``@typechecked`` as the identity (docs/proofs/preparation.md, "Singular nouns")."""
     if sys.modules.get("inflect") is None:
         try:
             import typeguard
