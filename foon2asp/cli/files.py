@@ -43,27 +43,25 @@ def joined_lines(joined: dict[str, list[str]]) -> list[str]:
 )
 def check(trees, data, goal, goals, fmt, optimum, spec, options):
     """Check the task tree(s) in each TREE (FOON text with // between units, FOON JSON, foon2asp JSON,
-    or the unit-list JSON of generated trees), or a plan for a problem of 'export pddl'
-    ('(action-name)' lines, as Fast Downward writes them); one report per tree.
+    the unit-list JSON of generated trees, or a plan for 'export pddl': '(action-name)' lines as Fast
+    Downward writes them); one report per tree.
 
-    Without --data and --foon each tree is judged on its own: the kitchen is its leaves (every
-    object no unit of it makes; or --kitchen FILE), the goal the products of its last unit
-    (or --goal), and it is valid when every unit fires in the order written; the report names
-    the first unit that cannot and the object it waits for, or the cycle.
+    Without --data and --foon a tree is judged on its own: the kitchen is its leaves (or --kitchen
+    FILE), the goal the products of its last unit (or --goal), and it is valid when every unit fires
+    in the order written; else the report names the first unit that cannot and what it waits for,
+    or the cycle.
 
-    \b
-    A schedule file ('schedule --format json') is judged with the FOON (--data or --foon) on the
-    agents, durations, capabilities and resources of the schedule options: the first violation of
-    the tree's validity, durations, capabilities, precedence, one unit per agent at a time or resources.
+    A schedule file ('schedule --format json') is judged with the FOON on the schedule options: the
+    first violation of validity, durations, capabilities, precedence, one unit per agent at a time
+    or resources.
 
-    \b
-    An answer that gives no units for its goal (solve's answer for an unreachable goal) is
-    'unreachable: no tree to check' when the FOON confirms that the goal is not derivable from
-    the kitchen, counted apart from the valid and invalid trees; else it is invalid.
+    An answer without units for its goal (solve's answer for an unreachable goal) is 'unreachable:
+    no tree to check' when the FOON confirms that the goal is not derivable, counted apart; else it
+    is invalid.
 
     \b
-    Exit codes: 0 every tree (schedule) valid or confirmed unreachable; 1 some tree (schedule)
-    invalid; 2 bad input or usage; 130 interrupted.
+    Exit codes: 0 every tree (schedule) valid or confirmed unreachable;
+    1 some tree (schedule) invalid; 2 bad input or usage; 130 interrupted.
     """
     schedules = [p for p in trees if api.is_schedule_file(p)]
     verdicts: list = []
@@ -197,9 +195,8 @@ def consolidate(trees, goal, fmt, output, options, match, **given):
     """Merge candidate task trees of one recipe (TREES: files in any form 'check' reads, e.g. the
     unit-list JSON of generated trees) into one FOON and find, for each goal, its proven-best tree.
 
-    The kitchen is every object no unit makes (--kitchen leaves) unless --kitchen FILE is given.
     Each unit of the tree names the files it comes from; each candidate gets a verdict: is it
-    executable on its own (its units, in file order, from that kitchen), why not, its measures
+    executable on its own (its units, in file order, from the kitchen), why not, its measures
     beside the optimum's and which of its units the tree uses.  An unreachable goal comes with
     the fewest objects to add to the kitchen ('missing').
     """
