@@ -14,7 +14,7 @@ from pathlib import Path
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import motion_key
-from foon2asp.foon.reading import MAX_NUMBER_CHARS, content_lines, name_and_value, read_text
+from foon2asp.foon.reading import MAX_NUMBER_CHARS, clipped, content_lines, name_and_value, read_text
 from foon2asp.foon.reading import loads as safe_loads
 
 #: costs are exact to this step; the solver's integer weight of a cost is cost * SCALE
@@ -63,13 +63,9 @@ def as_number(cost: Decimal) -> int | float:
     return int(cost) if cost == cost.to_integral_value() else float(cost)
 
 
-def _shown(text: str) -> str:
-    return text if len(text) <= 40 else text[:40] + "..."
-
-
 def parse_cost(text: str, path: str, line: int | None, motion: str) -> Decimal:
     """One cost, checked: a decimal >= 0, at most :data:`MAX_COST`, exact to :data:`PRECISION`."""
-    shown = _shown(text)
+    shown = clipped(text)
     if len(text) > MAX_NUMBER_CHARS:
         raise InputError(f"cost of {motion!r} is longer than {MAX_NUMBER_CHARS} characters", path, line)
     try:
@@ -140,7 +136,7 @@ def parse_motion_costs(text: str, path: str = "<string>") -> MotionCosts:
     for lineno, line in content_lines(text):
         parts = name_and_value(line)
         if len(parts) != 2 or not parts[0].strip():
-            raise InputError(f"expected 'motion<TAB>cost', got {_shown(line.strip())!r}", path, lineno)
+            raise InputError(f"expected 'motion<TAB>cost', got {clipped(line.strip())!r}", path, lineno)
         _add(costs, where, parts[0], parse_cost(parts[1], path, lineno, motion_key(parts[0])), path, lineno)
     return MotionCosts(costs, path)
 

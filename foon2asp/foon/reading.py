@@ -51,6 +51,11 @@ def name_and_value(line: str) -> list[str]:
     return line.rsplit("\t", 1) if "\t" in line else line.rsplit(None, 1)
 
 
+def clipped(text: str, keep: int = 40) -> str:
+    """``text`` for a message: its first ``keep`` characters and ``...`` when it is longer."""
+    return text if len(text) <= keep else text[:keep] + "..."
+
+
 def check_line(line: str, path: str, lineno: int) -> None:
     """An error naming the first control, separator or surrogate character of ``line``."""
     m = BAD_CHAR.search(line)

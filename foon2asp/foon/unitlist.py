@@ -13,7 +13,7 @@ from collections.abc import Iterable, Sequence
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject, Unit, motion_key
-from foon2asp.foon.reading import first_line, json_list, line_numbers, scan
+from foon2asp.foon.reading import clipped, first_line, json_list, line_numbers, scan
 
 #: the keys of one unit, in the order generators write them
 KEYS = ("input_nodes", "motion_node", "output_nodes")
@@ -45,17 +45,15 @@ def is_unit_lists(value: object) -> bool:
     return all(not v or is_unit_list(v) for v in value) and any(v for v in value)
 
 
-def _short(text: str, keep: int = 40) -> str:
-    return repr(text if len(text) <= keep else text[:keep] + "...")
-
-
 def _text(value: object, path: str, line: int | None, where: str, field: str) -> str:
     """A string field within :data:`MAX_TEXT_CHARS`."""
     if not isinstance(value, str):
         raise InputError(f"{where}: {field} must be a string", path, line)
     if len(value) > MAX_TEXT_CHARS:
         raise InputError(
-            f"{where}: {field} {_short(value)} has {len(value):,} characters (at most {MAX_TEXT_CHARS:,})", path, line
+            f"{where}: {field} {clipped(value)!r} has {len(value):,} characters (at most {MAX_TEXT_CHARS:,})",
+            path,
+            line,
         )
     return value
 
@@ -81,7 +79,7 @@ def read_node(value: object, path: str, line: int | None, where: str) -> FoonObj
     label = _text(value["label"], path, line, where, "'label'")
     if not label.strip():
         raise InputError(f"{where}: empty 'label'", path, line)
-    where = f"{where} ({_short(label)})"
+    where = f"{where} ({clipped(label)!r})"
     fields = {}
     for name in ("states", "ingredients"):
         items = _items(value.get(name), path, line, where, f"'{name}'")
