@@ -87,7 +87,7 @@ class Options:
     opt_strategy: str | None = None
     #: clingo solver threads; None: one
     threads: int | None = None
-    #: more of clingo's own command-line options, passed as they are, e.g. ``("--configuration=crafty",)``
+    #: more of clingo's own command-line options, e.g. ``("--configuration=crafty",)``; clingo checks them here
     clingo_args: tuple[str, ...] = ()
     #: batch: ``whole``, ``per-goal`` or ``auto`` (foon2asp.methods.parts.choose_grounding)
     grounding: str = "auto"

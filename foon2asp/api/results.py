@@ -359,7 +359,7 @@ class BatchRun(Answer):
         found = record_trees(self.kb.solving_problem(solver), self.raw.records, method)
         self.schedules = list(schedule_trees([Tree(self.kb, t) for t in found], solver, **request))
         if output is not None:
-            write_file(Path(output), schedules_json(self.schedules).encode("utf-8"))
+            write_file(output, schedules_json(self.schedules))
         return self.schedules
 
     def summary(self) -> list[dict]:
