@@ -144,6 +144,21 @@ class AspOptions:
         return "asp-" + ",".join(self.objective)
 
     @property
+    def plain(self) -> bool:
+        """Is every tree of the grounded units an answer (no programs, encodings, substitutes, depth
+        bound, human steps, alternatives or greedy retrieval)?"""
+        return not (
+            self.programs
+            or self.encodings
+            or self.substitutes
+            or self.heuristic
+            or self.max_depth is not None
+            or self.human_steps is not None
+            or self.models > 1
+            or self.all_optimal
+        )
+
+    @property
     def driven(self) -> bool:
         """Does solving need the multi-shot driver (more than one plain optimisation)?"""
         return bool(

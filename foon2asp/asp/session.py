@@ -185,7 +185,7 @@ class Session:
                 floor = max(floor or 0, depth)
         if len(meal) > 1 and tree.status == "unreachable":
             self._explain(meal, tree)
-        if tree.status == "unknown" and self._plain():
+        if tree.status == "unknown" and self.options.plain:
             self._fallback(meal, tree)
         if substitutes.applies(self.options) and tree.has_tree:
             tree.extra["substitutions"] = substitutes.report(self.problem, meal, tree.units, self.options.substitutes)
@@ -198,20 +198,6 @@ class Session:
         """The names of the solver's priority levels, highest first."""
         o = self.options
         return levels(objectives.ranked(o), substitutes.applies(o), o.human_steps is not None)
-
-    def _plain(self) -> bool:
-        """Is every tree of the grounded units an answer (no constraints, bounds or alternatives)?"""
-        o = self.options
-        return not (
-            o.programs
-            or o.encodings
-            or o.max_depth is not None
-            or o.human_steps is not None
-            or o.models > 1
-            or o.all_optimal
-            or o.heuristic
-            or o.substitutes
-        )
 
     def _fallback(self, meal: tuple[int, ...], tree: TaskTree) -> None:
         """No tree within the time limit: a cheapest-first tree as ``feasible``."""

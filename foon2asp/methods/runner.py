@@ -54,8 +54,7 @@ PROVEN = ("optimal", "ranked", "unreachable", "infeasible")
 
 def plain(options: AspOptions) -> bool:
     """Is this plain optimisation of monotone objectives (nothing but the objectives asked)?"""
-    extras = options.driven or options.programs or options.encodings or options.heuristic or options.substitutes
-    return not extras and all(name in MONOTONE for name in ranked(options))
+    return options.plain and all(name in MONOTONE for name in ranked(options))
 
 
 def preparable(options: AspOptions) -> bool:
@@ -147,9 +146,7 @@ class GoalRunner:
         self._preparable = self.kind == "asp" and preparable(self._effective)
         #: the depth objective with nothing else asked: a goal without choice is settled first
         depthless = replace(self._effective, objective=tuple(o for o in self._effective.objective if o != "depth"))
-        self._depth_settles = (
-            self.kind == "asp" and "depth" in self._ranked and plain(depthless) and self._effective.max_depth is None
-        )
+        self._depth_settles = self.kind == "asp" and "depth" in self._ranked and plain(depthless)
         self._settle = shortcuts
         #: under user programs the bounds tree is a hint only and nothing is pruned
         self._constrained = bool(self._effective.programs)
