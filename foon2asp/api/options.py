@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from foon2asp.asp.constraints import ConstraintSpec
-from foon2asp.asp.options import OBJECTIVES, AspOptions, clingo_options
+from foon2asp.asp.options import AspOptions, check_objectives, clingo_options
 from foon2asp.batch.pool import AUTO
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject
@@ -172,9 +172,7 @@ class Options:
 
     def solver(self) -> AspOptions:
         """The solver's options: objective names, the human-steps rule, the gap and the constraint programs checked."""
-        for name in self.objective:
-            if name not in OBJECTIVES:
-                raise InputError(f"unknown objective {name!r} (have {', '.join(OBJECTIVES)})")
+        check_objectives(self.objective)
         if "cost" in self.objective and self.motion_cost is None:
             raise InputError(
                 "the objective 'cost' needs a motion-cost table: motion_cost=FILE (a JSON object motion -> cost,"

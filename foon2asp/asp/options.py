@@ -63,6 +63,13 @@ def solver_args(opt_strategy: str | None = None, threads: int = 1, portfolio: st
     return [f"--opt-strategy={DEFAULT_OPT_STRATEGY}", *DEFAULT_TUNING]
 
 
+def check_objectives(names: Iterable[str]) -> None:
+    """Raise InputError naming the first of ``names`` that is no objective."""
+    for name in names:
+        if name not in OBJECTIVES:
+            raise InputError(f"unknown objective {name!r} (have {', '.join(OBJECTIVES)})")
+
+
 def clingo_options(args: Iterable[str]) -> list[str]:
     """``args`` checked as clingo's own command-line options (each ``--name=value`` or a flag).
 

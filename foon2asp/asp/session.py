@@ -21,9 +21,8 @@ from foon2asp.asp.canonical import canonical_problem, canonicalise, chain_facts
 from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import OPTIONAL, fact_objects, facts
 from foon2asp.asp.multishot.driver import Driver
-from foon2asp.asp.options import OBJECTIVES, AspOptions
+from foon2asp.asp.options import OBJECTIVES, AspOptions, check_objectives
 from foon2asp.asp.prepared import Preparation, search
-from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.gap import first_level, levels, settle
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
@@ -32,9 +31,7 @@ from foon2asp.tree.upper import cheapest_tree
 
 def _objective_facts(objective: Iterable[str]) -> str:
     objective = list(objective)
-    for name in objective:
-        if name not in OBJECTIVES:
-            raise InputError(f"unknown objective {name!r} (have {', '.join(sorted(OBJECTIVES))})")
+    check_objectives(objective)
     n = len(objective)
     return "".join(f"objective({name},{n - i}).\n" for i, name in enumerate(objective))
 
