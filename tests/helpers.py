@@ -1,5 +1,6 @@
 """Small hand-made FOONs and a brute-force oracle for tests.
 
+``run_cli`` runs a command in this process, ``demo_copy`` copies the demo data;
 ``build`` makes a Problem from a compact description; ``brute_force`` tries
 every subset of the goal's candidate units and keeps those the independent
 validator accepts, so tests can compare the solver with exhaustive search.
@@ -9,6 +10,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from pathlib import Path
 
 from foon2asp.foon.model import Foon, FoonObject, Unit
 from foon2asp.foon.problem import Problem, product_outputs
@@ -118,3 +120,32 @@ def one_line_error(res, code=2):
     assert lines[0].startswith("foon2asp: error: ")
     assert "Traceback" not in res.stderr
     return lines[0]
+
+
+REPO = Path(__file__).resolve().parent.parent
+DEMO = REPO / "data"
+
+#: commands that read data: the demo data unless the test names some (there is no silent default)
+_DATA_COMMANDS = {"solve", "check", "compare", "reachable", "missing", "query", "batch", "facts", "objects"}
+
+
+def run_cli(*args):
+    """``foon2asp ARGS`` in this process (on the demo data when a data command names none)."""
+    from click.testing import CliRunner
+
+    from foon2asp.cli.main import main
+
+    argv = [str(a) for a in args]
+    if argv and argv[0] in _DATA_COMMANDS and not {"--data", "--foon"} & set(argv):
+        argv += ["--data", "demo"]
+    return CliRunner().invoke(main, argv)
+
+
+def demo_copy(tmp_path: Path, *leave_out: str) -> Path:
+    """A copy of the demo data in ``tmp_path/data`` without the files ``leave_out`` names."""
+    d = tmp_path / "data"
+    d.mkdir()
+    for f in DEMO.iterdir():
+        if f.is_file() and f.name not in leave_out:
+            (d / f.name).write_bytes(f.read_bytes())
+    return d
