@@ -15,9 +15,7 @@ from foon2asp.api.options import Options
 from foon2asp.cli.main import main
 from foon2asp.errors import InputError
 from foon2asp.foon.parser import parse_lines
-from helpers import one_line_error
-
-DEMO = Path(__file__).resolve().parent.parent / "data"
+from helpers import DEMO, demo_copy, one_line_error
 
 #: a unit whose output object is in a container, the state line (line 8) filled in by a test
 UNIT = "O\ttomato\nS\twhole\nO\tbowl\nS\tempty\nM\tpour\nO\ttomato\nS\tchopped\n{state}\n//\n"
@@ -29,15 +27,6 @@ def run(*args):
 
 def warnings_of(res) -> list[str]:
     return [line for line in res.stderr.splitlines() if line.startswith("foon2asp: warning: ")]
-
-
-def demo_copy(tmp_path: Path, *leave_out: str) -> Path:
-    d = tmp_path / "data"
-    d.mkdir()
-    for f in DEMO.iterdir():
-        if f.is_file() and f.name not in leave_out:
-            (d / f.name).write_bytes(f.read_bytes())
-    return d
 
 
 def small_data(tmp_path: Path, state: str) -> Path:
