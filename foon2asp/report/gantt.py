@@ -166,7 +166,7 @@ def add_chart(
     _text(g, f"{prefix}legend", html.escape(LEGEND), width / 2, top - 14, width, "8")
     lane = {a: k for k, a in enumerate(agents)}
 
-    boxes: list[tuple[int, int, float, float, str, Mapping]] = []  # entry, lane, left, right, motion, entry
+    boxes: list[tuple[int, int, float, float, str, str, bool]] = []  # entry, lane, left, right, motion, tooltip, human
     for i, e in enumerate(entries):
         agent = str(e.get("agent"))
         if agent not in lane:
@@ -174,7 +174,12 @@ def add_chart(
         start, end = _seconds(e.get("start")), _seconds(e.get("end"))
         w = max(MIN_BOX, (end - start) * scale)
         middle = LABEL_WIDTH + (start + end) / 2 * scale
-        boxes.append((i, lane[agent], middle - w / 2, middle + w / 2, str(_unit(e).get("motion", "?")), e))
+        unit = _unit(e)
+        motion = str(unit.get("motion", "?"))
+        outs = "; ".join(str(o.get("label", "")) for o in unit.get("outputs", []) if isinstance(o, Mapping))
+        tooltip = f"{motion} ({agent}, {start:g}-{end:g} s) -> {outs}".replace("\\", "\\\\")
+        human = agent.rsplit("-", 1)[0] == "human"
+        boxes.append((i, lane[agent], middle - w / 2, middle + w / 2, motion, tooltip, human))
     places: dict[int, tuple[str, float, int]] = {}
     rows = [0] * len(agents)
     for k in range(len(agents)):
@@ -190,13 +195,7 @@ def add_chart(
 
     for k, agent in enumerate(agents):
         _text(g, f"{prefix}lane{k}", html.escape(agent), LABEL_WIDTH / 2, y(k), LABEL_WIDTH, "11")
-    for i, k, left, right, motion, e in boxes:
-        agent = str(e.get("agent"))
-        start, end = _seconds(e.get("start")), _seconds(e.get("end"))
-        unit = _unit(e)
-        human = agent.rsplit("-", 1)[0] == "human"
-        outs = "; ".join(str(o.get("label", "")) for o in unit.get("outputs", []) if isinstance(o, Mapping))
-        tooltip = f"{motion} ({agent}, {start:g}-{end:g} s) -> {outs}".replace("\\", "\\\\")
+    for i, k, left, right, motion, tooltip, human in boxes:
         where, x, row = places[i]
         g.node(
             f"{prefix}u{i}",
