@@ -147,10 +147,9 @@ def _read(
             if strict:
                 raise InputError(f"{where} cannot be used: {why}", path, line)
             warnings.append(str(InputError(f"{where} cannot be used: {why} (skipped)", path, line)))
-        elif unit.key() in first:
-            repeats.append((k, first[unit.key()]))
+        elif (j := first.setdefault(unit.key(), k)) != k:
+            repeats.append((k, j))
         else:
-            first[unit.key()] = k
             out.append((unit, k, line))
     if repeats:
         shown = ", ".join(f"unit {k} repeats unit {j}" for k, j in repeats[:5])
