@@ -40,6 +40,6 @@ def test_unit_id_finds_the_equal_unit(shared_problem):
         unit = problem.units[uid]
         # an equal unit with its objects in another order is the same unit
         turned = replace(unit, inputs=unit.inputs[::-1], outputs=unit.outputs[::-1])
-        assert problem.unit_id(turned) == uid
+        assert problem.foon.unit_id(turned) == uid
     unit = problem.units[0]
-    assert problem.unit_id(replace(unit, motion=unit.motion + " twice")) is None
+    assert problem.foon.unit_id(replace(unit, motion=unit.motion + " twice")) is None

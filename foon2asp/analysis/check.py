@@ -143,7 +143,7 @@ def check_tree(problem: Problem, tree: TreeFile, goal: Goals, derivable: Derivab
     goal = meal[0]
     if not tree.units and goal not in problem.kitchen:
         return no_tree(problem, tree, goal, derivable)
-    ids = [problem.unit_id(tu.unit) for tu in tree.units]
+    ids = [problem.foon.unit_id(tu.unit) for tu in tree.units]
     unknown = [tu for tu, u in zip(tree.units, ids) if u is None]
     known = list(dict.fromkeys(u for u in ids if u is not None))
     if unknown:

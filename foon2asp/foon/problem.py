@@ -230,10 +230,6 @@ class Problem:
     def objects(self) -> list[FoonObject]:
         return self.foon.objects
 
-    def unit_id(self, unit: Unit) -> int | None:
-        """Id of the FOON unit equal to ``unit``, None when there is none."""
-        return self.foon.unit_id(unit)
-
     def unknown_motions(self) -> list[str]:
         return sorted({u.motion for u in self.foon.units} - set(self.motion_rates))
 

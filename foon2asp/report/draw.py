@@ -217,7 +217,7 @@ def record_marks(record: dict, units: list[Unit], problem: Problem | None = None
     note = str(record.get("problem") or "")
     if problem is None:
         return Marks(title=title, goals=frozenset(made or _top_product(units)), note=note)
-    ids = [problem.unit_id(u) for u in units]
+    ids = [problem.foon.unit_id(u) for u in units]
     oid = problem.foon.object_ids
     finding = None
     if record.get("valid") is False and None not in ids:
