@@ -29,11 +29,6 @@ from foon2asp.tree.validate import (
 )
 
 
-def unit_index(problem: Problem) -> dict[tuple, int]:
-    """FOON unit id by :meth:`Unit.key`."""
-    return {u.key(): i for i, u in enumerate(problem.units)}
-
-
 def nearest_hint(problem: Problem, unit: Unit) -> str:
     """Which objects of ``unit`` the most similar FOON unit (same motion) lacks."""
     ins, outs = set(unit.inputs), set(unit.outputs)

@@ -25,12 +25,11 @@ except ModuleNotFoundError:  # pragma: no cover - not POSIX
     fcntl = None  # type: ignore[assignment]
 
 from foon2asp import methods as methods_mod
-from foon2asp.analysis.check import unit_index
 from foon2asp.asp.facts import facts
 from foon2asp.asp.interrupts import deferred_signals
 from foon2asp.batch.pool import AUTO, BatchSpec, Execution, Executor, refuse_while_starting
 from foon2asp.errors import InputError
-from foon2asp.foon.foonjson import parse_json
+from foon2asp.foon.foonjson import read_json
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.reading import loads as safe_loads
 from foon2asp.methods.parts import GROUNDING_CHOICES, GROUNDINGS, choose_grounding
@@ -341,10 +340,10 @@ def schedules_path(output: str | Path) -> Path:
     return Path(output).with_suffix(".schedules.json")
 
 
-def record_tree(problem: Problem, record: dict, ids: dict[tuple, int]) -> TaskTree | None:
+def record_tree(problem: Problem, record: dict) -> TaskTree | None:
     """The task tree of a result record, its units found in the FOON by motion, inputs and
-    outputs (``ids``: :func:`unit_index`; None: its goal is not an object of this FOON; no tree:
-    status unreachable or unknown)."""
+    outputs (None: its goal is not an object of this FOON; no tree: status unreachable or
+    unknown)."""
     goal = goal_key(problem, record)
     if goal is None:
         return None
@@ -353,8 +352,8 @@ def record_tree(problem: Problem, record: dict, ids: dict[tuple, int]) -> TaskTr
         status = "unreachable" if status in ("unreachable", "not-found") else "unknown"
         return TaskTree(goal=goal, method=str(record.get("method", "?")), status=status)
     units = []
-    for unit in parse_json(json.dumps(record["units"]), "results").units:
-        uid = ids.get(unit.key())
+    for unit in read_json(record["units"], "results").units:
+        uid = problem.foon.unit_id(unit)
         if uid is None:
             raise InputError(f"a unit ({unit.motion}) of the tree for {problem.objects[goal]} is not in the FOON")
         units.append(uid)
@@ -373,11 +372,10 @@ def record_trees(problem: Problem, records: list[dict], method: str | None = Non
     if method is None:
         method = next((str(r.get("requested_method", r.get("method"))) for r in records), None)
     out: dict[int, TaskTree] = {}
-    ids = unit_index(problem)
     for r in records:
         if str(r.get("requested_method", r.get("method"))) != method or goal_key(problem, r) in out:
             continue
-        tree = record_tree(problem, r, ids)
+        tree = record_tree(problem, r)
         if tree is not None:
             out[tree.goal] = tree
     return list(out.values())
