@@ -28,8 +28,8 @@ from foon2asp.asp.options import AspOptions  # noqa: E402
 from foon2asp.methods.runner import GoalRunner  # noqa: E402
 from foon2asp.schedule import ScheduleSpec  # noqa: E402
 from foon2asp.schedule.baseline import known_schedule, list_schedule  # noqa: E402
-from foon2asp.schedule.bounds import bounds  # noqa: E402
-from foon2asp.schedule.model import instance, makespan  # noqa: E402
+from foon2asp.schedule.instances import instance, makespan  # noqa: E402
+from foon2asp.schedule.lower_bounds import bounds  # noqa: E402
 from synth import preset  # noqa: E402
 
 TABLE = ROOT / "bench" / "durations.json"

@@ -11,7 +11,7 @@ of ``--repeat`` runs), and the makespan against the list-scheduling baseline and
 the lower bound.  Then the same with
 capabilities, resources and a person: the durations, capabilities and resources files of
 data/schedule on ``arm=2,human=1`` and ``arm=1,human=1``.  Every
-schedule is checked by foon2asp.schedule.check.
+schedule is checked by foon2asp.schedule.checker.
 
 With ``--presets small,hard-4k,hard-10k`` it measures the hard presets of
 bench/synth.py instead (bench/hard.py): each preset's goals (at most
@@ -42,7 +42,7 @@ sys.path.insert(0, str(ROOT))
 
 import foon2asp  # noqa: E402
 from foon2asp.schedule import ScheduleSpec, schedule  # noqa: E402
-from foon2asp.schedule.check import check_schedule  # noqa: E402
+from foon2asp.schedule.checker import check_schedule  # noqa: E402
 
 TABLE = ROOT / "bench" / "durations.json"
 TARGET = {"fixed": 1.0, "joint": 10.0}

@@ -9,7 +9,7 @@ import shutil
 from click.testing import CliRunner
 
 from conftest import DEMO
-from foon2asp.batch.results import read_results
+from foon2asp.batch.results_file import read_results
 from foon2asp.cli.main import main
 
 

@@ -234,7 +234,7 @@ def test_batch_summary_html(tmp_path):
         "--no-progress",
     )
     assert res.exit_code == 1, res.output  # the greedy scrambled egg tree is invalid: exit 1
-    from foon2asp.batch.results import read_results
+    from foon2asp.batch.results_file import read_results
 
     records = read_results(out)
     with_tree = [r for r in records if r["status"] in ("optimal", "found") and r["units"]]

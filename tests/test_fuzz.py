@@ -29,9 +29,9 @@ from hypothesis import HealthCheck, assume, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
 from foon2asp.asp.facts import facts  # noqa: E402
-from foon2asp.cli.goals import SCHEDULER  # noqa: E402
+from foon2asp.cli.flags import SECONDS, int32  # noqa: E402
+from foon2asp.cli.goal_commands import SCHEDULER  # noqa: E402
 from foon2asp.cli.main import main  # noqa: E402
-from foon2asp.cli.options import SECONDS, int32  # noqa: E402
 from foon2asp.errors import BAD_CHAR, InputError  # noqa: E402
 from foon2asp.foon.loaders import read_goals, read_kitchen, read_motion, read_utensils  # noqa: E402
 from foon2asp.foon.model import Foon  # noqa: E402

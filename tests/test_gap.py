@@ -198,7 +198,7 @@ def test_batch_rows_and_compare_carry_the_bound(tmp_path, hard):
         r["bound"]["units"] == r["cost"]["units"] and r["gap"] == 0.0 for r in rows if r["status"] == "optimal"
     )
     # compare's table shows the lower bound of a tree cut short
-    from foon2asp.report.compare import units_cell
+    from foon2asp.report.tables import units_cell
 
     problem, goals = hard
     (short,) = solve_goals(problem, [goals[16]], "asp", AspOptions(time_limit=0.05))

@@ -11,7 +11,7 @@ import pytest
 from click.testing import CliRunner
 
 from foon2asp import api
-from foon2asp.api.options import Options
+from foon2asp.api.request import Options
 from foon2asp.cli.main import main
 from foon2asp.errors import InputError
 from foon2asp.foon.parser import parse_lines

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from foon2asp.batch.results import read_results
+from foon2asp.batch.results_file import read_results
 from helpers import REPO
 
 

@@ -1,5 +1,5 @@
 """Looser matching on every command and in the library: --level, --normalize, --synonyms,
---substitutes and --max-substitutions (the options of foon2asp.cli.options, the keywords of
+--substitutes and --max-substitutions (the options of foon2asp.cli.flags, the keywords of
 foon2asp.api.load and foon2asp.api.Options).
 
 Levels are checked against the FOON text rewritten at the level (tests/test_matching.py's

@@ -207,7 +207,7 @@ def test_human_steps(disagree):
 
 
 def test_human_steps_marked_in_text(disagree):
-    from foon2asp.report.trees import render
+    from foon2asp.report.tree_formats import render
 
     problem, goal = disagree
     tree = solve(problem, goal, objective=("success",), human_steps=1)

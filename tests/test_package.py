@@ -1,4 +1,5 @@
-"""The wheel ships the encodings and the demo data (a non-editable install works)."""
+"""The package as shipped: the wheel holds the encodings and the demo data, docs/layout.md lists every
+module, module names do not repeat, and the library's modules import one way."""
 
 from __future__ import annotations
 
@@ -54,6 +55,16 @@ def test_layout_page_lists_every_module_and_none_is_too_long():
         assert listed[name] == first, f"docs/layout.md: {name}: {listed[name]!r} is not its docstring's {first!r}"
     long = {m: n for m, p in modules.items() if (n := len(p.read_text(encoding="utf-8").splitlines())) > 450}
     assert long == {}
+
+
+def test_no_module_name_repeats_across_subpackages():
+    """Each module's file name says what it does once: no two subpackages hold one of the same name."""
+    package = Path(__file__).resolve().parent.parent / "foon2asp"
+    seen: dict[str, list[str]] = {}
+    for path in package.rglob("*.py"):
+        if path.name not in ("__init__.py", "__main__.py"):
+            seen.setdefault(path.name, []).append(path.relative_to(package).as_posix())
+    assert {name: paths for name, paths in seen.items() if len(paths) > 1} == {}
 
 
 def test_api_modules_import_one_way():

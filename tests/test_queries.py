@@ -16,7 +16,7 @@ from foon2asp.cli.main import main
 from foon2asp.errors import InputError
 from foon2asp.foon import goals
 from foon2asp.foon.problem import Problem
-from foon2asp.report import queries as report_queries
+from foon2asp.report import query_answers as report_queries
 from foon2asp.tree.validate import validate
 from helpers import as_obj, brute_force, build, goal_id
 

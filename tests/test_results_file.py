@@ -1,10 +1,10 @@
-"""A batch's results file (foon2asp.batch.results): one writer at a time, and a header that --resume checks."""
+"""A batch's results file (foon2asp.batch.results_file): one writer at a time, and a header that --resume checks."""
 
 from __future__ import annotations
 
 import json
 
-from foon2asp.batch.results import ResultFile, read_header, read_results
+from foon2asp.batch.results_file import ResultFile, read_header, read_results
 from helpers import one_line_error
 from helpers import run_cli as run
 

@@ -14,9 +14,9 @@ import foon2asp
 from conftest import REPO
 from foon2asp.schedule import ScheduleSpec, schedule
 from foon2asp.schedule.baseline import known_schedule, list_schedule
-from foon2asp.schedule.bounds import bounds, energy_over, kind_energy, window_length
-from foon2asp.schedule.check import check_schedule
-from foon2asp.schedule.model import divisor, earliest, instance, makespan, tails
+from foon2asp.schedule.checker import check_schedule
+from foon2asp.schedule.instances import divisor, earliest, instance, makespan, tails
+from foon2asp.schedule.lower_bounds import bounds, energy_over, kind_energy, window_length
 from foon2asp.schedule.spec import Durations
 from test_schedule_solve import AGENT_SETS, brute_schedule, given, random_spec, random_tree
 

@@ -7,7 +7,7 @@ import copy
 import pytest
 
 from foon2asp.schedule import ScheduleSpec, schedule
-from foon2asp.schedule.check import check_schedule
+from foon2asp.schedule.checker import check_schedule
 from foon2asp.schedule.spec import Durations
 from foon2asp.tree.tasktree import TaskTree, executable_order
 from helpers import build, goal_id

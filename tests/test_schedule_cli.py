@@ -13,7 +13,7 @@ import pytest
 import foon2asp
 from conftest import REPO
 from foon2asp import api
-from foon2asp.schedule.check import check_schedule
+from foon2asp.schedule.checker import check_schedule
 from foon2asp.schedule.spec import ScheduleSpec
 from helpers import build
 from test_cli import assert_one_line_error, run

@@ -11,9 +11,9 @@ import pytest
 
 from foon2asp.asp import encodings
 from foon2asp.schedule import ScheduleSpec, schedule
-from foon2asp.schedule.check import check_schedule
+from foon2asp.schedule.checker import check_schedule
 from foon2asp.schedule.encode import schedule_facts
-from foon2asp.schedule.model import divisor, earliest, instance, tails
+from foon2asp.schedule.instances import divisor, earliest, instance, tails
 from foon2asp.schedule.spec import Durations
 from helpers import build, goal_id
 from test_schedule_solve import AGENT_SETS, brute_schedule, given, random_spec, random_tree

@@ -11,13 +11,13 @@ import pytest
 
 import foon2asp
 from conftest import REPO
-from foon2asp.cli.goals import status_text
+from foon2asp.cli.goal_commands import status_text
 from foon2asp.schedule import ScheduleSpec, schedule
 from foon2asp.schedule import solve as solve_mod
 from foon2asp.schedule.baseline import earliest_finish, known_schedule, list_schedule
-from foon2asp.schedule.bounds import bounds, human_lower
-from foon2asp.schedule.check import check_schedule
-from foon2asp.schedule.model import instance, makespan
+from foon2asp.schedule.checker import check_schedule
+from foon2asp.schedule.instances import instance, makespan
+from foon2asp.schedule.lower_bounds import bounds, human_lower
 from foon2asp.schedule.result import ScheduleResult
 from foon2asp.schedule.spec import Durations
 from helpers import build, goal_id

@@ -12,7 +12,7 @@ from foon2asp.asp import constraints
 from foon2asp.asp.options import AspOptions
 from foon2asp.schedule import ScheduleSpec, joint, schedule
 from foon2asp.schedule import solve as solve_mod
-from foon2asp.schedule.check import check_schedule
+from foon2asp.schedule.checker import check_schedule
 from foon2asp.schedule.spec import HUMAN, Durations
 from foon2asp.tree.tasktree import TaskTree, executable_order
 from helpers import as_obj, best, brute_force, build, goal_id
@@ -36,7 +36,7 @@ def brute_schedule(problem, units, spec):
     """(makespan in ms, fewest human units at it) over every firing order and agent assignment,
     each placed by the serial schedule generation scheme (earliest feasible start, insertion),
     which yields every active schedule; None when no agent can do some unit.  Independent of
-    foon2asp.schedule.model: needs, durations and resources come straight from the FOON."""
+    foon2asp.schedule.instances: needs, durations and resources come straight from the FOON."""
     agents = spec.agent_list()
     units = list(units)
     kitchen = problem.kitchen
@@ -540,7 +540,7 @@ def remade_tree(rng: random.Random, n: int):
 
 
 def test_a_maker_that_waits_for_the_consumer_cannot_supply_it():
-    from foon2asp.schedule.model import instance, tails
+    from foon2asp.schedule.instances import instance, tails
 
     # B needs p, made by A and by C; C needs what B makes, so B must wait for A
     problem = build([("a", ["k"], ["p"]), ("b", ["p"], ["q"]), ("c", ["q"], ["p"]), ("d", ["p", "q"], ["g"])], ["k"])
@@ -553,8 +553,8 @@ def test_a_maker_that_waits_for_the_consumer_cannot_supply_it():
 def test_objects_made_twice_keep_bounds_and_optimum_exact(seed):
     """Precedence through a maker that waits for the consumer (Instance.preds) tightens the
     bounds; they stay below the brute-force optimum, and the optimum equals it."""
-    from foon2asp.schedule.bounds import bounds
-    from foon2asp.schedule.model import instance
+    from foon2asp.schedule.instances import instance
+    from foon2asp.schedule.lower_bounds import bounds
 
     rng = random.Random(300 + seed)
     problem, goal, units = remade_tree(rng, 4)
@@ -573,8 +573,8 @@ def test_objects_made_twice_keep_bounds_and_optimum_exact(seed):
 def test_every_tree_bound_is_at_most_every_trees_optimal_makespan():
     """The joint search's floor (landmarks and energetic reasoning over every candidate unit)
     never exceeds the least makespan of any tree, each scheduled by brute force."""
+    from foon2asp.schedule.instances import earliest, instance
     from foon2asp.schedule.joint import every_tree_bound
-    from foon2asp.schedule.model import earliest, instance
 
     positive = 0
     for seed in range(16):

@@ -1,4 +1,4 @@
-"""Ingredient substitutes (foon2asp.foon.substitutes, foon2asp.asp.substitutes, encodings/substitutes.lp).
+"""Ingredient substitutes (foon2asp.foon.substitutes, foon2asp.asp.substitute_facts, encodings/substitutes.lp).
 
 The solver's trees are compared with brute force on small random FOONs: every
 set of substitutions (kitchen items standing in for objects) and every set of
@@ -18,7 +18,7 @@ from foon2asp.asp.facts import facts
 from foon2asp.asp.objectives import encoding_names
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.asp.session import Session
-from foon2asp.asp.substitutes import report, substitute_facts, validate_with
+from foon2asp.asp.substitute_facts import report, substitute_facts, validate_with
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem

@@ -16,7 +16,7 @@ from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem, required_flags
 from foon2asp.foon.treefiles import TreeFile, read_trees
-from foon2asp.tree.results import AloneReport, Report
+from foon2asp.tree.outcomes import AloneReport, Report
 from foon2asp.tree.tasktree import Goals, meal_of, measures
 from foon2asp.tree.validate import (
     Finding,

@@ -24,7 +24,7 @@ from foon2asp.asp.predicates import (
 from foon2asp.errors import InputError, escape
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.runner import solve_goals
-from foon2asp.tree.results import MissingResult, QueryResult
+from foon2asp.tree.outcomes import MissingResult, QueryResult
 from foon2asp.tree.tasktree import Goals, executable_order, meal_of, measures
 from foon2asp.tree.weights import unit_weight
 

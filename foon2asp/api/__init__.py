@@ -11,7 +11,7 @@ from foon2asp import methods as methods_mod
 from foon2asp.analysis.compare import DEFAULT_METHODS as COMPARE_METHODS
 from foon2asp.api.kb import KnowledgeBase
 from foon2asp.api.load import FOON_FORMATS, load, match_foon, read_foons, read_program, write_foon
-from foon2asp.api.options import Constraints, Options
+from foon2asp.api.request import Constraints, Options
 from foon2asp.api.results import (
     BatchRun,
     CheckReport,
@@ -35,7 +35,7 @@ from foon2asp.api.trees import (
     draw_file,
 )
 from foon2asp.asp.options import OBJECTIVES as _OBJECTIVES
-from foon2asp.batch.results import schedules_path
+from foon2asp.batch.results_file import schedules_path
 from foon2asp.foon.goals import OBJECT_FILTERS
 from foon2asp.foon.motioncost import PRECISION_TEXT as MOTION_COST_PRECISION
 from foon2asp.foon.problem import UTENSIL_RULES

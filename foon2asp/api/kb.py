@@ -18,15 +18,15 @@ from foon2asp.analysis import check as check_mod
 from foon2asp.analysis import compare as compare_mod
 from foon2asp.analysis import queries
 from foon2asp.api import results
-from foon2asp.api.options import Options, jobs, one_goal, schedule_request, workers_count
+from foon2asp.api.request import Options, jobs, one_goal, schedule_request, workers_count
 from foon2asp.api.schedules import ScheduleVerdict, check_schedule_file
 from foon2asp.asp.constraints import unknown_names
 from foon2asp.asp.facts import facts as facts_text
 from foon2asp.asp.options import AspOptions
-from foon2asp.asp.substitutes import report as report_substitutions
-from foon2asp.asp.substitutes import substitute_facts
+from foon2asp.asp.substitute_facts import report as report_substitutions
+from foon2asp.asp.substitute_facts import substitute_facts
 from foon2asp.batch.pool import BatchSpec, dask_executor
-from foon2asp.batch.results import run_batch
+from foon2asp.batch.results_file import run_batch
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.loaders import Dataset, read_goals
@@ -38,7 +38,7 @@ from foon2asp.foon.substitutes import Substitute, candidates, substituted_kitche
 from foon2asp.foon.treefiles import TreeFile, TreeUnit, read_trees
 from foon2asp.methods.runner import solve_goals
 from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec
-from foon2asp.tree.results import MealRow, QueryResult
+from foon2asp.tree.outcomes import MealRow, QueryResult
 from foon2asp.tree.tasktree import meal_of
 
 #: a goal as the API takes it: a label, an object's text, ``"#ID"``, an object id or a FoonObject

@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from foon2asp.api.kb import KnowledgeBase
-from foon2asp.api.options import check_keywords
+from foon2asp.api.request import check_keywords
 from foon2asp.api.results import write_file
 from foon2asp.asp.constraints import read_file
 from foon2asp.errors import InputError

@@ -15,16 +15,16 @@ from typing import Any, ClassVar, Generic, Protocol, TypeVar, cast
 
 from foon2asp import report
 from foon2asp.analysis import compare as compare_mod
-from foon2asp.api.options import Options, schedule_request
+from foon2asp.api.request import Options, schedule_request
 from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.options import AspOptions
-from foon2asp.batch.results import record_trees, summarize
+from foon2asp.batch.results_file import record_trees, summarize
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem
 from foon2asp.report import draw, gantt
 from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec, schedule
-from foon2asp.schedule.check import check_schedule
+from foon2asp.schedule.checker import check_schedule
 from foon2asp.schedule.result import seconds, seconds_text
 from foon2asp.tree.serialize import json_list, tree_foon, tree_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
@@ -260,7 +260,7 @@ class CheckReport(Answer):
     """What ``check`` says about one tree: valid or not, the first problem, the optimum."""
 
     kind, one = "check", True
-    json_of, text_of = report.check.report_json, report.check.report_text
+    json_of, text_of = report.verdicts.report_json, report.verdicts.report_text
     valid = Raw[bool]()
     substitutions = Raw[list[dict] | None]("With substitutes: the ones a valid tree uses (None without substitutes).")
     cost = Raw[dict]()
@@ -307,7 +307,7 @@ class Missing(Answer):
     """The fewest objects to add to the kitchen so a goal can be made, and the tree then."""
 
     kind, one = "missing", True
-    json_of, text_of = report.queries.missing_json, report.queries.missing_text
+    json_of, text_of = report.query_answers.missing_json, report.query_answers.missing_text
     status = Raw[str]()
     missing = Raw[list[FoonObject]](read=objects_of)
 

@@ -11,8 +11,8 @@ from foon2asp.errors import InputError
 from foon2asp.foon import reading
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule import ScheduleSpec
-from foon2asp.schedule import check as check_mod
-from foon2asp.tree.results import record_object
+from foon2asp.schedule import checker as check_mod
+from foon2asp.tree.outcomes import record_object
 
 
 @dataclass

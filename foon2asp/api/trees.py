@@ -13,14 +13,14 @@ from foon2asp.analysis import check as check_mod
 from foon2asp.analysis import consolidate as consolidate_mod
 from foon2asp.api.kb import GoalLike, KnowledgeBase
 from foon2asp.api.load import Reading, knowledge_base
-from foon2asp.api.options import KEYWORDS, Options, check_keywords, jobs
+from foon2asp.api.request import KEYWORDS, Options, check_keywords, jobs
 from foon2asp.api.results import Answer, Raw, Tree, as_list, object_of, objects_of, tree_of, units_of
 from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset, read_goals, read_kitchen, read_motion, read_utensils
 from foon2asp.foon.model import LEAVES, FoonObject, Unit, leaves
 from foon2asp.foon.treefiles import TreeUnit, read_trees
 from foon2asp.report import draw
-from foon2asp.tree.results import Candidate
+from foon2asp.tree.outcomes import Candidate
 
 
 @dataclass(eq=False)
@@ -51,10 +51,10 @@ class TreeVerdict:
 
     def to_dict(self) -> dict:
         """One element of ``check --format json`` (a tree judged on its own)."""
-        return report.check.alone_json(self.raw)
+        return report.verdicts.alone_json(self.raw)
 
     def to_text(self) -> str:
-        return report.check.alone_text(self.raw)
+        return report.verdicts.alone_text(self.raw)
 
 
 @dataclass(eq=False)
@@ -77,7 +77,7 @@ class CandidateReport:
 class ConsolidatedGoal(Answer):
     """One goal (or meal) of :func:`consolidate`: the proven-best tree, sources, verdicts, what to add."""
 
-    json_of = report.consolidate.consolidation_json
+    json_of = report.candidates.consolidation_json
     goals = Raw[list[FoonObject]](read=objects_of)
     goal = Raw[FoonObject](path="goals", read=lambda a, ids: object_of(a, ids[0]))
     tree = Raw[Tree](read=tree_of)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 
-from foon2asp.asp import dominance, substitutes
+from foon2asp.asp import dominance, substitute_facts
 from foon2asp.asp.facts import unit_ids
 from foon2asp.errors import InputError
 from foon2asp.foon.motioncost import DEFAULT_COST, motion_key, scaled
@@ -37,7 +37,7 @@ def encoding_names(options, registry: dict[str, str]) -> list[str]:
         names.append("human")
     if dominance.applies(options, ranked(options)):
         names.append("dominance")
-    if substitutes.applies(options):
+    if substitute_facts.applies(options):
         names.append("substitutes")
     return names
 
@@ -116,8 +116,8 @@ def extra_parts(
             parts.append(("human order", human_order_facts(problem, units)))
     if dominated and dominance.applies(options, ranked(options)):
         parts.append(("dominated units", dominance.dominance_facts(problem, unit_ids(problem, units), ranked(options))))
-    if substitutes.applies(options):
-        facts = substitutes.substitute_facts(problem, options.substitutes, units, options.max_substitutions)
+    if substitute_facts.applies(options):
+        facts = substitute_facts.substitute_facts(problem, options.substitutes, units, options.max_substitutions)
         parts.append(("substitutes", facts))
     parts.append(("projection", "#project use/1.\n"))
     return parts

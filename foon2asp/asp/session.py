@@ -15,7 +15,7 @@ from functools import lru_cache
 
 import clingo
 
-from foon2asp.asp import encodings, objectives, substitutes
+from foon2asp.asp import encodings, objectives, substitute_facts
 from foon2asp.asp.answers import Shot, Watch, solve_shot, status, task_tree
 from foon2asp.asp.canonical import canonical_problem, canonicalise, chain_facts
 from foon2asp.asp.control import Answer, Control
@@ -70,7 +70,7 @@ class Session:
         #: the goal (as a meal) this session was grounded for; None: any goal
         self.goal = None if goal is None else meal_of(goal)
         self.options = options or AspOptions()
-        problem = self.problem = substitutes.prepare(problem, self.options)
+        problem = self.problem = substitute_facts.prepare(problem, self.options)
         own = []
         if (
             prepared is not None
@@ -184,8 +184,10 @@ class Session:
             self._explain(meal, tree)
         if tree.status == "unknown" and self.options.plain:
             self._fallback(meal, tree)
-        if substitutes.applies(self.options) and tree.has_tree:
-            tree.extra["substitutions"] = substitutes.report(self.problem, meal, tree.units, self.options.substitutes)
+        if substitute_facts.applies(self.options) and tree.has_tree:
+            tree.extra["substitutions"] = substitute_facts.report(
+                self.problem, meal, tree.units, self.options.substitutes
+            )
         if self._lower:
             tree.stats["lower"] = list(self._lower)
         return settle(self.problem, tree, self.levels, self._lower, floor)
@@ -194,7 +196,7 @@ class Session:
     def levels(self) -> tuple[str, ...]:
         """The names of the solver's priority levels, highest first."""
         o = self.options
-        return levels(objectives.ranked(o), substitutes.applies(o), o.human_steps is not None)
+        return levels(objectives.ranked(o), substitute_facts.applies(o), o.human_steps is not None)
 
     def _fallback(self, meal: tuple[int, ...], tree: TaskTree) -> None:
         """No tree within the time limit: a cheapest-first tree as ``feasible``."""

@@ -225,7 +225,7 @@ Executor = Callable[[BatchSpec, list[tuple[int, str]]], Generator[str, None, Non
 
 
 def dask_executor(scheduler, chunk: int = 8) -> Executor:
-    """A batch executor for :func:`foon2asp.batch.results.run_batch` on the Dask ``scheduler``
+    """A batch executor for :func:`foon2asp.batch.results_file.run_batch` on the Dask ``scheduler``
     (an address such as ``tcp://host:8786`` or a ``distributed.Client``; the extra ``dask``)."""
     try:
         import distributed

@@ -26,7 +26,7 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.asp.predicates import checkable, only_constraints
 from foon2asp.asp.prepared import Preparation
 from foon2asp.asp.session import Session
-from foon2asp.asp.substitutes import prepare as with_substitutes
+from foon2asp.asp.substitute_facts import prepare as with_substitutes
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.bounds import supports as bounds_supports

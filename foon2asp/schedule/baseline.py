@@ -9,8 +9,8 @@ from __future__ import annotations
 import random
 from functools import cache
 
-from foon2asp.schedule.bounds import human_lower
-from foon2asp.schedule.model import Entry, Instance, human_units, makespan, tails
+from foon2asp.schedule.instances import Entry, Instance, human_units, makespan, tails
+from foon2asp.schedule.lower_bounds import human_lower
 from foon2asp.schedule.spec import HUMAN
 
 #: randomised list-scheduling runs tried before the solver (BENCHMARKS.md, "Schedules")

@@ -18,8 +18,8 @@ from foon2asp.asp import encodings
 from foon2asp.asp.control import Control, remaining
 from foon2asp.asp.facts import q
 from foon2asp.errors import InputError
-from foon2asp.schedule.bounds import human_lower
-from foon2asp.schedule.model import Entry, Instance, assign_agents, compact, divisor, human_units, makespan
+from foon2asp.schedule.instances import Entry, Instance, assign_agents, compact, divisor, human_units, makespan
+from foon2asp.schedule.lower_bounds import human_lower
 from foon2asp.schedule.spec import HUMAN
 
 ENCODINGS = ("steps", "dl")

@@ -20,9 +20,9 @@ from foon2asp.asp.objectives import neglog_sum
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
-from foon2asp.schedule.bounds import energy_over
 from foon2asp.schedule.encode import Job, used
-from foon2asp.schedule.model import Instance, divisor, joint_tails
+from foon2asp.schedule.instances import Instance, divisor, joint_tails
+from foon2asp.schedule.lower_bounds import energy_over
 
 #: tree objectives joint scheduling supports (depth needs the multi-shot driver)
 JOINT_OBJECTIVES = ("units", "success", "inputs")

@@ -10,8 +10,8 @@ from decimal import Decimal
 
 from foon2asp.asp.objectives import success_product
 from foon2asp.foon.problem import Problem
-from foon2asp.schedule.bounds import Bounds
-from foon2asp.schedule.model import Entry
+from foon2asp.schedule.instances import Entry
+from foon2asp.schedule.lower_bounds import Bounds
 from foon2asp.schedule.spec import HUMAN, TICKS, kind_of
 from foon2asp.tree.serialize import goal_heading, tree_json
 from foon2asp.tree.tasktree import TaskTree

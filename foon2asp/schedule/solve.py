@@ -16,11 +16,11 @@ from foon2asp.asp import objectives
 from foon2asp.asp.options import AspOptions, solver_args, with_clingo_args
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
-from foon2asp.schedule import encode, joint, model
+from foon2asp.schedule import encode, instances, joint
 from foon2asp.schedule.baseline import TRIES, known_schedule, list_schedule
-from foon2asp.schedule.bounds import bounds, human_lower
+from foon2asp.schedule.instances import Entry, Instance, earliest, human_units, instance, makespan
 from foon2asp.schedule.joint import check_options
-from foon2asp.schedule.model import Entry, Instance, earliest, human_units, instance, makespan
+from foon2asp.schedule.lower_bounds import bounds, human_lower
 from foon2asp.schedule.result import ScheduleResult
 from foon2asp.schedule.spec import HUMAN, ScheduleSpec
 from foon2asp.tree.tasktree import TaskTree, executable_order, goal_fields, measures
@@ -73,7 +73,7 @@ def schedule_fixed(
     """The optimal schedule of ``tree``'s units.
 
     Joint scheduling: ``within`` (ms), only a schedule of at most that makespan matters (none:
-    ``unschedulable``); ``first``, (object, maker) pairs for :func:`model.designate`."""
+    ``unschedulable``); ``first``, (object, maker) pairs for :func:`instances.designate`."""
     t0 = time.perf_counter()
     problem, spec, encoding = req.problem, req.spec, req.encoding
 
@@ -84,7 +84,7 @@ def schedule_fixed(
     if not tree.has_tree:
         missing = "unreachable" if tree.status in ("unreachable", "not-found") else "unknown"
         return result(missing, reason=tree.extra.get("reason"))
-    inst = model.designate(instance(problem, tree.units, spec), first)
+    inst = instances.designate(instance(problem, tree.units, spec), first)
     bad = inst.incapable()
     if bad:
         return result("unschedulable", reason=f"no agent can do unit {bad[0]} ({problem.units[bad[0]].motion})")
@@ -108,19 +108,19 @@ def schedule_fixed(
         return result("optimal", known, bounds=b, baseline=ub, stats=stats)
     if over:  # is there a schedule within ``within`` at all (dl asks below its horizon first)?
         assert within is not None
-        horizon = within + model.divisor(inst) if encoding == "dl" else within
+        horizon = within + instances.divisor(inst) if encoding == "dl" else within
     else:
         horizon = makespan(known) if encoding == "steps" else ub
     start = known if encoding == "steps" and not over else None
     args = solver_arguments(req.options)
-    job = encode.Job(inst, head, model.tails(inst), horizon, b.lower, args, known=start, progress=progress)
+    job = encode.Job(inst, head, instances.tails(inst), horizon, b.lower, args, known=start, progress=progress)
     sol = encode.solve(job, encoding, time_limit)
     stats.update(sol.stats)
     if over and sol.entries is None:
         return result("unschedulable" if sol.proven or sol.unsatisfiable else "unknown", reason=late)
     entries = known
     if sol.entries is not None and (over or makespan(sol.entries) <= makespan(known)):
-        entries = model.compact(inst, sol.entries)
+        entries = instances.compact(inst, sol.entries)
     # without tie-breakers a schedule at the lower bound is optimal
     met = not over and makespan(entries) <= b.lower and not spec.has_human()
     return result("optimal" if sol.proven or met else "feasible", entries, bounds=b, baseline=ub, stats=stats)
@@ -186,7 +186,7 @@ def _by_trees(
     def bound(cand: joint.Candidate) -> tuple:
         """A lower bound on the rank of the designated tree's schedule."""
         units, first = cand
-        sub = model.designate(inst.restrict(units), first)
+        sub = instances.designate(inst.restrict(units), first)
         if len(earliest(sub)) < len(units):  # the designated makers wait for one another
             return (math.inf, 0, ())
         low = bounds(sub).lower
@@ -251,10 +251,10 @@ def schedule_joint(job: JointRequest, time_limit: float | None = None) -> Schedu
     if job.shortcut and fixed.status == tree.status == "optimal" and horizon == every and not spec.has_human():
         stats["shortcut"] = "the given tree's makespan meets the lower bound over every tree"
         return given("optimal")
-    tail = model.joint_tails(inst, meal, problem.products)
+    tail = instances.joint_tails(inst, meal, problem.products)
     ties = spec.has_human() or tree.status != "optimal"
     parts = joint.tree_parts(problem, meal, inst, options)
-    within = horizon if len(inst.agents) == 1 or not fixed.has_schedule else horizon - model.divisor(inst)
+    within = horizon if len(inst.agents) == 1 or not fixed.has_schedule else horizon - instances.divisor(inst)
     levels, user = len(objectives.ranked(options)), [name for name, _ in options.programs]
     listing = encode.Job(inst, start, tail, within, 0, solver_arguments(options), parts, levels, user, ties)
     by_trees, proven, partial = _by_trees(job, listing, left)
@@ -278,7 +278,7 @@ def schedule_joint(job: JointRequest, time_limit: float | None = None) -> Schedu
         return given("optimal" if sol.proven and fixed.status == "optimal" else "feasible")
     sub = inst.restrict(sol.units)
     status = "optimal" if sol.proven else "feasible"
-    entries = model.compact(sub, sol.entries)
+    entries = instances.compact(sub, sol.entries)
     found = ScheduleResult(problem, job.tree_of(sol.units, status), status, fixed.agents, entries, bounds(sub))
     return done(replace(found, baseline=makespan(list_schedule(sub)), joint=True, fixed=fixed))
 

@@ -8,12 +8,12 @@ import sys
 import click
 
 from foon2asp import api, report
-from foon2asp.cli import options as opt
+from foon2asp.cli import flags as opt
+from foon2asp.cli.flags import Checked, command, goal_command
 from foon2asp.cli.main import EXIT_CODES, echo_now, emit, exit_code, goal_progress, progress_bar, solver_of, warn_all
-from foon2asp.cli.options import Checked, command, goal_command
 from foon2asp.errors import InputError
 from foon2asp.report import draw
-from foon2asp.report.trees import render, render_bytes
+from foon2asp.report.tree_formats import render, render_bytes
 from foon2asp.schedule.result import seconds_text
 from foon2asp.schedule.solve import DEFAULT_TIME_LIMIT
 
@@ -47,7 +47,7 @@ def written(trees: list) -> str:
     return "; ".join(t.status + (", INVALID" if t.has_tree and t.extra.get("valid") is False else "") for t in trees)
 
 
-#: --max-depth, --human-steps, --models, --all-optimal and :data:`~foon2asp.cli.options.STRATEGY`
+#: --max-depth, --human-steps, --models, --all-optimal and :data:`~foon2asp.cli.flags.STRATEGY`
 SOLVER = [
     opt.option(
         "--max-depth",

@@ -19,7 +19,7 @@ import click
 
 from foon2asp import api, report
 from foon2asp.api.load import Reading
-from foon2asp.api.options import KEYWORDS, NOT_A_TIME_LIMIT, SPEC_KEYWORDS, jobs
+from foon2asp.api.request import KEYWORDS, NOT_A_TIME_LIMIT, SPEC_KEYWORDS, jobs
 from foon2asp.cli.main import EXIT_CODES, main, warn_all
 from foon2asp.errors import InputError, escape
 

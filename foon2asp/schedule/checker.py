@@ -1,6 +1,6 @@
 """An independent checker of schedules in the JSON shape of :mod:`foon2asp.schedule.result`.
 
-It uses neither clingo nor :mod:`foon2asp.schedule.model`: units are matched against the FOON
+It uses neither clingo nor :mod:`foon2asp.schedule.instances`: units are matched against the FOON
 and the schedule is replayed in time; the checks run in the order of docs/schedules.md.
 """
 

@@ -7,8 +7,8 @@ import json
 
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.unitlist import dumps_trees
-from foon2asp.report import draw, registry
-from foon2asp.report.registry import register
+from foon2asp.report import draw, formats
+from foon2asp.report.formats import register
 from foon2asp.tree.serialize import to_json, tree_foon, tree_foon_json, tree_json, tree_text
 from foon2asp.tree.tasktree import TaskTree
 
@@ -37,9 +37,9 @@ register("trees", "jsonl", "jsonl")(
 
 def render(problem: Problem, trees: list[TaskTree], fmt: str) -> str:
     """``trees`` in the text format ``fmt`` (a name of :func:`foon2asp.report.names` ``("trees")``)."""
-    return registry.render("trees", fmt, problem, trees)
+    return formats.render("trees", fmt, problem, trees)
 
 
 def render_bytes(problem: Problem, trees: list[TaskTree], fmt: str) -> bytes:
     """``trees`` in format ``fmt`` as bytes (text formats as UTF-8)."""
-    return registry.render_bytes("trees", fmt, problem, trees)
+    return formats.render_bytes("trees", fmt, problem, trees)

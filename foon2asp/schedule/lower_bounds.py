@@ -1,4 +1,4 @@
-"""Lower bounds on the makespan of an instance (:class:`foon2asp.schedule.model.Instance`; ms).
+"""Lower bounds on the makespan of an instance (:class:`foon2asp.schedule.instances.Instance`; ms).
 
 The chain, work and energy bounds (:func:`bounds`) and the fewest units a person must do at a
 makespan (:func:`human_lower`); why each is a bound: docs/proofs/schedules.md.
@@ -12,7 +12,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from foon2asp.schedule.model import Instance, divisor, earliest, successors, tails
+from foon2asp.schedule.instances import Instance, divisor, earliest, successors, tails
 from foon2asp.schedule.spec import HUMAN
 
 #: unit -> milliseconds (durations, earliest starts, tails)

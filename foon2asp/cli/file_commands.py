@@ -12,9 +12,9 @@ from pathlib import Path
 import click
 
 from foon2asp import api, report
-from foon2asp.cli import options as opt
+from foon2asp.cli import flags as opt
+from foon2asp.cli.flags import command
 from foon2asp.cli.main import EXIT_CODES, emit, exit_code, main, warn_all
-from foon2asp.cli.options import command
 from foon2asp.errors import InputError
 from foon2asp.report import draw as draw_mod
 from foon2asp.report import pddl
@@ -97,7 +97,7 @@ def check(trees, data, goal, goals, fmt, optimum, spec, options):
         warn_all(dict.fromkeys(w for v in found for w in v.warnings))
         reports += [v.raw for v in found]
     click.echo(report.render("check", fmt, problem, reports), nl=False)
-    answered = all(report.check.answered(r) for r in reports)
+    answered = all(report.verdicts.answered(r) for r in reports)
     sys.exit(0 if answered and all(v.valid for v in verdicts) else 1)
 
 
