@@ -18,11 +18,15 @@ from foon2asp.asp import encodings
 from foon2asp.asp.control import Control, remaining
 from foon2asp.asp.facts import q
 from foon2asp.errors import InputError
+from foon2asp.schedule import shaving
 from foon2asp.schedule.instances import Entry, Instance, assign_agents, compact, divisor, human_units, makespan
 from foon2asp.schedule.lower_bounds import human_lower
 from foon2asp.schedule.spec import HUMAN
 
 ENCODINGS = ("steps", "dl")
+
+#: seconds a phase with several kinds of agents searches before shaving narrows it
+FIRST_TRY = 2.0
 
 
 @dataclass
@@ -215,9 +219,10 @@ def _short(job: Job) -> Callable[[list[Entry]], bool]:
     return short
 
 
-def _human_stop(job: Job, opt: int) -> tuple[int, Callable[[list[Entry]], bool]]:
-    """The fewest human units at makespan ``opt`` and a stop at a schedule with no more."""
-    low = human_lower(job.inst, opt)
+def _human_stop(job: Job, opt: int, least: int = 0) -> tuple[int, Callable[[list[Entry]], bool]]:
+    """The fewest human units at makespan ``opt`` (at least ``least``) and a stop at a schedule
+    with no more."""
+    low = max(least, human_lower(job.inst, opt))
 
     def few(entries: list[Entry]) -> bool:
         _report(job, entries, opt, low, "human")
@@ -232,19 +237,49 @@ def clock(time_limit: float | None) -> Callable[[], float | None]:
     return lambda: remaining(deadline)
 
 
+def _first_try(left: float | None, several: bool) -> float | None:
+    """The time of a phase's first search: :data:`FIRST_TRY` when shaving may follow."""
+    if not several:
+        return left
+    return FIRST_TRY if left is None else min(left, FIRST_TRY)
+
+
+def _narrowed(job: Job, dom: shaving.Domains) -> tuple[Job, dict[int, tuple[int, int]]]:
+    """``job`` with the kinds ``dom`` leaves each unit, and the units' start windows within it."""
+    inst = replace(job.inst, durations=dom.durations)
+    tail = {u: job.tail[u] - job.inst.min_duration(u) + dom.least(u) for u in inst.units}
+    return replace(job, inst=inst, tail=tail), {u: (dom.release[u], dom.latest_start(u)) for u in inst.units}
+
+
+def _shaved(job: Job, floor: int, below: int, left: Callable[[], float | None]) -> tuple[int, shaving.Domains | None]:
+    """The least makespan from ``floor`` on and below ``below`` that shaving leaves possible,
+    with its domains (None: every makespan below ``below`` is ruled out, or no time is left)."""
+    step = divisor(job.inst)
+    while floor < below and left() != 0.0:
+        dom = shaving.shave(job.inst, floor, left=left)
+        if dom is not None:
+            return floor, dom
+        floor += step
+    return floor, None
+
+
 def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit: float | None) -> Solution:
     """A fixed tree with a person, in two solves each stopping at its bound: the makespan alone
     from the known schedule down to ``job.floor``, then the human units within it
-    (``stats["tie_breakers"]``: ``proven`` or ``time``)."""
+    (``stats["tie_breakers"]``: ``proven`` or ``time``).  With several kinds of agents a phase
+    not done within :data:`FIRST_TRY` is narrowed by shaving (:mod:`foon2asp.schedule.shaving`)
+    and searched again."""
     inst, floor = job.inst, job.floor
+    several = len(inst.kinds) > 1
     left = clock(time_limit)
     best = job.known
     horizon = job.horizon if best is None else min(job.horizon, makespan(best))
     proven = horizon <= floor
+    shaved: tuple[int, shaving.Domains] | None = None  # a makespan and its domains
     if not proven:
         if best is not None:
             _report(job, best, floor, None, "makespan")
-        sol = _steps_once(job, windows, horizon, floor, left(), "makespan", _short(job))
+        sol = _steps_once(job, windows, horizon, floor, _first_try(left(), several), "makespan", _short(job))
         stats.update(sol.stats)
         if sol.entries is not None:
             entries = compact(inst, sol.entries)
@@ -254,20 +289,55 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
             return replace(sol, stats=stats)
         horizon = makespan(best)
         proven = sol.proven or horizon <= floor
+        if not proven and several and left() != 0.0:
+            floor, dom = _shaved(job, floor, horizon, left)
+            job = replace(job, floor=floor)
+            proven = horizon <= floor
+            if dom is not None and not proven:
+                shaved = floor, dom
+                narrow, starts = _narrowed(job, dom)
+                sol = _steps_once(narrow, starts, floor, floor, _first_try(left(), several), "makespan", _short(job))
+                if sol.entries is not None:
+                    best, horizon, proven = compact(inst, sol.entries), floor, True
+                elif sol.proven:  # no schedule meets the floor
+                    job = replace(job, floor=floor + divisor(inst))
+            if not proven and left() != 0.0:
+                sol = _steps_once(
+                    job, job.windows(horizon) or windows, horizon, job.floor, left(), "makespan", _short(job)
+                )
+                if sol.entries is not None and makespan(compact(inst, sol.entries)) < horizon:
+                    best = compact(inst, sol.entries)
+                    horizon = makespan(best)
+                proven = sol.proven or horizon <= job.floor
         if not proven:
             stats["tie_breakers"] = "time"
             return Solution(best, False, False, inst.units, stats)
-    low, few = _human_stop(job, horizon)
+    human = job
+    within = job.windows(horizon)
+    if shaved is not None and shaved[0] == horizon:
+        human, within = _narrowed(job, shaved[1])
+        low, few = _human_stop(job, horizon, shaving.human_floor(inst, shaved[1]))
+    else:
+        low, few = _human_stop(job, horizon)
     if best is not None and human_units(best) <= low:
         stats["tie_breakers"] = "proven"
         return Solution(best, True, False, inst.units, stats)
-    within = job.windows(horizon)
     if within is None or left() == 0.0:
         stats["tie_breakers"] = "time"
         return Solution(best, True, False, inst.units, stats)
-    sol = _steps_once(job, within, horizon, horizon, left(), "human", few)
+    narrowing = several and shaved is None
+    sol = _steps_once(human, within, horizon, horizon, _first_try(left(), narrowing), "human", few)
     if sol.entries is not None and (best is None or human_units(sol.entries) < human_units(best)):
         best = sol.entries
+    if narrowing and not sol.proven and best is not None and human_units(best) > low and left() != 0.0:
+        dom = shaving.shave(inst, horizon, left=left)
+        if dom is not None:
+            human, within = _narrowed(job, dom)
+            low, few = _human_stop(job, horizon, shaving.human_floor(inst, dom))
+            if human_units(best) > low and left() != 0.0:
+                sol = _steps_once(human, within, horizon, horizon, left(), "human", few)
+                if sol.entries is not None and human_units(sol.entries) < human_units(best):
+                    best = sol.entries
     if best is None:  # nothing within the horizon: it was the floor, and the floor no schedule meets
         return Solution(None, sol.proven, sol.proven, (), stats)
     stats["tie_breakers"] = "proven" if sol.proven or human_units(best) <= low else "time"

@@ -149,6 +149,46 @@ def _classes(inst: Instance) -> list[tuple[int, Times, int, Times]]:
     return out
 
 
+#: a window test of :func:`window_tests`: the class split (an index of :func:`_classes`), the
+#: window of its first class and that of its second
+Window = tuple[int, tuple[int, int], tuple[int, int]]
+
+
+def _splits(inst: Instance, r: Times, e: Times) -> list[tuple[int, int, _Parts, list[int], list[int]] | None]:
+    """For each class split of :func:`_classes`: its agents, the units' mandatory parts and the
+    window ends (earliest or latest starts, latest or earliest ends); None when a unit fits
+    neither class within ``[r, e]``."""
+    units = [u for u in inst.units if inst.durations[u]]
+    out: list[tuple[int, int, _Parts, list[int], list[int]] | None] = []
+    for n_x, dur_x, n_y, dur_y in _classes(inst):
+        # each unit's duration on a class, if it fits its window there
+        px = {u: dur_x[u] for u in units if u in dur_x and dur_x[u] <= e[u] - r[u]}
+        py = {u: dur_y[u] for u in units if u in dur_y and dur_y[u] <= e[u] - r[u]}
+        if any(u not in px and u not in py for u in units):
+            out.append(None)
+            continue
+        lefts = sorted({*(r[u] for u in units), *(e[u] - p for u, p in px.items()), *(e[u] - p for u, p in py.items())})
+        rights = sorted(
+            {*(e[u] for u in units), *(r[u] + p for u, p in px.items()), *(r[u] + p for u, p in py.items())}
+        )
+        out.append((n_x, n_y, _Parts(units, r, e, px, py), lefts, rights))
+    return out
+
+
+def _per_class(
+    parts: _Parts, e: Times, lefts: list[int], rights: list[int]
+) -> list[tuple[tuple[int, int], tuple[int, int]]]:
+    """The pairs of windows, one per class, that both start at the first left end or both end
+    at the last right end (none when the units take as long on both classes)."""
+    units = list(e)
+    if all(parts.px.get(u) == parts.py.get(u) for u in units):
+        return []
+    lo, hi = lefts[0], rights[-1]
+    ends = [(lo, b) for b in sorted(set(e.values())) if b > lo]
+    begins = [(a, hi) for a in sorted({parts.r[u] for u in units}) if a < hi]
+    return [(wx, wy) for windows in (ends, begins) for wx in windows for wy in windows if wx != wy]
+
+
 def _kinds_fit(inst: Instance, start: Times, tail: Times, horizon: int) -> bool:
     """Can the units end by ``horizon`` as far as energetic reasoning over two classes of
     agents (:func:`_classes`) tells?"""
@@ -159,28 +199,48 @@ def _kinds_fit(inst: Instance, start: Times, tail: Times, horizon: int) -> bool:
     e = {u: horizon - tail[u] + inst.min_duration(u) for u in units}
     if any(e[u] - r[u] < inst.min_duration(u) for u in units):
         return False
-    for n_x, dur_x, n_y, dur_y in _classes(inst):
-        # each unit's duration on a class, if it fits its window there
-        px = {u: dur_x[u] for u in units if u in dur_x and dur_x[u] <= e[u] - r[u]}
-        py = {u: dur_y[u] for u in units if u in dur_y and dur_y[u] <= e[u] - r[u]}
-        if any(u not in px and u not in py for u in units):
+    for split in _splits(inst, r, e):
+        if split is None:
             return False
+        n_x, n_y, parts, lefts, rights = split
         # windows from an earliest start or a latest start to a latest end or an earliest end
-        lefts = sorted({*r.values(), *(e[u] - p for u, p in px.items()), *(e[u] - p for u, p in py.items())})
-        rights = sorted({*e.values(), *(r[u] + p for u, p in px.items()), *(r[u] + p for u, p in py.items())})
-        parts = _Parts(units, r, e, px, py)
         for a in lefts:
             if not all(parts.fit((a, b), (a, b), n_x, n_y, keep=False) for b in rights if b > a):
                 return False
-        if all(px.get(u) == py.get(u) for u in units):
-            continue  # alike on both classes: no windows per class
-        lo, hi = lefts[0], rights[-1]
-        ends = [(lo, b) for b in sorted(set(e.values())) if b > lo]
-        begins = [(a, hi) for a in sorted(set(r.values())) if a < hi]
-        for windows in (ends, begins):
-            if not all(parts.fit(wx, wy, n_x, n_y) for wx in windows for wy in windows if wx != wy):
-                return False
+        if not all(parts.fit(wx, wy, n_x, n_y) for wx, wy in _per_class(parts, e, lefts, rights)):
+            return False
     return True
+
+
+def window_tests(inst: Instance, r: Times, e: Times) -> list[Window]:
+    """Every window :func:`_kinds_fit` tests, for units within ``[r, e]`` (ms)."""
+    out: list[Window] = []
+    for i, split in enumerate(_splits(inst, r, e)):
+        if split is not None:
+            _, _, parts, lefts, rights = split
+            out += [(i, (a, b), (a, b)) for a in lefts for b in rights if b > a]
+            out += [(i, wx, wy) for wx, wy in _per_class(parts, {u: e[u] for u in parts.r}, lefts, rights)]
+    return out
+
+
+def slack_of_windows(
+    inst: Instance, r: Times, e: Times, tests: list[Window], count: int = 0
+) -> tuple[float, list[Window]]:
+    """The least slack of ``tests`` (work the second class could still take; negative: the
+    units within ``[r, e]`` do not fit) and the ``count`` tightest tests; -1 when a unit fits
+    no class."""
+    splits = _splits(inst, r, e)
+    if any(s is None for s in splits):
+        return -1.0, []
+    found = []
+    for i, wx, wy in tests:
+        split = splits[i]
+        assert split is not None
+        n_x, n_y, parts = split[:3]
+        found.append((parts.slack(wx, wy, n_x, n_y), i, wx, wy))
+    found.sort()
+    least = found[0][0] if found else 0.0
+    return least, [(i, wx, wy) for _, i, wx, wy in found[:count]]
 
 
 class _Parts:
@@ -208,25 +268,31 @@ class _Parts:
 
     def fit(self, wx: tuple[int, int], wy: tuple[int, int], n_x: int, n_y: int, keep: bool = True) -> bool:
         """Can the parts be split: class x's in ``wx`` on its ``n_x`` agents, y's in ``wy``?"""
+        return self.slack(wx, wy, n_x, n_y, keep) >= -1e-6
+
+    def slack(self, wx: tuple[int, int], wy: tuple[int, int], n_x: int, n_y: int, keep: bool = True) -> float:
+        """How much work class y could still take after the best split of :meth:`fit` (negative:
+        none fits)."""
         (on_x, only_x, both_x), (on_y, only_y, both_y) = self.parts(wx, True, keep), self.parts(wy, False, keep)
         cap_x = n_x * (wx[1] - wx[0]) - only_x
         cap_y = n_y * (wy[1] - wy[0]) - only_y
         if cap_x < 0 or cap_y < 0:
-            return False
+            return min(cap_x, cap_y)
         if both_x <= cap_x or both_y <= cap_y:  # all of them on one class
-            return True
+            return max(cap_x - both_x, cap_y - both_y)
         return _split([(on_x[u], on_y[u]) for u in self.both], cap_x, cap_y)
 
 
-def _split(work: list[tuple[int, int]], cap_x: int, cap_y: int) -> bool:
-    """Can parts of ``(work on x, work on y)`` be split, fractionally, within the capacities?"""
+def _split(work: list[tuple[int, int]], cap_x: int, cap_y: int) -> float:
+    """The room left on y when parts of ``(work on x, work on y)`` are split, fractionally,
+    within the capacities (negative: they cannot be)."""
     work = sorted(work, key=lambda w: -(w[1] / w[0]) if w[0] > 0 else -math.inf)
     room, left = float(cap_x), 0.0
     for x, y in work:
         taken = 1.0 if x == 0 else min(max(room / x, 0.0), 1.0)
         room -= x
         left += (1 - taken) * y
-    return left <= cap_y + 1e-6
+    return cap_y - left
 
 
 def kind_energy(inst: Instance, start: Times, tail: Times, floor: int, step: int) -> int:
@@ -295,9 +361,16 @@ def _chain_human(inst: Instance, horizon: int, start: Times, tail: Times) -> int
 
 def _capacity_human(inst: Instance, horizon: int, start: Times, tail: Times) -> int:
     """The capacity count of :func:`human_lower`."""
+    return human_capacity(
+        inst, {u: (start[u], horizon - tail[u] + inst.min_duration(u)) for u in inst.units if u in start}
+    )
+
+
+def human_capacity(inst: Instance, span: dict[int, tuple[int, int]]) -> int:
+    """The capacity count of :func:`human_lower` for units each within its ``span`` (earliest
+    start, latest end): the fewest units a person does in every schedule that keeps to them."""
     others = [k for k in inst.kinds if k != HUMAN]
     servers = sum(inst.kinds[k] for k in others)
-    span = {u: (start[u], horizon - tail[u] + inst.min_duration(u)) for u in inst.units if u in start}
     robot: dict[int, int] = {}  # each unit's shortest duration on the others, if it fits its window
     for u, (x, y) in span.items():
         d = min((inst.durations[u][k] for k in others if k in inst.durations[u]), default=None)

@@ -1,0 +1,59 @@
+"""Shaving against brute force on random trees with a person, and the goal it proves on ../shared/foon."""
+
+from __future__ import annotations
+
+import random
+
+import pytest
+
+import foon2asp
+from conftest import REPO
+from foon2asp.schedule.checker import check_schedule
+from foon2asp.schedule.instances import divisor, instance
+from foon2asp.schedule.lower_bounds import bounds
+from foon2asp.schedule.shaving import human_floor, shave
+from test_schedule_solve import AGENT_SETS, brute_schedule, random_spec, random_tree
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_shaving_keeps_the_optimum_and_its_human_units(seed):
+    """At the brute-force optimum shaving leaves a domain, whose human count is at most the
+    fewest human units there; one step below the optimum it may rule the makespan out, and
+    what it rules out is below the optimum."""
+    rng = random.Random(seed)
+    kinds = AGENT_SETS[2 + seed % 2]
+    problem, _, units = random_tree(rng, 4 + seed % 2, knife=0.0)
+    spec = random_spec(rng, kinds)
+    want = brute_schedule(problem, units, spec)
+    if want is None:
+        return
+    opt, human = want
+    inst = instance(problem, units, spec)
+    dom = shave(inst, opt)
+    assert dom is not None
+    assert human_floor(inst, dom) <= human
+    for u in inst.units:
+        assert dom.durations[u] and set(dom.durations[u]) <= set(inst.durations[u])
+        assert dom.release[u] + dom.least(u) <= dom.deadline[u] <= opt
+    low = bounds(inst).lower
+    for horizon in range(low, opt, divisor(inst)):
+        assert shave(inst, horizon) is None or horizon < opt
+
+
+def test_shaving_raises_the_bound_and_counts_the_human_units(shared_foon_dir):
+    """Coleslaw on two arms and a person with the duration table: the bounds allow 33 s,
+    shaving rules out 33 s (the optimum is 36 s).  Shrimp mango salad: at 63 s, its bound and
+    optimum, shaving counts 16 human units (the capacity count alone 13), the fewest there."""
+    kb = foon2asp.load(shared_foon_dir)
+    spec = foon2asp.schedule.ScheduleSpec.from_files("arm=2,human=1", REPO / "bench" / "durations.json")
+    trees = {label: kb.solve(label).raw for label in ("coleslaw", "shrimp mango salad")}
+    coleslaw = instance(kb.problem, trees["coleslaw"].units, spec)
+    assert bounds(coleslaw).lower == 33000
+    assert shave(coleslaw, 33000) is None and shave(coleslaw, 34000) is not None
+    shrimp = instance(kb.problem, trees["shrimp mango salad"].units, spec)
+    dom = shave(shrimp, 63000)
+    assert dom is not None and human_floor(shrimp, dom) == 16
+    r = kb.schedule("shrimp mango salad", agents="arm=2,human=1", durations=REPO / "bench" / "durations.json")
+    assert r.status == "optimal" and r.makespan == 63.0 and len(r.raw.human) == 16
+    assert r.raw.stats["tie_breakers"] == "proven"
+    assert check_schedule(kb.problem, r.to_dict(), spec) is None
