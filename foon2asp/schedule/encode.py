@@ -27,6 +27,8 @@ ENCODINGS = ("steps", "dl")
 
 #: seconds a phase with several kinds of agents searches before shaving narrows it
 FIRST_TRY = 2.0
+#: seconds of the search for a schedule at the makespan shaving leaves, on its domains
+DECIDE = 0.5
 
 
 @dataclass
@@ -151,10 +153,12 @@ def _steps_once(
     time_limit: float | None,
     only: str | None = None,
     enough: Callable[[list[Entry]], bool] | None = None,
+    stop: Callable[[], bool] | None = None,
 ) -> Solution:
     """One grounding and optimisation of the time-step encoding with makespan at most
-    ``horizon`` (``only``: that objective alone; ``enough``: stop at a schedule it accepts);
-    ``proven``: the search ended, or ``enough`` accepted a schedule (returned compacted)."""
+    ``horizon`` (``only``: that objective alone; ``enough``: stop at a schedule it accepts;
+    ``stop``: asked now and then while the search runs, stops it when true); ``proven``: the
+    search ended, or ``enough`` accepted a schedule (returned compacted)."""
     inst = job.inst
     scale = divisor(inst)
     name = "schedule_order" if job.fixed and not _zeros(inst) else "schedule_steps"
@@ -174,7 +178,7 @@ def _steps_once(
         best["met"] = enough is not None and enough(_entries_of_steps(inst, best["atoms"], scale))
         return not best["met"]
 
-    result = control.solve(on_model, time_limit)
+    result = control.solve(on_model, time_limit, stop=stop)
     stats = control.stats()
     if "atoms" not in best:
         return Solution(None, result.finished, result.finished and bool(result.unsatisfiable), (), stats)
@@ -237,13 +241,6 @@ def clock(time_limit: float | None) -> Callable[[], float | None]:
     return lambda: remaining(deadline)
 
 
-def _first_try(left: float | None, several: bool) -> float | None:
-    """The time of a phase's first search: :data:`FIRST_TRY` when shaving may follow."""
-    if not several:
-        return left
-    return FIRST_TRY if left is None else min(left, FIRST_TRY)
-
-
 def _narrowed(job: Job, dom: shaving.Domains) -> tuple[Job, dict[int, tuple[int, int]]]:
     """``job`` with the kinds ``dom`` leaves each unit, and the units' start windows within it."""
     inst = replace(job.inst, durations=dom.durations)
@@ -263,12 +260,96 @@ def _shaved(job: Job, floor: int, below: int, left: Callable[[], float | None]) 
     return floor, None
 
 
+class _FloorStop:
+    """The stop of the makespan's search at the floor; after :data:`FIRST_TRY` :meth:`shave`
+    raises the floor while shaving rules it out, and searches the domains it leaves there for
+    :data:`DECIDE` (the search itself runs on); ``best``: the schedule known before."""
+
+    def __init__(self, job: Job, left: Callable[[], float | None], best: list[Entry] | None) -> None:
+        self.job, self.left, self.best = job, left, best
+        self.floor = job.floor
+        self.since = time.perf_counter()
+        self.tried = False
+        #: the floor and the domains shaving left there
+        self.shaved: tuple[int, shaving.Domains] | None = None
+
+    def __call__(self, entries: list[Entry]) -> bool:
+        entries = compact(self.job.inst, entries)
+        _report(self.job, entries, self.floor, None, "makespan")
+        if self.best is None or makespan(entries) < makespan(self.best):
+            self.best = entries
+        return makespan(entries) <= self.floor
+
+    def shave(self) -> bool:
+        """Shave once the search has run long enough; is the best schedule at the floor?"""
+        if self.tried or time.perf_counter() - self.since < FIRST_TRY or self.left() == 0.0:
+            return False
+        self.tried = True
+        job, inst = self.job, self.job.inst
+        below = self.job.horizon if self.best is None else makespan(self.best)
+        self.floor, dom = _shaved(job, self.floor, below, self.left)
+        if self.best is not None and makespan(self.best) <= self.floor:
+            return True
+        if dom is None or self.left() == 0.0:
+            return False
+        job = replace(job, floor=self.floor)
+        narrow, starts = _narrowed(job, dom)
+        left = self.left()
+        sol = _steps_once(
+            narrow,
+            starts,
+            self.floor,
+            self.floor,
+            DECIDE if left is None else min(DECIDE, left),
+            "makespan",
+            _short(job),
+        )
+        if sol.entries is not None:
+            self.best, self.shaved = compact(inst, sol.entries), (self.floor, dom)
+            return True
+        if sol.proven:  # no schedule meets the floor
+            self.floor += divisor(inst)
+        else:
+            self.shaved = self.floor, dom
+        return False
+
+
+class _ShavingStop:
+    """The stop of the human units' search at ``low``, which :meth:`shave` raises by the
+    capacity count over the domains shaving leaves (once the search has run :data:`FIRST_TRY`);
+    ``best``: the schedule known before the search."""
+
+    def __init__(
+        self, job: Job, horizon: int, low: int, left: Callable[[], float | None], best: list[Entry] | None
+    ) -> None:
+        self.job, self.horizon, self.low, self.left = job, horizon, low, left
+        self.since = time.perf_counter()
+        self.fewest = None if best is None else human_units(best)
+        self.shaved = False
+
+    def __call__(self, entries: list[Entry]) -> bool:
+        _report(self.job, entries, self.horizon, self.low, "human")
+        found = human_units(entries)
+        self.fewest = found if self.fewest is None else min(self.fewest, found)
+        return found <= self.low
+
+    def shave(self) -> bool:
+        """Shave once the search has run long enough; is a schedule found at the raised count?"""
+        if self.shaved or time.perf_counter() - self.since < FIRST_TRY:
+            return False
+        self.shaved = True
+        dom = shaving.shave(self.job.inst, self.horizon, left=self.left)
+        if dom is not None:
+            self.low = max(self.low, shaving.human_floor(self.job.inst, dom))
+        return self.fewest is not None and self.fewest <= self.low
+
+
 def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit: float | None) -> Solution:
     """A fixed tree with a person, in two solves each stopping at its bound: the makespan alone
     from the known schedule down to ``job.floor``, then the human units within it
-    (``stats["tie_breakers"]``: ``proven`` or ``time``).  With several kinds of agents a phase
-    not done within :data:`FIRST_TRY` is narrowed by shaving (:mod:`foon2asp.schedule.shaving`)
-    and searched again."""
+    (``stats["tie_breakers"]``: ``proven`` or ``time``).  With several kinds of agents, once a
+    phase has run :data:`FIRST_TRY`, shaving (:mod:`foon2asp.schedule.shaving`) may raise its
+    bound while it runs on (:class:`_FloorStop`, :class:`_ShavingStop`)."""
     inst, floor = job.inst, job.floor
     several = len(inst.kinds) > 1
     left = clock(time_limit)
@@ -279,36 +360,14 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
     if not proven:
         if best is not None:
             _report(job, best, floor, None, "makespan")
-        sol = _steps_once(job, windows, horizon, floor, _first_try(left(), several), "makespan", _short(job))
+        short = _FloorStop(job, left, best)
+        sol = _steps_once(job, windows, horizon, floor, left(), "makespan", short, short.shave if several else None)
         stats.update(sol.stats)
-        if sol.entries is not None:
-            entries = compact(inst, sol.entries)
-            if best is None or makespan(entries) < makespan(best):
-                best = entries
+        best, floor, shaved = short.best, short.floor, short.shaved
         if best is None:
             return replace(sol, stats=stats)
         horizon = makespan(best)
         proven = sol.proven or horizon <= floor
-        if not proven and several and left() != 0.0:
-            floor, dom = _shaved(job, floor, horizon, left)
-            job = replace(job, floor=floor)
-            proven = horizon <= floor
-            if dom is not None and not proven:
-                shaved = floor, dom
-                narrow, starts = _narrowed(job, dom)
-                sol = _steps_once(narrow, starts, floor, floor, _first_try(left(), several), "makespan", _short(job))
-                if sol.entries is not None:
-                    best, horizon, proven = compact(inst, sol.entries), floor, True
-                elif sol.proven:  # no schedule meets the floor
-                    job = replace(job, floor=floor + divisor(inst))
-            if not proven and left() != 0.0:
-                sol = _steps_once(
-                    job, job.windows(horizon) or windows, horizon, job.floor, left(), "makespan", _short(job)
-                )
-                if sol.entries is not None and makespan(compact(inst, sol.entries)) < horizon:
-                    best = compact(inst, sol.entries)
-                    horizon = makespan(best)
-                proven = sol.proven or horizon <= job.floor
         if not proven:
             stats["tie_breakers"] = "time"
             return Solution(best, False, False, inst.units, stats)
@@ -325,19 +384,14 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
     if within is None or left() == 0.0:
         stats["tie_breakers"] = "time"
         return Solution(best, True, False, inst.units, stats)
-    narrowing = several and shaved is None
-    sol = _steps_once(human, within, horizon, horizon, _first_try(left(), narrowing), "human", few)
+    later = None
+    if several and shaved is None:  # shaving may raise the count while the search runs
+        later = _ShavingStop(job, horizon, low, left, best)
+    stop = None if later is None else later.shave
+    sol = _steps_once(human, within, horizon, horizon, left(), "human", later or few, stop)
+    low = low if later is None else later.low
     if sol.entries is not None and (best is None or human_units(sol.entries) < human_units(best)):
         best = sol.entries
-    if narrowing and not sol.proven and best is not None and human_units(best) > low and left() != 0.0:
-        dom = shaving.shave(inst, horizon, left=left)
-        if dom is not None:
-            human, within = _narrowed(job, dom)
-            low, few = _human_stop(job, horizon, shaving.human_floor(inst, dom))
-            if human_units(best) > low and left() != 0.0:
-                sol = _steps_once(human, within, horizon, horizon, left(), "human", few)
-                if sol.entries is not None and human_units(sol.entries) < human_units(best):
-                    best = sol.entries
     if best is None:  # nothing within the horizon: it was the floor, and the floor no schedule meets
         return Solution(None, sol.proven, sol.proven, (), stats)
     stats["tie_breakers"] = "proven" if sol.proven or human_units(best) <= low else "time"
