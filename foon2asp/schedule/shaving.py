@@ -90,8 +90,9 @@ def _tightest(inst: Instance, dom: Domains, count: int) -> tuple[float, list[Win
 
 
 def _shave_unit(inst: Instance, dom: Domains, u: int, windows: list[Window], step: int) -> Domains | None:
-    """``dom`` with the kinds and ends of ``u``'s window that fail ruled out (the same object
-    when none is); None when every choice fails."""
+    """A copy of ``dom`` with the kinds and ends of ``u``'s window that fail ruled out; None
+    when every choice fails."""
+    dom = dom.copy()
     for k in list(dom.durations[u]):
         if len(dom.durations[u]) < 2:
             break
@@ -138,6 +139,8 @@ def shave(
     start, tail = earliest(inst), tails(inst)
     if len(start) < len(inst.units) or inst.incapable():
         return None
+    step = divisor(inst)
+    horizon -= horizon % step  # every start and end is on the step grid
     dom = Domains(
         {u: dict(inst.durations[u]) for u in inst.units},
         dict(start),
@@ -146,7 +149,7 @@ def shave(
     found = _tightened(inst, dom, [])
     if found is None:
         return None
-    dom, step = found, divisor(inst)
+    dom = found
     for _ in range(rounds):
         least, tight = _tightest(inst, dom, windows)
         if least < -EPSILON:
