@@ -25,8 +25,6 @@ from foon2asp.schedule.spec import HUMAN
 
 ENCODINGS = ("steps", "dl")
 
-#: seconds a phase with several kinds of agents searches before shaving narrows it
-FIRST_TRY = 2.0
 #: seconds of the search for a schedule at the makespan shaving leaves, on its domains
 DECIDE = 0.5
 
@@ -244,24 +242,11 @@ def clock(time_limit: float | None) -> Callable[[], float | None]:
 def _narrowed(job: Job, dom: shaving.Domains) -> tuple[Job, dict[int, tuple[int, int]]]:
     """``job`` with the kinds ``dom`` leaves each unit, and the units' start windows within it."""
     inst = replace(job.inst, durations=dom.durations)
-    tail = {u: job.tail[u] - job.inst.min_duration(u) + dom.least(u) for u in inst.units}
-    return replace(job, inst=inst, tail=tail), {u: (dom.release[u], dom.latest_start(u)) for u in inst.units}
-
-
-def _shaved(job: Job, floor: int, below: int, left: Callable[[], float | None]) -> tuple[int, shaving.Domains | None]:
-    """The least makespan from ``floor`` on and below ``below`` that shaving leaves possible,
-    with its domains (None: every makespan below ``below`` is ruled out, or no time is left)."""
-    step = divisor(job.inst)
-    while floor < below and left() != 0.0:
-        dom = shaving.shave(job.inst, floor, left=left)
-        if dom is not None:
-            return floor, dom
-        floor += step
-    return floor, None
+    return replace(job, inst=inst, tail=dom.tails(job.inst, job.tail)), dom.starts()
 
 
 class _FloorStop:
-    """The stop of the makespan's search at the floor; after :data:`FIRST_TRY` :meth:`shave`
+    """The stop of the makespan's search at the floor; after :data:`shaving.AFTER` :meth:`shave`
     raises the floor while shaving rules it out, and searches the domains it leaves there for
     :data:`DECIDE` (the search itself runs on); ``best``: the schedule known before."""
 
@@ -282,12 +267,12 @@ class _FloorStop:
 
     def shave(self) -> bool:
         """Shave once the search has run long enough; is the best schedule at the floor?"""
-        if self.tried or time.perf_counter() - self.since < FIRST_TRY or self.left() == 0.0:
+        if self.tried or time.perf_counter() - self.since < shaving.AFTER or self.left() == 0.0:
             return False
         self.tried = True
         job, inst = self.job, self.job.inst
         below = self.job.horizon if self.best is None else makespan(self.best)
-        self.floor, dom = _shaved(job, self.floor, below, self.left)
+        self.floor, dom = shaving.least_floor(inst, self.floor, below, self.left)
         if self.best is not None and makespan(self.best) <= self.floor:
             return True
         if dom is None or self.left() == 0.0:
@@ -295,15 +280,8 @@ class _FloorStop:
         job = replace(job, floor=self.floor)
         narrow, starts = _narrowed(job, dom)
         left = self.left()
-        sol = _steps_once(
-            narrow,
-            starts,
-            self.floor,
-            self.floor,
-            DECIDE if left is None else min(DECIDE, left),
-            "makespan",
-            _short(job),
-        )
+        decide = DECIDE if left is None else min(DECIDE, left)
+        sol = _steps_once(narrow, starts, self.floor, self.floor, decide, "makespan", _short(job))
         if sol.entries is not None:
             self.best, self.shaved = compact(inst, sol.entries), (self.floor, dom)
             return True
@@ -314,42 +292,12 @@ class _FloorStop:
         return False
 
 
-class _ShavingStop:
-    """The stop of the human units' search at ``low``, which :meth:`shave` raises by the
-    capacity count over the domains shaving leaves (once the search has run :data:`FIRST_TRY`);
-    ``best``: the schedule known before the search."""
-
-    def __init__(
-        self, job: Job, horizon: int, low: int, left: Callable[[], float | None], best: list[Entry] | None
-    ) -> None:
-        self.job, self.horizon, self.low, self.left = job, horizon, low, left
-        self.since = time.perf_counter()
-        self.fewest = None if best is None else human_units(best)
-        self.shaved = False
-
-    def __call__(self, entries: list[Entry]) -> bool:
-        _report(self.job, entries, self.horizon, self.low, "human")
-        found = human_units(entries)
-        self.fewest = found if self.fewest is None else min(self.fewest, found)
-        return found <= self.low
-
-    def shave(self) -> bool:
-        """Shave once the search has run long enough; is a schedule found at the raised count?"""
-        if self.shaved or time.perf_counter() - self.since < FIRST_TRY:
-            return False
-        self.shaved = True
-        dom = shaving.shave(self.job.inst, self.horizon, left=self.left)
-        if dom is not None:
-            self.low = max(self.low, shaving.human_floor(self.job.inst, dom))
-        return self.fewest is not None and self.fewest <= self.low
-
-
 def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit: float | None) -> Solution:
     """A fixed tree with a person, in two solves each stopping at its bound: the makespan alone
     from the known schedule down to ``job.floor``, then the human units within it
     (``stats["tie_breakers"]``: ``proven`` or ``time``).  With several kinds of agents, once a
-    phase has run :data:`FIRST_TRY`, shaving (:mod:`foon2asp.schedule.shaving`) may raise its
-    bound while it runs on (:class:`_FloorStop`, :class:`_ShavingStop`)."""
+    phase has run :data:`shaving.AFTER`, shaving (:mod:`foon2asp.schedule.shaving`) may raise
+    its bound while it runs on (:class:`_FloorStop`, :class:`shaving.HumanStop`)."""
     inst, floor = job.inst, job.floor
     several = len(inst.kinds) > 1
     left = clock(time_limit)
@@ -386,7 +334,8 @@ def _steps_in_phases(job: Job, windows: dict, stats: dict[str, Any], time_limit:
         return Solution(best, True, False, inst.units, stats)
     later = None
     if several and shaved is None:  # shaving may raise the count while the search runs
-        later = _ShavingStop(job, horizon, low, left, best)
+        fewest = None if best is None else human_units(best)
+        later = shaving.HumanStop(inst, horizon, low, left, fewest, lambda e, n: _report(job, e, horizon, n, "human"))
     stop = None if later is None else later.shave
     sol = _steps_once(human, within, horizon, horizon, left(), "human", later or few, stop)
     low = low if later is None else later.low

@@ -8,12 +8,15 @@ makespan (docs/proofs/schedules.md, "Shaving").
 
 from __future__ import annotations
 
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
-from foon2asp.schedule.instances import Instance, divisor, earliest, tails
+from foon2asp.schedule.instances import Entry, Instance, divisor, earliest, human_units, tails
 from foon2asp.schedule.lower_bounds import Window, human_capacity, slack_of_windows, window_tests
 
+#: seconds a search runs before shaving narrows its problem beside it (schedule/encode.py)
+AFTER = 2.0
 #: the windows each choice is tested on: the tightest of the domains at the start of a round
 WINDOWS = 25
 #: rounds, each choosing the tightest windows anew
@@ -37,9 +40,14 @@ class Domains:
     def least(self, u: int) -> int:
         return min(self.durations[u].values())
 
-    def latest_start(self, u: int) -> int:
-        """The latest start of ``u`` at its least duration."""
-        return self.deadline[u] - self.least(u)
+    def starts(self) -> dict[int, tuple[int, int]]:
+        """Each unit's start window: its earliest start and its latest at its least duration."""
+        return {u: (r, self.deadline[u] - self.least(u)) for u, r in self.release.items()}
+
+    def tails(self, inst: Instance, tail: dict[int, int]) -> dict[int, int]:
+        """``tail`` (:func:`foon2asp.schedule.instances.tails`) with each unit's own least
+        duration that of its kinds left (the chain after it unchanged)."""
+        return {u: tail[u] - inst.min_duration(u) + self.least(u) for u in inst.units}
 
 
 def _propagate(inst: Instance, dom: Domains) -> bool:
@@ -175,3 +183,58 @@ def human_floor(inst: Instance, dom: Domains) -> int:
     """The fewest units a person does in every schedule that keeps to ``dom``."""
     span = {u: (dom.release[u], dom.deadline[u]) for u in inst.units}
     return human_capacity(replace(inst, durations=dom.durations), span)
+
+
+def least_floor(inst: Instance, floor: int, below: int, left: Callable[[], float | None]) -> tuple[int, Domains | None]:
+    """The least makespan from ``floor`` on, a step at a time and below ``below``, that shaving
+    leaves possible, with its domains (None: none below ``below``, or no time is left)."""
+    step = divisor(inst)
+    while floor < below and left() != 0.0:
+        dom = shave(inst, floor, left=left)
+        if dom is not None:
+            return floor, dom
+        floor += step
+    return floor, None
+
+
+class HumanStop:
+    """The stop of a search for the fewest human units at makespan ``horizon`` at ``low``
+    (``fewest``: the count of the schedule known before; ``report``: told each schedule and
+    the count): :meth:`shave`, asked while the search runs, raises ``low`` by
+    :func:`human_floor` once the search has run :data:`AFTER`."""
+
+    def __init__(
+        self,
+        inst: Instance,
+        horizon: int,
+        low: int,
+        left: Callable[[], float | None],
+        fewest: int | None,
+        report: Callable[[list[Entry], int], None],
+    ) -> None:
+        self.inst, self.horizon, self.low, self.left, self.fewest, self.report = (
+            inst,
+            horizon,
+            low,
+            left,
+            fewest,
+            report,
+        )
+        self.since = time.perf_counter()
+        self.shaved = False
+
+    def __call__(self, entries: list[Entry]) -> bool:
+        self.report(entries, self.low)
+        found = human_units(entries)
+        self.fewest = found if self.fewest is None else min(self.fewest, found)
+        return found <= self.low
+
+    def shave(self) -> bool:
+        """Shave once the search has run long enough; is a schedule found at the raised count?"""
+        if self.shaved or time.perf_counter() - self.since < AFTER:
+            return False
+        self.shaved = True
+        dom = shave(self.inst, self.horizon, left=self.left)
+        if dom is not None:
+            self.low = max(self.low, human_floor(self.inst, dom))
+        return self.fewest is not None and self.fewest <= self.low
