@@ -18,7 +18,7 @@ from foon2asp.asp.facts import facts
 from foon2asp.asp.objectives import encoding_names
 from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.asp.session import Session
-from foon2asp.asp.substitute_facts import report, substitute_facts, validate_with
+from foon2asp.asp.substitute_facts import report, substitute_facts
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
@@ -288,6 +288,17 @@ def test_special_labels_stay_data(tmp_path, label):
     assert tree.status == "optimal" and len(tree.units) == 1
     assert tree.extra["substitutions"] == [{"needed": "onion, chopped", "used": f"{label.lower()}, chopped"}]
     assert report(problem, [goal], tree.units, subs) == tree.extra["substitutions"]
+
+
+def validate_with(problem, goal, units, substitutes):
+    """The independent validator's verdict on a tree that may rely on substitutes, and the
+    substitutions it uses (:func:`report`): valid when the tree makes ``goal`` with every
+    object a substitute can stand in for (but the goal) as a kitchen item."""
+    substitutes = tuple(substitutes)
+    units = list(units)
+    needed = [c.needed for c in candidates(problem, substitutes) if c.needed != goal]
+    verdict = validate(substituted_kitchen(problem, needed), goal, units)
+    return verdict, report(problem, [goal], units, substitutes) if verdict.valid else []
 
 
 def test_validator_accepts_a_tree_that_relies_on_substitutes():

@@ -16,8 +16,7 @@ from foon2asp.asp.facts import OPTIONAL, fact_objects, facts, unit_ids
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.substitutes import Candidate, Substitute, candidates, substituted_kitchen, with_substitutes
-from foon2asp.tree.validate import Validation, validate
+from foon2asp.foon.substitutes import Candidate, Substitute, candidates, with_substitutes
 
 
 def numbered(cands: list[Candidate]) -> dict[FoonObject, int]:
@@ -96,16 +95,3 @@ def report(
 
     control.solve(record, None)
     return [{"needed": problem.objects[n].text, "used": used_of[k].text} for n, k in sorted(chosen)]
-
-
-def validate_with(
-    problem: Problem, goal: int, units: Iterable[int], substitutes: Iterable[Substitute]
-) -> tuple[Validation, list[dict]]:
-    """The independent validator's verdict on a tree that may rely on substitutes, and the
-    substitutions it uses (:func:`report`): valid when the tree makes ``goal`` with every
-    object a substitute can stand in for (but the goal) as a kitchen item."""
-    substitutes = tuple(substitutes)
-    units = list(units)
-    needed = [c.needed for c in candidates(problem, substitutes) if c.needed != goal]
-    verdict = validate(substituted_kitchen(problem, needed), goal, units)
-    return verdict, report(problem, [goal], units, substitutes) if verdict.valid else []
