@@ -17,7 +17,7 @@ from foon2asp.schedule.checker import check_schedule
 from foon2asp.schedule.spec import ScheduleSpec
 from helpers import build
 from test_cli import assert_one_line_error, run
-from test_schedule_solve import (
+from test_solve import (
     AGENT_SETS,
     ENCODINGS,
     brute_schedule,

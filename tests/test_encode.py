@@ -16,7 +16,7 @@ from foon2asp.schedule.encode import schedule_facts
 from foon2asp.schedule.instances import divisor, earliest, instance, tails
 from foon2asp.schedule.spec import Durations
 from helpers import build, goal_id
-from test_schedule_solve import AGENT_SETS, brute_schedule, given, random_spec, random_tree
+from test_solve import AGENT_SETS, brute_schedule, given, random_spec, random_tree
 
 TWO_ARMS_AND_A_PERSON = (("arm", 2), ("human", 1))
 

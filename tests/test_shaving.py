@@ -12,7 +12,7 @@ from foon2asp.schedule.checker import check_schedule
 from foon2asp.schedule.instances import divisor, instance
 from foon2asp.schedule.lower_bounds import bounds
 from foon2asp.schedule.shaving import human_floor, shave
-from test_schedule_solve import AGENT_SETS, brute_schedule, random_spec, random_tree
+from test_solve import AGENT_SETS, brute_schedule, random_spec, random_tree
 
 
 @pytest.mark.parametrize("seed", range(40))
