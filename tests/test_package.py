@@ -67,6 +67,14 @@ def test_no_module_name_repeats_across_subpackages():
     assert {name: paths for name, paths in seen.items() if len(paths) > 1} == {}
 
 
+def test_readme_and_benchmarks_stay_short():
+    """The README is read in minutes and BENCHMARKS holds current tables only."""
+    lines = {
+        name: len((REPO / name).read_text(encoding="utf-8").splitlines()) for name in ("README.md", "BENCHMARKS.md")
+    }
+    assert lines["README.md"] <= 250 and lines["BENCHMARKS.md"] <= 300, lines
+
+
 def test_api_modules_import_one_way():
     """The modules of foon2asp.api import each other one way only: every import counts, also one
     inside a function or under ``TYPE_CHECKING``, so no cycle hides there."""
