@@ -23,6 +23,14 @@ def test_huge_number_is_one_located_error(tmp_path):
     assert "goal_nodes.json:2:" in msg and "number longer than 100 characters" in msg
 
 
+@pytest.mark.parametrize("head", ['{"functional_units": [], "n": ', '[{"motion_node": "mix", "n": '])
+def test_huge_number_in_a_foon_json_is_one_located_error(tmp_path, head):
+    foon = tmp_path / "FOON.json"
+    foon.write_text(head + "9" * 5000 + "}" + ("]" if head[0] == "[" else ""))
+    msg = one_line_error(run("merge", foon, "-o", tmp_path / "out.txt"))
+    assert msg == f"foon2asp: error: {foon}:1:{len(head) + 1}: number longer than 100 characters"
+
+
 def test_deep_tree_json_in_check(tmp_path):
     tree = tmp_path / "t.json"
     tree.write_text('{"units": ' + "[" * 5000 + "]" * 5000 + "}")

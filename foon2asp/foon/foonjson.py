@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 
 from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject, Unit, motion_key, norm, state_parts
+from foon2asp.foon.reading import scan
 
 if TYPE_CHECKING:
     from foon2asp.foon.parser import IdMap
@@ -218,6 +219,9 @@ def parse_json(text: str, path: str = "<string>", foon: Foon | None = None) -> F
         raise InputError(f"bad JSON: {exc.msg}", path, exc.lineno) from None
     except RecursionError:
         raise InputError("JSON nested too deeply", path) from None
+    except ValueError as exc:  # a number with more digits than Python converts
+        scan(text, path)  # names its line and column
+        raise InputError(f"bad JSON: {exc}", path) from None
     return read_json(data, path, foon)
 
 
