@@ -72,7 +72,8 @@ def shared_goal(candidates: Sequence[Candidate]) -> tuple[FoonObject, str]:
 def judge(problem: Problem, goals: tuple[int, ...], cand: Candidate, tree_units: Iterable[int]) -> CandidateVerdict:
     """``cand`` for ``goals``: on its own units, in file order, from the problem's kitchen."""
     units = [tu.unit for tu in cand.units]
-    ids = [uid for uid in map(problem.foon.unit_id, units) if uid is not None]  # all: the FOON merges the candidates
+    ids = [uid for uid in map(problem.foon.unit_id, units) if uid is not None]
+    assert len(ids) == len(units), "the FOON merges the candidates: each of their units is in it"
     objects = tuple(problem.objects[g] for g in goals)
     numbers = [tu.step for tu in cand.units]
     verdict = judge_alone(units, objects, problem.kitchen_items, problem.utensils, problem.utensil_rule, numbers)
