@@ -12,6 +12,9 @@ import itertools
 import math
 from pathlib import Path
 
+import pytest
+
+from foon2asp.errors import InputError
 from foon2asp.foon.model import Foon, FoonObject, Unit
 from foon2asp.foon.problem import Problem, product_outputs
 from foon2asp.tree.tasktree import measures
@@ -110,6 +113,14 @@ def goal_part(problem: Problem, goal: int, limit: int = 12) -> tuple[Problem, in
         foon.add_unit(problem.units[u])
     sub = Problem(foon, problem.kitchen_items, problem.motion_rates, problem.utensils)
     return sub, sub.foon.object_ids[problem.objects[goal]]
+
+
+def file_error(path: Path, text: str, read) -> InputError:
+    """The InputError ``read(path)`` raises once ``path`` holds ``text``."""
+    path.write_text(text)
+    with pytest.raises(InputError) as err:
+        read(path)
+    return err.value
 
 
 def one_line_error(res, code=2):

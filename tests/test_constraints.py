@@ -14,7 +14,7 @@ from foon2asp.asp.session import AspOptions, Session
 from foon2asp.cli.main import main
 from foon2asp.errors import InputError
 from foon2asp.tree.validate import validate
-from helpers import best, brute_force, build, goal_id, obj
+from helpers import best, brute_force, build, file_error, goal_id, obj
 
 MOTIONS = ("cut", "mix", "heat")
 LABELS = "abcdefg"
@@ -199,10 +199,7 @@ def test_user_rule_and_file(tmp_path):
 )
 def test_errors_in_user_files_are_located(tmp_path, text, line, words):
     f = tmp_path / "mine.lp"
-    f.write_text(text)
-    with pytest.raises(InputError) as err:
-        constraints.ConstraintSpec(files=(str(f),)).programs()
-    message = str(err.value)
+    message = str(file_error(f, text, lambda p: constraints.ConstraintSpec(files=(str(p),)).programs()))
     assert message.startswith(f"{f}:{line}: ")
     assert words in message and "\n" not in message and "<block>" not in message
 

@@ -6,9 +6,9 @@ import json
 
 import pytest
 
-from foon2asp.errors import InputError
 from foon2asp.foon.loaders import read_goals, read_kitchen
 from foon2asp.foon.model import FoonObject
+from helpers import file_error
 
 GOALS = '[\n  {"label": "egg", "states": ["cracked"]},\n\n  {"label": "Bowl",\n   "container": null}\n]\n'
 
@@ -37,8 +37,5 @@ def test_goals_decoded_once_with_their_lines(tmp_path, monkeypatch):
     ],
 )
 def test_bad_entries_name_their_line(tmp_path, text, line, words):
-    path = tmp_path / "kitchen.json"
-    path.write_text(text)
-    with pytest.raises(InputError, match=words) as err:
-        read_kitchen(path)
-    assert err.value.line == line
+    err = file_error(tmp_path / "kitchen.json", text, read_kitchen)
+    assert words in str(err) and err.line == line

@@ -22,6 +22,7 @@ from foon2asp.foon.unitlist import (
     to_unit_list,
     unit_list_foon,
 )
+from helpers import file_error
 
 LLM = Path(__file__).resolve().parent.parent / "data" / "llm"
 
@@ -195,10 +196,7 @@ def test_file_level_limits_and_bad_json(tmp_path):
         ('{"input_nodes": []}', "expected a JSON list of objects"),
         ('[{"motion_node": "peel",}]', "bad JSON"),
     ):
-        path = tmp_path / "t.json"
-        path.write_text(text)
-        with pytest.raises(InputError, match=words):
-            read_unit_list_file(path)
+        assert words in str(file_error(tmp_path / "t.json", text, read_unit_list_file))
 
 
 def test_is_unit_list_tells_the_forms_apart():
