@@ -275,6 +275,24 @@ def test_joint_is_strictly_shorter_with_a_larger_tree(encoding, way, monkeypatch
     assert r1.makespan == 3000 and sorted(r1.tree.units) == [0, 1, 2]
 
 
+def test_joint_search_stops_bounding_trees_when_the_time_is_up():
+    """The trees' bounds count against the time: none is bounded, or scheduled, after it is up."""
+    times = iter([1.0, 1.0, 0.0])
+    bounded: list = []
+
+    def bound(cand):
+        bounded.append(cand)
+        return (0, 0, ())
+
+    def never(*args):
+        raise AssertionError("no tree is scheduled once the time is up")
+
+    trees = [((i,), ()) for i in range(5)]
+    search = joint.Search(never, lambda r: (0,), bound, lambda: next(times))
+    assert search.over(trees) == (None, False)
+    assert bounded == trees[:2]
+
+
 def random_choice_foon(rng: random.Random):
     """A small FOON with choice: g needs x and y, each made two ways (one or two units)."""
     units = [("m", ["x", "y"], ["g"])]

@@ -153,8 +153,13 @@ class Search:
 
     def over(self, trees: list[Candidate]) -> tuple[Any, bool]:
         """The best over ``trees``, lowest bound first, stopping when the next bound is no
-        better than the best; (best, proven)."""
-        for low, t in sorted(((self.bound(t), t) for t in trees), key=lambda pair: pair[0]):
+        better than the best, or when the time is up (the bounds' time too); (best, proven)."""
+        bounded = []
+        for t in trees:
+            if self.left() == 0.0:
+                return self.best, False
+            bounded.append((self.bound(t), t))
+        for low, t in sorted(bounded, key=lambda pair: pair[0]):
             if self.best is not None and low >= self.key(self.best):
                 break  # sorted: no later tree can beat the best
             if self.left() == 0.0:
