@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 from foon2asp.asp import objectives
 from foon2asp.asp.options import AspOptions, solver_args, with_clingo_args
@@ -20,7 +20,7 @@ from foon2asp.schedule import encode, instances, joint
 from foon2asp.schedule.baseline import TRIES, known_schedule, list_schedule
 from foon2asp.schedule.instances import Entry, Instance, earliest, human_units, instance, makespan
 from foon2asp.schedule.joint import check_options
-from foon2asp.schedule.lower_bounds import bounds, human_lower
+from foon2asp.schedule.lower_bounds import Bounds, bounds, human_lower
 from foon2asp.schedule.result import ScheduleResult
 from foon2asp.schedule.spec import HUMAN, ScheduleSpec
 from foon2asp.tree.tasktree import TaskTree, executable_order, goal_fields, measures
@@ -69,11 +69,13 @@ def schedule_fixed(
     within: int | None = None,
     progress: Callable[[dict], None] | None = None,
     first: Sequence[tuple[int, int]] = (),
+    lower: Bounds | None = None,
 ) -> ScheduleResult:
     """The optimal schedule of ``tree``'s units.
 
     Joint scheduling: ``within`` (ms), only a schedule of at most that makespan matters (none:
-    ``unschedulable``); ``first``, (object, maker) pairs for :func:`instances.designate`."""
+    ``unschedulable``); ``first``, (object, maker) pairs for :func:`instances.designate`;
+    ``lower``, the designated tree's bounds when known."""
     t0 = time.perf_counter()
     problem, spec, encoding = req.problem, req.spec, req.encoding
 
@@ -91,7 +93,7 @@ def schedule_fixed(
     head = earliest(inst)
     if len(head) < len(inst.units):
         return result("unschedulable", reason="some unit of the tree never has its inputs")
-    b = bounds(inst)
+    b = bounds(inst) if lower is None else lower
     base = list_schedule(inst)
     ub = makespan(base)
     late = f"no schedule within {within} ms"
@@ -128,10 +130,12 @@ def schedule_fixed(
 
 @dataclass(frozen=True)
 class JointRequest(Request):
-    """A joint scheduling request: the given tree and its own (``fixed``) schedule."""
+    """A joint scheduling request: the given tree and its own (``fixed``) schedule;
+    ``lower``: the bounds of each designated tree the search has bounded."""
 
     tree: TaskTree
     fixed: ScheduleResult
+    lower: dict[joint.Candidate, Bounds] = field(default_factory=dict, compare=False, repr=False)
 
     def solve(self, cand: joint.Candidate, limit: float | None, within: int | None) -> ScheduleResult:
         """The schedule of a designated tree (time left ``limit``; only one of at most ``within``
@@ -139,7 +143,9 @@ class JointRequest(Request):
         units, first = cand
         if units == tuple(sorted(self.tree.units)) and self.fixed.status == "optimal":
             return self.fixed
-        return schedule_fixed(self, self.tree_of(units, "optimal"), limit, within, first=first)
+        return schedule_fixed(
+            self, self.tree_of(units, "optimal"), limit, within, first=first, lower=self.lower.get(cand)
+        )
 
     def tree_of(self, units: Sequence[int], status: str) -> TaskTree:
         """The task tree of ``units`` for the goals of the given tree."""
@@ -189,7 +195,8 @@ def _by_trees(
         sub = instances.designate(inst.restrict(units), first)
         if len(earliest(sub)) < len(units):  # the designated makers wait for one another
             return (math.inf, 0, ())
-        low = bounds(sub).lower
+        b = job.lower[cand] = bounds(sub)
+        low = b.lower
         if spec.has_human():
             return (low, forced_human(sub), ())
         return (low, 0, joint.tree_cost(problem, units, (), ranked))
