@@ -45,6 +45,14 @@ def test_lone_surrogate_in_tree_json(tmp_path):
     assert "t.json:1:20: string holds U+D800 (lone surrogate)" in msg
 
 
+@pytest.mark.parametrize("escape, char", [("\\b", "U+0008"), ("\\f", "U+000C"), ("\\r", "U+000D")])
+def test_an_escaped_control_character_in_a_json_string_is_refused(tmp_path, escape, char):
+    d = demo_copy(tmp_path)
+    (d / "kitchen.json").write_text('[\n {"label": "egg' + escape + 'x"}]')
+    msg = one_line_error(run("solve", "--data", d, "--goals", "all"))
+    assert f"kitchen.json:2:12: string holds {char} (control character)" in msg
+
+
 def test_nul_in_a_foon_label_is_refused_with_line_and_column(tmp_path):
     d = demo_copy(tmp_path)
     lines = (d / "FOON.txt").read_text().splitlines()

@@ -118,7 +118,7 @@ def scan(text: str, path: str) -> list[int]:
         if depth == 1 and tok not in "]}":
             tops.append(m.start())
         if tok[0] == '"':
-            if "\\u" in tok:
+            if "\\" in tok:  # an escape may stand for a bad character
                 try:
                     value = json.loads(tok)
                 except ValueError:
