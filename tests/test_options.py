@@ -82,3 +82,28 @@ def test_every_command_solves_with_the_default(command, tmp_path, recorded, monk
         assert recorded
         for call in recorded:
             assert _strategy(call)[0] == "--parallel-mode=2" and _strategy(call)[1].startswith("--configuration=")
+
+
+@pytest.mark.parametrize(
+    ("arg", "why"),
+    [
+        ("--solve-limit=1", "it ends a search early"),
+        ("--opt-stop=3", "it ends a search early"),
+        ("--opt-mode=opt,3", "foon2asp sets it for each solve call"),
+        ("-n3", "the number of trees: --models"),
+        ("--project", "foon2asp sets it for each solve call"),
+        ("-t2", "the number of threads is --threads"),
+    ],
+)
+def test_clingo_options_that_change_what_a_solve_call_proves_are_refused(arg, why):
+    """A conflict limit would let a search cut short pass for a proof; the solve mode, models and
+    threads are foon2asp's own settings."""
+    with pytest.raises(foon2asp.InputError) as refused:
+        foon2asp.Options(clingo_args=[arg])
+    assert str(refused.value).startswith(f"clingo option '{arg}' is not taken: ") and why in str(refused.value)
+    result = CliRunner().invoke(main, ["solve", "--data", "demo", "--goal", "tomato salad", arg])
+    assert result.exit_code == 2 and f"clingo option '{arg}' is not taken" in result.output
+    assert settings.clingo_options(["--configuration=crafty", "--single-shot"]) == [
+        "--configuration=crafty",
+        "--single-shot",
+    ]

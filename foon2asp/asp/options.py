@@ -10,6 +10,7 @@ import os
 import tempfile
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import clingo
 
@@ -70,23 +71,51 @@ def check_objectives(names: Iterable[str]) -> None:
             raise InputError(f"unknown objective {name!r} (have {', '.join(OBJECTIVES)})")
 
 
+#: clingo's solve settings no option of the user's may change, and why
+KEPT_SETTINGS = {
+    "solve_limit": "it ends a search early, so an answer would count as proven without being so",
+    "opt_stop": "it ends a search early, so an answer would count as proven without being so",
+    "opt_mode": "foon2asp sets it for each solve call",
+    "models": "foon2asp sets it for each solve call (the number of trees: --models)",
+    "enum_mode": "foon2asp sets it for each solve call",
+    "project": "foon2asp sets it for each solve call",
+    "parallel_mode": "the number of threads is --threads (threads=)",
+}
+
+
+def _solve_settings(args: list[str]) -> dict[str, str]:
+    """clingo's solve settings (:data:`KEPT_SETTINGS`) under ``args``; RuntimeError when clingo refuses them."""
+    control = clingo.Control(args, logger=lambda code, message: None)  # kept while its configuration is read
+    solve = control.configuration.solve
+    return {key: str(getattr(solve, key)) for key in KEPT_SETTINGS}
+
+
 def clingo_options(args: Iterable[str]) -> list[str]:
     """``args`` checked as clingo's own command-line options (each ``--name=value`` or a flag).
 
-    Raises InputError naming the first clingo refuses; for an option clingo does not know, its
-    hint is ``unknown-option=ARG``.
+    Raises InputError naming the first clingo refuses or that changes a setting of
+    :data:`KEPT_SETTINGS`; for an option clingo does not know, its hint is ``unknown-option=ARG``.
     """
     args = [str(a) for a in args]
     for arg in args:
         if not arg.startswith("-"):
             raise InputError(f"clingo option {arg!r}: clingo's options start with '-' (e.g. --configuration=crafty)")
         try:
-            clingo.Control([arg], logger=lambda code, message: None)
+            settings = _solve_settings([arg])
         except RuntimeError as exc:
             text = " ".join(str(exc).split())
             hint = f"unknown-option={arg}" if "unknown option" in text else None
             raise InputError(f"clingo option {arg!r}: {text}", hint=hint) from None
+        default = _default_settings()
+        for key, why in KEPT_SETTINGS.items():
+            if settings[key] != default[key]:
+                raise InputError(f"clingo option {arg!r} is not taken: {why}")
     return args
+
+
+@lru_cache(maxsize=1)
+def _default_settings() -> dict[str, str]:
+    return _solve_settings([])
 
 
 def with_clingo_args(args: Iterable[str], extra: Iterable[str]) -> list[str]:
