@@ -107,3 +107,8 @@ def test_clingo_options_that_change_what_a_solve_call_proves_are_refused(arg, wh
         "--configuration=crafty",
         "--single-shot",
     ]
+
+
+def test_a_clingo_option_without_its_value_says_how_to_give_it():
+    with pytest.raises(foon2asp.InputError, match=r"'configuration' requires a value! \(write --configuration=VALUE\)"):
+        foon2asp.Options(clingo_args=["--configuration"])

@@ -105,6 +105,8 @@ def clingo_options(args: Iterable[str]) -> list[str]:
         except RuntimeError as exc:
             text = " ".join(str(exc).split())
             hint = f"unknown-option={arg}" if "unknown option" in text else None
+            if "requires a value" in text and arg.startswith("--") and "=" not in arg:
+                text += f" (write {arg}=VALUE)"
             raise InputError(f"clingo option {arg!r}: {text}", hint=hint) from None
         default = _default_settings()
         for key, why in KEPT_SETTINGS.items():
