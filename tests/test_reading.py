@@ -53,6 +53,19 @@ def test_an_escaped_control_character_in_a_json_string_is_refused(tmp_path, esca
     assert f"kitchen.json:2:12: string holds {char} (control character)" in msg
 
 
+@pytest.mark.parametrize(
+    "label, where, char", [("egg\\u0000x", "1:57", "U+0000 (NUL)"), ("egg\x85x", "1:61", "U+0085")]
+)
+def test_a_bad_character_in_a_foon_json_label_is_refused(tmp_path, label, where, char):
+    """As in FOON text: a label merge would write but could not read back is refused."""
+    foon = tmp_path / "FOON.json"
+    node = '{"object_label": "%s", "object_states": []}'
+    unit = '{"input_nodes": [%s], "motion_node": {"motion_label": "crack"}, "output_nodes": [%s]}'
+    foon.write_text('{"functional_units": [' + unit % (node % label, node % "egg") + "]}")
+    msg = one_line_error(run("merge", foon, "-o", tmp_path / "out.txt"))
+    assert msg.startswith(f"foon2asp: error: {foon}:{where}: ") and char in msg
+
+
 def test_nul_in_a_foon_label_is_refused_with_line_and_column(tmp_path):
     d = demo_copy(tmp_path)
     lines = (d / "FOON.txt").read_text().splitlines()

@@ -192,9 +192,11 @@ def _json_foon(text: str, path: str, foon: Foon | None, strict: bool) -> Foon:
         value = json.loads(text)
     except (ValueError, RecursionError):
         return parse_json(text, path, foon)  # it reports the error, located
+    check_text(text, path)  # what reading.located checks besides decoding
     if unitlist.is_unit_list(value) or unitlist.is_unit_lists(value):
-        check_text(text, path)  # what reading.located checks besides decoding
         return unitlist.unit_list_foon(text, path, strict, foon, (value, scan(text, path)))
+    if "\\" in text:  # an escape may hide a bad character from check_text: scan finds it
+        scan(text, path)
     return read_json(value, path, foon)
 
 
