@@ -123,3 +123,16 @@ def test_a_loop_cut_holds_for_every_tree_and_not_for_the_set_it_cuts(shared_foon
             checked += 1
             break
     assert checked > 0
+
+
+def test_a_prepared_session_answers_its_goal_again():
+    """Its control solves once (single-shot): a second solve grounds it afresh, same answer."""
+    problem = preset("small").problem()
+    run = GoalRunner("asp", problem, AspOptions(), shortcuts=False)
+    goals = prepared_goals(run, 7)[:6]
+    assert goals
+    for g in goals:
+        session = Session(problem, run._effective, prepared=replace(run.preparation(g), known=None))
+        first, again = session.solve(g), session.solve(g)
+        assert first.status == again.status == "optimal"
+        assert (again.units, again.cost) == (first.units, first.cost)

@@ -284,9 +284,11 @@ class Session:
         time_limit = self.options.time_limit if time_limit is None else time_limit
         t0 = time.perf_counter()
         deadline = None if not time_limit else t0 + time_limit
+        renew = self._renew if self._single else None
+        if renew is not None and not self._fresh:
+            renew()  # this goal was solved before: a single-shot control solves once
         self._fresh = False
         watch = Watch(first_level(self.levels), self.options.gap, prep.floor, self.options.progress)
-        renew = self._renew if self._single else None
         shot, answer, lower, cuts = search(
             self.control, prep, self.problem, self._closed, deadline, watch, on_model, renew
         )
