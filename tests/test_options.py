@@ -112,3 +112,15 @@ def test_clingo_options_that_change_what_a_solve_call_proves_are_refused(arg, wh
 def test_a_clingo_option_without_its_value_says_how_to_give_it():
     with pytest.raises(foon2asp.InputError, match=r"'configuration' requires a value! \(write --configuration=VALUE\)"):
         foon2asp.Options(clingo_args=["--configuration"])
+
+
+def test_a_clingo_option_given_by_a_prefix_replaces_foon2asps_own():
+    """clingo takes an unambiguous prefix of an option's name, and each option once."""
+    args = settings.clingo_options(["--config=crafty", "--opt-usc-sh=inv", "--single-shot"])
+    assert args == ["--configuration=crafty", "--opt-usc-shrink=inv", "--single-shot"]
+    assert [a for a in AspOptions(clingo_args=args).args() if a.startswith(("--configuration", "--opt-usc"))] == [
+        "--configuration=crafty",
+        "--opt-usc-shrink=inv",
+    ]
+    tree = foon2asp.load("demo").solve("tomato salad", clingo_args=["--config=crafty"])
+    assert (tree.status, tree.cost["units"]) == ("optimal", 4)

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+import re
 import tempfile
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
@@ -112,7 +113,22 @@ def clingo_options(args: Iterable[str]) -> list[str]:
         for key, why in KEPT_SETTINGS.items():
             if settings[key] != default[key]:
                 raise InputError(f"clingo option {arg!r} is not taken: {why}")
-    return args
+    return [_full_name(arg) for arg in args]
+
+
+def _full_name(arg: str) -> str:
+    """``arg`` with the full name of its option when it gives a prefix (``--config=crafty``:
+    ``--configuration=crafty``), so that it replaces the same option of foon2asp's."""
+    name, eq, value = arg.partition("=")
+    if not name.startswith("--"):
+        return arg
+    try:
+        clingo.Control([arg, arg], logger=lambda code, message: None)
+    except RuntimeError as exc:  # clingo names the option it takes twice
+        found = re.search(r"multiple occurrences: '([^']+)'", str(exc))
+        if found and found.group(1).startswith(name[2:]):
+            return f"--{found.group(1)}{eq}{value}"
+    return arg
 
 
 @lru_cache(maxsize=1)
@@ -147,7 +163,7 @@ class AspOptions:
     threads: int = 1
     #: threads > 1 without opt_strategy: the portfolio (clasp's configuration-file text); None: the default
     portfolio: str | None = None
-    #: more of clingo's own options, after foon2asp's (clingo's last occurrence of an option wins)
+    #: more of clingo's own options, each replacing the same option of foon2asp's (:func:`with_clingo_args`)
     clingo_args: list[str] = field(default_factory=list)
     #: ground only these units (e.g. the goals' relevant units); None: all units
     units: tuple[int, ...] | None = None
