@@ -2,13 +2,17 @@
 
 from __future__ import annotations
 
+import os
 import random
+import signal
 
 import pytest
 
 import foon2asp
 from conftest import REPO
+from foon2asp.asp.interrupts import deferred_signals
 from foon2asp.schedule.checker import check_schedule
+from foon2asp.schedule.encode import clock
 from foon2asp.schedule.instances import divisor, instance
 from foon2asp.schedule.lower_bounds import bounds
 from foon2asp.schedule.shaving import human_floor, shave
@@ -57,3 +61,18 @@ def test_shaving_raises_the_bound_and_counts_the_human_units(shared_foon_dir):
     assert r.status == "optimal" and r.makespan == 63.0 and len(r.raw.human) == 16
     assert r.raw.stats["tie_breakers"] == "proven"
     assert check_schedule(kb.problem, r.to_dict(), spec) is None
+
+
+def test_a_signal_stops_shaving_beside_a_search():
+    """While a search runs (its signals deferred), a signal stops the shaving its stop asks
+    for: the clock reads 0, shaving returns its first domains, and the signal comes after."""
+    rng = random.Random(0)
+    problem, _, units = random_tree(rng, 5, knife=0.0)
+    inst = instance(problem, units, random_spec(rng, AGENT_SETS[3]))
+    left = clock(60.0)
+    with pytest.raises(KeyboardInterrupt), deferred_signals():
+        os.kill(os.getpid(), signal.SIGINT)
+        assert left() == 0.0
+        dom = shave(inst, 10**9, left=left)
+        assert dom is not None and dom.durations == inst.durations
+    assert left() > 0.0

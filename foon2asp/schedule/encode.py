@@ -17,6 +17,7 @@ import clingo
 from foon2asp.asp import encodings
 from foon2asp.asp.control import Control, remaining
 from foon2asp.asp.facts import q
+from foon2asp.asp.interrupts import signal_pending
 from foon2asp.errors import InputError
 from foon2asp.schedule import shaving
 from foon2asp.schedule.instances import Entry, Instance, assign_agents, compact, divisor, human_units, makespan
@@ -234,9 +235,10 @@ def _human_stop(job: Job, opt: int, least: int = 0) -> tuple[int, Callable[[list
 
 
 def clock(time_limit: float | None) -> Callable[[], float | None]:
-    """The time left of ``time_limit`` from now (None: no limit)."""
+    """The time left of ``time_limit`` from now (None: no limit; 0 once a signal waits for the
+    search it runs beside to end)."""
     deadline = None if time_limit is None else time.perf_counter() + time_limit
-    return lambda: remaining(deadline)
+    return lambda: 0.0 if signal_pending() else remaining(deadline)
 
 
 def _narrowed(job: Job, dom: shaving.Domains) -> tuple[Job, dict[int, tuple[int, int]]]:
