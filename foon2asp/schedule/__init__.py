@@ -1,7 +1,7 @@
 """Schedules: a task tree's units on robot arms and people, with a proven-minimal makespan.
 
-The modules follow the data: spec -> model -> bounds/baseline -> encode -> joint/solve -> result;
-check reads schedule JSON on its own.
+The modules follow the data: spec -> instances -> lower_bounds/baseline -> shaving -> encode ->
+joint/solve -> result; checker reads schedule JSON on its own.
 """
 
 from foon2asp.schedule.result import ScheduleResult
