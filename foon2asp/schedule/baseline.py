@@ -138,14 +138,17 @@ def earliest_finish(inst: Instance, prio: dict[int, float] | None = None) -> lis
     return list(placed.values())
 
 
-def known_schedule(inst: Instance, target: int, tries: int = TRIES) -> tuple[list[Entry], str]:
+def known_schedule(
+    inst: Instance, target: int, tries: int = TRIES, human: int | None = None
+) -> tuple[list[Entry], str]:
     """The best list schedule by makespan, then human units, and what made it: the baseline and,
     under ``tries`` seeded perturbations of its priorities, list and :func:`earliest_finish`
-    schedules; it stops at one that reaches ``target`` with the fewest human units there."""
+    schedules; it stops at one that reaches ``target`` with the fewest human units there
+    (``human``: that count when known, else :func:`human_lower` at ``target``)."""
     base = tails(inst)
     rng = random.Random(0)
     kinds = len(inst.kinds) > 1
-    low_human = cache(lambda: human_lower(inst, target))  # computed once, when first needed
+    low_human = cache(lambda: human_lower(inst, target) if human is None else human)  # once, when first needed
 
     def key(found: tuple[list[Entry], str]) -> tuple[int, int]:
         return makespan(found[0]), human_units(found[0])

@@ -102,7 +102,7 @@ def schedule_fixed(
     least = max(forced_human(inst), human_lower(inst, b.lower)) if spec.has_human() else 0
     done = ub <= b.lower and human_units(base) <= least
     tries = TRIES if within is None else JOINT_TRIES
-    known, which = (base, "baseline") if done else known_schedule(inst, b.lower, tries)
+    known, which = (base, "baseline") if done else known_schedule(inst, b.lower, tries, least)
     over = within is not None and makespan(known) > within
     stats: dict = {"encoding": encoding}
     if not over and req.shortcut and makespan(known) == b.lower and human_units(known) <= least:
