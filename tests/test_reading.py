@@ -45,7 +45,7 @@ def test_lone_surrogate_in_tree_json(tmp_path):
     assert "t.json:1:20: string holds U+D800 (lone surrogate)" in msg
 
 
-@pytest.mark.parametrize("escape, char", [("\\b", "U+0008"), ("\\f", "U+000C"), ("\\r", "U+000D")])
+@pytest.mark.parametrize("escape, char", [("\\b", "U+0008"), ("\\f", "U+000C")])
 def test_an_escaped_control_character_in_a_json_string_is_refused(tmp_path, escape, char):
     d = demo_copy(tmp_path)
     (d / "kitchen.json").write_text('[\n {"label": "egg' + escape + 'x"}]')

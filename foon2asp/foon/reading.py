@@ -21,6 +21,8 @@ MAX_FILE_BYTES = 512 * 1024 * 1024
 MAX_DEPTH = 100
 MAX_NUMBER_CHARS = 100
 
+#: the escapes that stand for a bad character (a line break, \r or \n, is left to the readers)
+_HIDDEN = re.compile(r"\\[ubf]")
 _TOKEN = re.compile(r'"(?:[^"\\]|\\.)*"|[\[\]{}]|-?[0-9][0-9.eE+\-]*|-?[A-Za-z]+', re.S)
 
 
@@ -118,7 +120,7 @@ def scan(text: str, path: str) -> list[int]:
         if depth == 1 and tok not in "]}":
             tops.append(m.start())
         if tok[0] == '"':
-            if "\\" in tok:  # an escape may stand for a bad character
+            if _HIDDEN.search(tok):
                 try:
                     value = json.loads(tok)
                 except ValueError:
