@@ -11,9 +11,11 @@ import pytest
 import foon2asp
 from conftest import REPO
 from foon2asp.asp.interrupts import deferred_signals
+from foon2asp.schedule import encode, shaving
+from foon2asp.schedule.baseline import list_schedule
 from foon2asp.schedule.checker import check_schedule
 from foon2asp.schedule.encode import clock
-from foon2asp.schedule.instances import divisor, instance
+from foon2asp.schedule.instances import divisor, earliest, instance, makespan, tails
 from foon2asp.schedule.lower_bounds import bounds
 from foon2asp.schedule.shaving import human_floor, shave
 from test_solve import AGENT_SETS, brute_schedule, random_spec, random_tree
@@ -76,3 +78,30 @@ def test_a_signal_stops_shaving_beside_a_search():
         dom = shave(inst, 10**9, left=left)
         assert dom is not None and dom.durations == inst.durations
     assert left() > 0.0
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_the_phases_stops_keep_the_optimum_and_its_human_units(seed, monkeypatch):
+    """The stops that shave beside the phases' searches, asked at once: the makespan's floor
+    raised is at most the brute-force optimum and a schedule found at it is optimal; the
+    human units' count raised at the optimum is at most the fewest there."""
+    monkeypatch.setattr(shaving, "AFTER", 0.0)
+    rng = random.Random(seed)
+    problem, _, units = random_tree(rng, 5, knife=0.0)
+    spec = random_spec(rng, AGENT_SETS[2 + seed % 2])
+    want = brute_schedule(problem, units, spec)
+    if want is None:
+        return
+    opt, human = want
+    inst = instance(problem, units, spec)
+    base = list_schedule(inst)
+    job = encode.Job(inst, earliest(inst), tails(inst), makespan(base), bounds(inst).lower, known=base)
+    floor = encode._FloorStop(job, encode.clock(None), base)
+    met = floor.shave()
+    assert bounds(inst).lower <= floor.floor <= opt
+    assert floor.best is not None and makespan(floor.best) >= opt
+    assert not met or makespan(floor.best) == opt
+    assert floor.shaved is None or floor.shaved[0] == floor.floor
+    count = shaving.HumanStop(inst, opt, 0, encode.clock(None), None, lambda entries, n: None)
+    count.shave()
+    assert count.low <= human
