@@ -221,7 +221,7 @@ def test_time_limit_must_be_positive_on_the_command_line(value):
 def test_the_library_refuses_the_time_limits_the_command_line_refuses(value):
     with pytest.raises(InputError) as err:
         Options.of(time_limit=value)
-    assert str(err.value) == f"time_limit: {value!r} is not a finite number of seconds > 0 (None: no limit)"
+    assert str(err.value) == f"time_limit: {value!r} is not a finite number of seconds > 0 (None: the default)"
     with pytest.raises(InputError, match="is not a finite number of seconds > 0"):
         Options(time_limit=value)
     with pytest.raises(InputError, match="is not a finite number of seconds > 0"):

@@ -118,7 +118,7 @@ class Options:
         if limit is not None and (isinstance(limit, bool) or not isinstance(limit, int | float)):
             raise InputError(f"time_limit: {limit!r} is not a number of seconds (None: no limit)")
         if limit is not None and (not math.isfinite(limit) or limit <= 0):
-            raise InputError(f"time_limit: {limit!r} {NOT_A_TIME_LIMIT} (None: no limit)")
+            raise InputError(f"time_limit: {limit!r} {NOT_A_TIME_LIMIT} (None: the default)")
 
     @classmethod
     def of(cls, options: Options | None = None, /, **settings: Any) -> Options:

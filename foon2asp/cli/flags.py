@@ -45,7 +45,7 @@ def _seconds(text: str) -> float:
     except ValueError:
         raise ValueError(f"{text!r} is not a number of seconds") from None
     if not 0 < number < math.inf:
-        raise ValueError(f"{text!r} {NOT_A_TIME_LIMIT} (leave the option out for no limit)")
+        raise ValueError(f"{text!r} {NOT_A_TIME_LIMIT} (leave the option out for the default)")
     return number
 
 
