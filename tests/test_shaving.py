@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import random
 import signal
+import time
 
 import pytest
 
@@ -15,7 +16,7 @@ from foon2asp.schedule import encode, shaving
 from foon2asp.schedule.baseline import list_schedule
 from foon2asp.schedule.checker import check_schedule
 from foon2asp.schedule.encode import clock
-from foon2asp.schedule.instances import divisor, earliest, instance, makespan, tails
+from foon2asp.schedule.instances import compact, divisor, earliest, instance, makespan, tails
 from foon2asp.schedule.lower_bounds import bounds
 from foon2asp.schedule.shaving import human_floor, shave
 from test_solve import AGENT_SETS, brute_schedule, random_spec, random_tree
@@ -105,3 +106,27 @@ def test_the_phases_stops_keep_the_optimum_and_its_human_units(seed, monkeypatch
     count = shaving.HumanStop(inst, opt, 0, encode.clock(None), None, lambda entries, n: None)
     count.shave()
     assert count.low <= human
+
+
+def test_an_undecided_search_at_the_floor_is_tried_again_for_twice_as_long(monkeypatch):
+    """The search of the domains shaving leaves at the floor, undecided, is tried again once the
+    makespan's search has run on alone as long, for twice the time; what it finds there stops it."""
+    monkeypatch.setattr(shaving, "AFTER", 0.0)
+    rng = random.Random(0)
+    problem, _, units = random_tree(rng, 5, knife=0.0)
+    inst = instance(problem, units, random_spec(rng, AGENT_SETS[3]))
+    base = list_schedule(inst)
+    limits: list = []
+
+    def search(job, windows, horizon, floor, limit, only=None, enough=None, stop=None):
+        limits.append(limit)
+        return encode.Solution(base if len(limits) > 1 else None)
+
+    monkeypatch.setattr(encode, "_steps_once", search)
+    job = encode.Job(inst, earliest(inst), tails(inst), 10**9, bounds(inst).lower)
+    stop = encode._FloorStop(job, encode.clock(None), None)
+    assert not stop.shave() and limits == [encode.DECIDE] and stop.shaved is not None
+    assert not stop.shave() and limits == [encode.DECIDE]  # the search runs on alone first
+    while time.perf_counter() < stop.next:
+        time.sleep(0.01)
+    assert stop.shave() and limits == [encode.DECIDE, 2 * encode.DECIDE] and stop.best == compact(inst, base)

@@ -7,6 +7,7 @@ minimised by descending bounds.  Both read the facts of :func:`schedule_facts`.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
@@ -249,14 +250,15 @@ def _narrowed(job: Job, dom: shaving.Domains) -> tuple[Job, dict[int, tuple[int,
 
 class _FloorStop:
     """The stop of the makespan's search at the floor; after :data:`shaving.AFTER` :meth:`shave`
-    raises the floor while shaving rules it out, and searches the domains it leaves there for
-    :data:`DECIDE` (the search itself runs on); ``best``: the schedule known before."""
+    raises the floor while shaving rules it out, and searches the domains it leaves there, for
+    :data:`DECIDE`, then each time for twice as long (the search itself runs on, alone as long
+    in between); ``best``: the schedule known before."""
 
     def __init__(self, job: Job, left: Callable[[], float | None], best: list[Entry] | None) -> None:
         self.job, self.left, self.best = job, left, best
         self.floor = job.floor
-        self.since = time.perf_counter()
-        self.tried = False
+        #: when :meth:`shave` acts next (inf: never), and the time of its next search
+        self.next, self.decide = time.perf_counter() + shaving.AFTER, DECIDE
         #: the floor and the domains shaving left there
         self.shaved: tuple[int, shaving.Domains] | None = None
 
@@ -269,28 +271,33 @@ class _FloorStop:
 
     def shave(self) -> bool:
         """Shave once the search has run long enough; is the best schedule at the floor?"""
-        if self.tried or time.perf_counter() - self.since < shaving.AFTER or self.left() == 0.0:
+        began = time.perf_counter()
+        if began < self.next or self.left() == 0.0:
             return False
-        self.tried = True
-        job, inst = self.job, self.job.inst
-        below = self.job.horizon if self.best is None else makespan(self.best)
-        self.floor, dom = shaving.least_floor(inst, self.floor, below, self.left)
-        if self.best is not None and makespan(self.best) <= self.floor:
-            return True
-        if dom is None or self.left() == 0.0:
-            return False
-        job = replace(job, floor=self.floor)
-        narrow, starts = _narrowed(job, dom)
+        self.next = math.inf
+        inst = self.job.inst
+        if self.shaved is None:
+            below = self.job.horizon if self.best is None else makespan(self.best)
+            self.floor, dom = shaving.least_floor(inst, self.floor, below, self.left)
+            if self.best is not None and makespan(self.best) <= self.floor:
+                return True
+            if dom is None or self.left() == 0.0:
+                return False
+            self.shaved = self.floor, dom
+        job = replace(self.job, floor=self.floor)
+        narrow, starts = _narrowed(job, self.shaved[1])
         left = self.left()
-        decide = DECIDE if left is None else min(DECIDE, left)
+        decide = self.decide if left is None else min(self.decide, left)
         sol = _steps_once(narrow, starts, self.floor, self.floor, decide, "makespan", _short(job))
         if sol.entries is not None:
-            self.best, self.shaved = compact(inst, sol.entries), (self.floor, dom)
+            self.best = compact(inst, sol.entries)
             return True
         if sol.proven:  # no schedule meets the floor
             self.floor += divisor(inst)
+            self.shaved = None
         else:
-            self.shaved = self.floor, dom
+            ended = time.perf_counter()
+            self.next, self.decide = ended + (ended - began), 2 * self.decide
         return False
 
 
