@@ -7,7 +7,6 @@ minimised by descending bounds.  Both read the facts of :func:`schedule_facts`.
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
@@ -236,8 +235,7 @@ def _human_stop(job: Job, opt: int, least: int = 0) -> tuple[int, Callable[[list
 
 
 def clock(time_limit: float | None) -> Callable[[], float | None]:
-    """The time left of ``time_limit`` from now (None: no limit; 0 once a signal waits for the
-    search it runs beside to end)."""
+    """The time left of ``time_limit`` from now (None: no limit; 0 once a signal waits)."""
     deadline = None if time_limit is None else time.perf_counter() + time_limit
     return lambda: 0.0 if signal_pending() else remaining(deadline)
 
@@ -250,9 +248,8 @@ def _narrowed(job: Job, dom: shaving.Domains) -> tuple[Job, dict[int, tuple[int,
 
 class _FloorStop:
     """The stop of the makespan's search at the floor; after :data:`shaving.AFTER` :meth:`shave`
-    raises the floor while shaving rules it out, and searches the domains it leaves there, for
-    :data:`DECIDE`, then each time for twice as long (the search itself runs on, alone as long
-    in between); ``best``: the schedule known before."""
+    raises the floor while shaving rules it out, and searches the domains left there for
+    :data:`DECIDE`, then twice as long each time (the search runs on); ``best``: the schedule known before."""
 
     def __init__(self, job: Job, left: Callable[[], float | None], best: list[Entry] | None) -> None:
         self.job, self.left, self.best = job, left, best
@@ -274,7 +271,7 @@ class _FloorStop:
         began = time.perf_counter()
         if began < self.next or self.left() == 0.0:
             return False
-        self.next = math.inf
+        self.next = float("inf")
         inst = self.job.inst
         if self.shaved is None:
             below = self.job.horizon if self.best is None else makespan(self.best)
@@ -293,11 +290,9 @@ class _FloorStop:
             self.best = compact(inst, sol.entries)
             return True
         if sol.proven:  # no schedule meets the floor
-            self.floor += divisor(inst)
-            self.shaved = None
-        else:
-            ended = time.perf_counter()
-            self.next, self.decide = ended + (ended - began), 2 * self.decide
+            self.floor, self.shaved = self.floor + divisor(inst), None
+        else:  # the search runs on alone as long as this call took
+            self.next, self.decide = 2 * time.perf_counter() - began, 2 * self.decide
         return False
 
 
