@@ -27,15 +27,17 @@ from synth import preset
 WEIGHT = {"units": lambda problem, u: 1, "success": lambda problem, u: neglog_weight(problem.rates[u])}
 
 
-_REFERENCE: dict[tuple[int, int, str], float | None] = {}
+_REFERENCE: dict[tuple[int, int, str], tuple[Problem, float | None]] = {}
 
 
 def reference(problem: Problem, goal: int, objective: str) -> float | None:
     """The least total weight of a well-founded tree for ``goal`` (None: no tree), by search."""
     key = (id(problem), goal, objective)
-    if key not in _REFERENCE:
-        _REFERENCE[key] = _search(problem, goal, objective)
-    return _REFERENCE[key]
+    # the entry keeps its problem: an id can be reused once a problem is gone
+    kept = _REFERENCE.get(key)
+    if kept is None or kept[0] is not problem:
+        kept = _REFERENCE[key] = (problem, _search(problem, goal, objective))
+    return kept[1]
 
 
 def _search(problem: Problem, goal: int, objective: str) -> float | None:
