@@ -16,11 +16,12 @@ import pytest
 
 import foon2asp
 from foon2asp import methods
-from foon2asp.asp.session import AspOptions, Session
+from foon2asp.asp.options import AspOptions
 from foon2asp.batch.pool import BatchSpec, dask_executor
 from foon2asp.batch.results_file import read_results, run_batch, summarize
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.methods.runner import GoalRunner
 from foon2asp.report.tables import render_summary
 from foon2asp.tree.serialize import tree_json

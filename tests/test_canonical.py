@@ -17,9 +17,9 @@ import pytest
 from foon2asp.asp import canonical
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
-from foon2asp.asp.session import Session
 from foon2asp.batch.results_file import read_results
 from foon2asp.methods.bounds import Bounds
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.methods.runner import GoalRunner, solve_goals
 from foon2asp.tree.validate import validate
 from helpers import brute_force, build, goal_id

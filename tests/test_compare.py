@@ -12,8 +12,8 @@ from click.testing import CliRunner
 
 from foon2asp import methods
 from foon2asp.analysis.compare import DEFAULT_METHODS, compare_iter
-from foon2asp.asp.session import Session
 from foon2asp.cli.main import main
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.report import render
 from foon2asp.tree.tasktree import TaskTree
 from foon2asp.tree.validate import validate

@@ -10,9 +10,10 @@ import pytest
 from click.testing import CliRunner
 
 from foon2asp.asp import constraints
-from foon2asp.asp.session import AspOptions, Session
+from foon2asp.asp.options import AspOptions
 from foon2asp.cli.main import main
 from foon2asp.errors import InputError
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.tree.validate import validate
 from helpers import best, brute_force, build, file_error, goal_id, obj
 

@@ -15,9 +15,9 @@ from foon2asp.asp.interrupts import signal_pending
 from foon2asp.asp.multishot.depth import Rounds
 from foon2asp.asp.multishot.driver import Driver, alternatives
 from foon2asp.asp.options import AspOptions
-from foon2asp.asp.session import Session
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.tree.serialize import tree_json
 from foon2asp.tree.tasktree import TaskTree, measures
 from foon2asp.tree.validate import validate

@@ -6,11 +6,12 @@ from __future__ import annotations
 
 import pytest
 
-from foon2asp.asp import dominance, objectives
+from foon2asp.asp import dominance
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.options import AspOptions
-from foon2asp.asp.session import Session
 from foon2asp.foon.problem import Problem
+from foon2asp.methods.plan import grounding
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.tree.tasktree import measures
 from helpers import brute_force, goal_part
 from synth import preset
@@ -103,10 +104,10 @@ def test_one_dominators_table_for_the_problem_gives_each_parts_dominated_units(s
     assert checked > 10 and dominated > 0
 
 
-def test_only_plain_optimisation_forbids_dominated_units():
+def test_only_plain_optimisation_forbids_dominated_units(tiny):
     def used(**kw) -> bool:
         options = AspOptions(**kw)
-        return "dominance" in objectives.encoding_names(options, {"units": "units", "success": "success"})
+        return "dominated" in grounding(tiny[0], options).facts
 
     assert used() and used(objective=("depth", "success"), max_depth=4)
     assert not used(programs=[NOOP])
@@ -114,7 +115,6 @@ def test_only_plain_optimisation_forbids_dominated_units():
     assert not used(models=2)
     assert not used(all_optimal=True)
     assert not used(heuristic="h1")
-    assert not used(encodings=["reachable"])
 
 
 def _canonical(trees: list[tuple[int, ...]]) -> tuple[int, ...]:

@@ -10,9 +10,10 @@ import sys
 import pytest
 from click.testing import CliRunner
 
-from foon2asp.asp.session import AspOptions, Session
+from foon2asp.asp.options import AspOptions
 from foon2asp.cli.main import main
 from foon2asp.foon import goals
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.report import draw
 from test_pictures import CHROMIUM, chromium
 

@@ -9,7 +9,7 @@ import random
 import clingo
 import pytest
 
-from foon2asp.asp import encodings
+from foon2asp.asp import encoding_files
 from foon2asp.schedule import ScheduleSpec, schedule
 from foon2asp.schedule.checker import check_schedule
 from foon2asp.schedule.encode import schedule_facts
@@ -31,7 +31,8 @@ def optimum(name: str, inst, horizon: int) -> tuple[int, int] | None:
         return None
     facts = schedule_facts(inst, scale, windows, True, False, tail)
     ctl = clingo.Control(["--opt-mode=optN", "--models=0"])
-    ctl.add("base", [], encodings.encoding(name) + facts)
+    ctl.load(encoding_files.entry(name))
+    ctl.add("base", [], facts)
     ctl.add("base", [], f"horizon({horizon // scale}).\nfloor(0).\npriority(makespan,2).\npriority(human,1).\n")
     ctl.ground([("base", [])])
     costs: list[list[int]] = []

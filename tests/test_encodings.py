@@ -6,7 +6,7 @@ import random
 
 import pytest
 
-from foon2asp.asp.session import Session
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.tree.validate import check_order, validate
 from helpers import best, brute_force, build, goal_id, obj
 

@@ -1,8 +1,8 @@
-"""clintest cases for every shipped encoding (foon2asp/asp/encodings/*.lp) and every objective.
+"""clintest cases for every shipped encoding (encodings/*.lp, their parts and show files) and every objective.
 
 Each case is a tiny FOON as facts (plus the facts the wrapper writes for the encoding), the
-encodings as a user loads them (:func:`foon2asp.asp.encodings.encoding`, includes expanded),
-and the expected models or optimum: the atoms shown and the cost, never mere satisfiability.
+entry files the product loads (clingo resolves their ``#include`` directives), and the expected models
+or optimum: the atoms shown and the cost, never mere satisfiability.
 
 Single-shot cases run on :class:`clintest.solver.Clingo`.  Multi-shot cases (depth.lp's
 ``bound``/``meal`` parts, canonical.lp's externals) and schedule_dl.lp (a clingo-dl theory)
@@ -24,7 +24,7 @@ from clintest import quantifier as q
 from clintest import test as t
 from clintest.solver import Clingo, Solver
 
-from foon2asp.asp.encodings import encoding
+from foon2asp.asp.encoding_files import root
 from foon2asp.asp.multishot.depth import Levels
 
 OPT = ["--opt-mode=optN", "0", "--warn=none"]  # every optimal model, each marked optimal
@@ -49,14 +49,19 @@ def foon(units: Units, kitchen: Iterable[int], goals: Iterable[int] = ()) -> str
     return "\n".join(lines) + "\n"
 
 
-def program(names: Sequence[str], *facts: str) -> str:
-    """The shipped encodings ``names`` (includes expanded) and the facts, as one program (each
-    encoding and the facts in the base part: an encoding may end inside a ``#program`` part of its own)."""
-    return "\n".join(f"#program base.\n{text}" for text in [*(encoding(n) for n in names), *facts])
+def files(names: Sequence[str]) -> list[str]:
+    """The paths of the shipped encodings ``names``: entries (``solve``), or ``parts/NAME``, ``show/NAME``."""
+    return [str(root() / f"{name}.lp") for name in names]
+
+
+def program(names: Sequence[str], *facts: str) -> tuple[list[str], str]:
+    """The shipped encodings ``names`` (:func:`files`, loaded by clingo) and the facts as one program."""
+    return files(names), "\n".join(facts)
 
 
 def solver(names: Sequence[str], *facts: str, args: Sequence[str] = OPT) -> Clingo:
-    return Clingo(list(args), program(names, *facts))
+    paths, text = program(names, *facts)
+    return Clingo(list(args), text, paths)
 
 
 def check(solver: Solver, test: t.Test) -> None:
@@ -156,7 +161,7 @@ class Shots(Solver):
     def __init__(
         self,
         arguments: Sequence[str],
-        program: str,
+        program: tuple[list[str], str],
         grounds: Sequence[Sequence[tuple[str, Sequence[int]]]] = ((("base", ()),),),
         externals: Iterable[str] = (),
         theory: Callable[[], object] | None = None,
@@ -170,12 +175,16 @@ class Shots(Solver):
     def solve(self, test: t.Test) -> None:
         ctl = clingo.Control(self.arguments)
         theory = self.theory() if self.theory is not None else None
+        paths, text = self.program
         if theory is None:
-            ctl.add("base", [], self.program)
+            for path in paths:
+                ctl.load(path)
+            ctl.add("base", [], text)
         else:
             theory.register(ctl)
             with clingo.ast.ProgramBuilder(ctl) as builder:
-                clingo.ast.parse_string(self.program, lambda stm: theory.rewrite_ast(stm, builder.add))
+                clingo.ast.parse_files(paths, lambda stm: theory.rewrite_ast(stm, builder.add))
+                clingo.ast.parse_string(text, lambda stm: theory.rewrite_ast(stm, builder.add))
         for parts in self.grounds:
             ctl.ground([(name, [clingo.Number(x) for x in args]) for name, args in parts])
         if theory is not None:
@@ -203,7 +212,7 @@ CYCLE = foon({0: ([5], [4]), 1: ([4], [5]), 2: ([1], [2]), 3: ([2], [3]), 4: ([3
 
 
 def test_tree_a_chain_is_the_only_tree():
-    check(solver(["tree"], CHAIN, args=ALL), models(1, atoms(*use(0, 1))))
+    check(solver(["solve"], CHAIN, args=ALL), models(1, atoms(*use(0, 1))))
 
 
 def test_tree_cycle_never_supports_a_unit():
@@ -213,55 +222,55 @@ def test_tree_cycle_never_supports_a_unit():
         a.Implies(a.Contains("use(0)"), a.Contains("use(1)")),
     )
     trees = [use(2, 3, 4), use(1, 2, 3, 4), use(0, 1, 2, 3, 4)]
-    check(solver(["tree"], CYCLE, args=ALL), t.And(models(3, each), *(t.Assert(q.Any(), atoms(*s)) for s in trees)))
+    check(solver(["solve"], CYCLE, args=ALL), t.And(models(3, each), *(t.Assert(q.Any(), atoms(*s)) for s in trees)))
 
 
 def test_tree_cycle_alone_has_no_tree():
     # 9 is made only from 5 and 5 only from 9: neither is reachable from the kitchen
-    check(solver(["tree"], foon({0: ([5], [9]), 1: ([9], [5])}, [1], [9]), args=ALL), unsat())
+    check(solver(["solve"], foon({0: ([5], [9]), 1: ([9], [5])}, [1], [9]), args=ALL), unsat())
 
 
 def test_tree_landmark_is_forced():
     # 0 and 1 each make 9 from the kitchen; landmark(1) puts 1 in every tree
     facts = foon({0: ([1], [9]), 1: ([1], [9])}, [1], [9]) + "landmark(1).\n"
-    check(solver(["tree"], facts, args=ALL), models(2, a.Contains("use(1)")))
+    check(solver(["solve"], facts, args=ALL), models(2, a.Contains("use(1)")))
 
 
 def test_tree_landmark_decides_the_optimum():
     facts = foon({0: ([1], [9]), 1: ([1], [9])}, [1], [9]) + "landmark(1).\nobjective(units,1).\n"
-    check(solver(["tree", "units"], facts), optimum(use(1), 1))
+    check(solver(["solve"], facts), optimum(use(1), 1))
 
 
 def test_tree_goal_in_the_kitchen_needs_no_unit():
-    check(solver(["tree"], foon({0: ([1], [9])}, [1, 9], [9]), args=ALL), models(1, atoms()))
+    check(solver(["solve"], foon({0: ([1], [9])}, [1, 9], [9]), args=ALL), models(1, atoms()))
 
 
 def test_tree_never_makes_a_kitchen_item():
     # 0 makes 2, which the kitchen has: 0 is no candidate
     facts = foon({0: ([1], [2]), 1: ([2], [9])}, [1, 2], [9])
-    check(solver(["tree"], facts, args=ALL), models(1, atoms(*use(1))))
+    check(solver(["solve"], facts, args=ALL), models(1, atoms(*use(1))))
 
 
 def test_tree_never_uses_a_unit_that_cannot_fire():
     # 2 needs 7, which nothing makes
     facts = foon({0: ([1], [3]), 1: ([3], [9]), 2: ([7], [9])}, [1], [9])
-    check(solver(["tree"], facts, args=ALL), models(1, atoms(*use(0, 1))))
+    check(solver(["solve"], facts, args=ALL), models(1, atoms(*use(0, 1))))
 
 
 def test_tree_reads_required_inputs_only():
     # 0 lists 7 as an input, not a required one: 7 need not be had
     facts = foon({0: ([1], [9])}, [1], [9]) + "input(0,1).\ninput(0,7).\n"
-    check(solver(["tree"], facts, args=ALL), models(1, atoms(*use(0))))
+    check(solver(["solve"], facts, args=ALL), models(1, atoms(*use(0))))
 
 
 def test_tree_shared_intermediate_is_made_and_counted_once():
     # 9 needs 3 and 4, both made from 2; 2 is made once (by 0) and counted once
     facts = foon({0: ([1], [2]), 1: ([2], [3]), 2: ([2], [4]), 3: ([3, 4], [9])}, [1], [9])
-    check(solver(["tree", "units"], facts, "objective(units,1).\n"), optimum(use(0, 1, 2, 3), 4))
+    check(solver(["solve"], facts, "objective(units,1).\n"), optimum(use(0, 1, 2, 3), 4))
 
 
 def test_tree_without_a_producer_of_the_goal_has_no_tree():
-    check(solver(["tree"], foon({0: ([1], [2])}, [1], [9]), args=ALL), unsat())
+    check(solver(["solve"], foon({0: ([1], [2])}, [1], [9]), args=ALL), unsat())
 
 
 # --- prepared.lp -----------------------------------------------------------------------------
@@ -278,43 +287,43 @@ def prepared(units: Units, kitchen, goal, candidates, extra: str = "") -> str:
 
 def test_prepared_candidates_restrict_the_trees():
     facts = prepared(ALTERNATIVES, [1], 9, [1, 2, 3])
-    check(solver(["prepared"], facts, args=ALL), models(4, a.Not(a.Contains("use(0)"))))
+    check(solver(["solve_prepared"], facts, args=ALL), models(4, a.Not(a.Contains("use(0)"))))
 
 
 def test_prepared_candidates_decide_the_optimum():
     facts = prepared(ALTERNATIVES, [1], 9, [2, 3], "objective(units,1).\n")
-    check(solver(["prepared", "units"], facts), optimum(use(2, 3), 2))
+    check(solver(["solve_prepared"], facts), optimum(use(2, 3), 2))
 
 
 def test_prepared_cycle_of_candidates_is_no_tree():
     facts = prepared({0: ([5], [9]), 1: ([9], [5])}, [1], 9, [0, 1])
-    check(solver(["prepared"], facts, args=ALL), unsat())
+    check(solver(["solve_prepared"], facts, args=ALL), unsat())
 
 
 def test_prepared_landmark_forces_its_unit():
     # without the landmark the optimum is 0 alone; landmark(3) needs 2 as well
     facts = prepared(ALTERNATIVES, [1], 9, [0, 2, 3], "landmark(3).\nobjective(units,1).\n")
-    check(solver(["prepared", "units"], facts), optimum(use(2, 3), 2))
+    check(solver(["solve_prepared"], facts), optimum(use(2, 3), 2))
 
 
 def test_prepared_landmark_in_every_tree():
     facts = prepared(ALTERNATIVES, [1], 9, [0, 1, 2, 3], "landmark(2).\n")
-    check(solver(["prepared"], facts, args=ALL), models(7, a.Contains("use(2)")))
+    check(solver(["solve_prepared"], facts, args=ALL), models(7, a.Contains("use(2)")))
 
 
 def test_prepared_hint_leaves_the_other_candidates_out():
     facts = prepared(ALTERNATIVES, [1], 9, [0, 1, 2, 3], "hint(0).\n")
-    check(solver(["prepared"], facts, args=DOMAIN), first(use(0)))
+    check(solver(["solve_prepared"], facts, args=DOMAIN), first(use(0)))
 
 
 def test_prepared_hint_units_are_tried_first():
     # the hinted tree need not be the smallest
     facts = prepared(ALTERNATIVES, [1], 9, [0, 1, 2, 3], "hint(1).\nhint(2).\nhint(3).\n")
-    check(solver(["prepared"], facts, args=DOMAIN), first(use(1, 2, 3)))
+    check(solver(["solve_prepared"], facts, args=DOMAIN), first(use(1, 2, 3)))
 
 
 def test_prepared_goal_in_the_kitchen_needs_no_unit():
-    check(solver(["prepared"], prepared({}, [1, 9], 9, []), args=ALL), models(1, atoms()))
+    check(solver(["solve_prepared"], prepared({}, [1, 9], 9, []), args=ALL), models(1, atoms()))
 
 
 # --- closed.lp: closed sets, and loop cuts as part cut(k) --------------------------------------
@@ -325,13 +334,13 @@ LOOP = {0: ([5], [4]), 1: ([4], [5]), 2: ([1], [2]), 3: ([2], [3]), 4: ([3], [4]
 
 def closed(units: Units, kitchen, goal, candidates, extra: str = "", cuts: int = 0) -> Shots:
     """closed.lp with the units objective over a prepared part, grounded with ``cuts`` loop cuts."""
-    text = program(["closed", "units"], prepared(units, kitchen, goal, candidates, extra), "objective(units,1).\n")
+    text = program(["solve_closed"], prepared(units, kitchen, goal, candidates, extra), "objective(units,1).\n")
     return Shots(OPT, text, [[("base", ()), *(("cut", (k,)) for k in range(1, cuts + 1))]])
 
 
 def test_closed_admits_a_cycle_that_is_no_tree():
     facts = prepared({0: ([5], [9]), 1: ([9], [5])}, [1], 9, [0, 1])
-    check(solver(["closed"], facts, args=ALL), models(1, atoms(*use(0, 1))))
+    check(solver(["solve_closed"], facts, args=ALL), models(1, atoms(*use(0, 1))))
 
 
 def test_closed_cut_without_outside_producers_leaves_no_set():
@@ -365,11 +374,11 @@ def test_closed_landmark_forces_its_unit():
 
 def test_closed_hint_units_are_tried_first():
     facts = prepared(ALTERNATIVES, [1], 9, [0, 1, 2, 3], "hint(1).\nhint(2).\nhint(3).\n")
-    check(solver(["closed"], facts, args=DOMAIN), first(use(1, 2, 3)))
+    check(solver(["solve_closed"], facts, args=DOMAIN), first(use(1, 2, 3)))
 
 
 def test_closed_goal_in_the_kitchen_needs_no_unit():
-    check(solver(["closed"], prepared({}, [1, 9], 9, []), args=ALL), models(1, atoms()))
+    check(solver(["solve_closed"], prepared({}, [1, 9], 9, []), args=ALL), models(1, atoms()))
 
 
 # --- core.lp, through tree.lp and prepared.lp ------------------------------------------------
@@ -381,7 +390,7 @@ def front(name: str, units: Units, kitchen, goal, candidates, extra: str = "") -
         facts = foon(units, kitchen, [goal]) + extra
     else:
         facts = prepared(units, kitchen, goal, candidates, extra)
-    return solver([name, "units"], facts, "objective(units,1).\n")
+    return solver(["solve" if name == "tree" else "solve_prepared"], facts, "objective(units,1).\n")
 
 
 def test_core_through_tree_cycle_is_dearer_but_invalid():
@@ -411,7 +420,7 @@ def test_core_through_prepared_every_required_input_is_had():
 def test_core_alone_with_candidates_and_relevant_objects():
     # core.lp reads candidate/1 and relevant/1 as given: only relevant kitchen items are had
     facts = foon(JOIN, [1, 6], [9]) + "candidate(0..3).\nrelevant(1;4;5;9).\n"
-    check(solver(["core"], facts, args=ALL), models(1, atoms(*use(0, 2, 3))))
+    check(solver(["parts/core", "show/tree"], facts, args=ALL), models(1, atoms(*use(0, 2, 3))))
 
 
 # --- the objectives: units.lp, success.lp, inputs.lp, cost.lp --------------------------------
@@ -430,19 +439,19 @@ def objectives(*ranked: str) -> str:
 
 
 def test_units_fewest_units():
-    check(solver(["tree", "units"], SCORES, objectives("units")), optimum(use(0), 1))
+    check(solver(["solve"], SCORES, objectives("units")), optimum(use(0), 1))
 
 
 def test_success_greatest_product_of_rates():
-    check(solver(["tree", "success"], SCORES, objectives("success")), optimum(use(1, 2), 200))
+    check(solver(["solve"], SCORES, objectives("success")), optimum(use(1, 2), 200))
 
 
 def test_inputs_fewest_input_nodes():
-    check(solver(["tree", "inputs"], SCORES, objectives("inputs")), optimum(use(1, 2), 2))
+    check(solver(["solve"], SCORES, objectives("inputs")), optimum(use(1, 2), 2))
 
 
 def test_cost_least_motion_cost():
-    check(solver(["tree", "cost"], SCORES, objectives("cost")), optimum(use(0), 100))
+    check(solver(["solve"], SCORES, objectives("cost")), optimum(use(0), 100))
 
 
 @pytest.mark.parametrize(
@@ -457,18 +466,18 @@ def test_cost_least_motion_cost():
 )
 def test_lexicographic_objectives(ranked, units, cost):
     """Two objectives: the first listed decides, the second breaks ties."""
-    check(solver(["tree", *ranked], SCORES, objectives(*ranked)), optimum(use(*units), *cost))
+    check(solver(["solve"], SCORES, objectives(*ranked)), optimum(use(*units), *cost))
 
 
 def test_units_tie_broken_by_a_lower_priority():
     # 0 and 1 both make 9 alone; success (priority 1) prefers 1
     facts = foon({0: ([1], [9]), 1: ([1], [9])}, [1], [9]) + "neglog(0,300). neglog(1,100).\n"
-    check(solver(["tree", "units", "success"], facts, objectives("units", "success")), optimum(use(1), 1, 100))
+    check(solver(["solve"], facts, objectives("units", "success")), optimum(use(1), 1, 100))
 
 
 def test_units_ties_are_all_optimal():
     facts = foon({0: ([1], [9]), 1: ([1], [9]), 2: ([1], [3]), 3: ([3], [9])}, [1], [9])
-    check(solver(["tree", "units"], facts, objectives("units")), optima([use(0), use(1)], 1))
+    check(solver(["solve"], facts, objectives("units")), optima([use(0), use(1)], 1))
 
 
 # --- depth.lp --------------------------------------------------------------------------------
@@ -496,8 +505,7 @@ def depth_shots(goals: Sequence[int], ranked: Sequence[str], blocks: Sequence[tu
     """tree.lp, the objectives, depth.lp and the facts; ``blocks`` (goal, bound) grounded as the
     driver does (the windows from :class:`Levels` in a part of their own, then ``bound(k,g,d)``),
     and with ``meal`` a bound, the block ``meal(1,meal)`` over them."""
-    names = ["tree", *(o for o in ranked if o != "depth"), "depth"]
-    text = program(names, foon(DEPTH_UNITS, DEPTH_KITCHEN, goals), objectives(*ranked))
+    paths, text = program(["solve"], foon(DEPTH_UNITS, DEPTH_KITCHEN, goals), objectives(*ranked))
     grounds: list = [[("base", ())]]
     for k, (goal, bound) in enumerate(blocks, 1):
         windows = "".join(f"window({k},{u},{lo},{hi}).\n" for u, lo, hi in DEPTH_LEVELS.windows(goal, bound))
@@ -506,7 +514,7 @@ def depth_shots(goals: Sequence[int], ranked: Sequence[str], blocks: Sequence[tu
     if meal:
         text += "\n#program depth_meal_1.\n" + "".join(f"member(1,{k}).\n" for k in range(1, len(blocks) + 1))
         grounds.append([("depth_meal_1", ()), ("meal", (1, meal))])
-    return Shots(OPT, text, grounds, **kw)
+    return Shots(OPT, (paths, text), grounds, **kw)
 
 
 def test_depth_windows_are_the_drivers():
@@ -562,8 +570,8 @@ def test_depth_meal_bound_below_a_goal_has_no_tree():
 TRIO = foon({0: ([1], [9]), 1: ([1], [9]), 2: ([1], [9])}, [1], [9]) + "lex_first(0).\nlex_next(0,1).\nlex_next(1,2).\n"
 
 
-def canonical(externals: Sequence[str], args=ALL, extra: str = "", names=("tree", "canonical")) -> Shots:
-    return Shots(args, program(names, TRIO, extra), externals=externals)
+def canonical(externals: Sequence[str], args=ALL, extra: str = "") -> Shots:
+    return Shots(args, program(["solve"], TRIO, extra), externals=externals)
 
 
 def test_canonical_off_keeps_every_tree():
@@ -579,14 +587,14 @@ def test_canonical_on_only_smaller_trees():
 
 def test_canonical_on_optimal_smaller_trees():
     facts = "objective(units,1).\n"
-    shots = canonical(["lex_on", "lex_cur(2)"], OPT, facts, ("tree", "units", "canonical"))
+    shots = canonical(["lex_on", "lex_cur(2)"], OPT, facts)
     check(shots, optima([use(0), use(1)], 1))
 
 
 def test_canonical_smallest_optimal_tree_has_no_smaller_optimal_one():
     # {0} is the canonical optimum: the smaller trees all cost more
     facts = "objective(units,1).\n"
-    shots = canonical(["lex_on", "lex_cur(0)"], OPT, facts, ("tree", "units", "canonical"))
+    shots = canonical(["lex_on", "lex_cur(0)"], OPT, facts)
     check(shots, optima([use(0, 1), use(0, 2)], 2))
 
 
@@ -608,7 +616,7 @@ GREEDY = foon(
 def test_greedy_one_producer_per_needed_object():
     # tree.lp alone has many more trees; greedy picks one maker of 9, and of 5 if 3 is picked
     trees = [use(0), use(1), use(2), use(3, 4), use(3, 5)]
-    check(solver(["tree", "greedy"], GREEDY, args=ALL), models(5, a.Or(*(a.Equals(set(s)) for s in trees))))
+    check(solver(["solve_greedy"], GREEDY, args=ALL), models(5, a.Or(*(a.Equals(set(s)) for s in trees))))
 
 
 def test_greedy_every_picked_unit_is_used():
@@ -616,7 +624,7 @@ def test_greedy_every_picked_unit_is_used():
     facts = foon({0: ([5, 6], [9]), 1: ([1], [5]), 2: ([1], [6, 5])}, [1], [9])
     trees = [use(0, 2), use(0, 1, 2)]
     check(
-        solver(["tree", "greedy"], facts, args=ALL),
+        solver(["solve_greedy"], facts, args=ALL),
         t.And(models(2, a.Or(*(a.Equals(set(s)) for s in trees))), *(t.Assert(q.Any(), atoms(*s)) for s in trees)),
     )
 
@@ -657,7 +665,7 @@ def test_greedy_every_picked_unit_is_used():
     ],
 )
 def test_greedy_first_model_takes_rank_zero(heuristic, ranks, chosen):
-    check(solver(["tree", "greedy", heuristic], GREEDY, ranks + "\n", args=DOMAIN), first(use(*chosen)))
+    check(solver(["solve_greedy"], GREEDY, ranks + "\n", args=DOMAIN), first(use(*chosen)))
 
 
 # --- missing.lp ------------------------------------------------------------------------------
@@ -665,7 +673,7 @@ def test_greedy_first_model_takes_rank_zero(heuristic, ranks, chosen):
 
 def missing(units: Units, ranked=("units",), extra: str = "", args=OPT) -> Clingo:
     facts = foon(units, [1], [9]) + objectives(*ranked) + f"add_priority({len(ranked) + 1}).\n" + extra
-    return solver(["missing", *ranked], facts, args=args)
+    return solver(["find_missing"], facts, args=args)
 
 
 def test_missing_fewest_added_objects():
@@ -707,20 +715,20 @@ def test_missing_ties_go_to_the_tree_objective():
 
 def test_dominance_dominated_unit_never_used():
     facts = foon({0: ([1], [9]), 1: ([1], [9])}, [1], [9]) + "dom(0,1).\n"
-    check(solver(["tree", "dominance"], facts, args=ALL), models(1, atoms(*use(0))))
+    check(solver(["solve"], facts, args=ALL), models(1, atoms(*use(0))))
 
 
 def test_dominance_extra_product_not_relevant():
     # 1 also makes 5, which nothing needs: still dominated
     facts = foon({0: ([1], [9]), 1: ([1], [9, 5])}, [1], [9]) + "dom(0,1).\ndom_extra(0,1,5).\n"
-    check(solver(["tree", "dominance"], facts, args=ALL), models(1, atoms(*use(0))))
+    check(solver(["solve"], facts, args=ALL), models(1, atoms(*use(0))))
 
 
 def test_dominance_extra_product_relevant():
     # 3 needs 9 and 5; 1 makes both, so it is allowed and the optimum uses it
     units = {0: ([1], [9]), 1: ([1], [9, 5]), 2: ([1], [5]), 3: ([9, 5], [10])}
     facts = foon(units, [1], [10]) + "dom(0,1).\ndom_extra(0,1,5).\n" + objectives("units")
-    check(solver(["tree", "units", "dominance"], facts), optimum(use(1, 3), 2))
+    check(solver(["solve"], facts), optimum(use(1, 3), 2))
 
 
 # --- reachable.lp ----------------------------------------------------------------------------
@@ -731,12 +739,12 @@ def test_reachable_asked_objects():
     units = {0: ([1], [2]), 1: ([2], [3]), 2: ([4], [5]), 3: ([5], [4]), 4: ([6], [7])}
     facts = foon(units, [1]) + "asked(1;3;5;7).\n"
     shown = ["reachable(1)", "reachable(3)", "unreachable(5)", "unreachable(7)"]
-    check(solver(["tree", "reachable"], facts, args=ALL), models(1, atoms(*shown)))
+    check(solver(["find_reachable"], facts, args=ALL), models(1, atoms(*shown)))
 
 
 def test_reachable_unasked_objects_are_not_reported():
     facts = foon({0: ([1], [2])}, [1]) + "asked(2).\n"
-    check(solver(["tree", "reachable"], facts, args=ALL), models(1, atoms("reachable(2)")))
+    check(solver(["find_reachable"], facts, args=ALL), models(1, atoms("reachable(2)")))
 
 
 # --- substitutes.lp --------------------------------------------------------------------------
@@ -747,7 +755,7 @@ NEEDS_FIVE = {0: ([1, 5], [9])}
 
 def substitutes(units: Units, extra: str, ranked=("units",), args=OPT) -> Clingo:
     facts = foon(units, [1], [9]) + objectives(*ranked) + extra
-    return solver(["tree", *ranked, "substitutes"], facts, args=args)
+    return solver(["solve"], facts, args=args)
 
 
 def test_substitutes_stand_in_for_a_missing_object():
@@ -805,8 +813,7 @@ HUMAN = (
 
 
 def human(limit: int | None) -> Clingo:
-    names = ["tree", "success", "units", *(["human"] if limit is not None else [])]
-    return solver(names, HUMAN, "" if limit is None else f"human_limit({limit}).\n")
+    return solver(["solve"], HUMAN, "" if limit is None else f"human_limit({limit}).\n")
 
 
 def test_human_without_human_steps():
@@ -827,8 +834,7 @@ def test_human_at_most_the_limit():
     facts = chain + "neglog(0,900). neglog(1,10). neglog(2,10).\n"
     # positions 1, 2, 3 without a gap, as the wrapper numbers the units of the facts
     facts += "human_unit(1,0). human_unit(2,1). human_unit(3,2).\nhuman_limit(2).\n" + objectives("success", "units")
-    names = ["tree", "success", "units", "human"]
-    check(solver(names, facts), optimum(["human(0)", "human(1)", *use(0, 1, 2)], 10, 3, 2))
+    check(solver(["solve"], facts), optimum(["human(0)", "human(1)", *use(0, 1, 2)], 10, 3, 2))
 
 
 def test_human_limit_zero_is_no_human_step():
@@ -932,7 +938,7 @@ def test_schedule_steps_joint_with_tree():
     facts += "priority(makespan,3).\npriority(human,2).\nobjective(units,1).\n"
     shown = [*use(1, 2), 'on(1,"robot")', 'on(2,"robot")', "start(1,0)", "start(2,1)"]
     # no human kind: the human level has no literal and is left out of the cost
-    check(solver(["tree", "units", "schedule_steps"], facts, "horizon(4).\nfloor(0).\n"), optimum(shown, 2, 2))
+    check(solver(["schedule_steps", "joint_tree"], facts, "horizon(4).\nfloor(0).\n"), optimum(shown, 2, 2))
 
 
 # --- schedule_dl.lp (clingo-dl) --------------------------------------------------------------
@@ -1059,7 +1065,7 @@ TREES = foon({0: ([1], [9]), 1: ([1], [3]), 2: ([3], [9])}, [1], [9])
 
 
 def trees(extra: str = "", args=ALL) -> Clingo:
-    return solver(["tree", "schedule_trees"], TREES, extra, args=args)
+    return solver(["joint_tree", "list_trees"], TREES, extra, args=args)
 
 
 def test_schedule_trees_every_unit_needed():
@@ -1077,7 +1083,7 @@ def test_schedule_trees_too_late_unit_never_used():
 
 
 def first_trees(extra: str = "", args=ALL) -> Clingo:
-    return solver(["tree", "schedule_first"], TREES, extra, args=args)
+    return solver(["joint_tree", "list_designations"], TREES, extra, args=args)
 
 
 def test_schedule_first_one_maker_per_needed_object():
@@ -1096,13 +1102,13 @@ CROSS = foon({0: ([1], [4, 6]), 5: ([1], [5, 7]), 1: ([4], [5]), 2: ([5], [4]), 
 
 def test_schedule_first_never_designates_in_a_circle():
     # with 1 and 2 both used, 2 must first make 4 (=a) and 1 first make 5 (=b): each waits for the other
-    cross = solver(["tree", "schedule_first"], CROSS, ":- not use(1).\n:- not use(2).\n", args=ALL)
+    cross = solver(["joint_tree", "list_designations"], CROSS, ":- not use(1).\n:- not use(2).\n", args=ALL)
     check(cross, unsat())
 
 
 def test_schedule_first_designates_one_of_the_crossing_makers():
     # 1 alone beside 0 and 5: it may first make 5 (=b) from 4 (=a), which 0 makes first
-    one = solver(["tree", "schedule_first"], CROSS, ":- not use(1).\n:- use(2).\n", args=ALL)
+    one = solver(["joint_tree", "list_designations"], CROSS, ":- not use(1).\n:- use(2).\n", args=ALL)
     check(one, models(1, a.And(a.Equals(set(use(0, 1, 3, 5))), a.Contains("first(5,1)"))))
 
 

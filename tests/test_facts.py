@@ -9,7 +9,7 @@ import pytest
 
 from foon2asp.asp.facts import OPTIONAL, facts, neglog_weight, q
 from foon2asp.asp.predicates import FACTS
-from foon2asp.asp.session import Session
+from foon2asp.methods.plan import session_of as Session
 from helpers import build, obj
 
 NASTY = [

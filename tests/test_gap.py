@@ -14,9 +14,10 @@ import pytest
 from click.testing import CliRunner
 
 import foon2asp
-from foon2asp.asp.session import AspOptions, Session
+from foon2asp.asp.options import AspOptions
 from foon2asp.cli.main import main
 from foon2asp.methods.bounds import Bounds
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.gap import gap_of, gap_text, levels, settle, value
 from foon2asp.tree.tasktree import TaskTree, measures

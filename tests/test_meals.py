@@ -13,9 +13,9 @@ from click.testing import CliRunner
 from foon2asp.analysis import queries
 from foon2asp.analysis.compare import compare_meal
 from foon2asp.asp.options import AspOptions
-from foon2asp.asp.session import Session
 from foon2asp.cli import main
 from foon2asp.foon import goals as goals_mod
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.methods.runner import GoalRunner
 from foon2asp.tree.tasktree import measures
 from foon2asp.tree.validate import validate

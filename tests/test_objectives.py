@@ -17,12 +17,12 @@ from foon2asp import methods
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.multishot.driver import alternatives
 from foon2asp.asp.objectives import motion_cost_facts, motion_cost_weights, neglog_sum, success_product
-from foon2asp.asp.options import OBJECTIVES
-from foon2asp.asp.session import AspOptions, Session
+from foon2asp.asp.options import OBJECTIVES, AspOptions
 from foon2asp.cli.main import main
 from foon2asp.errors import InputError
 from foon2asp.foon.motioncost import DEFAULT_COST, parse_motion_costs, unit_weights
 from foon2asp.foon.parser import write_foon
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.search import gbfs, h1, h2
 from foon2asp.tree.tasktree import measures
 from foon2asp.tree.validate import validate

@@ -189,8 +189,9 @@ def test_every_reachable_goal_writes_a_conforming_file(shared_foon_dir, tmp_path
 
 def test_tree_round_trips_through_both_dialects_and_json(shared_problem):
     data, problem = shared_problem
-    from foon2asp.asp.session import AspOptions, Session
+    from foon2asp.asp.options import AspOptions
     from foon2asp.foon import goals
+    from foon2asp.methods.plan import session_of as Session
 
     g = goals.resolve_label(data, problem, "greek salad")
     tree = Session(problem, AspOptions(units=problem.units_for([g]))).solve(g)

@@ -16,11 +16,11 @@ from foon2asp.analysis import check as check_mod
 from foon2asp.asp.constraints import ConstraintSpec
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.options import AspOptions
-from foon2asp.asp.session import Session
 from foon2asp.cli import main
 from foon2asp.errors import InputError
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.treefiles import action_name, looks_like_plan, read_trees, unit_of_action
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.report import pddl
 
 

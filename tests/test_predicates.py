@@ -11,7 +11,7 @@ import pytest
 from click.testing import CliRunner
 
 from conftest import DEMO
-from foon2asp.asp import encodings
+from foon2asp.asp import encoding_files
 from foon2asp.asp.facts import facts
 from foon2asp.asp.predicates import FACTS, known_predicates, predicates, rule_warnings
 from foon2asp.cli.main import main
@@ -98,10 +98,10 @@ def test_query_warnings_name_the_file_they_are_about(tmp_path):
     res = run("query", prog, "--data", "demo", "--encoding", "reachable", "--goal", "tomato salad")
     assert res.exit_code == 0, res.output
     # reachable.lp reads asked/1 on its line 6: the warning is about that file, not the user's
-    text = encodings.encoding("reachable").splitlines()
+    text = Path(encoding_files.part("reachable")).read_text(encoding="utf-8").splitlines()
     line = next(n for n, t in enumerate(text, 1) if t.startswith("reachable(O) :- asked(O)"))
     assert rule_lines(res.stderr) == [
-        f"foon2asp: warning: encodings/reachable.lp:{line}:17: asked/1 occurs in no rule head and no fact"
+        f"foon2asp: warning: encodings/parts/reachable.lp:{line}:17: asked/1 occurs in no rule head and no fact"
     ]
     assert str(prog) not in res.stderr
     # a predicate a shipped encoding defines, used without loading it: the encoding that does

@@ -9,9 +9,9 @@ from dataclasses import replace
 import pytest
 
 from foon2asp.asp.options import AspOptions
-from foon2asp.asp.session import Session
 from foon2asp.foon.loaders import Dataset
 from foon2asp.foon.problem import Problem, least_fixpoint
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.methods.runner import GoalRunner
 from foon2asp.tree.validate import validate
 from synth import preset
@@ -40,10 +40,10 @@ def both_encodings(problem: Problem, objective: tuple[str, ...], step: int) -> t
     cut = 0
     for g in goals:
         prep = run.preparation(g)
-        closed = Session(problem, run._effective, prepared=prep).solve(g)
+        closed = Session(problem, run.options, prepared=prep).solve(g)
         # prepared.lp optimises (no hint cost to decide at): it must reach what closed.lp answered
         free = replace(prep, known=None)
-        recursive = Session(problem, replace(run._effective, programs=[NOOP]), prepared=free).solve(g)
+        recursive = Session(problem, replace(run.options, programs=[NOOP]), prepared=free).solve(g)
         assert closed.status == recursive.status == "optimal", g
         assert closed.extra["asp_cost"] == recursive.extra["asp_cost"], g
         assert validate(problem, g, list(closed.units)).valid, g
@@ -72,7 +72,7 @@ def test_a_search_that_meets_the_lower_bound_ends_there(shared_foon_dir):
     units, _, _ = run.parts.relevant(goal)
     prep = replace(run.preparation(goal), candidates=tuple(units), known=None)
     assert prep.bound is None and prep.meets is not None
-    tree = Session(problem, run._effective, prepared=prep).solve(goal)
+    tree = Session(problem, run.options, prepared=prep).solve(goal)
     assert tree.status == "optimal" and prep.meets(tuple(tree.extra["asp_cost"]))
     assert validate(problem, goal, list(tree.units)).valid
 
@@ -88,8 +88,8 @@ def test_a_goal_whose_hint_meets_the_bound_is_decided_at_the_hint(shared_foon_di
         if prep.bound is None:
             continue
         decided += 1
-        tree = Session(problem, run._effective, prepared=prep).solve(g)
-        optimised = Session(problem, run._effective, prepared=replace(prep, known=None)).solve(g)
+        tree = Session(problem, run.options, prepared=prep).solve(g)
+        optimised = Session(problem, run.options, prepared=replace(prep, known=None)).solve(g)
         assert tree.status == optimised.status == "optimal", g
         assert tuple(tree.extra["asp_cost"]) == prep.bound == tuple(optimised.extra["asp_cost"]), g
         assert sorted(tree.units) == sorted(prep.hint), g
@@ -132,7 +132,7 @@ def test_a_prepared_session_answers_its_goal_again():
     goals = prepared_goals(run, 7)[:6]
     assert goals
     for g in goals:
-        session = Session(problem, run._effective, prepared=replace(run.preparation(g), known=None))
+        session = Session(problem, run.options, prepared=replace(run.preparation(g), known=None))
         first, again = session.solve(g), session.solve(g)
         assert first.status == again.status == "optimal"
         assert (again.units, again.cost) == (first.units, first.cost)

@@ -9,7 +9,7 @@ from dataclasses import replace
 import clingo
 import pytest
 
-from foon2asp.asp import encodings
+from foon2asp.asp import encoding_files
 from foon2asp.asp.facts import facts
 from foon2asp.asp.multishot.depth import Levels
 from foon2asp.foon import goals as goals_mod
@@ -21,7 +21,8 @@ from synth import preset
 def _units_for_by_definition(problem, goals):
     """The encoding's candidate units for the goals, as clingo grounds them on the whole FOON."""
     ctl = clingo.Control()
-    ctl.add("base", [], facts(problem) + encodings.encoding("tree") + "".join(f"goal({g}).\n" for g in goals))
+    ctl.load(encoding_files.part("tree"))
+    ctl.add("base", [], facts(problem) + "".join(f"goal({g}).\n" for g in goals))
     ctl.ground([("base", [])])
     return tuple(sorted(a.symbol.arguments[0].number for a in ctl.symbolic_atoms.by_signature("candidate", 1)))
 

@@ -11,11 +11,12 @@ from click.testing import CliRunner
 
 from foon2asp.analysis import queries
 from foon2asp.asp import constraints
-from foon2asp.asp.session import AspOptions, Session
+from foon2asp.asp.options import AspOptions
 from foon2asp.cli.main import main
 from foon2asp.errors import InputError
 from foon2asp.foon import goals
 from foon2asp.foon.problem import Problem
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.report import query_answers as report_queries
 from foon2asp.tree.validate import validate
 from helpers import as_obj, brute_force, build, goal_id

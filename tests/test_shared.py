@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from foon2asp.asp.session import Session
 from foon2asp.foon.goals import goal_id
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.tree.validate import check_order, validate
 
 EXPECTED_SIZES = {"greek salad": 25, "macaroni": 5, "carrot salad": 19}

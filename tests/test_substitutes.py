@@ -15,9 +15,7 @@ import random
 import pytest
 
 from foon2asp.asp.facts import facts
-from foon2asp.asp.objectives import encoding_names
-from foon2asp.asp.options import OBJECTIVES, AspOptions
-from foon2asp.asp.session import Session
+from foon2asp.asp.options import AspOptions
 from foon2asp.asp.substitute_facts import report, substitute_facts
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject
@@ -32,7 +30,8 @@ from foon2asp.foon.substitutes import (
     substituted_kitchen,
     with_substitutes,
 )
-from foon2asp.methods.runner import plain
+from foon2asp.methods.plan import grounding, plain
+from foon2asp.methods.plan import session_of as Session
 from foon2asp.methods.runner import solve_goals as run_goals
 from foon2asp.tree.validate import validate
 from helpers import build, goal_id, obj
@@ -164,9 +163,9 @@ def test_max_substitutions_and_costs():
 def test_options_turn_the_shortcuts_off_and_load_the_encoding():
     subs = (Substitute("onion", "red onion"),)
     assert plain(AspOptions()) and not plain(AspOptions(substitutes=subs))
-    assert "substitutes" not in encoding_names(AspOptions(), OBJECTIVES)
-    assert "substitutes" in encoding_names(AspOptions(substitutes=subs), OBJECTIVES)
     problem = _soup()
+    assert "substitutes" not in grounding(problem, AspOptions()).facts
+    assert "substitutes" in grounding(problem, AspOptions(substitutes=subs)).facts
     for options in (
         AspOptions(substitutes=subs, max_depth=3),
         AspOptions(substitutes=subs, objective=("depth",)),

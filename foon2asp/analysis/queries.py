@@ -8,7 +8,7 @@ from collections.abc import Iterable
 import clingo
 import clingo.ast
 
-from foon2asp.asp import encodings
+from foon2asp.asp import encoding_files
 from foon2asp.asp.constraints import check_syntax
 from foon2asp.asp.control import Answer, Control
 from foon2asp.asp.facts import facts
@@ -32,10 +32,14 @@ from foon2asp.tree.weights import unit_weight
 class Program:
     """One :class:`~foon2asp.asp.control.Control`: add named parts, ground once, solve once."""
 
-    def __init__(self, parts: Iterable[tuple[str, str]], args: Iterable[str] = ()) -> None:
+    def __init__(self, parts: Iterable[tuple[str, str]], args: Iterable[str] = (), files: Iterable[str] = ()) -> None:
+        """``parts``: named programs, the facts first; ``files``: encoding files loaded after the facts."""
         self.control = Control(list(args))
         parts = list(parts)
-        self.control.add_all(parts, user=[name for name, _ in parts if name != "facts"])
+        self.control.add_all(parts[:1], user=[name for name, _ in parts[:1] if name != "facts"])
+        for path in files:
+            self.control.load(path)
+        self.control.add_all(parts[1:], user=[name for name, _ in parts[1:] if name != "facts"])
         self.control.ground()
 
     def solve(self, time_limit: float | None = None, limit: int = 1) -> QueryResult:
@@ -70,13 +74,7 @@ def reachable(problem: Problem, objects: Iterable[int]) -> dict[int, bool]:
     objects = list(dict.fromkeys(objects))
     asked = "".join(f"asked({o}).\n" for o in objects)
     prog = Program(
-        [
-            ("facts", facts(problem)),
-            ("encodings/tree.lp", encodings.encoding("tree")),
-            ("encodings/reachable.lp", encodings.encoding("reachable")),
-            ("asked", asked),
-        ],
-        ["--models=0"],
+        [("facts", facts(problem)), ("asked", asked)], ["--models=0"], [encoding_files.entry("find_reachable")]
     )
     outcome = prog.solve()
     if not outcome.answers:  # pragma: no cover - the program is stratified, always one model
@@ -92,9 +90,8 @@ MISSING_OBJECTIVES = ("units", "success", "inputs", "cost")
 def objective_parts(
     problem: Problem, objective: tuple[str, ...], units: list[int], first: int
 ) -> list[tuple[str, str]]:
-    """The objective encodings with ``objective(Name,P)`` facts and ``add_priority(first)``."""
-    parts = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(objective)]
-    parts += [(f"objective {n}", f"objective({n},{len(objective) - k}).\n") for k, n in enumerate(objective)]
+    """The ``objective(Name,P)`` facts, the facts the objectives read and ``add_priority(first)``."""
+    parts = [(f"objective {n}", f"objective({n},{len(objective) - k}).\n") for k, n in enumerate(objective)]
     if "inputs" in objective:
         parts.append(("input_nodes", input_node_facts(problem, units)))
     if "cost" in objective:
@@ -118,13 +115,9 @@ def missing(problem: Problem, goal: Goals, options: AspOptions | None = None) ->
     units = sorted({u for g in meal if g not in problem.kitchen for u in problem.relevant_units(g)})
     text = facts(problem, goal=meal[0], units=units) + "".join(f"goal({g}).\n" for g in meal[1:])
     prog = Program(
-        [
-            ("facts", text),
-            ("encodings/missing.lp", encodings.encoding("missing")),
-            *objective_parts(problem, objective, units, len(objective) + 1),
-            *options.programs,
-        ],
+        [("facts", text), *objective_parts(problem, objective, units, len(objective) + 1), *options.programs],
         ["--opt-mode=opt", "--models=0", *solver_args(options.opt_strategy, options.threads)],
+        [encoding_files.entry("find_missing")],
     )
     buyable = sorted(s.arguments[0].number for s in prog.control.facts_of("buyable", 1))
     goals = meal if len(meal) > 1 else ()
@@ -225,7 +218,7 @@ def query_warnings(prog: Program, program: tuple[str, str], loaded: Iterable[str
     name, text = program
     user = predicates(text)
     shipped = shipped_predicates()
-    found = [(name, user)] + [(f"encodings/{enc}.lp", shipped[enc]) for enc in loaded]
+    found = [(name, user)] + [(f"encodings/parts/{enc}.lp", shipped[enc]) for enc in loaded]
     known = known_predicates() | user.defined
     atoms = prog.control.ctl.symbolic_atoms  # the predicates with atoms after grounding
     here = {(n, a) for n, a, _ in atoms.signatures if next(iter(atoms.by_signature(n, a)), None) is not None}
@@ -267,22 +260,25 @@ def query(
     parts = [("facts", facts(problem, goal_nodes=goal_nodes, goal=goal))]
     asked = list(dict.fromkeys(with_encodings))
     ranked = [n for n in asked if n in OBJECTIVES]
+    have = encoding_files.parts()
     for enc in asked:
-        if enc not in encodings.names():
-            raise InputError(f"no encoding {enc!r}; have {', '.join(encodings.names())}")
-    names = encodings.with_dependencies(asked)
-    for enc in names:
-        lines = encodings.encoding(enc).split("\n")  # with the user's #show, each of its #show lines goes
-        body = "\n".join("" if own_show and line.lstrip().startswith("#show") else line for line in lines)
-        parts.append((f"encodings/{enc}.lp", body))
+        if enc not in have:
+            raise InputError(f"no encoding {enc!r}; have {', '.join(have)}")
+    # the parts that do not derive a tree themselves are read over tree.lp's
+    shipped = shipped_predicates()
+    names = ["tree", *asked] if any(("use", 1) not in shipped[enc].defined for enc in asked) else asked
+    names = list(dict.fromkeys(names))
+    files = [encoding_files.part(enc) for enc in names]
+    if own_show:  # only what the user's #show statements show
+        files.append(encoding_files.show("nothing"))
+    else:
+        files += [encoding_files.show(enc) for enc in names if enc in encoding_files.shows()]
     if "inputs" in names:
         parts.append(("input_nodes", input_node_facts(problem)))
     # objective encodings listed first weigh most: objective(Name,P), P = n..1
     parts += [(f"objective {n}", f"objective({n},{len(ranked) - k}).\n") for k, n in enumerate(ranked)]
-    if own_show:
-        parts.append(("show", "#show.\n"))  # only what the user's #show statements show
     parts.append((name, text))
-    prog = Program(parts, ["--opt-mode=opt", "--models=0"])
+    prog = Program(parts, ["--opt-mode=opt", "--models=0"], files)
     warnings = query_warnings(prog, (name, text), names)
     result = prog.solve(time_limit, max(models, 0))
     result.warnings, result.encodings = warnings, names

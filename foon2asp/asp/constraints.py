@@ -1,6 +1,7 @@
 """User constraints: ASP files, rule texts and convenience flags as programs.
 
-A flag's motion or label enters as an escaped string constant; files and ``--rule`` texts are
+A flag is a fact that ``encodings/parts/constraints.lp`` reads; its motion or label enters as
+an escaped string constant; files and ``--rule`` texts are
 checked on their own, an error naming the file (or rule) and line.
 """
 
@@ -34,32 +35,41 @@ def motion_name(text: str) -> str:
 
 
 def forbid_motion(motion: str) -> str:
-    """No unit of the tree has motion ``motion``."""
-    return f":- use(U), motion(U,{q(motion_name(motion))}).\n"
+    """No unit of the tree has motion ``motion`` (a fact for ``encodings/parts/constraints.lp``)."""
+    return f"forbid_motion({q(motion_name(motion))}).\n"
 
 
 def forbid_object(label: str) -> str:
     """No unit of the tree has an input or output labelled ``label``."""
-    lab = q(normalise(label))
-    return f":- use(U), input(U,O), label(O,{lab}).\n:- use(U), output(U,O), label(O,{lab}).\n"
+    return f"forbid_object({q(normalise(label))}).\n"
 
 
 def require_motion(motion: str) -> str:
     """Some unit of the tree has motion ``motion``."""
-    return f":- #count {{ U : use(U), motion(U,{q(motion_name(motion))}) }} = 0.\n"
+    return f"require_motion({q(motion_name(motion))}).\n"
 
 
 def require_object(label: str) -> str:
     """Some unit of the tree has an input or output labelled ``label``."""
-    lab = q(normalise(label))
-    return f":- #count {{ U : use(U), input(U,O), label(O,{lab}); U : use(U), output(U,O), label(O,{lab}) }} = 0.\n"
+    return f"require_object({q(normalise(label))}).\n"
 
 
 def max_units(n: int) -> str:
     """The tree has at most ``n`` units."""
     if not isinstance(n, int) or n < 0:
         raise InputError(f"--max-units must be a whole number >= 0, not {n!r}")
-    return f":- #count {{ U : use(U) }} > {n}.\n"
+    return f"max_units({n}).\n"
+
+
+#: the facts of the convenience flags (encodings/parts/constraints.lp) -> the problem's fact
+#: predicates the rules on them read
+FLAG_READS: dict[str, tuple[str, ...]] = {
+    "forbid_motion": ("motion",),
+    "require_motion": ("motion",),
+    "forbid_object": ("input", "output", "label"),
+    "require_object": ("input", "output", "label"),
+    "max_units": (),
+}
 
 
 def _clean(text: str) -> str:

@@ -23,8 +23,8 @@ from foon2asp.errors import InputError
 #: an atom no program has: a solve assuming it ends at once
 _ABSORB = clingo.Function("foon2asp_no_atom")
 
-#: between programs added in one call: each starts in the base part, as a separate add would
-_JOIN = "\n#program base.\n"
+#: between fact programs added in one call
+_JOIN = "\n"
 
 #: solve mode -> clingo's opt-mode, number of models (None: as many as asked for) and projection
 MODES: dict[str, tuple[str, str | None, str]] = {
@@ -121,6 +121,19 @@ class Control:
                         clingo.ast.parse_string(text, lambda stm: self.theory.rewrite_ast(stm, builder.add))
         except RuntimeError:
             raise clingo_error(self.messages, name) from None
+
+    def load(self, path: str) -> None:
+        """Load the encoding file at ``path``; clingo resolves its ``#include`` directives."""
+        self.messages.clear()
+        try:
+            with deferred_signals():
+                if self.theory is None:
+                    self.ctl.load(path)
+                else:  # a theory (clingo-dl) rewrites the program; it is added to the base part
+                    with clingo.ast.ProgramBuilder(self.ctl) as builder:
+                        clingo.ast.parse_files([path], lambda stm: self.theory.rewrite_ast(stm, builder.add))
+        except RuntimeError:
+            raise clingo_error(self.messages, path) from None
 
     def add_all(self, parts: Iterable[tuple[str, str]], user: Iterable[str] = ()) -> None:
         """Add ``parts``; consecutive parts not named in ``user`` go in one call (cheaper; they hold no error to name)."""

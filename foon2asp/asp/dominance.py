@@ -18,7 +18,7 @@ SUPPORTED = frozenset({"units", "success", "inputs", "depth"})
 def applies(options, ranked: Iterable[str]) -> bool:
     """Does a session with ``options`` (objectives ``ranked``) forbid dominated units?"""
     alternatives = options.models > 1 or options.all_optimal
-    extras = options.programs or options.encodings or options.heuristic or options.human_steps is not None
+    extras = options.programs or options.heuristic or options.human_steps is not None
     return not (alternatives or extras) and set(ranked) <= SUPPORTED
 
 

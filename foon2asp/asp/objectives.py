@@ -1,4 +1,4 @@
-"""Objectives and solver features: which encodings and extra facts a session needs.
+"""Objectives: their order and the facts they read (input nodes, motion costs, greedy ranks, human order).
 
 Objectives are lexicographic (``objective(Name,Priority)``, docs/objectives.md), with
 ``units`` always the last tie-breaker.
@@ -9,7 +9,6 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 
-from foon2asp.asp import dominance, substitute_facts
 from foon2asp.asp.facts import unit_ids
 from foon2asp.errors import InputError
 from foon2asp.foon.motioncost import DEFAULT_COST, motion_key, scaled
@@ -23,23 +22,6 @@ def ranked(options) -> tuple[str, ...]:
         return ()
     objective = tuple(dict.fromkeys(options.objective))
     return objective if "units" in objective else (*objective, "units")
-
-
-def encoding_names(options, registry: dict[str, str]) -> list[str]:
-    """The encodings (beside tree.lp) a session with ``options`` loads."""
-    if options.heuristic:
-        names = [f"greedy_{options.heuristic}"]  # includes greedy.lp
-    else:
-        names = [registry[o] for o in ranked(options) if o in registry]
-    if options.max_depth is not None and "depth" not in names:
-        names.append("depth")
-    if options.human_steps is not None:
-        names.append("human")
-    if dominance.applies(options, ranked(options)):
-        names.append("dominance")
-    if substitute_facts.applies(options):
-        names.append("substitutes")
-    return names
 
 
 def input_node_facts(problem: Problem, units: Iterable[int] | None = None) -> str:
@@ -98,29 +80,6 @@ def human_order_facts(problem: Problem, units: Iterable[int] | None = None) -> s
     weighted = [(weight(problem, u), u) for u in ids]
     order = sorted(((-w, u) for w, u in weighted if w > 0))
     return "".join(f"human_unit({p},{u}).\n" for p, (_, u) in enumerate(order, 1))
-
-
-def extra_parts(
-    problem: Problem, options, units: Iterable[int] | None = None, dominated: bool = True
-) -> list[tuple[str, str]]:
-    """Facts and directives the encodings of ``options`` read, as (name, text) programs
-    (``dominated=False``: without the dominance facts)."""
-    parts = [("input nodes", input_node_facts(problem, units))]
-    if "cost" in ranked(options):
-        parts.append(("motion costs", motion_cost_facts(problem, options, units)))
-    if options.heuristic:
-        parts.append(("producer ranks", rank_facts(problem, options.heuristic, units)))
-    if options.human_steps is not None:
-        parts.append(("human steps", f"human_limit({int(options.human_steps)}).\n"))
-        if "success" in ranked(options) and options.human_steps > 0:
-            parts.append(("human order", human_order_facts(problem, units)))
-    if dominated and dominance.applies(options, ranked(options)):
-        parts.append(("dominated units", dominance.dominance_facts(problem, unit_ids(problem, units), ranked(options))))
-    if substitute_facts.applies(options):
-        facts = substitute_facts.substitute_facts(problem, options.substitutes, units, options.max_substitutions)
-        parts.append(("substitutes", facts))
-    parts.append(("projection", "#project use/1.\n"))
-    return parts
 
 
 def success_product(problem: Problem, units: Iterable[int], human: Iterable[int] = ()) -> float:

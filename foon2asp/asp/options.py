@@ -155,8 +155,6 @@ class AspOptions:
     objective: tuple[str, ...] = ("units",)
     #: extra ASP programs as (name, text): user constraints and the like
     programs: list[tuple[str, str]] = field(default_factory=list)
-    #: extra encodings (names in encodings/) to load
-    encodings: list[str] = field(default_factory=list)
     time_limit: float | None = None
     #: clingo's --opt-strategy; None: the default of :func:`solver_args` (usc; a portfolio with threads > 1)
     opt_strategy: str | None = None
@@ -199,11 +197,10 @@ class AspOptions:
 
     @property
     def plain(self) -> bool:
-        """Is every tree of the grounded units an answer (no programs, encodings, substitutes, depth
+        """Is every tree of the grounded units an answer (no programs, substitutes, depth
         bound, human steps, alternatives or greedy retrieval)?"""
         return not (
             self.programs
-            or self.encodings
             or self.substitutes
             or self.heuristic
             or self.max_depth is not None

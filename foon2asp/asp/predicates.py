@@ -14,7 +14,7 @@ from functools import cache
 import clingo
 import clingo.ast
 
-from foon2asp.asp import encodings
+from foon2asp.asp import encoding_files
 from foon2asp.errors import escape
 
 #: a predicate: name and arity
@@ -124,10 +124,23 @@ def _parsed(text: str) -> Predicates | None:
         return None  # a syntax error, reported as an error where the program is checked
 
 
+def file_predicates(path: str) -> Predicates:
+    """The predicates the encoding file at ``path`` (with the files it includes) defines and uses."""
+    found = Predicates()
+    clingo.ast.parse_files([path], found.statement, logger=lambda code, msg: None)
+    return found
+
+
 @cache
 def shipped_predicates() -> dict[str, Predicates]:
-    """Each shipped encoding's :class:`Predicates`, by name (``tree``, ``units``, ...)."""
-    return {name: predicates(encodings.encoding(name)) for name in encodings.names()}
+    """Each shipped encoding part's :class:`Predicates` (with its includes), by name (``tree``, ``units``, ...)."""
+    return {name: file_predicates(encoding_files.part(name)) for name in encoding_files.parts()}
+
+
+#: the facts of the convenience flags (``encodings/parts/constraints.lp``): they only remove trees
+FLAGS: frozenset[Signature] = frozenset(
+    (name, 1) for name in ("forbid_motion", "forbid_object", "require_motion", "require_object", "max_units")
+)
 
 
 @cache
@@ -182,7 +195,7 @@ def rule_warnings(programs: Iterable[tuple[str, str]], defined: Iterable[Signatu
 def only_constraints(programs: Iterable[tuple[str, str]]) -> bool:
     """Do the user ``programs`` only remove trees (constraints, rules with heads of their own, nothing
     that changes the objective or the search)?"""
-    known = known_predicates()
+    known = known_predicates() - FLAGS
     for _, text in programs:
         found = _parsed(text)
         if found is None or found.defined & known or found.changes_search:
@@ -192,9 +205,20 @@ def only_constraints(programs: Iterable[tuple[str, str]]) -> bool:
 
 def checkable(programs: Iterable[tuple[str, str]]) -> bool:
     """Do the ``programs`` read only the facts, ``use/1`` and what they define themselves?"""
-    allowed = set(FACTS) | {("use", 1)}
+    allowed = set(FACTS) | FLAGS | {("use", 1)}
     for _, text in programs:
         found = _parsed(text)
         if found is None or not set(found.used) <= allowed | found.defined:
             return False
     return True
+
+
+def mentioned(programs: Iterable[tuple[str, str]]) -> set[str] | None:
+    """The names of the predicates the ``programs`` define or use (None: one cannot be parsed)."""
+    names: set[str] = set()
+    for _, text in programs:
+        found = _parsed(text)
+        if found is None:
+            return None
+        names.update(name for name, _ in (*found.defined, *found.used))
+    return names

@@ -10,7 +10,7 @@ from collections.abc import Iterable
 
 import clingo
 
-from foon2asp.asp import encodings
+from foon2asp.asp import encoding_files
 from foon2asp.asp.control import Control
 from foon2asp.asp.facts import OPTIONAL, fact_objects, facts, unit_ids
 from foon2asp.errors import InputError
@@ -79,11 +79,9 @@ def report(
         facts(problem, units=units, leave_out=OPTIONAL),
         "".join(f"goal({g}).\n" for g in goals),
         substitute_facts(problem, substitutes, units, cands=cands),
-        encodings.encoding("tree"),
-        encodings.encoding("substitutes"),
-        ":- unit(U), not use(U).\n",  # exactly the tree's units
     ]
     control = Control(["--opt-mode=opt"])
+    control.load(encoding_files.entry("find_substitutions"))  # exactly the tree's units
     control.add_all([("substitutions of a tree", "\n".join(program))])
     control.ground()
     chosen: list[tuple[int, int]] = []

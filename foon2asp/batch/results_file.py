@@ -93,7 +93,7 @@ def configuration(spec: BatchSpec) -> dict:
         "methods": list(spec.methods),
         "objective": list(o.objective),
         "constraints": [[name, _digest(text)] for name, text in o.programs],
-        "encodings": list(o.encodings),
+        "encodings": [],  # kept for results files written before every encoding was shipped
         "utensil_rule": spec.problem.utensil_rule,
         "time_limit": o.time_limit,
         "opt_strategy": o.opt_strategy,

@@ -1,4 +1,4 @@
-"""Methods: the one registry (ASP objectives and search baselines) and the goal runner.
+"""Methods: the one registry (ASP objectives and search baselines), the plan and the goal runner.
 
 Nothing below this package imports it: :mod:`foon2asp.asp` and
 :mod:`foon2asp.search` do not know they are registered here.

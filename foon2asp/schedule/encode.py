@@ -14,7 +14,7 @@ from typing import Any
 
 import clingo
 
-from foon2asp.asp import encodings
+from foon2asp.asp import encoding_files
 from foon2asp.asp.control import Control, remaining
 from foon2asp.asp.facts import q
 from foon2asp.asp.interrupts import signal_pending
@@ -132,6 +132,18 @@ def _priorities(levels: int, only: str | None = None) -> str:
     return both[only] if only else "".join(both.values())
 
 
+def _grounded(control: Control, job: Job, entry: str, parts: Sequence[tuple[str, str]]) -> Control:
+    """``control`` with the schedule's facts ``parts``, the schedule entry ``entry`` and, for joint
+    scheduling, the tree's encoding (``joint_tree.lp``) and facts, grounded."""
+    control.add_all(parts)
+    control.load(encoding_files.entry(entry))
+    if not job.fixed:
+        control.load(encoding_files.entry("joint_tree"))
+    control.add_all(job.tree_parts, user=job.user)
+    control.ground()
+    return control
+
+
 def _entries_of_steps(inst: Instance, atoms: Sequence[clingo.Symbol], scale: int) -> list[Entry]:
     """The schedule of a model: kinds and start steps, the agents dealt per kind."""
     kind: dict[int, str] = {}
@@ -162,14 +174,10 @@ def _steps_once(
     scale = divisor(inst)
     name = "schedule_order" if job.fixed and not _zeros(inst) else "schedule_steps"
     parts = [
-        (f"encodings/{name}.lp", encodings.encoding(name)),
         ("schedule facts", schedule_facts(inst, scale, windows, job.fixed, False, job.tail if job.fixed else None)),
         ("horizon", f"horizon({horizon // scale}).\nfloor({-(-floor // scale)}).\n" + _priorities(job.levels, only)),
-        *job.tree_parts,
     ]
-    control = Control(["--opt-mode=opt", *job.args])
-    control.add_all(parts, user=job.user)
-    control.ground()
+    control = _grounded(Control(["--opt-mode=opt", *job.args]), job, name, parts)
     best: dict[str, Any] = {}
 
     def on_model(model: clingo.Model) -> bool:
@@ -376,15 +384,12 @@ def solve_dl(job: Job, time_limit: float | None = None) -> Solution:
     theory: Any = ClingoDLTheory()
     windows = {u: (e, e) for u, e in job.head.items() if u in job.tail}
     parts = [
-        ("encodings/schedule_dl.lp", encodings.encoding("schedule_dl")),
         ("schedule facts", schedule_facts(inst, 1, windows, job.fixed, agents=True, tail=job.tail)),
         ("priorities", _priorities(job.levels)),
-        *job.tree_parts,
     ]
     control = Control(["--opt-mode=ignore", *job.args], theory=theory)
     left = clock(time_limit)
-    control.add_all(parts, user=job.user)
-    control.ground()
+    _grounded(control, job, "schedule_dl", parts)
     stats: dict[str, Any] = {"encoding": "dl"}
     conf: Any = control.ctl.configuration.solve
     conf.models = "1"

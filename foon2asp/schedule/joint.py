@@ -13,11 +13,11 @@ from typing import Any
 
 import clingo
 
-from foon2asp.asp import dominance, encodings, objectives
+from foon2asp.asp import dominance, encoding_files, objectives
 from foon2asp.asp.control import Control
 from foon2asp.asp.facts import OPTIONAL, facts
 from foon2asp.asp.objectives import neglog_sum
-from foon2asp.asp.options import OBJECTIVES, AspOptions
+from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule.encode import Job, used
@@ -55,19 +55,16 @@ def _dominance(problem: Problem, inst: Instance, ranked: tuple[str, ...]) -> str
 
 
 def tree_parts(problem: Problem, meal: tuple[int, ...], inst: Instance, options: AspOptions) -> list:
-    """The tree encoding, its objectives (priorities 1..n) and facts for the goals ``meal`` over
-    the units of ``inst``, as programs for joint scheduling."""
+    """The facts of the tree (``encodings/joint_tree.lp``), its objectives (priorities 1..n) for
+    the goals ``meal`` over the units of ``inst``, and the user's programs, for joint scheduling."""
     ranked = check_options(options)
     units = list(inst.units)
-    names = ["tree", *(OBJECTIVES[o] for o in ranked)]
-    parts = [(f"encodings/{n}.lp", encodings.encoding(n)) for n in dict.fromkeys(names)]
     n = len(ranked)
-    parts.append(("objective", "".join(f"objective({o},{n - i}).\n" for i, o in enumerate(ranked))))
+    parts = [("objective", "".join(f"objective({o},{n - i}).\n" for i, o in enumerate(ranked)))]
     if "inputs" in ranked:
         parts.append(("input nodes", objectives.input_node_facts(problem, units)))
     parts.append(("goal", "".join(f"goal({g}).\n" for g in meal)))
     if not options.programs:
-        parts.append(("encodings/dominance.lp", encodings.encoding("dominance")))
         parts.append(("dominated units", _dominance(problem, inst, ranked)))
     parts += list(options.programs)
     keep = {"neglog"} if "success" in ranked else set()
@@ -78,11 +75,18 @@ def tree_parts(problem: Problem, meal: tuple[int, ...], inst: Instance, options:
 #: the most designated trees listed at once
 MAX_TREES = 2000
 
-_TREES = ("encodings/schedule_trees.lp", encodings.encoding("schedule_trees"))
-
 #: a tree (sorted unit ids) and its designation: (object, its first maker) pairs, sorted
 #: (empty: each unit waits for the first maker of what it needs, whichever it is)
 Candidate = tuple[tuple[int, ...], tuple[tuple[int, int], ...]]
+
+
+def _listing(control: Control, listing: Job, entry: str) -> Control:
+    """``control`` with the tree's facts and programs, ``joint_tree.lp`` and the listing ``entry`` loaded."""
+    control.add_all(listing.tree_parts[:1])
+    control.load(encoding_files.entry("joint_tree"))
+    control.load(encoding_files.entry(entry))
+    control.add_all(listing.tree_parts[1:], user=listing.user)
+    return control
 
 
 def bound_facts(listing: Job) -> str:
@@ -99,13 +103,8 @@ def bound_facts(listing: Job) -> str:
 def candidate_trees(listing: Job, time_limit: float | None) -> tuple[list[Candidate], bool]:
     """The designated trees whose work fits the agents within the horizon and whose units can
     each end within it, at most :data:`MAX_TREES`; and whether they are all."""
-    parts = [
-        *listing.tree_parts,
-        ("encodings/schedule_first.lp", encodings.encoding("schedule_first")),
-        ("bounds", bound_facts(listing)),
-    ]
-    control = Control(["--opt-mode=ignore", "--models=0", *listing.args])
-    control.add_all(parts)
+    control = _listing(Control(["--opt-mode=ignore", "--models=0", *listing.args]), listing, "list_designations")
+    control.add_all([("bounds", bound_facts(listing))])
     control.ground()
     found: list[Candidate] = []
 
@@ -173,18 +172,19 @@ class Search:
         first tree is the best (one agent)."""
         m = len(listing.inst.agents)
         facts = bound_facts(listing)
-        order = f"#minimize {{ D@{levels + 1},U : use(U), work(U,D) }}.\n"
+        order = f"work_priority({levels + 1}).\n"
         seen: list[tuple[int, ...]] = []
         last: list[tuple[int, ...]] = []  # the trees of one solve
         while True:
             left = self.left()
             if left == 0.0:
                 return self.best, False
-            cuts = "".join(
-                ":- " + ", ".join(f"use({u})" for u in t) + f", #count {{ U : use(U) }} = {len(t)}.\n" for t in seen
+            listed = "".join(
+                f"listed_size({k},{len(t)}).\n" + "".join(f"listed({k},{u}).\n" for u in t)
+                for k, t in enumerate(seen, 1)
             )
-            control = Control(["--opt-mode=opt", *listing.args])
-            control.add_all([*listing.tree_parts, _TREES, ("bounds", facts), ("least work first", order + cuts)])
+            control = _listing(Control(["--opt-mode=opt", *listing.args]), listing, "list_trees")
+            control.add_all([("bounds", facts), ("least work first", order + listed)])
             control.ground()
             last.clear()
             if not control.solve(lambda model: last.append(used(model.symbols(shown=True))), left).finished:

@@ -139,7 +139,7 @@ class Rounds:
         """For ``session``: its levels from the Problem, or from the grounded atoms when user programs may add facts."""
         control = session.control
         options = session.options
-        if options.programs or options.encodings:
+        if options.programs:
             return cls(control, Levels.from_control(control.ctl))
         units = [a.symbol.arguments[0].number for a in control.ctl.symbolic_atoms.by_signature("unit", 1)]
         return cls(control, Levels.from_problem(session.problem, units))

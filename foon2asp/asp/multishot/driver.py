@@ -1,8 +1,9 @@
 """One goal on a grounded Session with the features beyond a single optimisation.
 
-Depth bounds, human steps, the K best trees, all optimal trees and greedy retrieval; each
-solve switches its externals off again, so the next goal starts clean (the further trees:
-docs/proofs/solving.md, "Alternatives").
+Depth bounds, human steps, the K best trees, all optimal trees and greedy retrieval, as the
+session's grounding (:class:`foon2asp.asp.grounding.Grounding`, decided by the plan) names
+them; each solve switches its externals off again, so the next goal starts clean (the further
+trees: docs/proofs/solving.md, "Alternatives").
 """
 
 from __future__ import annotations
@@ -21,18 +22,19 @@ from foon2asp.tree.tasktree import Goals, TaskTree, meal_of, measures
 
 
 class Driver:
-    """Solves goals on ``session`` according to its options."""
+    """Solves goals on ``session`` as its grounding says."""
 
     def __init__(self, session):
         self.session = session
         self.control = session.control
         self.options = session.options
         self.problem = session.problem
+        self.grounding = session.grounding
         self.ranked = objectives.ranked(self.options)
         #: "first" or "later" (depth is an objective at that place), "bound" (only --max-depth) or "none"
-        self.depth_mode = "none" if self.options.max_depth is None else "bound"
-        if "depth" in self.ranked:
-            self.depth_mode = "first" if self.ranked[0] == "depth" else "later"
+        self.depth_mode = self.grounding.depth
+        #: the canonical tree is searched after each level's optimum
+        self.canonical = self.grounding.canonical != "none"
         self.solves = 0
         self.last_stats: dict = {}
         #: "budget" when a search for the smallest optimal tree of the current goal did not end
@@ -59,7 +61,7 @@ class Driver:
             self.last_stats = control.stats()  # before the externals change: that resets them
             found = shot.answers
             settled = (mode == "opt" and shot.exhausted) or (mode == "optN" and bool(found) and found[0].proven)
-            if found and shot.finished and settled and self.options.canonical:
+            if found and shot.finished and settled and self.canonical:
                 # the canonical tree first, the others in id order
                 first, complete = canonicalise(control, found[0], deadline)
                 if not complete:
@@ -101,7 +103,7 @@ class Driver:
                 return shot(rounds.externals(goal, bound, True)), bound
             # no tree is shallower than the goal's level; the depth cost was off in that solve
             at = self.ranked.index("depth")
-            levels = len(self.ranked) + (self.options.human_steps is not None)
+            levels = len(self.ranked) + ("human_limit" in self.grounding.facts)
             first.answers = [
                 Answer(a.units, _with_depth(a.cost, at, tree_depth(a), levels), a.proven, a.human)
                 for a in first.answers
@@ -148,7 +150,7 @@ class Driver:
             return self._tree(goal, Answer((), (), True), "optimal", t0)
         if not all(self.control.has_atom(clingo.Function("reach", [clingo.Number(g)])) for g in meal):
             return self._tree(goal, None, "unreachable", t0)  # the grounder's fixpoint never derives a goal
-        if options.heuristic:
+        if self.grounding.greedy:
             return self._greedy(goal, deadline, t0, on_model)
         self.depth = depth_mod.DepthSearch()
         found, first, capped = self._levels(goal, deadline, on_model)
@@ -209,7 +211,7 @@ class Driver:
         stats = dict(self.last_stats, solves=self.solves)
         if answer is not None and self.canonical_search:
             stats["canonical_search"] = self.canonical_search
-        human = self.options.human_steps is not None
+        human = "human_limit" in self.grounding.facts
         elapsed = time.perf_counter() - t0
         tree = task_tree(self.problem, self.options.method, goal, status, answer, elapsed, stats, human)
         if answer is not None and bound is not None and self.depth_mode == "first":

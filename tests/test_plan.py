@@ -1,0 +1,247 @@
+"""The plan (methods/plan.py): one table over every kind of request, each row the route, the entry
+encoding, the facts and clingo's arguments the plan decides; and the plan carried out gives the
+answer the plan's route promises."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import pytest
+
+import foon2asp
+from foon2asp.asp.constraints import ConstraintSpec
+from foon2asp.asp.options import AspOptions
+from foon2asp.foon.substitutes import Substitute
+from foon2asp.methods.plan import ROUTES, plan, request
+from foon2asp.methods.runner import GoalRunner
+from foon2asp.tree.validate import validate
+
+
+@pytest.fixture(scope="module")
+def demo():
+    return foon2asp.load("demo")
+
+
+@dataclass
+class Row:
+    """One kind of request and what its plan must say."""
+
+    what: str
+    goal: str | tuple[str, ...]
+    route: str
+    method: str = "asp"
+    options: dict = field(default_factory=dict)
+    entry: str | None = None
+    facts: set[str] = field(default_factory=set)
+    no_facts: set[str] = field(default_factory=set)
+    args: set[str] = field(default_factory=set)
+    no_args: set[str] = field(default_factory=set)
+    shared: bool | None = None
+    depth: str | None = None
+    canonical: str | None = None
+    written: set[str] = field(default_factory=set)
+    grounding: str = "whole"
+    shortcuts: bool = True
+    free_first: bool = False
+
+
+SALAD, EGG, CREAM = "tomato salad", "scrambled egg", "whipped cream"
+DEFINES = [("--rule #1", 'fancy(U) :- use(U).\n:- fancy(U), motion(U,"chop").\n')]
+NO_CHOP = [("--rule #1", ':- use(U), motion(U,"chop").\n')]
+PREFERS = [("--rule #1", '#minimize { 1@5,U : use(U), motion(U,"chop") }.\n')]
+SUBS = (Substitute("salt", "pepper"),)
+
+TABLE = [
+    Row(
+        "units: a goal with choice",
+        SALAD,
+        "prepared",
+        entry="solve_closed",
+        facts={"problem", "preparation"},
+        no_facts={"dominated", "chain"},
+        args={"--heuristic=Domain"},
+        no_args={"--single-shot"},
+        canonical="hint",
+    ),
+    Row("units: the landmarks alone are a tree", EGG, "bounds"),
+    Row("units: no shortcuts, so clingo decides", EGG, "prepared", shortcuts=False, entry="solve_closed"),
+    Row("a goal the kitchen cannot make", CREAM, "fixpoint"),
+    Row(
+        "success: the weights are written",
+        SALAD,
+        "prepared",
+        options={"objective": ("success",)},
+        written={"neglog"},
+        entry="solve_closed",
+    ),
+    Row(
+        "inputs: the input nodes are written",
+        SALAD,
+        "prepared",
+        options={"objective": ("inputs",)},
+        facts={"input_nodes"},
+    ),
+    Row(
+        "cost: the motion costs are written",
+        SALAD,
+        "clingo",
+        options={"objective": ("cost",), "motion_costs": {"chop": 50}},
+        facts={"motion_costs", "chain"},
+        entry="solve",
+        shared=True,
+    ),
+    Row(
+        "depth first: rounds on the whole grounding",
+        SALAD,
+        "clingo",
+        options={"objective": ("depth",)},
+        entry="solve",
+        shared=True,
+        depth="first",
+        canonical="driver",
+    ),
+    Row("depth after units", SALAD, "clingo", options={"objective": ("units", "depth")}, depth="later"),
+    Row("a depth bound", SALAD, "clingo", options={"max_depth": 4}, depth="bound", facts={"chain"}),
+    Row(
+        "a meal: one tree for both goals",
+        (SALAD, EGG),
+        "clingo",
+        entry="solve",
+        shared=True,
+        facts={"dominated", "chain"},
+        no_facts={"goal"},
+        canonical="session",
+    ),
+    Row(
+        "a rule that only removes trees",
+        SALAD,
+        "prepared",
+        options={"programs": NO_CHOP},
+        entry="solve_prepared",
+        free_first=True,
+        no_args={"--heuristic=Domain"},
+        written={"motion"},
+    ),
+    Row(
+        "a rule that changes the objective",
+        SALAD,
+        "clingo",
+        options={"programs": PREFERS},
+        entry="solve",
+        written={"motion"},
+    ),
+    Row(
+        "a rule with a head of its own only removes trees",
+        SALAD,
+        "prepared",
+        options={"programs": DEFINES},
+        free_first=True,
+    ),
+    Row(
+        "a flag: its fact and the facts its rule reads",
+        SALAD,
+        "prepared",
+        options={"programs": ConstraintSpec(forbid_motion=("chop",)).programs()},
+        written={"motion"},
+        entry="solve_prepared",
+        free_first=True,
+    ),
+    Row("substitutes", SALAD, "clingo", options={"substitutes": SUBS}, facts={"substitutes", "dominated"}),
+    Row("the K best trees", SALAD, "clingo", options={"models": 2}, canonical="driver", no_facts={"dominated"}),
+    Row("every optimal tree", SALAD, "clingo", options={"all_optimal": True}, canonical="driver"),
+    Row(
+        "human steps",
+        SALAD,
+        "clingo",
+        options={"objective": ("success",), "human_steps": 1},
+        facts={"human_limit", "human_order"},
+        no_facts={"dominated"},
+    ),
+    Row(
+        "greedy retrieval",
+        SALAD,
+        "clingo",
+        method="asp-greedy-h1",
+        entry="solve_greedy",
+        facts={"ranks"},
+        no_facts={"chain"},
+        args={"--heuristic=Domain"},
+        canonical="none",
+    ),
+    Row(
+        "two threads",
+        SALAD,
+        "prepared",
+        options={"threads": 2},
+        entry="solve_prepared",
+        facts={"chain"},
+        no_args={"--single-shot"},
+        canonical="here",
+    ),
+    Row(
+        "per goal: the goal's part alone",
+        SALAD,
+        "clingo",
+        options={"objective": ("depth",)},
+        grounding="per-goal",
+        shared=False,
+        no_facts={"goal"},
+    ),
+    Row("a search baseline", SALAD, "search", method="gbfs-h1"),
+]
+
+
+@pytest.mark.parametrize("row", TABLE, ids=[row.what for row in TABLE])
+def test_the_plan_of_every_kind_of_request(demo, row: Row):
+    goal = tuple(demo.object_id(g) for g in row.goal) if isinstance(row.goal, tuple) else demo.object_id(row.goal)
+    options = AspOptions(**row.options)
+    req = request(row.method, demo.problem, options, row.grounding, row.shortcuts)
+    found = plan(req, goal)
+    assert found.route == row.route
+    assert found.proven_by == ROUTES[row.route]
+    g = found.grounding
+    if row.route in ("prepared", "clingo"):
+        assert g is not None
+        assert row.facts <= set(g.facts) and not (row.no_facts & set(g.facts)), g.facts
+        assert row.args <= set(g.args) and not (row.no_args & set(g.args)), g.args
+        assert not (row.written & set(g.leave_out)), g.leave_out
+        for name, value in (("entry", row.entry), ("depth", row.depth), ("canonical", row.canonical)):
+            if value is not None:
+                assert getattr(g, name) == value, name
+        if row.shared is not None:
+            assert found.shared == row.shared
+        assert (found.free_first is not None) == row.free_first
+        assert found.describe()["entry"] == f"encodings/{g.entry}.lp"
+    else:
+        assert g is None
+    if row.route == "bounds":
+        assert found.tree and set(found.tree) == set(found.landmarks)
+    # the plan is a value: asked again, the same decisions
+    again = plan(req, goal)
+    assert again.describe() == found.describe()
+
+
+@pytest.mark.parametrize("row", TABLE, ids=[row.what for row in TABLE])
+def test_a_plan_carried_out_answers_as_its_route_says(demo, row: Row):
+    goal = tuple(demo.object_id(g) for g in row.goal) if isinstance(row.goal, tuple) else demo.object_id(row.goal)
+    run = GoalRunner(row.method, demo.problem, AspOptions(**row.options), row.grounding, row.shortcuts)
+    tree = run(goal)
+    assert run.counts[row.route] == 1
+    if row.route == "fixpoint":
+        assert tree.status == "unreachable" and tree.proven_by == "fixpoint"
+        return
+    assert tree.has_tree
+    goals = goal if isinstance(goal, tuple) else (goal,)
+    for g in goals:
+        assert validate(demo.problem, g, list(tree.units)).valid
+    if row.route != "search" and row.method == "asp":
+        assert tree.status == "optimal" and tree.proven_by in ("clingo", "bounds", "only-tree")
+
+
+def test_the_bounds_route_answers_the_landmarks_and_names_them(demo):
+    run = GoalRunner("asp", demo.problem, AspOptions())
+    tree = run(demo.object_id(EGG))
+    assert tree.proven_by == "bounds" and tree.extra["landmarks"] == sorted(tree.units)
+    free = GoalRunner("asp", demo.problem, AspOptions(), shortcuts=False)(demo.object_id(EGG))
+    assert free.proven_by == "clingo" and sorted(free.units) == sorted(tree.units)
+    assert free.extra["asp_cost"] == tree.extra["asp_cost"]
