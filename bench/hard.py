@@ -37,10 +37,11 @@ sys.path.insert(0, str(ROOT))
 
 
 from foon2asp.asp.canonical import canonical_problem  # noqa: E402
-from foon2asp.asp.session import AspOptions, Session  # noqa: E402
+from foon2asp.asp.options import AspOptions  # noqa: E402
 from foon2asp.foon import goals as goals_mod  # noqa: E402
 from foon2asp.foon.loaders import Dataset  # noqa: E402
 from foon2asp.foon.problem import Problem  # noqa: E402
+from foon2asp.methods.plan import session_of as Session  # noqa: E402
 from synth import PRESETS, preset, shape  # noqa: E402
 
 #: a redundant constraint: a used unit must make something needed (the goal, or an input of a used unit)

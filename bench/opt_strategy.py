@@ -20,9 +20,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from foon2asp.asp.session import AspOptions, Session  # noqa: E402
+from foon2asp.asp.options import AspOptions  # noqa: E402
 from foon2asp.foon.loaders import Dataset  # noqa: E402
 from foon2asp.foon.problem import Problem  # noqa: E402
+from foon2asp.methods.plan import session_of as Session  # noqa: E402
 
 STRATEGIES = ("bb", "bb,hier", "usc", "usc,oll")
 #: each objective alone, then depth beside success and units
