@@ -4,6 +4,7 @@ answer the plan's route promises."""
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass, field
 
 import pytest
@@ -14,7 +15,9 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.foon.substitutes import Substitute
 from foon2asp.methods.plan import ROUTES, plan, request
 from foon2asp.methods.runner import GoalRunner
-from foon2asp.tree.validate import validate
+from foon2asp.tree.validate import bounds_proof, validate
+from helpers import brute_force
+from test_runner import OBJECTIVES, made_objects, optimum, random_foon, score
 
 
 @pytest.fixture(scope="module")
@@ -245,3 +248,65 @@ def test_the_bounds_route_answers_the_landmarks_and_names_them(demo):
     free = GoalRunner("asp", demo.problem, AspOptions(), shortcuts=False)(demo.object_id(EGG))
     assert free.proven_by == "clingo" and sorted(free.units) == sorted(tree.units)
     assert free.extra["asp_cost"] == tree.extra["asp_cost"]
+
+
+# --- the bounds route: against brute force, its witness re-verified, forged witnesses refused ---
+
+
+@pytest.mark.parametrize("objective", [*OBJECTIVES, ("inputs", "success")], ids=",".join)
+def test_the_bounds_route_against_brute_force_with_its_witness(objective):
+    """Over random small FOONs with real choice: every goal the bounds route settles has the
+    brute-force optimum, its landmarks verified by the checker; some goal takes the route unless
+    depth is an objective (a tree's depth is no sum of unit weights: more units may be shallower)."""
+    settled = 0
+    for seed in range(25):
+        problem = random_foon(seed)
+        run = GoalRunner("asp", problem, AspOptions(objective=objective))
+        for goal in made_objects(problem):
+            if run.route(goal) != "bounds":
+                continue
+            settled += 1
+            tree = run(goal)
+            assert tree.status == "optimal" and tree.proven_by == "bounds", (seed, goal)
+            assert score(problem, goal, tree.units, objective) == optimum(problem, goal, objective), (seed, goal)
+            marks = tree.extra["landmarks"]
+            assert bounds_proof(problem, goal, tree.units, marks) is None, (seed, goal)
+            # every landmark is in every tree, by brute force
+            assert all(set(marks) <= set(t) for t in brute_force(problem, goal)), (seed, goal)
+            # forged: one landmark left out, or a unit that is no landmark claimed
+            assert bounds_proof(problem, goal, tree.units, marks[:-1]) is not None
+            spare = [u for u in range(len(problem.units)) if u not in marks]
+            if spare:
+                assert bounds_proof(problem, goal, [*tree.units, spare[0]], [*marks, spare[0]]) is not None
+    assert (settled > 0) == ("depth" not in objective)
+
+
+def test_check_verifies_a_bounds_proof_and_refuses_a_forged_one(demo, tmp_path):
+    from helpers import run_cli
+
+    res = run_cli("solve", "--data", "demo", "--goal", EGG, "--format", "json")
+    assert res.exit_code == 0, res.output
+    (answer,) = json.loads(res.stdout)
+    assert answer["proven_by"] == "bounds" and sorted(answer["landmarks"]) == sorted(demo.solve(EGG).unit_ids)
+    good = tmp_path / "egg.json"
+    good.write_text(json.dumps([answer]))
+    res = run_cli("check", good, "--data", "demo", "--format", "json")
+    assert res.exit_code == 0, res.output
+    (verdict,) = json.loads(res.stdout)
+    assert verdict["proof"] == {"proven_by": "bounds", "verified": True, "problem": None}
+    assert verdict["optimum"]["proof"]["verified"] is True
+    for forged in (answer["landmarks"][:-1], [*answer["landmarks"], 0]):
+        bad = tmp_path / "forged.json"
+        bad.write_text(json.dumps([dict(answer, landmarks=forged)]))
+        res = run_cli("check", bad, "--data", "demo", "--format", "json")
+        assert res.exit_code == 1, res.output
+        (verdict,) = json.loads(res.stdout)
+        assert verdict["valid"] is True and verdict["proof"]["verified"] is False and verdict["proof"]["problem"]
+    # a tree clingo proved, passed off as settled by its landmarks: one of its units is no landmark
+    res = run_cli("solve", "--data", "demo", "--goal", SALAD, "--format", "json")
+    (salad,) = json.loads(res.stdout)
+    assert salad["proven_by"] == "clingo"
+    claimed = dict(salad, proven_by="bounds", landmarks=sorted(demo.solve(SALAD).unit_ids))
+    bad.write_text(json.dumps([claimed]))
+    res = run_cli("check", bad, "--data", "demo", "--format", "json")
+    assert res.exit_code == 1 and "is no landmark" in json.loads(res.stdout)[0]["proof"]["problem"]

@@ -20,6 +20,7 @@ from foon2asp.tree.outcomes import AloneReport, Report
 from foon2asp.tree.tasktree import Goals, meal_of, measures
 from foon2asp.tree.validate import (
     Finding,
+    bounds_proof,
     check_order,
     check_units,
     derivable_objects,
@@ -154,7 +155,13 @@ def check_tree(problem: Problem, tree: TreeFile, goal: Goals, derivable: Derivab
         validation, found = check_units(problem, goal, known, lambda u: describe_unit(problem, u, tree, ids))
         order_problem = check_order(problem, goal, known)
     valid = validation.valid and not unknown
-    return Report(tree, goal, ids, valid, found, validation, order_problem, measures(problem, goal, known))
+    found_report = Report(tree, goal, ids, valid, found, validation, order_problem, measures(problem, goal, known))
+    if tree.proven_by == "bounds":
+        why = bounds_proof(problem, goal, known, tree.landmarks or [])
+        if tree.landmarks is None:
+            why = "a bounds proof without its landmarks"
+        found_report.proof = {"proven_by": "bounds", "verified": why is None, "problem": why}
+    return found_report
 
 
 def tree_goal(

@@ -40,6 +40,7 @@ from foon2asp.methods.runner import solve_goals
 from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec
 from foon2asp.tree.outcomes import MealRow, QueryResult
 from foon2asp.tree.tasktree import meal_of
+from foon2asp.tree.validate import bounds_proof
 
 #: a goal as the API takes it: a label, an object's text, ``"#ID"``, an object id or a FoonObject
 GoalLike = str | int | FoonObject
@@ -276,7 +277,10 @@ class KnowledgeBase:
             meals = list(dict.fromkeys(key(r) for r in reports))
             best = dict(zip(meals, (t.raw for t in self.solve_iter(meals, "asp", solver))))
             for r in reports:
-                r.optimum = best[key(r)]
+                r.optimum = opt = best[key(r)]
+                if opt.proven_by == "bounds":  # its witness, checked without the solver
+                    why = bounds_proof(view(opt.meal), opt.goal, opt.units, opt.extra.get("landmarks", []))
+                    r.optimum_proof = {"proven_by": "bounds", "verified": why is None, "problem": why}
         found = [results.CheckReport(self, r) for r in reports]
         return found[0] if len(found) == 1 else found
 

@@ -98,7 +98,8 @@ def check(trees, data, goal, goals, fmt, optimum, spec, options):
         reports += [v.raw for v in found]
     click.echo(report.render("check", fmt, problem, reports), nl=False)
     answered = all(report.verdicts.answered(r) for r in reports)
-    sys.exit(0 if answered and all(v.valid for v in verdicts) else 1)
+    proofs = all((r.proof or {}).get("verified", True) for r in reports)  # a claimed proof that fails: 1
+    sys.exit(0 if answered and proofs and all(v.valid for v in verdicts) else 1)
 
 
 # ---------------------------------------------------------------- draw, merge, consolidate

@@ -43,6 +43,9 @@ class TreeFile:
     line: int | None = None  # where this tree starts (JSON lists hold several)
     #: what the reader skipped or merged (one line each, naming the file and the unit)
     warnings: list[str] = field(default_factory=list)
+    #: what a foon2asp result says proved it (``proven_by``), and the witness of a ``bounds`` proof
+    proven_by: str | None = None
+    landmarks: list[int] | None = None
 
     def where(self, tu: TreeUnit) -> str:
         return f"{self.path}:{tu.line}" if tu.line else f"{self.path} step {tu.step}"
@@ -157,7 +160,15 @@ def _read_json_tree(text: str, path: str, strict: bool = False) -> list[TreeFile
             TreeUnit(unit_from_json(u, path, f"unit {i}", line), i, None) for i, u in enumerate(result["units"], 1)
         ]
         method = result.get("method") if isinstance(result.get("method"), str) else None
-        trees.append(TreeFile(path, units, goal, method, line))
+        found = TreeFile(path, units, goal, method, line)
+        if isinstance(result.get("proven_by"), str):
+            found.proven_by = result["proven_by"]
+        marks = result.get("landmarks")
+        if marks is not None:
+            if not isinstance(marks, list) or not all(isinstance(u, int) and not isinstance(u, bool) for u in marks):
+                raise InputError("'landmarks' must be a list of unit ids (whole numbers)", path, line)
+            found.landmarks = marks
+        trees.append(found)
     if not trees:
         raise InputError("the JSON list holds no task tree", path, 1)
     return trees

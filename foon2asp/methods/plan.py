@@ -39,7 +39,7 @@ from foon2asp.asp.prepared import Preparation
 from foon2asp.asp.programs_check import ProgramsCheck
 from foon2asp.asp.session import Session
 from foon2asp.errors import InputError
-from foon2asp.foon.problem import Problem
+from foon2asp.foon.problem import Problem, least_fixpoint
 from foon2asp.methods.bounds import supports as bounds_supports
 from foon2asp.methods.parts import GROUNDINGS, Parts
 from foon2asp.methods.registry import check_substitutes, effective_options, get
@@ -260,9 +260,10 @@ def plan(req: Request, goal: Goals) -> Plan:
         return replace(base, route="only-tree", tree=tuple(units))
     free = req.free if req.constrained else req
     prep = preparation(free, g) if free.bounded else None
-    if req.shortcuts and prep is not None and prep.hint and set(prep.hint) == set(prep.landmarks):
-        if req.allows(prep.hint):  # the landmarks alone are a tree: no tree costs less
-            return replace(base, route="bounds", tree=prep.hint, landmarks=prep.landmarks)
+    if req.shortcuts:
+        marks = prep.landmarks if prep is not None else landmarks(free, g)
+        if makes(problem, g, marks) and req.allows(marks):  # the landmarks alone are a tree: no tree costs less
+            return replace(base, route="bounds", tree=marks, landmarks=marks)
     if req.checkable:
         first = replace(base, route="prepared", programs=(), grounding=_grounding(free, prep or preparation(free, g)))
         return replace(
@@ -298,8 +299,7 @@ def preparation(req: Request, goal: int) -> Preparation:
     parts = req.parts
     units, _, _ = parts.relevant(goal)
     if not req.bounded:
-        landmarks = parts.bounds_for(("units",), units).landmarks(goal)
-        return Preparation(goal, tuple(units), tuple(sorted(landmarks)))
+        return Preparation(goal, tuple(units), landmarks(req, goal))
     ranked = req.ranked
     bounds = parts.bounds_for(ranked, units)
     tree = bounds.tree(goal) or ()
@@ -324,6 +324,18 @@ def preparation(req: Request, goal: int) -> Preparation:
         floor=bounds.first_lower(goal),
         meets=meets if len(ranked) <= 2 else None,
     )
+
+
+def landmarks(req: Request, goal: int) -> tuple[int, ...]:
+    """The units every tree for ``goal`` uses (sorted)."""
+    units, _, _ = req.parts.relevant(goal)
+    return tuple(sorted(req.parts.bounds_for(("units",), units).landmarks(goal)))
+
+
+def makes(problem: Problem, goal: int, units: Iterable[int]) -> bool:
+    """Do ``units`` alone make ``goal`` from the kitchen?"""
+    made, _ = least_fixpoint(problem.kitchen, problem.required, problem.products, units)
+    return goal in made
 
 
 def explanations(req: Request, meal: tuple[int, ...]) -> list[tuple[str, Grounding]]:

@@ -92,13 +92,21 @@ def report_text(problem: Problem, report: Report) -> str:
             lines += _fire_lines(order, [ids.index(u) + 1 for u in v.stuck])
     if report.cost:
         lines.append(f"Size: {_cost_text(report.cost)}")
+    if report.proof is not None:
+        p = report.proof
+        lines.append(
+            "Proof: " + ("its landmarks prove it optimal (verified)" if p["verified"] else f"refused: {p['problem']}")
+        )
     opt = report.optimum
     if opt is not None:
         if opt.has_tree:
             diff = report.cost["units"] - opt.cost["units"]
             rel = "the optimum" if report.valid and diff == 0 else f"{diff:+d} units vs optimum" if report.valid else ""
+            by = ""
+            if report.optimum_proof is not None:  # proven by its landmarks, checked here again
+                by = ", proven by bounds: " + ("landmarks verified" if report.optimum_proof["verified"] else "refused")
             lines.append(
-                f"ASP optimum: {_cost_text(opt.cost)} ({opt.status})" + (f"; this tree is {rel}" if rel else "")
+                f"ASP optimum: {_cost_text(opt.cost)} ({opt.status}{by})" + (f"; this tree is {rel}" if rel else "")
             )
         else:
             why = ": no well-founded tree exists for this goal" if opt.status == "unreachable" else ""
@@ -133,8 +141,13 @@ def report_json(problem: Problem, report: Report) -> dict:
     }
     if report.substitutions is not None:
         out["substitutions"] = report.substitutions
+    if report.proof is not None:
+        out["proof"] = report.proof
     if report.optimum is not None:
         optimum: dict = {"status": report.optimum.status, "cost": report.optimum.cost}
+        optimum["proven_by"] = report.optimum.proven_by
+        if report.optimum_proof is not None:
+            optimum["proof"] = report.optimum_proof
         if "substitutions" in report.optimum.extra:
             optimum["substitutions"] = report.optimum.extra["substitutions"]
         out["optimum"] = optimum

@@ -137,6 +137,30 @@ def validate(problem: Problem, goal: FoonObject | int, units: list[int]) -> Vali
     return Validation(True, None, order)
 
 
+def bounds_proof(problem: Problem, goal: int, units: Iterable[int], landmarks: Iterable[int]) -> str | None:
+    """Why the ``bounds`` proof of a tree fails, or None when it holds.
+
+    The proof: every landmark is needed (without it, every other unit of the FOON fired, the
+    goal is not made), so every tree uses them all; the landmarks alone make the goal and are
+    the tree's units, so their cost is the tree's and no tree costs less."""
+    marks, tree = sorted(set(landmarks)), set(units)
+    stray = [u for u in marks if not 0 <= u < len(problem.units)]
+    if stray:
+        return f"landmark {stray[0]} is no unit of the FOON"
+    if set(marks) != tree:
+        extra, lacking = sorted(tree - set(marks)), sorted(set(marks) - tree)
+        what = f"units {extra} of the tree are no landmarks" if extra else f"landmarks {lacking} are not in the tree"
+        return f"the landmarks are not the tree's units ({what}): their cost is not the tree's"
+    if not validate(problem, goal, marks).valid:
+        return "the landmarks alone do not make the goal"
+    every = range(len(problem.units))
+    for u in marks:
+        fired = validate(problem, goal, [v for v in every if v != u]).order  # every other unit that can fire
+        if validate(problem, goal, fired).valid:
+            return f"unit {u} ({problem.units[u].motion}) is no landmark: the goal can be made without it"
+    return None
+
+
 @dataclass
 class Finding:
     """The first problem of an invalid tree."""
