@@ -15,7 +15,7 @@ import clingo
 import clingo.ast
 
 from foon2asp.asp.facts import q
-from foon2asp.asp.predicates import rule_warnings
+from foon2asp.asp.predicates import refuse_host_code, rule_warnings
 from foon2asp.errors import InputError
 
 #: ``<block>:LINE:COL[-COL]: error: text`` or ``FILE:LINE:...`` as clingo writes them
@@ -97,7 +97,9 @@ def clingo_error(messages: list[str], name: str) -> InputError:
 
 
 def check_syntax(name: str, text: str) -> None:
-    """Parse and ground ``text`` alone (grounding finds unsafe variables); a located InputError if clingo rejects it."""
+    """Parse and ground ``text`` alone (grounding finds unsafe variables); a located InputError if clingo
+    rejects it, or if it would run host code (:func:`~foon2asp.asp.predicates.refuse_host_code`)."""
+    refuse_host_code(name, text)
     messages: list[str] = []
     ctl = clingo.Control(["--warn=none"], logger=lambda code, msg: messages.append(msg), message_limit=20)
     try:
@@ -147,6 +149,8 @@ class ConstraintSpec:
         out = user_programs(self.files, self.rules)
         for name, text in out:
             check_syntax(name, text)
+        for name, text in self.extra:
+            refuse_host_code(name, text)
         for key, flag, make in _FLAGS:
             for value in getattr(self, key):
                 if not normalise(value):

@@ -18,6 +18,7 @@ import clingo.ast
 
 from foon2asp.asp.constraints import check_syntax, clingo_error
 from foon2asp.asp.interrupts import POLL_S, WATCHDOG, deferred_signals, signal_pending
+from foon2asp.asp.predicates import refuse_host_code
 from foon2asp.errors import InputError
 
 #: an atom no program has: a solve assuming it ends at once
@@ -111,6 +112,7 @@ class Control:
         """Add program ``text`` (called ``name`` in errors) to ``part``, whose parameters are ``params``."""
         self.messages.clear()
         if user:
+            refuse_host_code(name, text)
             self.user_programs.append((name, text))
         try:
             with deferred_signals():
