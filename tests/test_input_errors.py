@@ -116,6 +116,46 @@ def test_foon_file_that_is_a_directory_is_said_to_be_one(tmp_path, how):
     assert msg == f"foon2asp: error: {d / 'FOON.txt'}: FOON file is a directory, not a file"
 
 
+@pytest.mark.parametrize(
+    "name, what", [("FOON.txt", "FOON"), ("kitchen.json", "kitchen"), ("goal_nodes.json", "goals")]
+)
+def test_a_data_file_that_is_a_broken_link_is_named_as_one(tmp_path, name, what):
+    d = demo_copy(tmp_path, name)
+    (d / name).symlink_to(tmp_path / "moved" / name)
+    msg = one_line_error(run("solve", "--data", d, "--goals", "all"))
+    assert msg == f"foon2asp: error: {d / name}: {what} file is a broken link (to {tmp_path / 'moved' / name})"
+
+
+def test_a_goals_file_given_as_a_broken_link_is_named_as_one(tmp_path):
+    (tmp_path / "goals.json").symlink_to("elsewhere.json")
+    msg = one_line_error(run("solve", "--data", "demo", "--goals", tmp_path / "goals.json"))
+    assert msg == f"foon2asp: error: {tmp_path / 'goals.json'}: goals file is a broken link (to elsewhere.json)"
+
+
+def test_a_missing_goals_file_names_the_path_looked_for(tmp_path):
+    d = demo_copy(tmp_path, "goal_nodes.json")
+    msg = one_line_error(run("solve", "--data", d, "--goals", "all"))
+    assert msg == (
+        f"foon2asp: error: --goals all needs a goals file, and there is no {d / 'goal_nodes.json'} (give --goals FILE)"
+    )
+    res = run("solve", "--foon", d / "FOON.txt")
+    assert res.exit_code == 2
+    assert f"error: no goal given and no goals file (there is no {d / 'goal_nodes.json'})" in res.stderr
+    with pytest.raises(InputError, match="there is no .*goal_nodes.json"):
+        api.load(d).select_goals((), "all")
+
+
+@pytest.mark.parametrize("command", ["solve", "objects"])
+def test_a_data_folder_without_a_kitchen_says_how_to_go_without(tmp_path, command):
+    d = demo_copy(tmp_path, "kitchen.json")
+    msg = one_line_error(run(command, "--data", d, *(["--goal", "tomato salad"] if command == "solve" else [])))
+    flag = "--kitchen" if command == "solve" else "--kitchen-file"
+    assert msg.startswith(f"foon2asp: error: {d / 'kitchen.json'}: kitchen file not found in the data folder;")
+    assert f"{flag} leaves (every object no unit makes" in msg
+    res = run(command, "--data", d, flag, "leaves", *(["--goal", "tomato salad"] if command == "solve" else []))
+    assert res.exit_code == 0, res.output
+
+
 def test_data_directory_that_is_a_file_is_said_to_be_one(tmp_path):
     f = tmp_path / "FOON.txt"
     f.write_text(UNIT.format(state="S\tin\t[bowl]"))

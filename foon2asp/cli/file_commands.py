@@ -356,6 +356,12 @@ def objects(query, data, only, fmt, options):
         kb = data.load()
     except InputError as exc:
         key, _, looked_for = (exc.hint or "").partition("=")
+        if key == "kitchen-data":
+            raise InputError(
+                "kitchen file not found in the data folder; give --kitchen-file FILE, or --kitchen-file leaves"
+                " (every object no unit makes)",
+                exc.path,
+            ) from None
         if key != "kitchen":
             raise
         raise InputError(

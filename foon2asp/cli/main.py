@@ -117,15 +117,20 @@ def echo_now(text: str, status: GoalProgress | None = None, nl: bool = False) ->
 EXIT_INPUT, EXIT_INTERNAL, EXIT_SIGINT, EXIT_SIGTERM = 2, 3, 130, 143
 
 #: the library's error hints (:attr:`foon2asp.errors.InputError.hint`, ``KEY`` or ``KEY=VALUE``)
-#: worded with this command line's flags ({}: the hint's VALUE)
+#: worded with this command line's flags ({}: the hint's VALUE; ``KEY=`` is the wording when a VALUE is given)
 FLAG_WORDING = {
     "no-goal": "no goal given: use --goal TEXT or --goals FILE|all|all-objects",
     "goals-all": "--goals all needs a goals file (goal_nodes.json in --data DIR, or --goals FILE)",
+    "goals-all=": "--goals all needs a goals file, and there is no {} (give --goals FILE)",
     "no-goals-file": "no goal given and no goals file: use --goal TEXT, --goals FILE or --goals all-objects"
     " (goal_nodes.json beside the FOON is read when present)",
+    "no-goals-file=": "no goal given and no goals file (there is no {}): use --goal TEXT, --goals FILE"
+    " or --goals all-objects",
     "kitchen": "no kitchen.json beside the FOON file (looked for {});"
     " give --kitchen FILE, --kitchen leaves (every object no unit makes, e.g. for merged generated trees)"
     " or --data DIR (--data demo for the demo data)",
+    "kitchen-data": "kitchen file not found in the data folder; give --kitchen FILE, or --kitchen leaves"
+    " (every object no unit makes, e.g. for merged generated trees)",
     "motion-cost": "--objective cost needs --motion-cost FILE (a JSON object motion -> cost, or motion<TAB>cost lines)",
     "human-steps": "human steps only change the tree when 'success' is an objective (a person's step succeeds"
     " for sure); use --objective success or {}",
@@ -152,6 +157,8 @@ def report_exception(exc: BaseException, debug: bool = False) -> NoReturn:
         sys.exit(EXIT_SIGINT)
     if isinstance(exc, InputError):
         key, _, value = (exc.hint or "").partition("=")
+        if value and f"{key}=" in FLAG_WORDING:
+            key += "="
         if key in FLAG_WORDING:
             exc = InputError(FLAG_WORDING[key].format(value), exc.path, exc.line, exc.column)
         fail(str(exc))

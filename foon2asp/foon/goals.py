@@ -133,10 +133,12 @@ def default_goals(data: Dataset, problem: Problem) -> list[int]:
 
 
 def _file_goals(data: Dataset, problem: Problem, need: str, hint: str) -> list[int]:
-    """The ids of the goals file's entries; the error ``need`` (with ``hint``) without a goals file."""
+    """The ids of the goals file's entries; the error ``need`` (with ``hint``, and the path looked for
+    as ``hint=PATH``) without a goals file."""
     path = data.paths.get("goals")
     if path is None:
-        raise InputError(need, hint=hint)
+        looked = data.looked_for.get("goals")
+        raise InputError(need + (f" (there is no {looked})" if looked else ""), hint=f"{hint}={looked or ''}")
     return [goal_id(problem, obj, path, line) for obj, line in data.goals]
 
 
