@@ -42,9 +42,9 @@ def joined_lines(joined: dict[str, list[str]]) -> list[str]:
     opt.SCHEDULE,
 )
 def check(trees, data, goal, goals, fmt, optimum, spec, options):
-    """Check the task tree(s) in each TREE (FOON text with // between units, FOON JSON, foon2asp JSON,
-    the unit-list JSON of generated trees, or a plan for 'export pddl': '(action-name)' lines as Fast
-    Downward writes them); one report per tree.
+    """Check the task tree(s) in each TREE (FOON text with // between units, FOON JSON, foon2asp JSON
+    and the JSON lines of 'batch', the unit-list JSON of generated trees, or a plan for 'export pddl':
+    '(action-name)' lines as Fast Downward writes them); one report per tree.
 
     Without --data and --foon a tree is judged on its own: the kitchen is its leaves (or --kitchen
     FILE), the goal the products of its last unit (or --goal), and it is valid when every unit fires
