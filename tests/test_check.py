@@ -508,3 +508,25 @@ def test_a_foon_file_with_a_bad_line_is_still_located(tmp_path):
     path.write_text("O\ttomato\nS\twhole\nQ\twhat\n")
     res = cli("check", path)
     assert res.stderr.strip() == f"foon2asp: error: {path}:3: unknown line type 'Q\\twhat' (expected O, S, M, // or #)"
+
+
+def test_a_tree_whose_last_unit_makes_nothing_names_that_unit(tmp_path):
+    """Outputs without states, ingredients or container are no products: the goal cannot be told."""
+    units = json.loads(cli("solve", "--data", "demo", "--goal", "tomato salad", "--format", "units-json").stdout)
+    for unit in units:
+        for node in unit["input_nodes"] + unit["output_nodes"]:
+            node.update(states=[], ingredients=[], container=None)
+    path = tmp_path / "bare.json"
+    path.write_text("[\n" + ",\n".join(json.dumps(u) for u in units) + "\n]\n")
+    res = cli("check", path, "--data", "demo")
+    assert res.stderr.strip() == (
+        f"foon2asp: error: {path}: cannot tell which object is the goal of this tree (its last unit, step 4 at"
+        f" {path}:5 (mix), makes no object: it outputs tomato salad | spoon, with no states, ingredients or"
+        " container); use --goal TEXT or --goals FILE"
+    )
+    res = cli("check", path)  # on its own
+    assert res.exit_code == 1
+    assert (
+        "Problem: no goal: no unit makes an object; the last, step 4 (mix), outputs tomato salad | spoon, with no"
+        " states, ingredients or container"
+    ) in res.stdout

@@ -4,6 +4,7 @@ warning saying what it means."""
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -311,3 +312,33 @@ def test_a_foon_json_nested_too_deeply_is_named(tmp_path):
     assert err.value.path == str(foon)
     res = CliRunner().invoke(main, ["objects", "--foon", str(foon), "--kitchen", str(kitchen)])
     assert one_line_error(res) == f"foon2asp: error: {foon}: JSON nested too deeply"
+
+
+# ---- what messages echo ---------------------------------------------------------------
+
+
+def test_a_huge_label_is_echoed_clipped(tmp_path):
+    goals = tmp_path / "goals.json"
+    goals.write_text(json.dumps([{"label": "x" * 1_000_000, "states": ["y"]}]))
+    msg = one_line_error(run("solve", "--data", "demo", "--goals", goals))
+    assert msg == f"foon2asp: error: {goals}:1: goal {'x' * 200}... is not an object of the FOON"
+    msg = one_line_error(run("solve", "--data", "demo", "--goal", "x" * 100_000))
+    assert msg == f"foon2asp: error: no goal or FOON object labelled '{'x' * 200}...'"
+
+
+@pytest.mark.parametrize("char", ["\u202e", "\u2066", "\u200b", "\u200f", "\ufeff", "\u00ad"])
+def test_invisible_and_bidi_characters_are_shown_escaped(tmp_path, char):
+    goals = tmp_path / "goals.json"
+    goals.write_text(json.dumps([{"label": f"egg{char}abc", "states": ["y"]}], ensure_ascii=False))
+    shown = repr(char)[1:-1]  # the escape Python writes
+    msg = one_line_error(run("solve", "--data", "demo", "--goals", goals))
+    assert msg == f"foon2asp: error: {goals}:1: goal egg{shown}abc, y is not an object of the FOON; closest labels: egg"
+    msg = one_line_error(run("solve", "--data", "demo", "--goal", f"egg{char}abc"))
+    assert f"labelled 'egg{shown}abc'" in msg and char not in msg
+
+
+def test_every_message_is_one_clipped_line():
+    err = InputError("no such thing: " + "y" * 10_000 + "\u202e", "x" * 1000, 3)
+    text = str(err)
+    assert len(text) == len("x" * 200 + "...:3: ") + 2000 + len("...") and text.endswith("y...") and "\n" not in text
+    assert text.startswith("x" * 200 + "...:3: no such thing: y")

@@ -14,7 +14,7 @@ import click
 from tqdm import tqdm
 
 from foon2asp import api
-from foon2asp.errors import InputError, Terminated, escape
+from foon2asp.errors import InputError, Terminated, one_line
 
 #: exit codes, the same for every command (README "Exit codes")
 EXIT_CODES = """\b
@@ -36,7 +36,7 @@ def exit_code(answers: Iterable[tuple[str, Any]]) -> int:
 def warn_all(warnings: Iterable[str]) -> None:
     """Warnings about the input or the request, one line each on stderr."""
     for warning in warnings:
-        click.echo(f"foon2asp: warning: {escape(warning)}", err=True)
+        click.echo(f"foon2asp: warning: {one_line(warning)}", err=True)
 
 
 def solver_of(kb: api.KnowledgeBase, options: api.Options) -> Any:
@@ -138,7 +138,7 @@ FLAG_WORDING = {
 
 
 def fail(message: str, code: int = EXIT_INPUT) -> NoReturn:
-    click.echo(f"foon2asp: error: {escape(message)}", err=True)
+    click.echo(f"foon2asp: error: {one_line(message)}", err=True)
     sys.exit(code)
 
 
@@ -207,7 +207,7 @@ class Main(click.Group):
             usage = isinstance(exc, click.UsageError)
             hint = f" (see '{name} --help')" if usage else ""
             where = f"{ctx.info_name}: " if usage and ctx is not None and ctx.parent is not None else ""
-            click.echo(f"foon2asp: error: {where}{escape(message)}{hint}", err=True)
+            click.echo(f"foon2asp: error: {where}{one_line(message)}{hint}", err=True)
             sys.exit(exc.exit_code)
         except click.Abort as exc:
             report_exception(exc.__context__ if isinstance(exc.__context__, KeyboardInterrupt) else KeyboardInterrupt())
