@@ -11,6 +11,7 @@ import time
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from functools import cache
 from typing import Any
 
 import clingo
@@ -36,6 +37,24 @@ MODES: dict[str, tuple[str, str | None, str]] = {
 
 #: a part to ground: its name and its arguments
 Part = tuple[str, Sequence[int | clingo.Symbol]]
+
+
+@cache
+def option_names() -> tuple[str, ...]:
+    """clingo's long options that set its solver's configuration (``--configuration``,
+    ``--opt-strategy``, ...), each once, for suggestions."""
+    names: set[str] = set()
+    control = clingo.Control(logger=lambda code, message: None)  # kept while its configuration is read
+    stack = [control.configuration]
+    while stack:
+        config = stack.pop()
+        for key in config.keys or ():
+            value = getattr(config, key)
+            if isinstance(value, clingo.Configuration):
+                stack.append(value[0] if value.is_array and len(value) else value)
+            else:
+                names.add("--" + key.replace("_", "-"))
+    return tuple(sorted(names))
 
 
 def remaining(deadline: float | None) -> float | None:
