@@ -178,7 +178,7 @@ def schedules_body(records: list[dict], timed: bool = True) -> list[str]:
     ``timed``: then how long scheduling and drawing took."""
     draw.require_dot()
     started = time.perf_counter()
-    head = ["goal", "status", "makespan s", "list scheduling s", "lower bound s", "agents"]
+    head = ["goal", "status", "makespan s", "list scheduling s", "lower bound before the search s", "agents"]
     cells = [
         [
             gantt.goal_text(r),
