@@ -7,6 +7,7 @@ import ast
 import re
 import subprocess
 import sys
+import tomllib
 import zipfile
 from pathlib import Path
 
@@ -101,3 +102,20 @@ def test_api_modules_import_one_way():
         assert ready, f"an import cycle among foon2asp.api modules: {sorted(set(graph) - set(order))}"
         order += ready
     assert order[-1] == "__init__"
+
+
+def test_the_command_line_imports_the_library_only_through_its_api():
+    """No module of foon2asp.cli imports a module the import-linter contract forbids it (the
+    schedules among them): the command line is a front end of foon2asp.api."""
+    config = tomllib.loads((REPO / "pyproject.toml").read_text(encoding="utf-8"))
+    contracts = config["tool"]["importlinter"]["contracts"]
+    (contract,) = [c for c in contracts if c.get("source_modules") == ["foon2asp.cli"]]
+    forbidden = tuple(contract["forbidden_modules"])
+    assert "foon2asp.schedule" in forbidden and "foon2asp.asp" in forbidden
+    found = []
+    for path in (REPO / "foon2asp" / "cli").glob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names = [node.module or ""] if isinstance(node, ast.ImportFrom) else []
+            names += [a.name for a in node.names] if isinstance(node, ast.Import) else []
+            found += [(path.name, n) for n in names if n.startswith(forbidden)]
+    assert found == []
