@@ -5,11 +5,14 @@ from __future__ import annotations
 
 import ast
 import re
+import shutil
 import subprocess
 import sys
 import tomllib
 import zipfile
 from pathlib import Path
+
+import pytest
 
 from conftest import REPO
 
@@ -119,3 +122,46 @@ def test_the_command_line_imports_the_library_only_through_its_api():
             names += [a.name for a in node.names] if isinstance(node, ast.Import) else []
             found += [(path.name, n) for n in names if n.startswith(forbidden)]
     assert found == []
+
+
+MAKE = shutil.which("make")
+
+
+def system_deps(tmp_path, uid: int, *args: str) -> str:
+    """``make system-deps`` where neither ``dot`` nor ``chromium`` is found, ``id -u`` says ``uid``
+    and ``apt-get`` only says how it was called; its output."""
+    stubs = tmp_path / "bin"
+    stubs.mkdir(exist_ok=True)
+    for name, body in (("id", f"echo {uid}"), ("apt-get", 'echo "apt-get $*"')):
+        (stubs / name).write_text(f"#!/bin/sh\n{body}\n")
+        (stubs / name).chmod(0o755)
+    proc = subprocess.run(
+        [MAKE, "-s", "-C", str(REPO), "system-deps", *args],
+        env={"PATH": str(stubs)},
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert proc.returncode == 0, proc.stderr
+    return proc.stdout
+
+
+@pytest.mark.skipif(MAKE is None, reason="no make")
+def test_make_says_what_it_installs_and_why_before_it_does(tmp_path):
+    out = system_deps(tmp_path, 0).splitlines()
+    assert out == [
+        "make: installing graphviz chromium with apt-get, with their dependencies, for the tests that draw trees",
+        "make: (graphviz: 'dot' draws the trees and charts; chromium: measures the HTML pages' drawings)",
+        "make: to skip this: make test NO_SYSTEM_INSTALL=1",
+        "apt-get update -qq",
+        "apt-get install -y -qq graphviz",
+        "apt-get install -y -qq chromium",
+    ]
+
+
+@pytest.mark.skipif(MAKE is None, reason="no make")
+def test_make_installs_nothing_when_told_or_not_root(tmp_path):
+    out = system_deps(tmp_path, 0, "NO_SYSTEM_INSTALL=1")
+    assert out == "make: not installing graphviz chromium (NO_SYSTEM_INSTALL is set): the tests that need them skip\n"
+    out = system_deps(tmp_path, 1000)
+    assert out == "make: not installing graphviz chromium (needs root and apt-get): the tests that need them skip\n"
