@@ -4,17 +4,36 @@ VENV   ?= .venv
 BIN     = $(VENV)/bin
 SHARED ?= ../shared
 
-.PHONY: install install-demo demo test lint shell bench bench-hard clean fuzz
+.PHONY: install install-demo system-deps demo test lint shell bench bench-hard clean fuzz
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/pip install -q --upgrade pip
 
-install: $(BIN)/python
+install: $(BIN)/python system-deps
 	$(BIN)/pip install -q ".[test]"
-	@# Graphviz draws trees, Chromium checks the HTML report; installed when root with apt-get, else tests skip
-	@command -v dot >/dev/null || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && apt-get update -qq && apt-get install -y -qq graphviz; } || true
-	@command -v chromium >/dev/null || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && { apt-get install -y -qq chromium || { apt-get update -qq && apt-get install -y -qq chromium; }; }; } || true
+
+# Graphviz's `dot` (drawings) and Chromium (measures the HTML pages' drawings) for the tests that
+# need them: when one is missing and make runs as root with apt-get, the Debian packages graphviz
+# and chromium are installed (with their dependencies), said first; NO_SYSTEM_INSTALL=1 skips it.
+# Without them those tests skip.
+NO_SYSTEM_INSTALL ?=
+system-deps:
+	@missing=""; \
+	command -v dot >/dev/null || missing=" graphviz"; \
+	command -v chromium >/dev/null || command -v chromium-browser >/dev/null || missing="$$missing chromium"; \
+	if [ -z "$$missing" ]; then exit 0; fi; \
+	if [ -n "$(NO_SYSTEM_INSTALL)" ]; then \
+		echo "make: not installing$$missing (NO_SYSTEM_INSTALL is set): the tests that need them skip"; exit 0; fi; \
+	if [ "$$(id -u)" != 0 ] || ! command -v apt-get >/dev/null; then \
+		echo "make: not installing$$missing (needs root and apt-get): the tests that need them skip"; exit 0; fi; \
+	echo "make: installing$$missing with apt-get, with their dependencies, for the tests that draw trees"; \
+	echo "make: (graphviz: 'dot' draws the trees and charts; chromium: measures the HTML pages' drawings)"; \
+	echo "make: to skip this: make test NO_SYSTEM_INSTALL=1"; \
+	export DEBIAN_FRONTEND=noninteractive; apt-get update -qq || true; \
+	for package in $$missing; do \
+		apt-get install -y -qq $$package || echo "make: apt-get could not install $$package: the tests that need it skip"; \
+	done
 
 # the demo needs only the package itself
 install-demo: $(BIN)/python

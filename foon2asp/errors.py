@@ -8,18 +8,45 @@ import re
 #: split lines), DEL, lone surrogates, the Unicode line and paragraph separators
 BAD_CHAR = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f\u2028\u2029\ud800-\udfff]")
 
-#: what :func:`escape` rewrites: the bad characters and the line ends
-_SHOWN = re.compile("[\x00-\x1f\x7f-\x9f\u2028\u2029\ud800-\udfff]")
+#: what :func:`escape` rewrites: the bad characters, the line ends, and the characters that are
+#: invisible or reorder the text around them (soft hyphen, zero-width characters, bidirectional
+#: marks, embeddings, overrides and isolates, word joiners, the byte-order mark, tags)
+_SHOWN = re.compile(
+    "[\x00-\x1f\x7f-\x9f\xad\u061c\u180e\u200b-\u200f\u2028-\u202e\u2060-\u206f\ud800-\udfff"
+    "\ufeff\ufff9-\ufffb\U000e0000-\U000e007f]"
+)
+
+#: the most characters of a value a message echoes (:func:`shown`), and of a whole message
+MAX_ECHO = 200
+MAX_MESSAGE = 2000
 
 
 def escape(text: str) -> str:
-    """``text`` with control, separator and surrogate characters shown as escapes (``\\x0b``, ``\\u2028``)."""
+    """``text`` with control, separator, surrogate, invisible and bidirectional characters shown as
+    escapes (``\\x0b``, ``\\u2028``, ``\\u202e``)."""
 
     def one(m: re.Match) -> str:
         c = ord(m.group(0))
-        return f"\\x{c:02x}" if c < 0x100 else f"\\u{c:04x}"
+        return f"\\x{c:02x}" if c < 0x100 else f"\\u{c:04x}" if c < 0x10000 else f"\\U{c:08x}"
 
     return _SHOWN.sub(one, text)
+
+
+def clip(text: str, keep: int = MAX_ECHO) -> str:
+    """``text`` cut to its first ``keep`` characters, ``...`` added when it was longer."""
+    return text if len(text) <= keep else text[:keep] + "..."
+
+
+def shown(value: object, keep: int = MAX_ECHO) -> str:
+    """A value a message echoes: quoted as ``repr`` quotes it, at most ``keep`` characters (then
+    ``...``), every invisible or control character escaped."""
+    return escape(repr(clip(str(value), keep)))
+
+
+def one_line(text: str) -> str:
+    """A message as one line: line ends as spaces, characters escaped (:func:`escape`), at most
+    :data:`MAX_MESSAGE` characters."""
+    return clip(escape(text.replace("\r\n", " ").replace("\n", " ")), MAX_MESSAGE)
 
 
 def char_name(ch: str) -> str:
@@ -60,13 +87,13 @@ class InputError(Exception):
     def __str__(self) -> str:
         where = ""
         if self.path is not None:
-            where = escape(str(self.path))
+            where = escape(clip(str(self.path)))
             if self.line is not None:
                 where += f":{self.line}"
                 if self.column is not None:
                     where += f":{self.column}"
             where += ": "
-        return where + escape(self.message.replace("\r\n", " ").replace("\n", " "))
+        return where + one_line(self.message)
 
 
 class Terminated(KeyboardInterrupt):

@@ -441,3 +441,92 @@ def test_a_meal_with_an_unreachable_dish(tmp_path):
         both.exit_code == 1
         and "Problem: no tree to check, but tomato salad, mixed, in [bowl] is derivable" in both.stdout
     )
+
+
+# ---------------------------------------------------------------- files check reads, and those it does not
+
+
+def test_check_reads_the_results_of_batch_and_judges_each_tree(tmp_path):
+    results = tmp_path / "results.jsonl"
+    res = cli("batch", "--data", "demo", "--goals", "all", "--methods", "asp,gbfs-h2", "--output", results)
+    assert res.exit_code == 1, res.output  # gbfs-h2's egg is invalid
+    lines = results.read_text().splitlines()
+    assert len(lines) == 9 and '"foon2asp_results"' in lines[0]
+    res = cli("check", results, "--data", "demo", "--format", "json")
+    assert res.exit_code == 1, res.output
+    reports = json.loads(res.stdout)
+    records = [json.loads(line) for line in lines[1:]]
+    assert len(reports) == len(records) == 8
+    for report, record in zip(reports, records):
+        assert report["goal"]["label"] == record["goal"]["label"]
+        assert report["method"] == record["method"]
+        if record["units"]:
+            assert report["valid"] == record["valid"], (report, record)
+        else:
+            assert (report["valid"], report["problem"]) == (None, "unreachable")
+    res = cli("check", results, "--data", "demo")
+    assert f"Tree: {results} (line 2)  method asp-units" in res.stdout
+
+
+def test_a_cut_line_of_a_results_file_is_located(tmp_path):
+    results = tmp_path / "results.jsonl"
+    assert cli("batch", "--data", "demo", "--goals", "all", "--output", results).exit_code == 0
+    text = results.read_text()
+    results.write_text(text[: len(text) - 40])  # the last line cut short
+    res = cli("check", results, "--data", "demo")
+    assert res.exit_code == 2
+    assert res.stderr.startswith(f"foon2asp: error: {results}:5:") and "bad JSON" in res.stderr
+
+
+@pytest.mark.parametrize(
+    "name, text, seems",
+    [
+        ("domain.pddl", "; written by foon2asp export pddl\n(define (domain foon)\n", "a PDDL domain or problem"),
+        ("chart.svg", '<?xml version="1.0"?>\n<svg width="10pt"></svg>\n', "an SVG, HTML or XML document"),
+        ("summary.csv", "method,results,statuses\nasp,4,optimal=2\n", "a CSV table"),
+        ("plan.txt", "(u3-chop)\n; cost = 1 (unit cost)\n", "a plan (checked with --data or --foon"),
+        ("notes.txt", "Remember to buy eggs.\n", None),
+    ],
+)
+def test_a_file_check_does_not_read_gets_the_formats_it_reads(tmp_path, name, text, seems):
+    path = tmp_path / name
+    path.write_text(text)
+    res = cli("check", path)
+    assert res.exit_code == 2
+    (line,) = res.stderr.splitlines()
+    assert line.startswith(f"foon2asp: error: {path}: not a task tree")
+    assert (f"not a task tree: {seems}" in line) if seems else ("not a task tree; check reads" in line)
+    assert line.endswith(
+        "check reads FOON text, FOON JSON, foon2asp JSON ('solve --format json', 'batch' results), the unit lists"
+        " of generated trees ('solve --format units-json'), plans for 'export pddl' (with --data or --foon) and"
+        " schedules ('schedule --format json')"
+    )
+
+
+def test_a_foon_file_with_a_bad_line_is_still_located(tmp_path):
+    path = tmp_path / "tree.txt"
+    path.write_text("O\ttomato\nS\twhole\nQ\twhat\n")
+    res = cli("check", path)
+    assert res.stderr.strip() == f"foon2asp: error: {path}:3: unknown line type 'Q\\twhat' (expected O, S, M, // or #)"
+
+
+def test_a_tree_whose_last_unit_makes_nothing_names_that_unit(tmp_path):
+    """Outputs without states, ingredients or container are no products: the goal cannot be told."""
+    units = json.loads(cli("solve", "--data", "demo", "--goal", "tomato salad", "--format", "units-json").stdout)
+    for unit in units:
+        for node in unit["input_nodes"] + unit["output_nodes"]:
+            node.update(states=[], ingredients=[], container=None)
+    path = tmp_path / "bare.json"
+    path.write_text("[\n" + ",\n".join(json.dumps(u) for u in units) + "\n]\n")
+    res = cli("check", path, "--data", "demo")
+    assert res.stderr.strip() == (
+        f"foon2asp: error: {path}: cannot tell which object is the goal of this tree (its last unit, step 4 at"
+        f" {path}:5 (mix), makes no object: it outputs tomato salad | spoon, with no states, ingredients or"
+        " container); use --goal TEXT or --goals FILE"
+    )
+    res = cli("check", path)  # on its own
+    assert res.exit_code == 1
+    assert (
+        "Problem: no goal: no unit makes an object; the last, step 4 (mix), outputs tomato salad | spoon, with no"
+        " states, ingredients or container"
+    ) in res.stdout

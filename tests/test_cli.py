@@ -299,6 +299,9 @@ def test_clingo_options_go_to_clingo_replacing_foon2asps_own():
     [
         ("solve", "--nonsense=3", ["No such option '--nonsense' (not foon2asp's, not clingo's)."]),
         ("solve", "--goall", ["No such option '--goall'", "Did you mean '--goal' or '--goals'?"]),
+        ("solve", "--configuraton=crafty", ["No such option '--configuraton'", "Did you mean '--configuration'?"]),
+        ("batch", "--opt-strategi=usc", ["No such option '--opt-strategi'", "Did you mean '--opt-strategy'?"]),
+        ("schedule", "--heuristik=Domain", ["No such option '--heuristik'", "Did you mean '--heuristic'?"]),
         ("solve", "--configuration=no-such-file", ["clingo option '--configuration=no-such-file'"]),
         ("schedule", "--nonsense=3", ["No such option '--nonsense'"]),
         ("batch", "--nonsense=3", ["No such option '--nonsense'"]),

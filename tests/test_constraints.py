@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
+import io
 import itertools
 import json
+import os
 import random
+import subprocess
+import sys
+from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
@@ -15,7 +20,7 @@ from foon2asp.cli.main import main
 from foon2asp.errors import InputError
 from foon2asp.methods.plan import session_of as Session
 from foon2asp.tree.validate import validate
-from helpers import best, brute_force, build, file_error, goal_id, obj
+from helpers import REPO, best, brute_force, build, file_error, goal_id, obj
 
 MOTIONS = ("cut", "mix", "heat")
 LABELS = "abcdefg"
@@ -359,3 +364,58 @@ def test_constraint_on_labels_still_sees_labels():
     # brute force agrees: unit 0 alone is the one smallest tree, and it has the knife
     size, trees = best(problem, goal, lambda m: m["units"])
     assert size == 1 and trees == [(0,)]
+
+
+# ---------------------------------------------------------------- programs from pipes and standard input
+
+FOON2ASP = str(Path(sys.executable).parent / "foon2asp")
+NO_CHOP = ':- use(U), motion(U,"chop").'
+SALAD = ["solve", "--data", "demo", "--goal", "tomato salad"]
+
+
+def shell(command: str, stdin: str | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run(["bash", "-c", command], input=stdin, capture_output=True, text=True, timeout=120, cwd=REPO)
+
+
+def test_a_constraint_file_from_a_pipe_is_read():
+    res = shell(f"{FOON2ASP} {' '.join(SALAD[:3])} --goal 'tomato salad' --constraint <(echo '{NO_CHOP}')")
+    assert res.returncode == 0, res.stderr
+    assert "(units 5," in res.stdout  # without chop: slice and dice
+
+
+@pytest.mark.parametrize("command", [[*SALAD, "--constraint", "-"], ["query", "-", "--data", "demo"]])
+def test_a_program_from_standard_input_is_read(command):
+    program = NO_CHOP if command[0] == "solve" else "#show count(N) : N = #count { U : unit(U) }."
+    res = subprocess.run([FOON2ASP, *command], input=program, capture_output=True, text=True, timeout=120)
+    assert res.returncode == 0, res.stderr
+    assert ("(units 5," in res.stdout) if command[0] == "solve" else ("count(18)" in res.stdout)
+
+
+def test_standard_input_is_read_once_and_named_in_errors(monkeypatch):
+    monkeypatch.setattr(constraints, "_STREAMS", {})
+    monkeypatch.setattr("sys.stdin", io.TextIOWrapper(io.BytesIO(b':- use(U), motion(U,"chop") x.\n')))
+    spec = constraints.ConstraintSpec(files=("-",))
+    with pytest.raises(InputError) as err:
+        spec.programs()
+    assert str(err.value).startswith("-:1: syntax error")
+    assert constraints.read_file("-") == ':- use(U), motion(U,"chop") x.\n'  # read once, remembered
+
+
+def test_a_pipe_is_read_once_and_remembered(monkeypatch):
+    monkeypatch.setattr(constraints, "_STREAMS", {})
+    read, write = os.pipe()
+    os.write(write, NO_CHOP.encode())
+    os.close(write)
+    try:
+        path = f"/dev/fd/{read}"
+        spec = constraints.ConstraintSpec(files=(path,))
+        assert spec.programs() == spec.programs() == [(path, NO_CHOP)]
+    finally:
+        os.close(read)
+
+
+def test_a_constraint_file_that_is_a_broken_link_is_named_so(tmp_path):
+    (tmp_path / "rules.lp").symlink_to(tmp_path / "gone.lp")
+    with pytest.raises(InputError) as err:
+        constraints.ConstraintSpec(files=(str(tmp_path / "rules.lp"),)).programs()
+    assert str(err.value) == f"{tmp_path / 'rules.lp'}: constraint file is a broken link (to {tmp_path / 'gone.lp'})"

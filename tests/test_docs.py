@@ -262,3 +262,22 @@ def test_every_block_names_its_language():
 def test_pages_are_found():
     assert (REPO / "README.md") in PAGES and len(PAGES) > 5
     assert len(RUN) > 50
+
+
+def test_no_two_pages_write_the_same_results_file():
+    """A reader who runs the pages one after the other in one folder never meets "results file
+    exists": each results file a page's `batch` writes is written by no other page."""
+    writers: dict[str, set[str]] = {}
+    for page, _, example in EXAMPLES:
+        if example.region.evaluator is not run_console:
+            continue
+        for command, _ in commands(str(example.parsed)):
+            for line in command.split("|")[0].split("&&"):
+                words = line.split()
+                if "batch" in words and "--resume" not in words:
+                    for flag in ("--output", "-o"):
+                        if flag in words:
+                            writers.setdefault(words[words.index(flag) + 1].rstrip(";"), set()).add(page.name)
+    shared = {name: sorted(pages) for name, pages in writers.items() if len(pages) > 1}
+    assert shared == {}
+    assert len(writers) >= 5  # the check sees the batches of the pages

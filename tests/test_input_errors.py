@@ -4,6 +4,7 @@ warning saying what it means."""
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -114,6 +115,46 @@ def test_foon_file_that_is_a_directory_is_said_to_be_one(tmp_path, how):
     (d / "FOON.txt").mkdir()
     msg = one_line_error(run("solve", how, d if how == "--data" else d / "FOON.txt", "--goal", "tomato salad"))
     assert msg == f"foon2asp: error: {d / 'FOON.txt'}: FOON file is a directory, not a file"
+
+
+@pytest.mark.parametrize(
+    "name, what", [("FOON.txt", "FOON"), ("kitchen.json", "kitchen"), ("goal_nodes.json", "goals")]
+)
+def test_a_data_file_that_is_a_broken_link_is_named_as_one(tmp_path, name, what):
+    d = demo_copy(tmp_path, name)
+    (d / name).symlink_to(tmp_path / "moved" / name)
+    msg = one_line_error(run("solve", "--data", d, "--goals", "all"))
+    assert msg == f"foon2asp: error: {d / name}: {what} file is a broken link (to {tmp_path / 'moved' / name})"
+
+
+def test_a_goals_file_given_as_a_broken_link_is_named_as_one(tmp_path):
+    (tmp_path / "goals.json").symlink_to("elsewhere.json")
+    msg = one_line_error(run("solve", "--data", "demo", "--goals", tmp_path / "goals.json"))
+    assert msg == f"foon2asp: error: {tmp_path / 'goals.json'}: goals file is a broken link (to elsewhere.json)"
+
+
+def test_a_missing_goals_file_names_the_path_looked_for(tmp_path):
+    d = demo_copy(tmp_path, "goal_nodes.json")
+    msg = one_line_error(run("solve", "--data", d, "--goals", "all"))
+    assert msg == (
+        f"foon2asp: error: --goals all needs a goals file, and there is no {d / 'goal_nodes.json'} (give --goals FILE)"
+    )
+    res = run("solve", "--foon", d / "FOON.txt")
+    assert res.exit_code == 2
+    assert f"error: no goal given and no goals file (there is no {d / 'goal_nodes.json'})" in res.stderr
+    with pytest.raises(InputError, match="there is no .*goal_nodes.json"):
+        api.load(d).select_goals((), "all")
+
+
+@pytest.mark.parametrize("command", ["solve", "objects"])
+def test_a_data_folder_without_a_kitchen_says_how_to_go_without(tmp_path, command):
+    d = demo_copy(tmp_path, "kitchen.json")
+    msg = one_line_error(run(command, "--data", d, *(["--goal", "tomato salad"] if command == "solve" else [])))
+    flag = "--kitchen" if command == "solve" else "--kitchen-file"
+    assert msg.startswith(f"foon2asp: error: {d / 'kitchen.json'}: kitchen file not found in the data folder;")
+    assert f"{flag} leaves (every object no unit makes" in msg
+    res = run(command, "--data", d, flag, "leaves", *(["--goal", "tomato salad"] if command == "solve" else []))
+    assert res.exit_code == 0, res.output
 
 
 def test_data_directory_that_is_a_file_is_said_to_be_one(tmp_path):
@@ -271,3 +312,33 @@ def test_a_foon_json_nested_too_deeply_is_named(tmp_path):
     assert err.value.path == str(foon)
     res = CliRunner().invoke(main, ["objects", "--foon", str(foon), "--kitchen", str(kitchen)])
     assert one_line_error(res) == f"foon2asp: error: {foon}: JSON nested too deeply"
+
+
+# ---- what messages echo ---------------------------------------------------------------
+
+
+def test_a_huge_label_is_echoed_clipped(tmp_path):
+    goals = tmp_path / "goals.json"
+    goals.write_text(json.dumps([{"label": "x" * 1_000_000, "states": ["y"]}]))
+    msg = one_line_error(run("solve", "--data", "demo", "--goals", goals))
+    assert msg == f"foon2asp: error: {goals}:1: goal {'x' * 200}... is not an object of the FOON"
+    msg = one_line_error(run("solve", "--data", "demo", "--goal", "x" * 100_000))
+    assert msg == f"foon2asp: error: no goal or FOON object labelled '{'x' * 200}...'"
+
+
+@pytest.mark.parametrize("char", ["\u202e", "\u2066", "\u200b", "\u200f", "\ufeff", "\u00ad"])
+def test_invisible_and_bidi_characters_are_shown_escaped(tmp_path, char):
+    goals = tmp_path / "goals.json"
+    goals.write_text(json.dumps([{"label": f"egg{char}abc", "states": ["y"]}], ensure_ascii=False))
+    shown = repr(char)[1:-1]  # the escape Python writes
+    msg = one_line_error(run("solve", "--data", "demo", "--goals", goals))
+    assert msg == f"foon2asp: error: {goals}:1: goal egg{shown}abc, y is not an object of the FOON; closest labels: egg"
+    msg = one_line_error(run("solve", "--data", "demo", "--goal", f"egg{char}abc"))
+    assert f"labelled 'egg{shown}abc'" in msg and char not in msg
+
+
+def test_every_message_is_one_clipped_line():
+    err = InputError("no such thing: " + "y" * 10_000 + "\u202e", "x" * 1000, 3)
+    text = str(err)
+    assert len(text) == len("x" * 200 + "...:3: ") + 2000 + len("...") and text.endswith("y...") and "\n" not in text
+    assert text.startswith("x" * 200 + "...:3: no such thing: y")

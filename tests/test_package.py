@@ -5,10 +5,14 @@ from __future__ import annotations
 
 import ast
 import re
+import shutil
 import subprocess
 import sys
+import tomllib
 import zipfile
 from pathlib import Path
+
+import pytest
 
 from conftest import REPO
 
@@ -160,3 +164,63 @@ def test_api_modules_import_one_way():
         assert ready, f"an import cycle among foon2asp.api modules: {sorted(set(graph) - set(order))}"
         order += ready
     assert order[-1] == "__init__"
+
+
+def test_the_command_line_imports_the_library_only_through_its_api():
+    """No module of foon2asp.cli imports a module the import-linter contract forbids it (the
+    schedules among them): the command line is a front end of foon2asp.api."""
+    config = tomllib.loads((REPO / "pyproject.toml").read_text(encoding="utf-8"))
+    contracts = config["tool"]["importlinter"]["contracts"]
+    (contract,) = [c for c in contracts if c.get("source_modules") == ["foon2asp.cli"]]
+    forbidden = tuple(contract["forbidden_modules"])
+    assert "foon2asp.schedule" in forbidden and "foon2asp.asp" in forbidden
+    found = []
+    for path in (REPO / "foon2asp" / "cli").glob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names = [node.module or ""] if isinstance(node, ast.ImportFrom) else []
+            names += [a.name for a in node.names] if isinstance(node, ast.Import) else []
+            found += [(path.name, n) for n in names if n.startswith(forbidden)]
+    assert found == []
+
+
+MAKE = shutil.which("make")
+
+
+def system_deps(tmp_path, uid: int, *args: str) -> str:
+    """``make system-deps`` where neither ``dot`` nor ``chromium`` is found, ``id -u`` says ``uid``
+    and ``apt-get`` only says how it was called; its output."""
+    stubs = tmp_path / "bin"
+    stubs.mkdir(exist_ok=True)
+    for name, body in (("id", f"echo {uid}"), ("apt-get", 'echo "apt-get $*"')):
+        (stubs / name).write_text(f"#!/bin/sh\n{body}\n")
+        (stubs / name).chmod(0o755)
+    proc = subprocess.run(
+        [MAKE, "-s", "-C", str(REPO), "system-deps", *args],
+        env={"PATH": str(stubs)},
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert proc.returncode == 0, proc.stderr
+    return proc.stdout
+
+
+@pytest.mark.skipif(MAKE is None, reason="no make")
+def test_make_says_what_it_installs_and_why_before_it_does(tmp_path):
+    out = system_deps(tmp_path, 0).splitlines()
+    assert out == [
+        "make: installing graphviz chromium with apt-get, with their dependencies, for the tests that draw trees",
+        "make: (graphviz: 'dot' draws the trees and charts; chromium: measures the HTML pages' drawings)",
+        "make: to skip this: make test NO_SYSTEM_INSTALL=1",
+        "apt-get update -qq",
+        "apt-get install -y -qq graphviz",
+        "apt-get install -y -qq chromium",
+    ]
+
+
+@pytest.mark.skipif(MAKE is None, reason="no make")
+def test_make_installs_nothing_when_told_or_not_root(tmp_path):
+    out = system_deps(tmp_path, 0, "NO_SYSTEM_INSTALL=1")
+    assert out == "make: not installing graphviz chromium (NO_SYSTEM_INSTALL is set): the tests that need them skip\n"
+    out = system_deps(tmp_path, 1000)
+    assert out == "make: not installing graphviz chromium (needs root and apt-get): the tests that need them skip\n"

@@ -23,8 +23,9 @@ WIDTH = 1400
 
 #: what the measuring script reports: the page's content width, and per figure its width, its
 #: drawing's width, viewBox width, the rendered size (px) of the text of its first node (units
-#: and objects are drawn at 10 points) and whether it is the one the URL's fragment targets;
-#: for a Gantt chart also the x (px) of its first two time ticks (nodes t0, t1) and the second's seconds
+#: and objects are drawn at 10 points) and of its smallest text, its scrolling and visible
+#: widths and whether it is the one the URL's fragment targets; for a Gantt chart also the x (px)
+#: of its first two time ticks (nodes t0, t1) and the second's seconds
 MEASURE = """<script>
 function centre(svg, name) {
   for (const g of svg.querySelectorAll('g.node')) {
@@ -56,6 +57,9 @@ function measure() {
       font: parseFloat(text.getAttribute('font-size')) * text.getScreenCTM().a,
       tick0: centre(svg, 't0'), tick1: centre(svg, 't1'), step: label(svg, 't1'),
       zoom: !!f.querySelector('a.zoom[href="#' + f.id + '"]'),
+      min_font: Math.min(...Array.from(svg.querySelectorAll('text'),
+        t => parseFloat(t.getAttribute('font-size')) * t.getScreenCTM().a)),
+      scroll: f.scrollWidth, client: f.clientWidth,
     });
   }
   const pre = document.createElement('pre');
@@ -162,3 +166,27 @@ def test_the_gantt_charts_of_a_page_share_one_time_scale_across_its_width(schedu
         assert c["figure"] - 16 <= c["svg"] <= c["figure"]  # ... less the frame's border and padding
     # the longest schedule fills the width: its time axis spans most of the page
     assert max(makespans) * per_second[0] > 0.8 * got["content"]
+
+
+@needs_chromium
+def test_every_text_of_a_gantt_chart_is_8_px_and_a_chart_that_fits_does_not_scroll(schedule_page, tmp_path):
+    short = cli(
+        "schedule", "--data", "demo", "--goal", "scrambled egg", "--agents", "arm=2,human=1", "--format", "html"
+    )
+    for page in (schedule_page, short.stdout):
+        got = measure(page, tmp_path)
+        assert got["figures"]
+        for c in got["figures"]:
+            assert c["min_font"] >= 8.0, c  # box labels, the labels beside and under boxes, the axis, the legend
+            assert c["scroll"] <= c["client"], c  # no horizontal scrollbar: the chart fits the page
+
+
+@needs_chromium
+def test_a_gantt_chart_narrower_than_its_8_px_scale_scrolls_in_its_frame(schedule_page, tmp_path):
+    path = tmp_path / "narrow.html"
+    path.write_text(schedule_page.replace("</body>", MEASURE + "</body>"), encoding="utf-8")
+    args = ["--hide-scrollbars", "--window-size=900,1000", "--virtual-time-budget=10000"]
+    res = chromium(tmp_path, *args, "--dump-dom", path.as_uri(), timeout=300)
+    got = json.loads(html.unescape(re.search(r'<pre id="measured">(.*?)</pre>', res.stdout, re.S).group(1)))
+    for c in got["figures"]:
+        assert c["min_font"] >= 8.0 and c["scroll"] > c["client"], c

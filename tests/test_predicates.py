@@ -5,16 +5,21 @@ and the closest defined predicates; ``query`` names the file each warning is abo
 from __future__ import annotations
 
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
 
+import foon2asp
 from conftest import DEMO
+from foon2asp.api import Constraints
 from foon2asp.asp import encoding_files
 from foon2asp.asp.facts import facts
-from foon2asp.asp.predicates import FACTS, known_predicates, predicates, rule_warnings
+from foon2asp.asp.predicates import FACTS, known_predicates, predicates, refuse_host_code, rule_warnings
 from foon2asp.cli.main import main
+from foon2asp.errors import InputError
 
 SMOOTHIES = sorted((DEMO / "llm").glob("smoothie-*.json"))
 TYPO = ':- use(U), motoin(U,"fry").'
@@ -162,3 +167,122 @@ def test_the_known_predicates_cover_the_facts_and_the_vocabulary(demo_problem):
         (name, len(args.split(","))) for name, args in re.findall(r"^\| `(\w+)\(([^)]*)\)`", table, re.MULTILINE)
     }
     assert documented and documented <= known_predicates()
+
+
+# ---------------------------------------------------------------- host code
+
+
+@pytest.mark.parametrize(
+    "text, where, what",
+    [
+        ('#script (python)\nimport os\n#end.\n:- use(U), motion(U,"chop").', (1, 1), "#script (python) is refused"),
+        ("#script(lua) x = 1 #end.", (1, 1), "#script (lua) is refused"),
+        ('p(@f(1)).\n:- use(U), motion(U,"chop").', (1, 3), "@f(...) is refused"),
+        ("#show @h(1) : use(_).", (1, 7), "@h(...) is refused"),
+        ("ok :- #count { X : use(X), X = @n() } > 1.", (1, 32), "@n(...) is refused"),
+        # clingo reads on after a syntax error, and would run a script found there
+        ("a :- b c.\n#script (python)\nprint(1)\n#end.", (2, 1), "#script (python) is refused"),
+    ],
+)
+def test_host_code_is_refused_where_it_is(text, where, what):
+    with pytest.raises(InputError) as err:
+        refuse_host_code("--rule #1", text)
+    assert (err.value.path, err.value.line, err.value.column) == ("--rule #1", *where)
+    assert what in err.value.message and "host code" in err.value.message
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        '% #script (python) print(1) #end.\n:- use(U), motion(U,"chop").',
+        '%* #script (python)\n@f(1) *%\n:- use(U), motion(U,"#script (python)").',
+        ':- use(U), motion(U,"@f(1)").',
+        ":- use(U), #count { O : input(U,O) } > 9.",
+    ],
+)
+def test_comments_and_strings_that_mention_host_code_are_no_host_code(text):
+    refuse_host_code("--rule #1", text)  # no error
+    assert predicates(text).used  # and the program is read
+
+
+def test_a_script_in_an_included_file_is_refused_there(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    Path("inner.lp").write_text("%\n#script (python)\nprint(1)\n#end.\n")
+    with pytest.raises(InputError) as err:
+        refuse_host_code("outer.lp", '#include "inner.lp".\n')
+    assert str(err.value).startswith("inner.lp:2:1: #script (python) is refused")
+    assert "(in a file outer.lp includes)" in str(err.value)
+
+
+SCRIPT = '#script (python)\nopen("RAN", "w").write("ran")\n#end.\n:- use(U), motion(U,"chop").\n'
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["solve", "--data", "demo", "--goal", "tomato salad", "--rule", SCRIPT],
+        ["solve", "--data", "demo", "--goal", "tomato salad", "--constraint", "script.lp"],
+        ["compare", "--data", "demo", "--goal", "tomato salad", "--method", "asp", "--constraint", "script.lp"],
+        ["missing", "--data", "demo", "--goal", "pancake", "--rule", SCRIPT],
+        ["batch", "--data", "demo", "--output", "r.jsonl", "--constraint", "script.lp"],
+        ["schedule", "--data", "demo", "--goal", "tomato salad", "--rule", SCRIPT],
+        ["consolidate", *SMOOTHIES, "--rule", SCRIPT],
+        ["query", "script.lp", "--data", "demo", "--encoding", "tree", "--goal", "tomato salad"],
+        ["solve", "--data", "demo", "--goal", "tomato salad", "--rule", ":- use(U), motion(U,@m())."],
+    ],
+    ids=["solve-rule", "solve-constraint", "compare", "missing", "batch", "schedule", "consolidate", "query", "call"],
+)
+def test_every_command_refuses_host_code_in_one_line(args, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    Path("script.lp").write_text(SCRIPT)
+    res = run(*args)
+    assert res.exit_code == 2, res.output
+    (line,) = res.stderr.splitlines()
+    assert re.fullmatch(
+        r"foon2asp: error: (script\.lp|--rule #1):1:\d+: (#script \(python\)|@m\(\.\.\.\)) is refused.*", line
+    )
+    assert not Path("RAN").exists()
+
+
+def test_the_library_refuses_host_code_on_every_path():
+    kb = foon2asp.load("demo")
+    calls = [
+        lambda: kb.solve("tomato salad", rules=[SCRIPT]),
+        lambda: kb.solve("tomato salad", constraints=Constraints(extra=[("mine", SCRIPT)])),
+        lambda: kb.query(SCRIPT, goal="tomato salad", encodings=["tree"]),
+        lambda: kb.missing("pancake", rules=[SCRIPT]),
+    ]
+    for call in calls:
+        with pytest.raises(InputError, match=r"#script \(python\) is refused"):
+            call()
+
+
+#: run in a fresh process: clingo with Python scripting switched on, as a clingo build may have it
+WITH_PYTHON = """
+import sys, clingo, clingo.script
+clingo.script.enable_python()
+ctl = clingo.Control()
+ctl.add("base", [], '#script (python)\\nopen("RAN-CLINGO", "w").write("ran")\\n#end.')
+assert open("RAN-CLINGO").read() == "ran"  # this clingo runs scripts ...
+import foon2asp
+from foon2asp.errors import InputError
+kb = foon2asp.load("demo")
+for call in (lambda: kb.solve("tomato salad", rules=[sys.argv[1]]), lambda: kb.query(sys.argv[1], goal="tomato salad")):
+    try:
+        call()
+    except InputError as exc:
+        print(exc)
+"""
+
+
+def test_a_clingo_with_python_scripting_runs_none_of_a_users_script(tmp_path):
+    proc = subprocess.run(
+        [sys.executable, "-c", WITH_PYTHON, SCRIPT], cwd=tmp_path, capture_output=True, text=True, timeout=120
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "RAN-CLINGO").exists()  # ... but foon2asp gives it none of the user's
+    assert proc.stdout.splitlines() == [
+        "--rule #1:1:1: #script (python) is refused: a program may not run host code",
+        "<program>:1:1: #script (python) is refused: a program may not run host code",
+    ]
+    assert not (tmp_path / "RAN").exists()

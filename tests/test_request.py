@@ -112,10 +112,11 @@ def test_library_errors_speak_of_values_and_the_cli_of_flags(tmp_path):
         res = run(*argv)
         assert res.exit_code == 2
         seen.append(res.stderr.strip().splitlines()[-1])
+    looked_for = tmp_path / "goal_nodes.json"
     assert seen == [
-        "foon2asp: error: --goals all needs a goals file (goal_nodes.json in --data DIR, or --goals FILE)",
-        "foon2asp: error: no goal given and no goals file: use --goal TEXT, --goals FILE or --goals all-objects"
-        " (goal_nodes.json beside the FOON is read when present)",
+        f"foon2asp: error: --goals all needs a goals file, and there is no {looked_for} (give --goals FILE)",
+        f"foon2asp: error: no goal given and no goals file (there is no {looked_for}): use --goal TEXT, --goals FILE"
+        " or --goals all-objects",
         "foon2asp: error: human steps only change the tree when 'success' is an objective (a person's step succeeds"
         " for sure); use --objective success or units,success",
     ]

@@ -88,6 +88,14 @@ def test_json_keys_statuses_and_the_library(shared_foon_dir):
     assert res.exit_code == 0
 
 
+def test_the_text_says_the_lower_bound_is_the_one_known_before_the_search():
+    res = run("schedule", "--data", "demo", "--goal", "scrambled egg", "--agents", "arm=1,human=1")
+    assert res.stdout.splitlines()[1] == (
+        "Status: optimal  Makespan: 3 s  (list scheduling 3 s; lower bound before the search 3 s: chain 3 s,"
+        " work 2 s, energy 3 s)"
+    )
+
+
 def test_text_is_a_timeline_per_agent_with_bounds_and_baseline(shared_foon_dir, tmp_path):
     table = tmp_path / "d.json"
     table.write_text('{"*": 2, "pour": 1.5}')

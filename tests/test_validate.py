@@ -83,7 +83,7 @@ def test_verdict_equals_the_validator_on_random_lists(with_kitchen):
         verdict = judge_alone(units, kitchen=kitchen)
         problem, ids = problem_of(units, verdict.kitchen)
         if not verdict.goals:
-            assert not verdict.valid and not verdict.in_order and verdict.problem == "no goal: no unit makes an object"
+            assert not verdict.valid and not verdict.in_order and verdict.problem.startswith("no goal: no unit makes")
             continue
         validations = [validate(problem, g, ids) for g in verdict.goals]
         orders = [check_order(problem, g, ids) for g in verdict.goals]

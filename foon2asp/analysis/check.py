@@ -11,7 +11,7 @@ from collections.abc import Callable
 from functools import cache
 from pathlib import Path
 
-from foon2asp.errors import InputError
+from foon2asp.errors import InputError, shown
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem, required_flags
@@ -79,6 +79,13 @@ def infer_goal(problem: Problem, tree: TreeFile, goal_objects: list[FoonObject])
     hint = ""
     if len(last) == 1 and last[0] not in problem.foon.object_ids:
         hint = f" (the last unit makes {last[0]}, which is not a FOON object)"
+    elif not last and tree.units:
+        tu = tree.units[-1]
+        bare = " | ".join(str(o) for o in tu.unit.outputs) or "nothing"
+        hint = (
+            f" (its last unit, step {tu.step} at {tree.where(tu)} ({tu.unit.motion}), makes no object: it outputs"
+            f" {bare}, with no states, ingredients or container)"
+        )
     listing = ""
     if 1 < len(tops) <= 10:
         listing = "; it makes " + " | ".join(str(o) for o in tops) + " without using them"
@@ -233,10 +240,12 @@ def alone_goal(tree: TreeFile, text: str) -> FoonObject:
         return made[0]
     if made:
         listing = " | ".join(str(o) for o in made[:10])
-        raise InputError(f"label {text!r} names {len(made)} objects of the tree; give one with its text: {listing}")
+        raise InputError(
+            f"label {shown(text)} names {len(made)} objects of the tree; give one with its text: {listing}"
+        )
     if any(o.label == label for u in units for o in u.inputs + u.outputs):
         return FoonObject.make(label)
-    raise InputError(f"no object of the tree is labelled {text!r}", tree.path)
+    raise InputError(f"no object of the tree is labelled {shown(text)}", tree.path)
 
 
 def check_alone(

@@ -34,6 +34,7 @@ from foon2asp.api.trees import (
     consolidate,
     draw_file,
 )
+from foon2asp.asp.control import option_names as clingo_option_names
 from foon2asp.asp.options import OBJECTIVES as _OBJECTIVES
 from foon2asp.batch.results_file import schedules_path
 from foon2asp.foon.goals import OBJECT_FILTERS
@@ -44,6 +45,8 @@ from foon2asp.methods.registry import Method
 from foon2asp.schedule import DEFAULT_ENCODING as DEFAULT_SCHEDULE_ENCODING
 from foon2asp.schedule import ScheduleSpec, parse_agents
 from foon2asp.schedule.encode import ENCODINGS as SCHEDULE_ENCODINGS
+from foon2asp.schedule.result import seconds_text
+from foon2asp.schedule.solve import DEFAULT_TIME_LIMIT as SCHEDULE_TIME_LIMIT
 from foon2asp.tree.tasktree import WITH_TREE
 
 #: objective names, for ``objective=`` (lexicographic lists of them)
@@ -66,4 +69,5 @@ __all__ += ["DEFAULT_SCHEDULE_ENCODING", "parse_agents", "is_schedule_file", "sc
 __all__ += ["verdicts_json", "check_tree", "TreeVerdict", "consolidate", "Consolidation", "ConsolidatedGoal"]
 __all__ += ["CandidateReport", "read_foons", "match_foon", "write_foon", "FOON_FORMATS", "read_program", "draw_file"]
 __all__ += ["writable_dir", "write_file", "methods", "method", "OBJECTIVES", "UTENSIL_RULES", "GROUNDINGS"]
-__all__ += ["COMPARE_METHODS", "OBJECT_FILTERS", "MOTION_COST_PRECISION", "WITH_TREE"]
+__all__ += ["COMPARE_METHODS", "OBJECT_FILTERS", "MOTION_COST_PRECISION", "WITH_TREE", "clingo_option_names"]
+__all__ += ["SCHEDULE_TIME_LIMIT", "seconds_text"]

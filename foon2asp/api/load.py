@@ -4,6 +4,7 @@ FOON files read, merged, compared loosely and written, and ASP program files rea
 from __future__ import annotations
 
 import io
+import os
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, fields
 from pathlib import Path
@@ -95,6 +96,7 @@ def load(
     given = None if foon is None else [str(f) for f in foon] if isinstance(foon, list | tuple) else str(foon)
     files = {"kitchen": how.kitchen, "goals": goals, "motion": how.motion, "utensils": how.utensils}
     beside: list[str] = []
+    looked_for: dict[str, str] = {}
     if path is None and given:
         foons = [given] if isinstance(given, str) else given
         for name in foons:
@@ -102,7 +104,7 @@ def load(
         first = Path(foons[0])
         for key in [k for k, v in files.items() if v is None]:
             candidate = first.parent / FILE_NAMES[key]
-            if candidate.exists():  # a directory there is an error naming it when it is read
+            if os.path.lexists(candidate):  # a directory or a broken link there is an error naming it when read
                 files[key] = str(candidate)
             elif key == "kitchen":
                 raise InputError(
@@ -112,8 +114,10 @@ def load(
                     hint=f"kitchen={candidate}",
                 )
             else:
+                looked_for[key] = str(candidate)
                 beside.append(f"no {FILE_NAMES[key]} beside {first}: {_WITHOUT[key]}")
     data = Dataset.load(path, foon=given, strict=how.strict, **files)
+    data.looked_for.update(looked_for)
     return knowledge_base(data, how.utensil_rule, beside, seen_as)
 
 

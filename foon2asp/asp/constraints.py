@@ -8,6 +8,7 @@ checked on their own, an error naming the file (or rule) and line.
 from __future__ import annotations
 
 import re
+import sys
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -16,8 +17,9 @@ import clingo
 import clingo.ast
 
 from foon2asp.asp.facts import q
-from foon2asp.asp.predicates import rule_warnings
+from foon2asp.asp.predicates import refuse_host_code, rule_warnings
 from foon2asp.errors import InputError
+from foon2asp.foon.reading import not_found, read_text
 
 #: ``<block>:LINE:COL[-COL]: error: text`` or ``FILE:LINE:...`` as clingo writes them
 _LOCATION = re.compile(r"^(?P<where>.*?):(?P<line>\d+):(?P<col>\d+)(?:-\d+(?::\d+)?)?: (?P<kind>\w+): (?P<text>.*)$")
@@ -107,7 +109,9 @@ def clingo_error(messages: list[str], name: str) -> InputError:
 
 
 def check_syntax(name: str, text: str) -> None:
-    """Parse and ground ``text`` alone (grounding finds unsafe variables); a located InputError if clingo rejects it."""
+    """Parse and ground ``text`` alone (grounding finds unsafe variables); a located InputError if clingo
+    rejects it, or if it would run host code (:func:`~foon2asp.asp.predicates.refuse_host_code`)."""
+    refuse_host_code(name, text)
     messages: list[str] = []
     ctl = clingo.Control(["--warn=none"], logger=lambda code, msg: messages.append(msg), message_limit=20)
     try:
@@ -157,6 +161,8 @@ class ConstraintSpec:
         out = user_programs(self.files, self.rules)
         for name, text in out:
             check_syntax(name, text)
+        for name, text in self.extra:
+            refuse_host_code(name, text)
         for key, flag, make in _FLAGS:
             for value in getattr(self, key):
                 if not normalise(value):
@@ -173,17 +179,36 @@ class ConstraintSpec:
         return motions, labels
 
 
+#: programs read from standard input (``-``) or a pipe (``<(...)``), which can be read only once
+_STREAMS: dict[str, str] = {}
+
+
 def read_file(path: str, what: str = "constraint file") -> str:
-    """The text of an ASP file; ``what`` names it in errors (a constraint file, a program)."""
+    """The text of an ASP file; ``what`` names it in errors (a constraint file, a program).
+
+    ``-`` is standard input and a pipe (``--constraint <(...)``, ``/dev/fd/63``) is read like a
+    file; both are read once and remembered, as they cannot be read again."""
+    path = str(path)
+    if path in _STREAMS:
+        return _STREAMS[path]
+    if path == "-":
+        if sys.stdin is None or sys.stdin.isatty():
+            raise InputError(f"{what} '-' is standard input, and it is a terminal: pipe the program into it")
+        data = sys.stdin.buffer.read()
+        try:
+            text = _STREAMS[path] = data.decode("utf-8").removeprefix("\ufeff")
+        except UnicodeDecodeError as exc:
+            raise InputError(f"not UTF-8 text: byte 0x{data[exc.start]:02x} at byte offset {exc.start}", "-") from None
+        return text
     p = Path(path)
     if p.is_dir():
         raise InputError(f"{what} is a directory, not a file", path)
+    if not p.exists():
+        raise not_found(path, what.removesuffix(" file"))
+    text = read_text(p, what.removesuffix(" file"), checked=False)
     if not p.is_file():
-        raise InputError(f"{what} not found", path)
-    try:
-        return p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read {what}: {exc}", path) from None
+        _STREAMS[path] = text
+    return text
 
 
 def user_programs(files: Iterable[str] = (), rules: Iterable[str] = ()) -> list[tuple[str, str]]:

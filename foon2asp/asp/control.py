@@ -11,6 +11,7 @@ import time
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from functools import cache
 from typing import Any
 
 import clingo
@@ -18,6 +19,7 @@ import clingo.ast
 
 from foon2asp.asp.constraints import check_syntax, clingo_error
 from foon2asp.asp.interrupts import POLL_S, WATCHDOG, deferred_signals, signal_pending
+from foon2asp.asp.predicates import refuse_host_code
 from foon2asp.errors import InputError
 
 #: an atom no program has: a solve assuming it ends at once
@@ -35,6 +37,24 @@ MODES: dict[str, tuple[str, str | None, str]] = {
 
 #: a part to ground: its name and its arguments
 Part = tuple[str, Sequence[int | clingo.Symbol]]
+
+
+@cache
+def option_names() -> tuple[str, ...]:
+    """clingo's long options that set its solver's configuration (``--configuration``,
+    ``--opt-strategy``, ...), each once, for suggestions."""
+    names: set[str] = set()
+    control = clingo.Control(logger=lambda code, message: None)  # kept while its configuration is read
+    stack = [control.configuration]
+    while stack:
+        config = stack.pop()
+        for key in config.keys or ():
+            value = getattr(config, key)
+            if isinstance(value, clingo.Configuration):
+                stack.append(value[0] if value.is_array and len(value) else value)
+            else:
+                names.add("--" + key.replace("_", "-"))
+    return tuple(sorted(names))
 
 
 def remaining(deadline: float | None) -> float | None:
@@ -111,6 +131,7 @@ class Control:
         """Add program ``text`` (called ``name`` in errors) to ``part``, whose parameters are ``params``."""
         self.messages.clear()
         if user:
+            refuse_host_code(name, text)
             self.user_programs.append((name, text))
         try:
             with deferred_signals():

@@ -1,13 +1,14 @@
 """What a program defines and uses: the predicates of user rules, the shipped encodings and the facts.
 
 Read with clingo's parser; :func:`rule_warnings` names a predicate a user program uses that
-nothing defines, and :func:`only_constraints` says whether user programs only remove trees.
+nothing defines, :func:`only_constraints` says whether user programs only remove trees, and
+:func:`refuse_host_code` refuses a program that would run code of the host (``#script``, ``@f(...)``).
 """
 
 from __future__ import annotations
 
 import difflib
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from functools import cache
 
@@ -15,7 +16,7 @@ import clingo
 import clingo.ast
 
 from foon2asp.asp import encoding_files
-from foon2asp.errors import escape
+from foon2asp.errors import InputError, escape
 
 #: a predicate: name and arity
 Signature = tuple[str, int]
@@ -129,6 +130,48 @@ def file_predicates(path: str) -> Predicates:
     found = Predicates()
     clingo.ast.parse_files([path], found.statement, logger=lambda code, msg: None)
     return found
+
+
+def _external_calls(node: object) -> Iterator[clingo.ast.AST]:
+    """The ``@f(...)`` terms in ``node`` (an AST or a sequence of them), at any depth."""
+    stack = [node]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, clingo.ast.AST):
+            if item.ast_type == clingo.ast.ASTType.Function and item.external:
+                yield item
+            stack.extend(getattr(item, key) for key in item.child_keys)
+        elif isinstance(item, (list, tuple, clingo.ast.ASTSequence)):
+            stack.extend(item)
+
+
+def refuse_host_code(name: str, text: str) -> None:
+    """Raise an InputError, located in program ``name`` (or the file it includes), when ``text``
+    would run code of the host: a ``#script`` block of any language or an ``@``-function call.
+
+    The program is read with clingo's parser, as clingo reads it: a comment or a string that
+    mentions ``#script`` is no script, an included file is read too, and statements after a
+    syntax error are still seen (clingo would run a script there before it reports the error)."""
+    found: list[tuple[clingo.ast.Location, str]] = []
+
+    def statement(stm: clingo.ast.AST) -> None:
+        if stm.ast_type == clingo.ast.ASTType.Script:
+            found.append((stm.location, f"#script ({stm.name}) is refused: a program may not run host code"))
+        else:
+            for call in _external_calls(stm):
+                text = f"@{call.name}(...) is refused: a program may not call host code (@-functions)"
+                found.append((call.location, text))
+
+    try:
+        clingo.ast.parse_string(text, statement, logger=lambda code, msg: None)
+    except RuntimeError:
+        pass  # a syntax error: clingo's check names it, unless a script was seen first
+    if found:
+        where, what = min(found, key=lambda f: (f[0].begin.filename != "<string>", f[0].begin.line, f[0].begin.column))
+        path = where.begin.filename
+        if path != "<string>":
+            what += f" (in a file {escape(name)} includes)"
+        raise InputError(what, name if path == "<string>" else path, where.begin.line, where.begin.column)
 
 
 @cache

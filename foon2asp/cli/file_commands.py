@@ -42,9 +42,9 @@ def joined_lines(joined: dict[str, list[str]]) -> list[str]:
     opt.SCHEDULE,
 )
 def check(trees, data, goal, goals, fmt, optimum, spec, options):
-    """Check the task tree(s) in each TREE (FOON text with // between units, FOON JSON, foon2asp JSON,
-    the unit-list JSON of generated trees, or a plan for 'export pddl': '(action-name)' lines as Fast
-    Downward writes them); one report per tree.
+    """Check the task tree(s) in each TREE (FOON text with // between units, FOON JSON, foon2asp JSON
+    and the JSON lines of 'batch', the unit-list JSON of generated trees, or a plan for 'export pddl':
+    '(action-name)' lines as Fast Downward writes them); one report per tree.
 
     Without --data and --foon a tree is judged on its own: the kitchen is its leaves (or --kitchen
     FILE), the goal the products of its last unit (or --goal), and it is valid when every unit fires
@@ -98,7 +98,7 @@ def check(trees, data, goal, goals, fmt, optimum, spec, options):
         reports += [v.raw for v in found]
     click.echo(report.render("check", fmt, problem, reports), nl=False)
     answered = all(report.verdicts.answered(r) for r in reports)
-    proofs = all((r.proof or {}).get("verified", True) for r in reports)  # a claimed proof that fails: 1
+    proofs = all((getattr(r, "proof", None) or {}).get("verified", True) for r in reports)  # a refused proof: 1
     sys.exit(0 if answered and proofs and all(v.valid for v in verdicts) else 1)
 
 
@@ -357,6 +357,12 @@ def objects(query, data, only, fmt, options):
         kb = data.load()
     except InputError as exc:
         key, _, looked_for = (exc.hint or "").partition("=")
+        if key == "kitchen-data":
+            raise InputError(
+                "kitchen file not found in the data folder; give --kitchen-file FILE, or --kitchen-file leaves"
+                " (every object no unit makes)",
+                exc.path,
+            ) from None
         if key != "kitchen":
             raise
         raise InputError(

@@ -160,10 +160,12 @@ def _gather(func: Callable) -> Callable:
 
 
 def _no_such_option(arg: str, command: click.Command) -> str:
-    """The message for an option neither this command nor clingo knows (with the command's closest options)."""
+    """The message for an option neither this command nor clingo knows (with the closest options of
+    the command and of clingo)."""
     name = arg.split("=", 1)[0]
     ours = [o for p in command.params if isinstance(p, click.Option) for o in p.opts if o.startswith("--")]
-    close = difflib.get_close_matches(name, ours, n=2, cutoff=0.8)
+    known = list(dict.fromkeys([*ours, *api.clingo_option_names()]))
+    close = difflib.get_close_matches(name, known, n=2, cutoff=0.8)
     hint = f" Did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
     return f"No such option {name!r} (not foon2asp's, not clingo's).{hint}"
 

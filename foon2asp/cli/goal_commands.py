@@ -14,8 +14,6 @@ from foon2asp.cli.main import EXIT_CODES, echo_now, emit, exit_code, goal_progre
 from foon2asp.errors import InputError
 from foon2asp.report import draw
 from foon2asp.report.tree_formats import render, render_bytes
-from foon2asp.schedule.result import seconds_text
-from foon2asp.schedule.solve import DEFAULT_TIME_LIMIT
 
 
 def methods_of(values: tuple[str, ...], default: list[str] | tuple[str, ...] = ("asp",)) -> list[str]:
@@ -213,10 +211,10 @@ SCHEDULED = ("optimal", "unschedulable", "unreachable")
 def status_text(info: dict) -> str:
     """``schedule greek salad: makespan 65 s, lower bound 62.5 s`` (the makespan phase), or
     ``...: makespan 40 s (proven), human units 15, at least 11`` (the human units)."""
-    head = f"schedule {info.get('goal', '')}: makespan {seconds_text(info['makespan'])} s"
+    head = f"schedule {info.get('goal', '')}: makespan {api.seconds_text(info['makespan'])} s"
     if info.get("phase") == "human":
         return f"{head} (proven), human units {info['human']}, at least {info['human_lower']}"
-    return f"{head}, lower bound {seconds_text(info['lower'])} s"
+    return f"{head}, lower bound {api.seconds_text(info['lower'])} s"
 
 
 @goal_command(
@@ -224,7 +222,7 @@ def status_text(info: dict) -> str:
     opt.time_limit_option(
         "Seconds per solve (tree, schedule; with --joint also the search over trees); a schedule cut short is"
         " 'feasible': the best found, with its lower bound. Without it the tree has no limit and each schedule"
-        f" solve {DEFAULT_TIME_LIMIT:g} s."
+        f" solve {api.SCHEDULE_TIME_LIMIT:g} s."
     ),
     opt.SCHEDULE,
     opt.flag(

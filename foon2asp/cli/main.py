@@ -14,7 +14,7 @@ import click
 from tqdm import tqdm
 
 from foon2asp import api
-from foon2asp.errors import InputError, Terminated, escape
+from foon2asp.errors import InputError, Terminated, one_line
 
 #: exit codes, the same for every command (README "Exit codes")
 EXIT_CODES = """\b
@@ -36,7 +36,7 @@ def exit_code(answers: Iterable[tuple[str, Any]]) -> int:
 def warn_all(warnings: Iterable[str]) -> None:
     """Warnings about the input or the request, one line each on stderr."""
     for warning in warnings:
-        click.echo(f"foon2asp: warning: {escape(warning)}", err=True)
+        click.echo(f"foon2asp: warning: {one_line(warning)}", err=True)
 
 
 def solver_of(kb: api.KnowledgeBase, options: api.Options) -> Any:
@@ -117,15 +117,20 @@ def echo_now(text: str, status: GoalProgress | None = None, nl: bool = False) ->
 EXIT_INPUT, EXIT_INTERNAL, EXIT_SIGINT, EXIT_SIGTERM = 2, 3, 130, 143
 
 #: the library's error hints (:attr:`foon2asp.errors.InputError.hint`, ``KEY`` or ``KEY=VALUE``)
-#: worded with this command line's flags ({}: the hint's VALUE)
+#: worded with this command line's flags ({}: the hint's VALUE; ``KEY=`` is the wording when a VALUE is given)
 FLAG_WORDING = {
     "no-goal": "no goal given: use --goal TEXT or --goals FILE|all|all-objects",
     "goals-all": "--goals all needs a goals file (goal_nodes.json in --data DIR, or --goals FILE)",
+    "goals-all=": "--goals all needs a goals file, and there is no {} (give --goals FILE)",
     "no-goals-file": "no goal given and no goals file: use --goal TEXT, --goals FILE or --goals all-objects"
     " (goal_nodes.json beside the FOON is read when present)",
+    "no-goals-file=": "no goal given and no goals file (there is no {}): use --goal TEXT, --goals FILE"
+    " or --goals all-objects",
     "kitchen": "no kitchen.json beside the FOON file (looked for {});"
     " give --kitchen FILE, --kitchen leaves (every object no unit makes, e.g. for merged generated trees)"
     " or --data DIR (--data demo for the demo data)",
+    "kitchen-data": "kitchen file not found in the data folder; give --kitchen FILE, or --kitchen leaves"
+    " (every object no unit makes, e.g. for merged generated trees)",
     "motion-cost": "--objective cost needs --motion-cost FILE (a JSON object motion -> cost, or motion<TAB>cost lines)",
     "human-steps": "human steps only change the tree when 'success' is an objective (a person's step succeeds"
     " for sure); use --objective success or {}",
@@ -133,7 +138,7 @@ FLAG_WORDING = {
 
 
 def fail(message: str, code: int = EXIT_INPUT) -> NoReturn:
-    click.echo(f"foon2asp: error: {escape(message)}", err=True)
+    click.echo(f"foon2asp: error: {one_line(message)}", err=True)
     sys.exit(code)
 
 
@@ -152,6 +157,8 @@ def report_exception(exc: BaseException, debug: bool = False) -> NoReturn:
         sys.exit(EXIT_SIGINT)
     if isinstance(exc, InputError):
         key, _, value = (exc.hint or "").partition("=")
+        if value and f"{key}=" in FLAG_WORDING:
+            key += "="
         if key in FLAG_WORDING:
             exc = InputError(FLAG_WORDING[key].format(value), exc.path, exc.line, exc.column)
         fail(str(exc))
@@ -200,7 +207,7 @@ class Main(click.Group):
             usage = isinstance(exc, click.UsageError)
             hint = f" (see '{name} --help')" if usage else ""
             where = f"{ctx.info_name}: " if usage and ctx is not None and ctx.parent is not None else ""
-            click.echo(f"foon2asp: error: {where}{escape(message)}{hint}", err=True)
+            click.echo(f"foon2asp: error: {where}{one_line(message)}{hint}", err=True)
             sys.exit(exc.exit_code)
         except click.Abort as exc:
             report_exception(exc.__context__ if isinstance(exc.__context__, KeyboardInterrupt) else KeyboardInterrupt())

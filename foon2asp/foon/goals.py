@@ -4,13 +4,16 @@ from __future__ import annotations
 
 import difflib
 
-from foon2asp.errors import InputError
+from foon2asp.errors import MAX_ECHO, InputError, clip, shown
 from foon2asp.foon.loaders import Dataset, read_goals
 from foon2asp.foon.model import FoonObject, norm
 from foon2asp.foon.problem import Problem
 
 
 def _closest(problem: Problem, label: str) -> str:
+    """``; closest labels: ...``: the FOON's labels closest to ``label`` (none for a label too long to be close)."""
+    if len(label) > MAX_ECHO:
+        return ""
     labels = sorted(problem.foon.labels())
     close = difflib.get_close_matches(label, labels, n=5, cutoff=0.5)
     if not close:  # a misspelt word of a longer label ("scrambld egg" -> "scrambled egg")
@@ -25,8 +28,10 @@ def goal_id(problem: Problem, obj, path: str | None = None, line: int | None = N
     oid = problem.foon.object_ids.get(obj)
     if oid is None:
         same = problem.foon.by_label(obj.label)
-        hint = f"; objects labelled {obj.label!r} exist with other states" if same else _closest(problem, obj.label)
-        raise InputError(f"goal {obj} is not an object of the FOON{hint}", path, line)
+        hint = (
+            f"; objects labelled {shown(obj.label)} exist with other states" if same else _closest(problem, obj.label)
+        )
+        raise InputError(f"goal {clip(str(obj))} is not an object of the FOON{hint}", path, line)
     return oid
 
 
@@ -83,20 +88,20 @@ def resolve_label(data: Dataset, problem: Problem, label: str) -> int:
         return goal_id(problem, entries[0][0], path, entries[0][1])
     if len(entries) > 1:
         listing = " | ".join(str(o) for o, _ in entries)
-        raise InputError(f"goal label {label!r} is ambiguous in the goals file: {listing}", path)
+        raise InputError(f"goal label {shown(label)} is ambiguous in the goals file: {listing}", path)
     candidates = [problem.foon.object_ids[o] for o in problem.foon.by_label(key)]
     produced = [o for o in candidates if o in problem.producers] or candidates
     if len(produced) == 1:
         return produced[0]
     if not produced:
-        raise InputError(f"no goal or FOON object labelled {label!r}{_closest(problem, key)}")
+        raise InputError(f"no goal or FOON object labelled {shown(label)}{_closest(problem, key)}")
     if len(produced) <= 20:
         listing = " | ".join(f"#{o} {problem.objects[o]}" for o in produced)
         raise InputError(
-            f"label {label!r} names {len(produced)} FOON objects; give one as --goal with its text or #ID: {listing}"
+            f"label {shown(label)} names {len(produced)} FOON objects; give one as --goal with its text or #ID: {listing}"
         )
     raise InputError(
-        f"label {label!r} names {len(produced)} FOON objects; list them with: foon2asp objects {key!r}"
+        f"label {shown(label)} names {len(produced)} FOON objects; list them with: foon2asp objects {shown(key)}"
         " (then give one as --goal with its text or #ID)"
     )
 
@@ -133,10 +138,12 @@ def default_goals(data: Dataset, problem: Problem) -> list[int]:
 
 
 def _file_goals(data: Dataset, problem: Problem, need: str, hint: str) -> list[int]:
-    """The ids of the goals file's entries; the error ``need`` (with ``hint``) without a goals file."""
+    """The ids of the goals file's entries; the error ``need`` (with ``hint``, and the path looked for
+    as ``hint=PATH``) without a goals file."""
     path = data.paths.get("goals")
     if path is None:
-        raise InputError(need, hint=hint)
+        looked = data.looked_for.get("goals")
+        raise InputError(need + (f" (there is no {looked})" if looked else ""), hint=f"{hint}={looked or ''}")
     return [goal_id(problem, obj, path, line) for obj, line in data.goals]
 
 
@@ -164,7 +171,7 @@ def find_objects(problem: Problem, query: str | None = None, only: str | None = 
     the ``produced``, ``kitchen`` or ``derivable`` ones.  Nothing matching is an
     :class:`InputError` with the closest labels."""
     if only is not None and only not in OBJECT_FILTERS:
-        raise InputError(f"unknown object filter {only!r} (have {', '.join(OBJECT_FILTERS)})")
+        raise InputError(f"unknown object filter {shown(only)} (have {', '.join(OBJECT_FILTERS)})")
     ids = _matching(problem, query.strip()) if query and query.strip() else list(range(len(problem.objects)))
     if only is None:
         return ids
@@ -182,4 +189,4 @@ def _matching(problem: Problem, query: str) -> list[int]:
     ids = ids or [i for i, o in enumerate(problem.objects) if f" {key} " in f" {o.label} "]
     if ids:
         return ids
-    raise InputError(f"no object matches {query!r}{_closest(problem, key)}")
+    raise InputError(f"no object matches {shown(query)}{_closest(problem, key)}")

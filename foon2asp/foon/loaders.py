@@ -5,6 +5,7 @@ A data directory holds the files :data:`FILE_NAMES` names; :class:`Dataset` bund
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -13,7 +14,15 @@ from foon2asp.errors import InputError
 from foon2asp.foon.foonjson import object_from_json
 from foon2asp.foon.model import LEAVES, Foon, FoonObject, leaves, norm
 from foon2asp.foon.parser import read_foons
-from foon2asp.foon.reading import content_lines, json_list, line_numbers, lines_of, name_and_value, read_text
+from foon2asp.foon.reading import (
+    content_lines,
+    json_list,
+    line_numbers,
+    lines_of,
+    name_and_value,
+    not_found,
+    read_text,
+)
 
 #: the files of a data directory
 FILE_NAMES = {
@@ -50,7 +59,7 @@ def check_foon_file(path: str | Path) -> None:
         raise InputError("FOON file is a directory, not a file", str(path))
     if path.exists():
         raise InputError("FOON file is not a regular file", str(path))
-    raise InputError("FOON file not found", str(path))
+    raise not_found(path, "FOON")
 
 
 def read_foon_files(paths: list[str], strict: bool = False) -> Foon:
@@ -132,6 +141,8 @@ class Dataset:
     paths: dict[str, str] = field(default_factory=dict)
     #: warnings about the motion and utensil files (comment lines that look like labels, no rates)
     warnings: list[str] = field(default_factory=list)
+    #: the files looked for beside the FOON and not there (``"goals"`` -> its path)
+    looked_for: dict[str, str] = field(default_factory=dict)
 
     @classmethod
     def load(
@@ -151,19 +162,30 @@ class Dataset:
         base = Path(data_dir) if data_dir is not None else None
         given = {"foon": foon, "kitchen": kitchen, "goals": goals, "motion": motion, "utensils": utensils}
         paths: dict[str, str] = {}
+        looked_for: dict[str, str] = {}
         for key, value in given.items():
             if value is not None:
                 paths[key] = ",".join(map(str, value)) if isinstance(value, list) else str(value)
-            elif base is not None and (key in ("foon", "kitchen") or (base / FILE_NAMES[key]).exists()):
-                paths[key] = str(base / FILE_NAMES[key])
+            elif base is not None and (key == "foon" or os.path.lexists(base / FILE_NAMES[key])):
+                paths[key] = str(base / FILE_NAMES[key])  # a broken link is read, and named as such
+            elif base is not None:
+                looked_for[key] = str(base / FILE_NAMES[key])
         if base is not None and not base.is_dir():
             raise InputError(
                 "data directory is a file, not a directory" if base.exists() else "data directory not found", str(base)
             )
-        for key in ("foon", "kitchen"):
-            if key not in paths:
-                raise InputError(f"no {FILE_NAMES[key]} given (use --data DIR or --{key} FILE)")
+        if "foon" not in paths:
+            raise InputError(f"no {FILE_NAMES['foon']} given (use --data DIR or --foon FILE)")
+        if "kitchen" not in paths and "kitchen" not in looked_for:
+            raise InputError(f"no {FILE_NAMES['kitchen']} given (use --data DIR or --kitchen FILE)")
         units = read_foon_files([str(p) for p in foon] if isinstance(foon, list) else [paths["foon"]], strict)
+        if "kitchen" in looked_for:
+            raise InputError(
+                "kitchen file not found in the data folder; give a kitchen file, or kitchen='leaves' (every object"
+                " no unit makes, e.g. for merged generated trees)",
+                looked_for["kitchen"],
+                hint="kitchen-data",
+            )
         warnings: list[str] = []
         if base is not None and "motion" not in paths:
             warnings.append(f"{base / FILE_NAMES['motion']}: no such file in the data directory: {DEFAULT_RATE_NOTE}")
@@ -175,4 +197,5 @@ class Dataset:
             utensils=read_utensils(paths["utensils"], warnings) if "utensils" in paths else frozenset(),
             paths=paths,
             warnings=warnings,
+            looked_for=looked_for,
         )

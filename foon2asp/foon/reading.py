@@ -8,6 +8,7 @@ too long a number is one :class:`~foon2asp.errors.InputError` naming ``FILE:LINE
 from __future__ import annotations
 
 import json
+import os
 import re
 from collections.abc import Iterator
 from pathlib import Path
@@ -72,6 +73,18 @@ def check_text(text: str, path: str) -> None:
         raise InputError(f"{char_name(m.group(0))} is not allowed", path, *position(text, m.start()))
 
 
+def not_found(path: str | Path, what: str) -> InputError:
+    """The error for the ``what`` file ``path`` that is not there: ``goals file not found``, or
+    ``goals file is a broken link (to TARGET)`` when ``path`` is a link to nothing."""
+    if os.path.islink(path):
+        try:
+            target = os.readlink(path)
+        except OSError:
+            target = "?"
+        return InputError(f"{what} file is a broken link (to {target})", str(path))
+    return InputError(f"{what} file not found", str(path))
+
+
 def read_text(path: str | Path, what: str, checked: bool = True) -> str:
     """The UTF-8 text of the ``what`` file ``path`` (a leading byte-order mark dropped), checked
     by :func:`check_text` unless ``checked`` is False."""
@@ -85,7 +98,7 @@ def read_text(path: str | Path, what: str, checked: bool = True) -> str:
             if len(data) > size:  # not a regular file, or one still growing
                 data += fh.read(MAX_FILE_BYTES + 1 - len(data))
     except FileNotFoundError:
-        raise InputError(f"{what} file not found", str(path)) from None
+        raise not_found(path, what) from None
     except IsADirectoryError:
         raise InputError(f"{what} file is a directory", str(path)) from None
     except OSError as exc:

@@ -1,14 +1,16 @@
 """Task trees read from files, in every form foon2asp and the earlier programs write.
 
 :func:`read_trees` tells the forms apart: FOON text (one tree per ``# task tree for GOAL
-(...)`` header), FOON JSON, foon2asp JSON results, unit lists and plans of classical
-planners.  ``foon2asp export pddl`` names the action of FOON unit ``N`` ``uN-MOTION``
+(...)`` header), FOON JSON, foon2asp JSON results (also the JSON lines of ``batch``), unit
+lists and plans of classical planners; another file is one error saying what it seems to be
+and which forms ``check`` reads.  ``foon2asp export pddl`` names the action of FOON unit ``N`` ``uN-MOTION``
 (:func:`action_name`), so a plan (one ``(action-name args...)`` per line, ``;`` comments)
 maps back to units by the number alone.
 """
 
 from __future__ import annotations
 
+import json
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,7 +22,7 @@ from foon2asp.foon.goals import parse_object_text
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.parser import parse_lines
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.reading import first_line, line_numbers, lines_of, located, read_text
+from foon2asp.foon.reading import first_line, line_numbers, lines_of, loads, located, read_text
 
 
 @dataclass
@@ -137,6 +139,25 @@ def _read_unit_list_trees(text: str, path: str, strict: bool, parsed: tuple[obje
     return out
 
 
+def _result_tree(result: object, path: str, line: int, expected: str) -> TreeFile:
+    """The tree of one foon2asp result (``solve --format json``, a line of ``batch``) at ``line``;
+    ``expected`` says what the file should hold when ``result`` is no result."""
+    if not isinstance(result, dict) or not isinstance(result.get("units"), list):
+        raise InputError(f"expected {expected}", path, line)
+    goal = object_from_json(result["goal"], path, line) if result.get("goal") is not None else None
+    units = [TreeUnit(unit_from_json(u, path, f"unit {i}", line), i, None) for i, u in enumerate(result["units"], 1)]
+    method = result.get("method") if isinstance(result.get("method"), str) else None
+    found = TreeFile(path, units, goal, method, line)
+    if isinstance(result.get("proven_by"), str):
+        found.proven_by = result["proven_by"]
+    marks = result.get("landmarks")
+    if marks is not None:
+        if not isinstance(marks, list) or not all(isinstance(u, int) and not isinstance(u, bool) for u in marks):
+            raise InputError("'landmarks' must be a list of unit ids (whole numbers)", path, line)
+        found.landmarks = marks
+    return found
+
+
 def _read_json_tree(text: str, path: str, strict: bool = False) -> list[TreeFile]:
     data, tops = located(text, path, checked=True)
     if unitlist.is_unit_list(data) or unitlist.is_unit_lists(data):
@@ -146,32 +167,86 @@ def _read_json_tree(text: str, path: str, strict: bool = False) -> list[TreeFile
         return _read_foon_json_trees(results, path)
     # the line each result starts on, for messages
     starts = line_numbers(text, tops) if isinstance(data, list) else [first_line(text)]
-    trees = []
-    for result, line in zip(results, starts):
-        if not isinstance(result, dict) or not isinstance(result.get("units"), list):
-            raise InputError(
-                "expected a foon2asp result (an object with a 'units' list) or a list of units"
-                " {input_nodes, motion_node, output_nodes}",
-                path,
-                line,
-            )
-        goal = object_from_json(result["goal"], path, line) if result.get("goal") is not None else None
-        units = [
-            TreeUnit(unit_from_json(u, path, f"unit {i}", line), i, None) for i, u in enumerate(result["units"], 1)
-        ]
-        method = result.get("method") if isinstance(result.get("method"), str) else None
-        found = TreeFile(path, units, goal, method, line)
-        if isinstance(result.get("proven_by"), str):
-            found.proven_by = result["proven_by"]
-        marks = result.get("landmarks")
-        if marks is not None:
-            if not isinstance(marks, list) or not all(isinstance(u, int) and not isinstance(u, bool) for u in marks):
-                raise InputError("'landmarks' must be a list of unit ids (whole numbers)", path, line)
-            found.landmarks = marks
-        trees.append(found)
+    expected = (
+        "a foon2asp result (an object with a 'units' list) or a list of units {input_nodes, motion_node, output_nodes}"
+    )
+    trees = [_result_tree(result, path, line, expected) for result, line in zip(results, starts)]
     if not trees:
         raise InputError("the JSON list holds no task tree", path, 1)
     return trees
+
+
+#: the key of the first line of a results file of ``batch`` (foon2asp.batch.results_file)
+RESULTS_HEADER = "foon2asp_results"
+
+
+def is_json_lines(text: str) -> bool:
+    """Is ``text`` JSON lines: a first line that is a whole JSON object, and more after it?"""
+    first, _, rest = text.lstrip().partition("\n")
+    if not first.startswith("{") or not rest.strip():
+        return False
+    try:
+        return isinstance(json.loads(first), dict)
+    except ValueError:
+        return False
+
+
+def _read_json_lines(text: str, path: str) -> list[TreeFile]:
+    """The trees of a results file of ``batch``: one result per line, the header line skipped."""
+    trees = []
+    for number, line in enumerate(lines_of(text), 1):
+        if not line.strip():
+            continue
+        try:
+            value = loads(line, path, checked=True)
+        except InputError as err:  # located in the line alone: move it to the line of the file
+            raise InputError(err.message, path, number, err.column) from None
+        if isinstance(value, dict) and RESULTS_HEADER in value:
+            continue
+        trees.append(_result_tree(value, path, number, "a result of 'batch' (an object with a 'units' list)"))
+    if not trees:
+        raise InputError("the results file holds no result yet (only the header of 'batch')", path)
+    return trees
+
+
+#: what ``check`` reads, for the message about a file it does not
+TREE_FORMATS = (
+    "check reads FOON text, FOON JSON, foon2asp JSON ('solve --format json', 'batch' results), the unit lists"
+    " of generated trees ('solve --format units-json'), plans for 'export pddl' (with --data or --foon) and"
+    " schedules ('schedule --format json')"
+)
+
+
+def _looks_like_foon(text: str) -> bool:
+    """Does the first line of ``text`` that is neither blank nor a ``#`` comment start a FOON text line?"""
+    for line in lines_of(text):
+        body = line.strip()
+        if not body or body.startswith("#"):
+            continue
+        tab = line.find("\t")
+        return line.startswith("//") or line[:1] in "OSM" and tab > 0 and (tab == 1 or line[1:tab].isdecimal())
+    return True  # empty: the FOON reader says there are no units
+
+
+def _what_it_is(text: str, problem: Problem | None) -> str:
+    """What a file that is no task tree seems to be, as a phrase (or "")."""
+    head = text.lstrip()[:2000].lower()
+    if "(define (domain" in head or "(define (problem" in head:
+        return "a PDDL domain or problem ('export pddl' writes them; a planner's plan for them is a tree)"
+    if problem is None and looks_like_plan(text):
+        return "a plan (checked with --data or --foon: the FOON its actions come from)"
+    if head.startswith("<"):
+        return "an SVG, HTML or XML document (a drawing or a report)"
+    first = head.partition("\n")[0]
+    if "," in first and "\t" not in first:
+        return "a CSV table"
+    return ""
+
+
+def not_a_tree(text: str, path: str, problem: Problem | None = None) -> InputError:
+    """The one-line error for a file that is no task tree: what it seems to be and what ``check`` reads."""
+    what = _what_it_is(text, problem)
+    return InputError(f"not a task tree{': ' + what if what else ''}; {TREE_FORMATS}", path)
 
 
 def _read_plan(problem: Problem, text: str, path: str) -> list[TreeFile]:
@@ -203,8 +278,12 @@ def read_trees(path: str | Path, problem: Problem | None = None, strict: bool = 
     or more), or (with ``problem``, whose unit ids the action names carry) a plan.  ``strict``: a
     unit of a unit list that would be skipped with a warning is an error."""
     text = read_text(path, "tree")
+    if is_json_lines(text):
+        return _read_json_lines(text, str(path))
     if text.lstrip()[:1] in ("[", "{"):
         return _read_json_tree(text, str(path), strict)
     if problem is not None and looks_like_plan(text):
         return _read_plan(problem, text, str(path))
+    if not _looks_like_foon(text):
+        raise not_a_tree(text, str(path), problem)
     return _read_foon_tree(text, str(path))

@@ -22,12 +22,17 @@ BOX_HEIGHT = 28.0
 LABEL_WIDTH = 80.0
 #: the narrowest box drawn (a unit of duration 0 still shows)
 MIN_BOX = 3.0
-#: font size of a box's label, and of a label beside or under a short box; the height of a row of such labels
-BOX_FONT = 9.0
-SIDE_FONT = 8.0
-ROW_HEIGHT = 11.0
-#: the margin around a chart (points)
+#: font size (points) of a box's label, of a label beside or under a short box, and of the axis
+#: and the legend; the height of a row of labels under a lane.  No text is smaller than
+#: :data:`MIN_FONT`, so that a page showing a chart at 0.8 px per point shows its text at 8 px
+BOX_FONT = 10.0
+SIDE_FONT = 10.0
+AXIS_FONT = 10.0
+MIN_FONT = min(BOX_FONT, SIDE_FONT, AXIS_FONT)
+ROW_HEIGHT = 13.0
+#: the margin around a chart, and right of the time axis (half the width of its last number) (points)
 PAD = 14.4
+RIGHT_MARGIN = 15.0
 
 LEGEND = "blue: robot · orange: person · width: duration"
 
@@ -69,7 +74,15 @@ def _title(record: Mapping) -> str:
 def _new_graph(name: str) -> graphviz.Graph:
     g = graphviz.Graph(name, engine="neato")
     g.attr(fontname="Helvetica", outputorder="nodesfirst", pad=f"{PAD / 72:g}")
-    g.attr("node", fontname="Helvetica", fontsize="9", shape="box", style="filled", fixedsize="true", penwidth="0.8")
+    g.attr(
+        "node",
+        fontname="Helvetica",
+        fontsize=f"{BOX_FONT:g}",
+        shape="box",
+        style="filled",
+        fixedsize="true",
+        penwidth="0.8",
+    )
     return g
 
 
@@ -106,8 +119,9 @@ def time_scale(span: float, fill: bool = False) -> float:
 
 
 def chart_width(span: float, fill: bool = False) -> float:
-    """The width (points) of a chart whose time axis spans ``span`` seconds, lane names and margins included."""
-    return LABEL_WIDTH + max(span * time_scale(span, fill), 200.0) + 2 * PAD
+    """The width (points) of a chart whose time axis spans ``span`` seconds, lane names and margins
+    included: every text of the chart lies within it."""
+    return LABEL_WIDTH + max(span * time_scale(span, fill), 200.0) + RIGHT_MARGIN + 2 * PAD
 
 
 def _unit(entry: Mapping) -> Mapping:
@@ -121,9 +135,12 @@ def _text_width(text: str, size: float) -> float:
     return 0.72 * size * len(text) + 4
 
 
-def _label_places(boxes: list[tuple[float, float, str]]) -> tuple[list[tuple[str, float, int]], int]:
+def _label_places(
+    boxes: list[tuple[float, float, str]], limit: float = float("inf")
+) -> tuple[list[tuple[str, float, int]], int]:
     """Where the label of each box (left, right, text) of one lane goes: ``("in", 0, 0)``,
-    ``("beside", x, 0)`` or ``("under", x, row)``; and the number of rows under the lane."""
+    ``("beside", x, 0)`` or ``("under", x, row)``, no label reaching past ``limit``; and the
+    number of rows under the lane."""
     rows: list[float] = []  # where each row under the lane is free again
     order = sorted(range(len(boxes)), key=lambda i: boxes[i][0])
     found: dict[int, tuple[str, float, int]] = {}
@@ -134,15 +151,16 @@ def _label_places(boxes: list[tuple[float, float, str]]) -> tuple[list[tuple[str
             continue
         need = _text_width(text, SIDE_FONT)
         following = [boxes[j][0] for j in order[n + 1 :] if boxes[j][0] >= right - 1e-6]
-        if min(following, default=float("inf")) - right >= need + 2:
+        if min([*following, limit + 2]) - right >= need + 2:
             found[i] = ("beside", right + 2, 0)
             continue
         need = _text_width("^ " + text, SIDE_FONT)
-        row = next((r for r, free in enumerate(rows) if free <= left), len(rows))
+        x = max(0.0, min(left, limit - need))  # a label under a box near the end ends at the limit
+        row = next((r for r, free in enumerate(rows) if free <= x), len(rows))
         if row == len(rows):
             rows.append(0.0)
-        rows[row] = left + need + 2
-        found[i] = ("under", left, row)
+        rows[row] = x + need + 2
+        found[i] = ("under", x, row)
     places = [found[i] for i in range(len(boxes))]
     return places, len(rows)
 
@@ -163,7 +181,7 @@ def add_chart(
     scale = time_scale(span, fill)
     width = chart_width(span, fill) - 2 * PAD
     _text(g, f"{prefix}title", html.escape(_title(record)), width / 2, top, width, "12")
-    _text(g, f"{prefix}legend", html.escape(LEGEND), width / 2, top - 14, width, "8")
+    _text(g, f"{prefix}legend", html.escape(LEGEND), width / 2, top - 15, width, f"{AXIS_FONT:g}")
     lane = {a: k for k, a in enumerate(agents)}
 
     boxes: list[tuple[int, int, float, float, str, str, bool]] = []  # entry, lane, left, right, motion, tooltip, human
@@ -184,7 +202,7 @@ def add_chart(
     rows = [0] * len(agents)
     for k in range(len(agents)):
         mine = [b for b in boxes if b[1] == k]
-        found, rows[k] = _label_places([(b[2], b[3], b[4]) for b in mine])
+        found, rows[k] = _label_places([(b[2], b[3], b[4]) for b in mine], width)
         places.update({b[0]: p for b, p in zip(mine, found)})
     lane_tops = [top - 30.0]
     for k in range(len(agents)):
@@ -214,14 +232,14 @@ def add_chart(
         # a left-aligned cell exactly as wide as the estimate: the text starts at x
         cell = (
             f'<TABLE BORDER="0" CELLBORDER="0" CELLPADDING="0" CELLSPACING="0" FIXEDSIZE="TRUE"'
-            f' WIDTH="{need:.0f}" HEIGHT="10"><TR><TD ALIGN="LEFT">{html.escape(text)}</TD></TR></TABLE>'
+            f' WIDTH="{need:.0f}" HEIGHT="{ROW_HEIGHT - 1:.0f}"><TR><TD ALIGN="LEFT">{html.escape(text)}</TD></TR></TABLE>'
         )
         attrs = {"tooltip": tooltip, "class": f"label {where}"}
         _text(g, f"{prefix}u{i}label", cell, x + need / 2, height, need, f"{SIDE_FONT:g}", **attrs)
     bottom = lane_tops[len(agents)] - 8 if agents else top - 38
     for j, t in enumerate(_ticks(span)):
-        _text(g, f"{prefix}t{j}", f"{t:g}", LABEL_WIDTH + t * scale, bottom, 30, "8")
-    _text(g, f"{prefix}axis", "s", LABEL_WIDTH - 20, bottom, 30, "8")
+        _text(g, f"{prefix}t{j}", f"{t:g}", LABEL_WIDTH + t * scale, bottom, 2 * RIGHT_MARGIN, f"{AXIS_FONT:g}")
+    _text(g, f"{prefix}axis", "s", LABEL_WIDTH - 20, bottom, 2 * RIGHT_MARGIN, f"{AXIS_FONT:g}")
     return top - bottom + 20
 
 

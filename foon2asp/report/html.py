@@ -7,6 +7,7 @@ no external files.
 from __future__ import annotations
 
 import html
+import math
 import re
 import time
 
@@ -45,8 +46,11 @@ p.problem { color: #cc0000; font-size: 0.85em; max-width: 60em; }
 p.time { color: #555; font-size: 0.9em; }
 """
 
-#: the smallest scale a drawing is shown at, in CSS pixels per point of the drawing
+#: the smallest scale a drawing is shown at, in CSS pixels per point of the drawing: its smallest
+#: text (10 points in the tree drawings) is then at least 8 px
 MIN_PX_PER_POINT = 0.85
+#: the smallest text of a page (CSS pixels)
+MIN_TEXT_PX = 8.0
 
 
 def esc(text: object) -> str:
@@ -91,11 +95,12 @@ def figure(
     note: str = "",
     width: str = "",
     back: str = "",
+    min_scale: float = MIN_PX_PER_POINT,
 ) -> str:
-    """An SVG document as an inline figure, ids prefixed with ``fig_id``, never under
-    :data:`MIN_PX_PER_POINT`, with a ``full size`` link (``close`` goes back to ``#back``).
+    """An SVG document as an inline figure, ids prefixed with ``fig_id``, never under ``min_scale``
+    px per point, with a ``full size`` link (``close`` goes back to ``#back``).
     ``caption`` and ``note`` are HTML, ``attrs`` more attributes, ``width`` a CSS width."""
-    style = f"min-width: {MIN_PX_PER_POINT * _svg_width(svg):.0f}px" + (f"; width: {width}" if width else "")
+    style = f"min-width: {math.ceil(min_scale * _svg_width(svg))}px" + (f"; width: {width}" if width else "")
     inline = draw.inline_svg(svg, f"{fig_id}-").replace("<svg", f'<svg style="{style}"', 1)
     links = f'<a class="zoom" href="#{esc(fig_id)}">full size</a><a class="close" href="#{esc(back)}">close</a>'
     return (
@@ -178,7 +183,7 @@ def schedules_body(records: list[dict], timed: bool = True) -> list[str]:
     ``timed``: then how long scheduling and drawing took."""
     draw.require_dot()
     started = time.perf_counter()
-    head = ["goal", "status", "makespan s", "list scheduling s", "lower bound s", "agents"]
+    head = ["goal", "status", "makespan s", "list scheduling s", "lower bound before the search s", "agents"]
     cells = [
         [
             gantt.goal_text(r),
@@ -200,7 +205,11 @@ def schedules_body(records: list[dict], timed: bool = True) -> list[str]:
             width = f"{100 * _svg_width(svg) / nominal:.3f}%"
             attrs = f' data-goal="{esc(gantt.goal_text(r))}"'
             caption = f"<b>{esc(gantt.goal_text(r))}</b>"
-            body.append(figure(svg, f"s{k}", "tree schedule", caption, attrs, width=width, back="schedules"))
+            # narrowed down to the scale at which its smallest text is 8 px, then scrolled
+            scale = MIN_TEXT_PX / gantt.MIN_FONT
+            body.append(
+                figure(svg, f"s{k}", "tree schedule", caption, attrs, width=width, back="schedules", min_scale=scale)
+            )
     if timed:
         scheduling = sum(float(r.get("time_s") or 0.0) for r in records)
         body.append(

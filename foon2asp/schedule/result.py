@@ -118,14 +118,16 @@ class ScheduleResult:
         return out
 
     def headline(self) -> str:
-        """``Status: optimal  Makespan: 7.5 s  (list scheduling 8 s; lower bound 6 s: chain 6 s, work 5.5 s)``."""
+        """``Status: optimal  Makespan: 7.5 s  (list scheduling 8 s; lower bound before the search 6 s: chain 6 s,
+        work 5.5 s, energy 6 s)``: the bounds are those known before the search (the makespan's proof may raise it)."""
         line = f"Status: {self.status}"
         if self.has_schedule:
             b = self.bounds
             line += f"  Makespan: {seconds_text(self.makespan)} s"
             if b is not None and self.baseline is not None:
                 line += (
-                    f"  (list scheduling {seconds_text(self.baseline)} s; lower bound {seconds_text(b.lower)} s:"
+                    f"  (list scheduling {seconds_text(self.baseline)} s;"
+                    f" lower bound before the search {seconds_text(b.lower)} s:"
                     f" chain {seconds_text(b.chain)} s, work {seconds_text(b.work)} s, energy {seconds_text(b.energy)} s)"
                 )
         if self.status == "optimal" and self.human_units_proven is False:

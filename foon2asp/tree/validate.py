@@ -372,7 +372,13 @@ def _alone_problem(units: list[Unit], v: AloneVerdict) -> tuple[str | None, str 
         return f"step {v.step(position)} ({units[position - 1].motion})"
 
     if not v.goals:
-        return "no-goal", "no goal: no unit makes an object"
+        if not units:
+            return "no-goal", "no goal: no unit makes an object"
+        bare = " | ".join(str(o) for o in units[-1].outputs)
+        return "no-goal", (
+            f"no goal: no unit makes an object; the last, {name(len(units))}, outputs {bare or 'nothing'},"
+            " with no states, ingredients or container"
+        )
     if v.cycle:
         return "cycle", circular_support(v.cycle, name)
     if v.missing is not None and v.needed_by is not None:
