@@ -1,4 +1,4 @@
-"""The bounds of foon2asp.methods.bounds never cut off the optimum, and batch answers stay exact.
+"""The bounds of foon2asp.bounds.lower never cut off the optimum, and batch answers stay exact.
 
 Checked against brute force (every subset judged by the independent validator) on small random
 FOONs with real choice and cycles, and against the solver without shortcuts on ../shared/foon.
@@ -12,7 +12,7 @@ import pytest
 
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.options import AspOptions
-from foon2asp.methods.bounds import Bounds
+from foon2asp.bounds.lower import Bounds
 from foon2asp.methods.runner import GoalRunner, Parts, solve_goals
 from foon2asp.tree.validate import validate
 from helpers import brute_force, build

@@ -18,7 +18,7 @@ from foon2asp.asp import canonical
 from foon2asp.asp.objectives import ranked
 from foon2asp.asp.options import AspOptions
 from foon2asp.batch.results_file import read_results
-from foon2asp.methods.bounds import Bounds
+from foon2asp.bounds.lower import Bounds
 from foon2asp.methods.plan import session_of as Session
 from foon2asp.methods.runner import GoalRunner, solve_goals
 from foon2asp.tree.validate import validate

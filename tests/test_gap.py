@@ -15,8 +15,8 @@ from click.testing import CliRunner
 
 import foon2asp
 from foon2asp.asp.options import AspOptions
+from foon2asp.bounds.lower import Bounds
 from foon2asp.cli.main import main
-from foon2asp.methods.bounds import Bounds
 from foon2asp.methods.plan import session_of as Session
 from foon2asp.methods.runner import solve_goals
 from foon2asp.tree.gap import gap_of, gap_text, levels, settle, value

@@ -55,34 +55,32 @@ PREFERS = [("--rule #1", '#minimize { 1@5,U : use(U), motion(U,"chop") }.\n')]
 SUBS = (Substitute("salt", "pepper"),)
 
 TABLE = [
-    Row(
-        "units: a goal with choice",
-        SALAD,
-        "prepared",
-        entry="solve_closed",
-        facts={"problem", "preparation"},
-        no_facts={"dominated", "chain"},
-        args={"--heuristic=Domain"},
-        no_args={"--single-shot"},
-        canonical="hint",
-    ),
+    Row("units: the landmarks and a landmark set weigh what the bounds tree weighs", SALAD, "bounds"),
     Row("units: the landmarks alone are a tree", EGG, "bounds"),
     Row("units: no shortcuts, so clingo decides", EGG, "prepared", shortcuts=False, entry="solve_closed"),
     Row("a goal the kitchen cannot make", CREAM, "fixpoint"),
     Row(
-        "success: the weights are written",
+        "success: the bounds tree meets the lower bound, clingo decides",
         SALAD,
         "prepared",
         options={"objective": ("success",)},
-        written={"neglog"},
         entry="solve_closed",
+        facts={"problem", "preparation", "goal"},
+        no_facts={"dominated", "chain"},
+        written={"neglog"},
+        args={"--heuristic=Domain"},
+        no_args={"--single-shot"},
+        canonical="hint",
     ),
     Row(
-        "inputs: the input nodes are written",
+        "success, inputs: clingo optimises in one shot",
         SALAD,
         "prepared",
-        options={"objective": ("inputs",)},
+        options={"objective": ("success", "inputs")},
         facts={"input_nodes"},
+        written={"neglog"},
+        args={"--single-shot"},
+        no_args={"--heuristic=Domain"},
     ),
     Row(
         "cost: the motion costs are written",
@@ -175,7 +173,7 @@ TABLE = [
         "two threads",
         SALAD,
         "prepared",
-        options={"threads": 2},
+        options={"objective": ("success",), "threads": 2},
         entry="solve_prepared",
         facts={"chain"},
         no_args={"--single-shot"},
@@ -218,7 +216,8 @@ def test_the_plan_of_every_kind_of_request(demo, row: Row):
     else:
         assert g is None
     if row.route == "bounds":
-        assert found.tree and set(found.tree) == set(found.landmarks)
+        sets = found.landmark_sets
+        assert found.tree and bounds_proof(demo.problem, goal, found.tree, found.landmarks, sets) is None
     # the plan is a value: asked again, the same decisions
     again = plan(req, goal)
     assert again.describe() == found.describe()
@@ -269,15 +268,20 @@ def test_the_bounds_route_against_brute_force_with_its_witness(objective):
             tree = run(goal)
             assert tree.status == "optimal" and tree.proven_by == "bounds", (seed, goal)
             assert score(problem, goal, tree.units, objective) == optimum(problem, goal, objective), (seed, goal)
-            marks = tree.extra["landmarks"]
-            assert bounds_proof(problem, goal, tree.units, marks) is None, (seed, goal)
-            # every landmark is in every tree, by brute force
-            assert all(set(marks) <= set(t) for t in brute_force(problem, goal)), (seed, goal)
+            marks, sets = tree.extra["landmarks"], tree.extra.get("landmark_sets", [])
+            first = objective[0] if objective[0] in ("success", "inputs") else "units"
+            assert bounds_proof(problem, goal, tree.units, marks, sets, first) is None, (seed, goal)
+            # every landmark is in every tree, and every tree uses a unit of each set, by brute force
+            every = brute_force(problem, goal)
+            assert all(set(marks) <= set(t) for t in every), (seed, goal)
+            assert all(not set(s).isdisjoint(t) for s in sets for t in every), (seed, goal)
             # forged: one landmark left out, or a unit that is no landmark claimed
-            assert bounds_proof(problem, goal, tree.units, marks[:-1]) is not None
-            spare = [u for u in range(len(problem.units)) if u not in marks]
+            if marks:
+                assert bounds_proof(problem, goal, tree.units, marks[:-1], sets, first) is not None
+            spare = [u for u in range(len(problem.units)) if u not in marks and u not in tree.units]
             if spare:
-                assert bounds_proof(problem, goal, [*tree.units, spare[0]], [*marks, spare[0]]) is not None
+                forged = bounds_proof(problem, goal, [*tree.units, spare[0]], [*marks, spare[0]], sets, first)
+                assert forged is not None
     assert (settled > 0) == ("depth" not in objective)
 
 
@@ -303,10 +307,10 @@ def test_check_verifies_a_bounds_proof_and_refuses_a_forged_one(demo, tmp_path):
         (verdict,) = json.loads(res.stdout)
         assert verdict["valid"] is True and verdict["proof"]["verified"] is False and verdict["proof"]["problem"]
     # a tree clingo proved, passed off as settled by its landmarks: one of its units is no landmark
-    res = run_cli("solve", "--data", "demo", "--goal", SALAD, "--format", "json")
+    res = run_cli("solve", "--data", "demo", "--goal", SALAD, "--objective", "success", "--format", "json")
     (salad,) = json.loads(res.stdout)
     assert salad["proven_by"] == "clingo"
-    claimed = dict(salad, proven_by="bounds", landmarks=sorted(demo.solve(SALAD).unit_ids))
+    claimed = dict(salad, proven_by="bounds", landmarks=sorted(demo.solve(SALAD, objective="success").unit_ids))
     bad.write_text(json.dumps([claimed]))
     res = run_cli("check", bad, "--data", "demo", "--format", "json")
     assert res.exit_code == 1 and "is no landmark" in json.loads(res.stdout)[0]["proof"]["problem"]

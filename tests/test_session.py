@@ -16,10 +16,10 @@ import pytest
 from foon2asp.api import KnowledgeBase
 from foon2asp.asp.facts import neglog_weight
 from foon2asp.asp.options import AspOptions
+from foon2asp.bounds.upper import cheapest_tree
 from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.plan import session_of as Session
-from foon2asp.tree.upper import cheapest_tree
 from foon2asp.tree.validate import validate
 from helpers import best, goal_part
 from synth import preset

@@ -288,7 +288,7 @@ def test_joint_search_stops_bounding_trees_when_the_time_is_up():
         raise AssertionError("no tree is scheduled once the time is up")
 
     trees = [((i,), ()) for i in range(5)]
-    search = joint.Search(never, lambda r: (0,), bound, lambda: next(times))
+    search = joint.JointSearch(never, lambda r: (0,), bound, lambda: next(times))
     assert search.over(trees) == (None, False)
     assert bounded == trees[:2]
 

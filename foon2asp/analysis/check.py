@@ -16,7 +16,7 @@ from foon2asp.foon import goals as goals_mod
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem, required_flags
 from foon2asp.foon.treefiles import TreeFile, read_trees
-from foon2asp.tree.outcomes import AloneReport, Report
+from foon2asp.outcomes import AloneReport, Report
 from foon2asp.tree.tasktree import Goals, meal_of, measures
 from foon2asp.tree.validate import (
     Finding,
@@ -164,7 +164,9 @@ def check_tree(problem: Problem, tree: TreeFile, goal: Goals, derivable: Derivab
     valid = validation.valid and not unknown
     found_report = Report(tree, goal, ids, valid, found, validation, order_problem, measures(problem, goal, known))
     if tree.proven_by == "bounds":
-        why = bounds_proof(problem, goal, known, tree.landmarks or [])
+        objective = (tree.method or "").removeprefix("asp-").split(",")[0]
+        objective = objective if objective in ("success", "inputs") else "units"
+        why = bounds_proof(problem, goal, known, tree.landmarks or [], tree.landmark_sets, objective)
         if tree.landmarks is None:
             why = "a bounds proof without its landmarks"
         found_report.proof = {"proven_by": "bounds", "verified": why is None, "problem": why}

@@ -8,7 +8,7 @@ from foon2asp.asp.options import AspOptions
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.substitutes import Substitute, judged_on
 from foon2asp.methods.runner import solve_goals
-from foon2asp.tree.outcomes import MealRow, Row
+from foon2asp.outcomes import MealRow, Row
 from foon2asp.tree.tasktree import TaskTree
 from foon2asp.tree.validate import check_units, validate
 

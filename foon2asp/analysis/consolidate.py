@@ -15,7 +15,7 @@ from foon2asp.foon.problem import Problem
 from foon2asp.foon.substitutes import judged_on
 from foon2asp.foon.treefiles import TreeUnit, read_trees
 from foon2asp.methods.runner import solve_goals
-from foon2asp.tree.outcomes import Candidate, CandidateVerdict, Consolidation
+from foon2asp.outcomes import Candidate, CandidateVerdict, Consolidation
 from foon2asp.tree.tasktree import Goals, meal_of, measures
 from foon2asp.tree.validate import judge_alone, last_products
 

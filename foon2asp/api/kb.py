@@ -37,8 +37,8 @@ from foon2asp.foon.problem import Problem
 from foon2asp.foon.substitutes import Substitute, candidates, substituted_kitchen, with_substitutes
 from foon2asp.foon.treefiles import TreeFile, TreeUnit, read_trees
 from foon2asp.methods.runner import solve_goals
+from foon2asp.outcomes import MealRow, QueryResult
 from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec
-from foon2asp.tree.outcomes import MealRow, QueryResult
 from foon2asp.tree.tasktree import meal_of
 from foon2asp.tree.validate import bounds_proof
 
@@ -279,7 +279,9 @@ class KnowledgeBase:
             for r in reports:
                 r.optimum = opt = best[key(r)]
                 if opt.proven_by == "bounds":  # its witness, checked without the solver
-                    why = bounds_proof(view(opt.meal), opt.goal, opt.units, opt.extra.get("landmarks", []))
+                    marks, sets = opt.extra.get("landmarks", []), opt.extra.get("landmark_sets", [])
+                    first = solver.objective[0] if solver.objective[0] in ("success", "inputs") else "units"
+                    why = bounds_proof(view(opt.meal), opt.goal, opt.units, marks, sets, first)
                     r.optimum_proof = {"proven_by": "bounds", "verified": why is None, "problem": why}
         found = [results.CheckReport(self, r) for r in reports]
         return found[0] if len(found) == 1 else found

@@ -10,9 +10,9 @@ from pathlib import Path
 from foon2asp.errors import InputError
 from foon2asp.foon import reading
 from foon2asp.foon.problem import Problem
+from foon2asp.outcomes import record_object
 from foon2asp.schedule import ScheduleSpec
 from foon2asp.schedule import checker as check_mod
-from foon2asp.tree.outcomes import record_object
 
 
 @dataclass

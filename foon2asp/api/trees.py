@@ -19,8 +19,8 @@ from foon2asp.errors import InputError
 from foon2asp.foon.loaders import Dataset, read_goals, read_kitchen, read_motion, read_utensils
 from foon2asp.foon.model import LEAVES, FoonObject, Unit, leaves
 from foon2asp.foon.treefiles import TreeUnit, read_trees
+from foon2asp.outcomes import Candidate
 from foon2asp.report import draw
-from foon2asp.tree.outcomes import Candidate
 
 
 @dataclass(eq=False)

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field, replace
 import clingo
 
 from foon2asp.asp import objectives
-from foon2asp.asp.control import Answer, Control, read_model
+from foon2asp.asp.control import Control, ModelRead, read_model
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.gap import gap_of
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, goal_fields, measures
@@ -23,12 +23,12 @@ class Shot:
 
     #: "opt", "first": the last model; "optN": the distinct optimal trees, smallest unit ids
     #: first (the last model when the search was cut short before one)
-    answers: list[Answer] = field(default_factory=list)
+    answers: list[ModelRead] = field(default_factory=list)
     unsat: bool = False
     finished: bool = True
     exhausted: bool = False
     #: the last model the solver reported
-    last: Answer | None = None
+    last: ModelRead | None = None
     #: the best lower bound the solver proved, per priority level
     lower: tuple[int, ...] | None = None
 
@@ -41,13 +41,13 @@ def solve_shot(
     time_limit: float | None = None,
     on_lower: Callable[[tuple[int, ...]], None] | None = None,
     stop: Callable[[], bool] | None = None,
-    on_answer: Callable[[Answer, clingo.Model], bool | None] | None = None,
+    on_answer: Callable[[ModelRead, clingo.Model], bool | None] | None = None,
     bound: Sequence[int] | None = None,
 ) -> Shot:
     """Solve once in ``mode`` (:meth:`Control.solving`) for at most ``time_limit`` seconds or until
-    ``stop()``, ``on_model`` or ``on_answer`` (the model read as an :class:`Answer`) answers False."""
-    optimal: dict[tuple[int, ...], Answer] = {}
-    last: list[Answer] = []
+    ``stop()``, ``on_model`` or ``on_answer`` (the model read as an :class:`ModelRead`) answers False."""
+    optimal: dict[tuple[int, ...], ModelRead] = {}
+    last: list[ModelRead] = []
 
     def record(model: clingo.Model) -> bool:
         answer = read_model(model)
@@ -118,7 +118,7 @@ class Watch:
             self.progress({"cost": list(self.cost or ()), "lower": lower, "gap": self.gap()})
 
 
-def status(answer: Answer | None, shot: Shot, best: tuple[int, ...] | None = None) -> str:
+def status(answer: ModelRead | None, shot: Shot, best: tuple[int, ...] | None = None) -> str:
     """``optimal``, ``ranked`` (proven best once the better trees are excluded, cost above ``best``),
     ``feasible`` (not proven), or without an answer ``unreachable`` or ``unknown`` (cut short)."""
     if answer is None:
@@ -133,7 +133,7 @@ def task_tree(
     method: str,
     goal: Goals,
     status: str,
-    answer: Answer | None,
+    answer: ModelRead | None,
     time_s: float,
     stats: dict,
     human_steps: bool = False,

@@ -12,7 +12,7 @@ from typing import Any
 
 import clingo
 
-from foon2asp.asp.control import Answer, Control, read_model, remaining
+from foon2asp.asp.control import Control, ModelRead, read_model, remaining
 from foon2asp.foon.problem import Problem
 
 LEX_ON = clingo.Function("lex_on", [])
@@ -49,8 +49,8 @@ def _cur(u: int) -> clingo.Symbol:
 
 
 def canonicalise(
-    control: Control, answer: Answer, deadline: float | None = None, conflicts: int | None = None
-) -> tuple[Answer, bool]:
+    control: Control, answer: ModelRead, deadline: float | None = None, conflicts: int | None = None
+) -> tuple[ModelRead, bool]:
     """The smallest optimal tree (``answer`` has the proven optimum cost), and whether that is
     proven within ``conflicts`` (None: :data:`CONFLICTS`) and the ``deadline``."""
     if not answer.cost:
@@ -59,7 +59,7 @@ def canonicalise(
         return answer, False  # the session was grounded without encodings/canonical.lp
     best = answer
     complete = False
-    found: list[Answer] = []
+    found: list[ModelRead] = []
 
     def record(model: clingo.Model) -> None:
         found[:] = [read_model(model, proven=True)]

@@ -63,7 +63,7 @@ def remaining(deadline: float | None) -> float | None:
 
 
 @dataclass
-class Answer:
+class ModelRead:
     """One model as foon2asp reads it: units (sorted), cost vector, proven, human steps, shown symbols."""
 
     units: tuple[int, ...] = ()
@@ -73,7 +73,7 @@ class Answer:
     symbols: list[clingo.Symbol] = field(default_factory=list)
 
 
-def read_model(model: clingo.Model, proven: bool | None = None) -> Answer:
+def read_model(model: clingo.Model, proven: bool | None = None) -> ModelRead:
     """The tree of ``model``: its ``use/1`` and ``human/1`` atoms, cost and optimality."""
     units: list[int] = []
     human: list[int] = []
@@ -84,7 +84,7 @@ def read_model(model: clingo.Model, proven: bool | None = None) -> Answer:
             if len(args) == 1:
                 (units if name == "use" else human).append(args[0].number)
     done = model.optimality_proven if proven is None else proven
-    return Answer(tuple(sorted(units)), tuple(model.cost), done, tuple(sorted(human)))
+    return ModelRead(tuple(sorted(units)), tuple(model.cost), done, tuple(sorted(human)))
 
 
 @dataclass

@@ -13,7 +13,7 @@ from dataclasses import dataclass, replace
 import clingo
 
 from foon2asp.asp.answers import Shot, Watch, solve_shot
-from foon2asp.asp.control import Answer, Control
+from foon2asp.asp.control import Control, ModelRead
 from foon2asp.foon.problem import Problem, least_fixpoint
 
 
@@ -34,6 +34,10 @@ class Preparation:
     floor: int | None = None
     #: does a model of this cost vector meet the lower bound (so it is optimal)?
     meets: Callable[[tuple[int, ...]], bool] | None = None
+    #: the landmark sets of the checkable lower bound (foon2asp.bounds.lower.Bounds.witness)
+    landmark_sets: tuple[tuple[int, ...], ...] = ()
+    #: the checkable lower bound (the landmarks and one unit of each set) meets the hint's weight
+    settled: bool = False
 
     @property
     def bound(self) -> tuple[int, ...] | None:
@@ -77,7 +81,7 @@ def search(
     watch: Watch,
     on_model: Callable[[clingo.Model], bool | None] | None = None,
     renew: Callable[[], Control] | None = None,
-) -> tuple[Shot, Answer | None, tuple[int, ...] | None, int]:
+) -> tuple[Shot, ModelRead | None, tuple[int, ...] | None, int]:
     """clingo's optimisation over the prepared part on ``control`` (with ``closed``, in rounds of loop
     cuts), ended by a tree that meets the lower bound (``prep.meets``: that tree is proven);
     ``watch`` and ``on_model`` see each model that is a tree; ``renew``: a fresh grounding for each
@@ -85,7 +89,7 @@ def search(
 
     Returns the last round's shot, the answer (unproven when cut short), the best lower bound
     proven, and the number of cuts."""
-    best: list[Answer] = []
+    best: list[ModelRead] = []
     cuts_of: dict[tuple[int, ...], tuple[list[int], list[int]] | None] = {}
 
     def cut_of(units: tuple[int, ...]) -> tuple[list[int], list[int]] | None:
@@ -95,7 +99,7 @@ def search(
 
     met = False
 
-    def seen(answer: Answer, model: clingo.Model) -> bool:
+    def seen(answer: ModelRead, model: clingo.Model) -> bool:
         nonlocal met
         if closed:
             if cut_of(answer.units) is not None:
@@ -109,7 +113,7 @@ def search(
             return False
         return True
 
-    def done(shot: Shot, answer: Answer | None) -> tuple[Shot, Answer | None, tuple[int, ...] | None, int]:
+    def done(shot: Shot, answer: ModelRead | None) -> tuple[Shot, ModelRead | None, tuple[int, ...] | None, int]:
         if answer is not None and met:
             answer = replace(answer, proven=True)
             shot.finished = True

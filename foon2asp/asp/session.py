@@ -17,14 +17,14 @@ import clingo
 from foon2asp.asp import encoding_files, objectives, substitute_facts
 from foon2asp.asp.answers import Shot, Watch, solve_shot, status, task_tree
 from foon2asp.asp.canonical import canonicalise
-from foon2asp.asp.control import Answer, Control
+from foon2asp.asp.control import Control, ModelRead
 from foon2asp.asp.facts import fact_objects
 from foon2asp.asp.grounding import Grounding, canonical_grounding, fact_programs
 from foon2asp.asp.multishot.driver import Driver
 from foon2asp.asp.prepared import search
+from foon2asp.bounds.upper import cheapest_tree
 from foon2asp.tree.gap import first_level, levels, settle
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
-from foon2asp.tree.upper import cheapest_tree
 
 #: the statistics of a goal decided without a solve call
 NO_SOLVE = {"choices": 0, "conflicts": 0, "models": 0, "solve_s": 0.0}
@@ -213,34 +213,34 @@ class Session:
         if cuts:
             stats["loop_cuts"] = cuts
         if answer is not None and answer.proven and prep.known is not None and answer.cost == prep.known:
-            answer = Answer(tuple(sorted(prep.hint)), answer.cost, True, answer.human)
+            answer = ModelRead(tuple(sorted(prep.hint)), answer.cost, True, answer.human)
         elif answer is not None and answer.proven and self.grounding.canonical == "here":
             answer = self._canonicalise(answer, t0, time_limit, stats)
         elif not shot.finished and prep.known is not None and (answer is None or prep.known < answer.cost):
-            answer = Answer(tuple(sorted(prep.hint)), prep.known, False)
+            answer = ModelRead(tuple(sorted(prep.hint)), prep.known, False)
             stats["answer"] = "known"
         return self._tree(meal, answer, status(answer, shot), t0, stats)
 
-    def _tree(self, meal: tuple[int, ...], answer: Answer | None, status: str, t0: float, stats: dict) -> TaskTree:
+    def _tree(self, meal: tuple[int, ...], answer: ModelRead | None, status: str, t0: float, stats: dict) -> TaskTree:
         return task_tree(self.problem, self.options.method, meal, status, answer, time.perf_counter() - t0, stats)
 
-    def _choose(self, shot: Shot) -> tuple[Answer | None, Answer | None]:
+    def _choose(self, shot: Shot) -> tuple[ModelRead | None, ModelRead | None]:
         """The answer of ``shot``, and an optimal tree to search the canonical tree from (None: none)."""
         answer = shot.last
         if answer is None or not shot.finished:
             return answer, None
         if len(shot.answers) > 1:
             smallest = shot.answers[0]
-            return answer, Answer(smallest.units, smallest.cost, True)
+            return answer, ModelRead(smallest.units, smallest.cost, True)
         return answer, None
 
-    def _canonicalise(self, start: Answer, t0: float, time_limit: float | None, stats: dict) -> Answer:
+    def _canonicalise(self, start: ModelRead, t0: float, time_limit: float | None, stats: dict) -> ModelRead:
         """The smallest optimal tree, searched from ``start`` here; a search cut short is noted in ``stats``."""
         deadline = None if not time_limit else t0 + time_limit
         answer, complete = canonicalise(self.control, start, deadline)
         if not complete:
             stats["canonical_search"] = "budget" if not deadline or time.perf_counter() < deadline else "time"
-        return Answer(answer.units, answer.cost, True, answer.human)
+        return ModelRead(answer.units, answer.cost, True, answer.human)
 
     def _canonical_session(self, meal: tuple[int, ...], time_limit: float | None, t0: float) -> TaskTree:
         """Solve ``meal`` again in its canonical session (a fresh grounding of its part)."""

@@ -16,10 +16,10 @@ from foon2asp.asp.facts import OPTIONAL, fact_objects, facts, unit_ids
 from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
-from foon2asp.foon.substitutes import Candidate, Substitute, candidates, with_substitutes
+from foon2asp.foon.substitutes import StandIn, Substitute, candidates, with_substitutes
 
 
-def numbered(cands: list[Candidate]) -> dict[FoonObject, int]:
+def numbered(cands: list[StandIn]) -> dict[FoonObject, int]:
     """The number ``K`` of each kitchen item that stands in for something, in candidate order."""
     out: dict[FoonObject, int] = {}
     for c in cands:
@@ -32,7 +32,7 @@ def substitute_facts(
     substitutes: Iterable[Substitute],
     units: Iterable[int] | None = None,
     limit: int | None = None,
-    cands: list[Candidate] | None = None,
+    cands: list[StandIn] | None = None,
 ) -> str:
     """``substitute(N,K,C).`` for the objects of the facts of ``units`` (None: all), and
     ``max_substitutions(M).`` with a ``limit``; ``cands``: the candidates, when known."""

@@ -33,7 +33,7 @@ from foon2asp.foon.foonjson import read_json
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.reading import loads as safe_loads
 from foon2asp.methods.parts import GROUNDING_CHOICES, GROUNDINGS, choose_grounding
-from foon2asp.tree.outcomes import BatchReport, record_object
+from foon2asp.outcomes import BatchReport, record_object
 from foon2asp.tree.tasktree import WITH_TREE, TaskTree, executable_order, measures
 
 

@@ -34,7 +34,7 @@ class Substitute:
 
 
 @dataclass(frozen=True, order=True)
-class Candidate:
+class StandIn:
     """The object ``needed`` (an object id, not a kitchen item) is available as the kitchen item ``used``."""
 
     needed: int
@@ -148,7 +148,7 @@ def _stood_in_for(used: FoonObject, by_used: dict[str, list[Substitute]]) -> lis
     return out
 
 
-def candidates(problem: Problem, substitutes: Iterable[Substitute]) -> list[Candidate]:
+def candidates(problem: Problem, substitutes: Iterable[Substitute]) -> list[StandIn]:
     """Every (needed object, kitchen item, cost) where the kitchen item may stand in for
     an object of the FOON that is not a kitchen item; by object id, then substitute order.
     A kitchen item reached by two substitutions of one object keeps the cheaper."""
@@ -165,13 +165,13 @@ def candidates(problem: Problem, substitutes: Iterable[Substitute]) -> list[Cand
     for item in kitchen:
         if item.label in by_used or any(i in by_used for i in item.ingredients):
             needed.update(ids[o] for o in _stood_in_for(item, by_used) if o in ids and o not in kitchen)
-    out: list[Candidate] = []
+    out: list[StandIn] = []
     for oid in sorted(needed):
         best: dict[FoonObject, int] = {}
         for used, cost in stand_ins(problem.objects[oid], table):
             if used in kitchen and cost < best.get(used, cost + 1):
                 best[used] = cost
-        out += [Candidate(oid, used, cost) for used, cost in best.items()]
+        out += [StandIn(oid, used, cost) for used, cost in best.items()]
     return out
 
 

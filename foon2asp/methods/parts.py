@@ -9,8 +9,8 @@ from __future__ import annotations
 import statistics
 
 from foon2asp.asp.dominance import Dominators
+from foon2asp.bounds.lower import Bounds
 from foon2asp.foon.problem import Problem, walk_back
-from foon2asp.methods.bounds import Bounds
 from foon2asp.tree.tasktree import Goals, meal_of
 from foon2asp.tree.weights import lexicographic
 

@@ -38,9 +38,9 @@ from foon2asp.asp.predicates import checkable, mentioned, only_constraints
 from foon2asp.asp.prepared import Preparation
 from foon2asp.asp.programs_check import ProgramsCheck
 from foon2asp.asp.session import Session
+from foon2asp.bounds.lower import supports as bounds_supports
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem, least_fixpoint
-from foon2asp.methods.bounds import supports as bounds_supports
 from foon2asp.methods.parts import GROUNDINGS, Parts
 from foon2asp.methods.registry import check_substitutes, effective_options, get
 from foon2asp.tree.tasktree import Goals, meal_of
@@ -199,8 +199,10 @@ class Plan:
     shared: bool = False
     #: the answer settled without clingo: its units (only-tree, bounds)
     tree: tuple[int, ...] = ()
-    #: the landmarks of the goal: the witness of the bounds route
+    #: the landmarks of the goal: the witness of the bounds route, with the landmark sets
     landmarks: tuple[int, ...] = ()
+    #: pairwise disjoint sets of units of which every tree uses one (beside the landmarks)
+    landmark_sets: tuple[tuple[int, ...], ...] = ()
     #: first the optimum without the user's programs, kept when it satisfies them
     free_first: Plan | None = None
     #: when trees exist but the user's programs rule them all out, name each program that alone does
@@ -260,8 +262,11 @@ def plan(req: Request, goal: Goals) -> Plan:
         return replace(base, route="only-tree", tree=tuple(units))
     free = req.free if req.constrained else req
     prep = preparation(free, g) if free.bounded else None
-    if req.shortcuts:
-        marks = prep.landmarks if prep is not None else landmarks(free, g)
+    if req.shortcuts and prep is not None and prep.settled and req.allows(prep.hint):
+        # the landmarks and the landmark sets weigh what the bounds tree weighs: no tree costs less
+        return replace(base, route="bounds", tree=prep.hint, landmarks=prep.landmarks, landmark_sets=prep.landmark_sets)
+    if req.shortcuts and prep is None:
+        marks = landmarks(free, g)
         if makes(problem, g, marks) and req.allows(marks):  # the landmarks alone are a tree: no tree costs less
             return replace(base, route="bounds", tree=marks, landmarks=marks)
     if req.checkable:
@@ -315,6 +320,7 @@ def preparation(req: Request, goal: int) -> Preparation:
         if dominance.applies(req.options, ranked):
             dominated = parts.dominators(ranked).dominated(goal, units)
             units = [u for u in units if u not in dominated or u in tree]
+    checkable, sets = bounds.witness(goal)
     return Preparation(
         goal,
         tuple(units),
@@ -323,6 +329,8 @@ def preparation(req: Request, goal: int) -> Preparation:
         known=None if req.constrained else tuple(bounds.cost(tree)),
         floor=bounds.first_lower(goal),
         meets=meets if len(ranked) <= 2 else None,
+        landmark_sets=tuple(sets),
+        settled=bool(tree) and checkable >= bounds.weight(tree),
     )
 
 

@@ -19,8 +19,8 @@ from foon2asp.tree.tasktree import Goals, TaskTree
 
 Runner = Callable[[Goals], TaskTree]
 #: a search baseline's runner: one goal object id at a time
-Search = Callable[[int], TaskTree]
-Factory = Callable[[Problem, AspOptions], Search]
+SearchRunner = Callable[[int], TaskTree]
+Factory = Callable[[Problem, AspOptions], SearchRunner]
 
 
 @dataclass(frozen=True)

@@ -114,6 +114,8 @@ class GoalRunner:
         tree.extra["asp_cost"] = asp_cost
         if how.route == "bounds":
             tree.extra["landmarks"] = list(how.landmarks)
+            if how.landmark_sets:
+                tree.extra["landmark_sets"] = [list(s) for s in how.landmark_sets]
         return settle(self.problem, tree, how.ranked)
 
     def _solve(self, how: Plan, t0: float) -> TaskTree:

@@ -12,10 +12,10 @@ import time
 
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.unitlist import dumps_trees
+from foon2asp.outcomes import CandidateVerdict, Consolidation
 from foon2asp.report import draw
 from foon2asp.report.formats import register
 from foon2asp.report.html import esc, figure, page, table, time_line
-from foon2asp.tree.outcomes import CandidateVerdict, Consolidation
 from foon2asp.tree.serialize import json_list, number, tree_text
 
 #: fill colours of the candidate files, in the order given (repeated after the last)

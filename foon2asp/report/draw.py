@@ -20,8 +20,8 @@ from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject, Unit
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.treefiles import TreeFile
+from foon2asp.outcomes import Report, record_object
 from foon2asp.report.formats import register
-from foon2asp.tree.outcomes import Report, record_object
 from foon2asp.tree.tasktree import TaskTree
 from foon2asp.tree.validate import Finding, check_units
 

@@ -13,10 +13,10 @@ import time
 
 from foon2asp.foon.foonjson import read_json
 from foon2asp.foon.problem import Problem
+from foon2asp.outcomes import BatchReport, Row
 from foon2asp.report import draw, gantt
 from foon2asp.report.formats import register
 from foon2asp.report.tables import SUMMARY_COLUMNS, method_header, summary, summary_cell, units_cell
-from foon2asp.tree.outcomes import BatchReport, Row
 from foon2asp.tree.tasktree import WITH_TREE
 
 _STYLE = """

@@ -7,8 +7,8 @@ import json
 import clingo
 
 from foon2asp.foon.problem import Problem
+from foon2asp.outcomes import MissingResult, QueryResult
 from foon2asp.report.formats import register
-from foon2asp.tree.outcomes import MissingResult, QueryResult
 from foon2asp.tree.serialize import goal_heading, tree_text
 from foon2asp.tree.tasktree import TaskTree
 

@@ -9,8 +9,8 @@ from collections.abc import Callable, Iterable
 from functools import partial
 
 from foon2asp.foon.problem import Problem
+from foon2asp.outcomes import BatchReport, MealRow, Row
 from foon2asp.report.formats import register
-from foon2asp.tree.outcomes import BatchReport, MealRow, Row
 from foon2asp.tree.serialize import json_list, number, tree_json
 from foon2asp.tree.tasktree import TaskTree
 

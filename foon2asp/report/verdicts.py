@@ -7,8 +7,8 @@ import json
 
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.treefiles import TreeFile
+from foon2asp.outcomes import AloneReport, Report
 from foon2asp.report.formats import register
-from foon2asp.tree.outcomes import AloneReport, Report
 from foon2asp.tree.serialize import number
 from foon2asp.tree.validate import describe_unit
 

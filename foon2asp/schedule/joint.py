@@ -1,7 +1,7 @@
 """Joint scheduling by trees: every tree that could beat a known makespan, each scheduled alone.
 
 clingo lists the *designated* trees (each needed object with one first maker) that fit within
-the known makespan; :class:`Search` schedules them lowest lower bound first, or asks for them
+the known makespan; :class:`JointSearch` schedules them lowest lower bound first, or asks for them
 one at a time, least work first, when they are too many (docs/proofs/schedules.md).
 """
 
@@ -77,7 +77,7 @@ MAX_TREES = 2000
 
 #: a tree (sorted unit ids) and its designation: (object, its first maker) pairs, sorted
 #: (empty: each unit waits for the first maker of what it needs, whichever it is)
-Candidate = tuple[tuple[int, ...], tuple[tuple[int, int], ...]]
+DesignatedTree = tuple[tuple[int, ...], tuple[tuple[int, int], ...]]
 
 
 def _listing(control: Control, listing: Job, entry: str) -> Control:
@@ -100,13 +100,13 @@ def bound_facts(listing: Job) -> str:
     return "\n".join(lines) + "\n"
 
 
-def candidate_trees(listing: Job, time_limit: float | None) -> tuple[list[Candidate], bool]:
+def candidate_trees(listing: Job, time_limit: float | None) -> tuple[list[DesignatedTree], bool]:
     """The designated trees whose work fits the agents within the horizon and whose units can
     each end within it, at most :data:`MAX_TREES`; and whether they are all."""
     control = _listing(Control(["--opt-mode=ignore", "--models=0", *listing.args]), listing, "list_designations")
     control.add_all([("bounds", bound_facts(listing))])
     control.ground()
-    found: list[Candidate] = []
+    found: list[DesignatedTree] = []
 
     def on_model(model: clingo.Model) -> bool:
         atoms = model.symbols(atoms=True)
@@ -132,25 +132,25 @@ def tree_cost(problem: Problem, units: Sequence[int], human: Sequence[int], rank
 
 
 @dataclass
-class Search:
+class JointSearch:
     """The best result of ``solve`` (a designated tree, the time left, the best makespan so far)
     by ``key`` over trees, ties to the first found; ``bound``: a lower bound on a tree's key;
     ``left``: the time left."""
 
-    solve: Callable[[Candidate, float | None, int | None], Any]
+    solve: Callable[[DesignatedTree, float | None, int | None], Any]
     key: Callable[[Any], tuple]
-    bound: Callable[[Candidate], tuple]
+    bound: Callable[[DesignatedTree], tuple]
     left: Callable[[], float | None]
     best: Any = None
     proven: bool = True
 
-    def offer(self, cand: Candidate) -> None:
+    def offer(self, cand: DesignatedTree) -> None:
         r = self.solve(cand, self.left(), None if self.best is None else self.best.makespan)
         self.proven = self.proven and r.status in ("optimal", "unschedulable")
         if r.has_schedule and (self.best is None or self.key(r) < self.key(self.best)):
             self.best = r
 
-    def over(self, trees: list[Candidate]) -> tuple[Any, bool]:
+    def over(self, trees: list[DesignatedTree]) -> tuple[Any, bool]:
         """The best over ``trees``, lowest bound first, stopping when the next bound is no
         better than the best, or when the time is up (the bounds' time too); (best, proven)."""
         bounded = []

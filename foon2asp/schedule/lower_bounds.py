@@ -21,7 +21,7 @@ Gaps = list[tuple[float, float]]
 
 
 @dataclass(frozen=True)
-class Bounds:
+class MakespanBounds:
     """Lower bounds on the makespan (milliseconds)."""
 
     #: the longest chain of minimum durations
@@ -111,7 +111,7 @@ def _clear(gaps: Gaps, floor: int, step: int) -> int:
         best = math.ceil(max(inside) / step) * step
 
 
-def bounds(inst: Instance) -> Bounds:
+def bounds(inst: Instance) -> MakespanBounds:
     """The chain, work and energy bounds, the energy bound also over :func:`pools` and, with
     several kinds, :func:`kind_energy`."""
     start = earliest(inst)
@@ -128,7 +128,7 @@ def bounds(inst: Instance) -> Bounds:
         floor = max(floor, -(-sum(pd.values()) // servers))
     step = divisor(inst)
     energy = _clear(gaps, floor, step)
-    return Bounds(chain, work, kind_energy(inst, start, tail, energy, step))
+    return MakespanBounds(chain, work, kind_energy(inst, start, tail, energy, step))
 
 
 # ---------------------------------------------------------------- kinds of agents

@@ -11,7 +11,7 @@ from decimal import Decimal
 from foon2asp.asp.objectives import success_product
 from foon2asp.foon.problem import Problem
 from foon2asp.schedule.instances import Entry
-from foon2asp.schedule.lower_bounds import Bounds
+from foon2asp.schedule.lower_bounds import MakespanBounds
 from foon2asp.schedule.spec import HUMAN, TICKS, kind_of
 from foon2asp.tree.serialize import goal_heading, tree_json
 from foon2asp.tree.tasktree import TaskTree
@@ -40,7 +40,7 @@ class ScheduleResult:
     status: str
     agents: list[str]
     entries: list[Entry] = field(default_factory=list)
-    bounds: Bounds | None = None
+    bounds: MakespanBounds | None = None
     #: makespan of list scheduling, longest remaining chain first
     baseline: int | None = None
     joint: bool = False

@@ -20,7 +20,7 @@ from foon2asp.schedule import encode, instances, joint
 from foon2asp.schedule.baseline import TRIES, known_schedule, list_schedule
 from foon2asp.schedule.instances import Entry, Instance, earliest, human_units, instance, makespan
 from foon2asp.schedule.joint import check_options
-from foon2asp.schedule.lower_bounds import Bounds, bounds, human_lower
+from foon2asp.schedule.lower_bounds import MakespanBounds, bounds, human_lower
 from foon2asp.schedule.result import ScheduleResult
 from foon2asp.schedule.spec import HUMAN, ScheduleSpec
 from foon2asp.tree.tasktree import TaskTree, executable_order, goal_fields, measures
@@ -69,7 +69,7 @@ def schedule_fixed(
     within: int | None = None,
     progress: Callable[[dict], None] | None = None,
     first: Sequence[tuple[int, int]] = (),
-    lower: Bounds | None = None,
+    lower: MakespanBounds | None = None,
 ) -> ScheduleResult:
     """The optimal schedule of ``tree``'s units.
 
@@ -135,9 +135,9 @@ class JointRequest(Request):
 
     tree: TaskTree
     fixed: ScheduleResult
-    lower: dict[joint.Candidate, Bounds] = field(default_factory=dict, compare=False, repr=False)
+    lower: dict[joint.DesignatedTree, MakespanBounds] = field(default_factory=dict, compare=False, repr=False)
 
-    def solve(self, cand: joint.Candidate, limit: float | None, within: int | None) -> ScheduleResult:
+    def solve(self, cand: joint.DesignatedTree, limit: float | None, within: int | None) -> ScheduleResult:
         """The schedule of a designated tree (time left ``limit``; only one of at most ``within``
         matters); the given tree's own when it is that tree and proven."""
         units, first = cand
@@ -189,7 +189,7 @@ def _by_trees(
         return None, False, None
     ranked = objectives.ranked(job.options)
 
-    def bound(cand: joint.Candidate) -> tuple:
+    def bound(cand: joint.DesignatedTree) -> tuple:
         """A lower bound on the rank of the designated tree's schedule."""
         units, first = cand
         sub = instances.designate(inst.restrict(units), first)
@@ -202,13 +202,13 @@ def _by_trees(
         return (low, 0, joint.tree_cost(problem, units, (), ranked))
 
     if complete:
-        best, proven = joint.Search(job.solve, job.rank, bound, encode.clock(left())).over(trees)
+        best, proven = joint.JointSearch(job.solve, job.rank, bound, encode.clock(left())).over(trees)
     else:  # too many to list: one at a time, least work first
         share = left()
         if not single and share is not None:
             share /= 4
         first = single and not spec.has_human()  # a person alone: fewest units among equal work
-        search = joint.Search(job.solve, job.rank, bound, encode.clock(share))
+        search = joint.JointSearch(job.solve, job.rank, bound, encode.clock(share))
         best, proven = search.by_work(listing, len(ranked), first)
     if fixed.has_schedule and (best is None or job.rank(fixed) <= job.rank(best)):
         if listing.ties:

@@ -16,7 +16,7 @@ import clingo
 from foon2asp.asp import objectives
 from foon2asp.asp.answers import Shot, solve_shot, status, task_tree
 from foon2asp.asp.canonical import canonicalise
-from foon2asp.asp.control import Answer, remaining
+from foon2asp.asp.control import ModelRead, remaining
 from foon2asp.asp.multishot import depth as depth_mod
 from foon2asp.tree.tasktree import Goals, TaskTree, meal_of, measures
 
@@ -83,7 +83,7 @@ class Driver:
         if self.depth_mode == "none":
             return shot([]), None
 
-        def tree_depth(answer: Answer) -> int:
+        def tree_depth(answer: ModelRead) -> int:
             return measures(self.problem, goal, list(answer.units))["depth"] or 0
 
         if self.rounds is None:
@@ -105,7 +105,7 @@ class Driver:
             at = self.ranked.index("depth")
             levels = len(self.ranked) + ("human_limit" in self.grounding.facts)
             first.answers = [
-                Answer(a.units, _with_depth(a.cost, at, tree_depth(a), levels), a.proven, a.human)
+                ModelRead(a.units, _with_depth(a.cost, at, tree_depth(a), levels), a.proven, a.human)
                 for a in first.answers
             ]
             return first, bound
@@ -147,7 +147,7 @@ class Driver:
         if any(g not in self.session.goal_atoms for g in meal):
             return self._tree(goal, None, "unreachable", t0)
         if all(g in self.problem.kitchen for g in meal):
-            return self._tree(goal, Answer((), (), True), "optimal", t0)
+            return self._tree(goal, ModelRead((), (), True), "optimal", t0)
         if not all(self.control.has_atom(clingo.Function("reach", [clingo.Number(g)])) for g in meal):
             return self._tree(goal, None, "unreachable", t0)  # the grounder's fixpoint never derives a goal
         if self.grounding.greedy:
@@ -172,14 +172,14 @@ class Driver:
             best.extra["note"] = f"more than {cap} optimal trees: only the first {cap} are given"
         return best
 
-    def _levels(self, goal: Goals, deadline, on_model) -> tuple[list[tuple[Answer, int | None]], Shot, bool]:
+    def _levels(self, goal: Goals, deadline, on_model) -> tuple[list[tuple[ModelRead, int | None]], Shot, bool]:
         """The trees (with their depth bounds) level by level, each level's trees excluded from the
         next; the first level's shot; whether --all-optimal's cap cut."""
         options = self.options
         want = max(1, int(options.models))
         cap = int(options.all_optimal_cap)
         guards: list[int] = []
-        found: list[tuple[Answer, int | None]] = []
+        found: list[tuple[ModelRead, int | None]] = []
         first: Shot | None = None
         capped = False
         try:
@@ -207,7 +207,9 @@ class Driver:
             return self._tree(goal, shot.answers[0], "found", t0)
         return self._tree(goal, None, status(None, shot), t0)
 
-    def _tree(self, goal: Goals, answer: Answer | None, status: str, t0: float, bound: int | None = None) -> TaskTree:
+    def _tree(
+        self, goal: Goals, answer: ModelRead | None, status: str, t0: float, bound: int | None = None
+    ) -> TaskTree:
         stats = dict(self.last_stats, solves=self.solves)
         if answer is not None and self.canonical_search:
             stats["canonical_search"] = self.canonical_search

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
+from foon2asp.bounds.upper import cheapest_sets
 from foon2asp.foon.problem import Problem, least_fixpoint, walk_back
-from foon2asp.tree.upper import cheapest_sets
 from foon2asp.tree.weights import lexicographic, total
 
 #: a set of units with the objects they make and the objects they need
@@ -150,6 +150,14 @@ class Bounds:
 
     def _closure(self, units: frozenset[int], need: set[int], within: Within | None = None) -> int:
         """``closure(units)`` where the objects ``need`` must be had too."""
+        weight, _ = self._closure_groups(units, need, within)
+        return weight
+
+    def _closure_groups(
+        self, units: frozenset[int], need: set[int], within: Within | None = None
+    ) -> tuple[int, list[tuple[int, ...]]]:
+        """``closure(units)`` where the objects ``need`` must be had too, and the pairwise disjoint
+        producer groups it counts (each the producers of an object the units or ``need`` require)."""
         problem = self.problem
         products, required = problem.products, problem.required
         sub, made_in, need_in = within if within is not None else (frozenset(), frozenset(), frozenset())
@@ -170,21 +178,25 @@ class Bounds:
                 group = tuple(u for u in group if u not in units)
             if group:
                 groups.add(group)
-        return self.weight(units) + self._packing(groups)
+        extra, chosen = self._packing(groups)
+        return self.weight(units) + extra, chosen
 
-    def _packing(self, groups: Iterable[tuple[int, ...]]) -> int:
-        """The summed lightest weights of pairwise disjoint producer groups, taken smallest first."""
+    def _packing(self, groups: Iterable[tuple[int, ...]]) -> tuple[int, list[tuple[int, ...]]]:
+        """The summed lightest weights of pairwise disjoint producer groups, taken smallest first,
+        and those groups."""
         lightest = self._lightest
         for g in groups:
             if g not in lightest:
                 lightest[g] = min(self.w[u] for u in g)
         used: set[int] = set()
         extra = 0
+        chosen = []
         for group in sorted(groups, key=lambda g: (len(g), lightest[g], g)):
             if used.isdisjoint(group):
                 used.update(group)
                 extra += lightest[group]
-        return extra
+                chosen.append(group)
+        return extra, chosen
 
     def lower(self, goal: int) -> int:
         """A lower bound on the weight of every tree for ``goal``."""
@@ -210,6 +222,14 @@ class Bounds:
         """A lower bound on the first objective's solver weight of every tree for ``goal``."""
         weight = self.lower(goal)
         return weight if self.ranked[0] == "units" else weight // (len(self.problem.units) + 1)
+
+    def witness(self, goal: int) -> tuple[int, list[tuple[int, ...]]]:
+        """A lower bound on the weight of every tree for ``goal`` that anyone can check, and its
+        landmark sets: pairwise disjoint sets of units, not landmarks, of which every tree uses
+        one (the producers of an object the goal or a landmark requires); the bound is the
+        landmarks' weight and the lightest unit's of each set."""
+        LM = self.landmarks(goal)
+        return self._closure_groups(LM, {goal}, self._within(LM))
 
     def landmarks(self, goal: int) -> frozenset[int]:
         """The units every tree for ``goal`` uses."""

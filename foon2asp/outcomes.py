@@ -204,7 +204,7 @@ class MissingResult:
 
 
 class ShownModel(Protocol):
-    """What a query shows of one model (:class:`foon2asp.asp.control.Answer` is one)."""
+    """What a query shows of one model (:class:`foon2asp.asp.control.ModelRead` is one)."""
 
     @property
     def cost(self) -> tuple[int, ...]: ...
