@@ -11,6 +11,7 @@ import time
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from functools import lru_cache
 from functools import cache
 from typing import Any
 
@@ -55,6 +56,15 @@ def option_names() -> tuple[str, ...]:
             else:
                 names.add("--" + key.replace("_", "-"))
     return tuple(sorted(names))
+
+
+@lru_cache(maxsize=64)
+def _parsed_file(path: str) -> tuple[tuple[str, clingo.ast.AST], ...]:
+    """The statements of the encoding file at ``path`` and the files it includes, as clingo parses
+    them, each with the file it is in."""
+    found: list[tuple[str, clingo.ast.AST]] = []
+    clingo.ast.parse_files([path], lambda stm: found.append((stm.location.begin.filename, stm)))
+    return tuple(found)
 
 
 def remaining(deadline: float | None) -> float | None:
@@ -113,6 +123,8 @@ class Control:
         #: keep the choices, conflicts, models and solve time of each solve (:meth:`stats`)
         self.statistics = True
         self.user_programs: list[tuple[str, str]] = []
+        #: the encoding files loaded so far (with the files they include)
+        self._loaded: set[str] = set()
         self._last_stats: dict = {}
         self.theory = theory
         #: the mode set by :meth:`solving` is "first"; :meth:`stop_soon` was asked; an interrupt may be pending
@@ -144,15 +156,17 @@ class Control:
             raise clingo_error(self.messages, name) from None
 
     def load(self, path: str) -> None:
-        """Load the encoding file at ``path``; clingo resolves its ``#include`` directives."""
+        """Load the shipped encoding file at ``path``: clingo's parser reads it once per process,
+        resolving its ``#include`` directives, and each control gets the statements parsed."""
         self.messages.clear()
         try:
-            with deferred_signals():
-                if self.theory is None:
-                    self.ctl.load(path)
-                else:  # a theory (clingo-dl) rewrites the program; it is added to the base part
-                    with clingo.ast.ProgramBuilder(self.ctl) as builder:
-                        clingo.ast.parse_files([path], lambda stm: self.theory.rewrite_ast(stm, builder.add))
+            statements = _parsed_file(path)
+            with deferred_signals(), clingo.ast.ProgramBuilder(self.ctl) as builder:
+                add = builder.add if self.theory is None else (lambda stm: self.theory.rewrite_ast(stm, builder.add))
+                for source, stm in statements:
+                    if source not in self._loaded:  # a file loaded before, or included by one, once
+                        add(stm)
+            self._loaded.update(source for source, _ in statements)
         except RuntimeError:
             raise clingo_error(self.messages, path) from None
 

@@ -13,7 +13,7 @@ from foon2asp.asp.facts import unit_ids
 from foon2asp.errors import InputError
 from foon2asp.foon.motioncost import DEFAULT_COST, motion_key, scaled
 from foon2asp.foon.problem import Problem
-from foon2asp.tree.weights import UNIT_WEIGHTS, success_permille, total
+from foon2asp.tree.weights import HEURISTICS, UNIT_WEIGHTS, total
 
 
 def ranked(options) -> tuple[str, ...]:
@@ -49,14 +49,13 @@ def motion_cost_facts(problem: Problem, options, units: Iterable[int] | None = N
     return "".join(f"motion_cost({u},{w}).\n" for u, w in weights.items())
 
 
-def greedy_key(problem: Problem, heuristic: str, unit: int) -> tuple[int, int]:
-    """The order of producers for greedy retrieval (smaller first): h1 the highest success rate,
-    h2 the fewest input nodes; ties in FOON file order."""
-    if heuristic == "h1":
-        return (-success_permille(problem.rates[unit]), unit)
-    if heuristic == "h2":
-        return (len(problem.inputs[unit]), unit)
-    raise ValueError(f"unknown heuristic {heuristic!r}")
+def greedy_key(problem: Problem, heuristic: str, unit: int) -> tuple[float, int]:
+    """The order of producers for greedy retrieval (smaller first): the heuristic's score
+    (:data:`foon2asp.tree.weights.HEURISTICS`, as the search baselines score), highest first,
+    ties in FOON file order."""
+    if heuristic not in HEURISTICS:
+        raise ValueError(f"unknown heuristic {heuristic!r}")
+    return (-HEURISTICS[heuristic](problem, unit), unit)
 
 
 def rank_facts(problem: Problem, heuristic: str, units: Iterable[int] | None = None) -> str:

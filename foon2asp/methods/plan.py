@@ -38,6 +38,7 @@ from foon2asp.asp.predicates import checkable, mentioned, only_constraints
 from foon2asp.asp.prepared import Preparation
 from foon2asp.asp.programs_check import ProgramsCheck
 from foon2asp.asp.session import Session
+from foon2asp.bounds.lower import Bounds
 from foon2asp.bounds.lower import supports as bounds_supports
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem, least_fixpoint
@@ -261,22 +262,24 @@ def plan(req: Request, goal: Goals) -> Plan:
     if req.shortcuts and not choice and req.allows(units):
         return replace(base, route="only-tree", tree=tuple(units))
     free = req.free if req.constrained else req
-    prep = preparation(free, g) if free.bounded else None
-    if req.shortcuts and prep is not None and prep.settled and req.allows(prep.hint):
+    bounded = _bounded(free, g) if free.bounded else None
+    if req.shortcuts and bounded is not None and bounded[1].settled and req.allows(bounded[1].hint):
         # the landmarks and the landmark sets weigh what the bounds tree weighs: no tree costs less
+        prep = bounded[1]
         return replace(base, route="bounds", tree=prep.hint, landmarks=prep.landmarks, landmark_sets=prep.landmark_sets)
-    if req.shortcuts and prep is None:
+    if req.shortcuts and bounded is None:
         marks = landmarks(free, g)
         if makes(problem, g, marks) and req.allows(marks):  # the landmarks alone are a tree: no tree costs less
             return replace(base, route="bounds", tree=marks, landmarks=marks)
+    prepared = _pruned(free, *bounded) if bounded is not None else preparation(free, g)
     if req.checkable:
-        first = replace(base, route="prepared", programs=(), grounding=_grounding(free, prep or preparation(free, g)))
+        first = replace(base, route="prepared", programs=(), grounding=_grounding(free, prepared))
         return replace(
             base, route="prepared", grounding=_grounding(req, preparation(req, g)), free_first=first, explain=explain
         )
-    if req.constrained or prep is None:
-        prep = preparation(req, g)
-    return replace(base, route="prepared", grounding=_grounding(req, prep), explain=explain)
+    if req.constrained:
+        prepared = preparation(req, g)
+    return replace(base, route="prepared", grounding=_grounding(req, prepared), explain=explain)
 
 
 def _grounding(req: Request, prep: Preparation) -> Grounding:
@@ -300,11 +303,19 @@ def _clingo(req: Request, base: Plan, explain: bool) -> Plan:
 
 def preparation(req: Request, goal: int) -> Preparation:
     """What Python hands clingo for ``goal`` (a derivable goal that is no kitchen item): the part
-    to search, its landmarks, the bounds tree and its cost, the lower bound."""
+    to search (pruned to the units an optimal tree may use), its landmarks, the bounds tree and
+    its cost, the lower bound."""
+    if not req.bounded:
+        units, _, _ = req.parts.relevant(goal)
+        return Preparation(goal, tuple(units), landmarks(req, goal))
+    bounds, prep = _bounded(req, goal)
+    return _pruned(req, bounds, prep)
+
+
+def _bounded(req: Request, goal: int) -> tuple[Bounds, Preparation]:
+    """The bounds of ``goal``'s part and the preparation they give, its part not yet pruned."""
     parts = req.parts
     units, _, _ = parts.relevant(goal)
-    if not req.bounded:
-        return Preparation(goal, tuple(units), landmarks(req, goal))
     ranked = req.ranked
     bounds = parts.bounds_for(ranked, units)
     tree = bounds.tree(goal) or ()
@@ -315,13 +326,8 @@ def preparation(req: Request, goal: int) -> Preparation:
         weight = cost[0] if len(cost) == 1 else cost[0] * scale + cost[1]
         return weight <= lower
 
-    if not req.constrained:  # user programs may need any relevant unit
-        units = bounds.keep(goal, units)
-        if dominance.applies(req.options, ranked):
-            dominated = parts.dominators(ranked).dominated(goal, units)
-            units = [u for u in units if u not in dominated or u in tree]
     checkable, sets = bounds.witness(goal)
-    return Preparation(
+    return bounds, Preparation(
         goal,
         tuple(units),
         tuple(sorted(bounds.landmarks(goal))),
@@ -332,6 +338,19 @@ def preparation(req: Request, goal: int) -> Preparation:
         landmark_sets=tuple(sets),
         settled=bool(tree) and checkable >= bounds.weight(tree),
     )
+
+
+def _pruned(req: Request, bounds: Bounds, prep: Preparation) -> Preparation:
+    """``prep`` with its part cut to the units an optimal tree may use (none cut under user programs,
+    which may need any relevant unit)."""
+    if req.constrained:
+        return prep
+    goal, ranked = prep.goal, req.ranked
+    units = bounds.keep(goal, prep.candidates)
+    if dominance.applies(req.options, ranked):
+        dominated = req.parts.dominators(ranked).dominated(goal, units)
+        units = [u for u in units if u not in dominated or u in prep.hint]
+    return replace(prep, candidates=tuple(units))
 
 
 def landmarks(req: Request, goal: int) -> tuple[int, ...]:

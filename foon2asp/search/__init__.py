@@ -12,6 +12,7 @@ from collections.abc import Callable
 
 from foon2asp.foon.problem import Problem
 from foon2asp.tree.tasktree import TaskTree, executable_order, measures
+from foon2asp.tree.weights import HEURISTICS
 
 __all__ = ["IDS", "gbfs", "h1", "h2"]
 
@@ -28,14 +29,10 @@ def _result(problem: Problem, goal: int, method: str, units: list[int] | None, t
     return TaskTree(goal, method, "found", units, measures(problem, goal, units), elapsed)
 
 
-def h1(problem: Problem, u: int) -> float:
-    """Greedy score by motion success rate: higher is better."""
-    return problem.rates[u]
-
-
-def h2(problem: Problem, u: int) -> float:
-    """Greedy score by input nodes: fewer is better."""
-    return -len(problem.inputs[u])
+#: greedy score by motion success rate: higher is better (foon2asp.tree.weights.HEURISTICS)
+h1 = HEURISTICS["h1"]
+#: greedy score by input nodes: fewer is better
+h2 = HEURISTICS["h2"]
 
 
 def gbfs(problem: Problem, goal: int, score: Score, method: str) -> TaskTree:

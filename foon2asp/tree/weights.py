@@ -60,3 +60,12 @@ def lexicographic(problem: Problem, objective: str) -> list[int]:
     weight = UNIT_WEIGHTS[objective]
     scale = len(problem.units) + 1
     return [weight(problem, u) * scale + 1 for u in range(len(problem.units))]
+
+
+#: the greedy heuristics of the search baselines and of greedy retrieval in the solver: unit ->
+#: its score among the producers of an object, higher first (ties in FOON file order):
+#: h1 the highest motion success rate, h2 the fewest input nodes as the FOON lists them
+HEURISTICS: dict[str, Callable[[Problem, int], float]] = {
+    "h1": lambda problem, u: problem.rates[u],
+    "h2": lambda problem, u: -len(problem.inputs[u]),
+}
