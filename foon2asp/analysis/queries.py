@@ -12,7 +12,7 @@ from foon2asp.asp import encoding_files
 from foon2asp.asp.constraints import check_syntax
 from foon2asp.asp.control import Control, ModelRead
 from foon2asp.asp.facts import facts
-from foon2asp.asp.objectives import input_node_facts
+from foon2asp.asp.objectives import input_node_facts, objective_facts
 from foon2asp.asp.options import OBJECTIVES, AspOptions, solver_args
 from foon2asp.asp.predicates import (
     known_predicates,
@@ -91,7 +91,7 @@ def objective_parts(
     problem: Problem, objective: tuple[str, ...], units: list[int], first: int
 ) -> list[tuple[str, str]]:
     """The ``objective(Name,P)`` facts, the facts the objectives read and ``add_priority(first)``."""
-    parts = [(f"objective {n}", f"objective({n},{len(objective) - k}).\n") for k, n in enumerate(objective)]
+    parts = [("objectives", objective_facts(objective))]
     if "inputs" in objective:
         parts.append(("input_nodes", input_node_facts(problem, units)))
     if "cost" in objective:
@@ -276,7 +276,7 @@ def query(
     if "inputs" in names:
         parts.append(("input_nodes", input_node_facts(problem)))
     # objective encodings listed first weigh most: objective(Name,P), P = n..1
-    parts += [(f"objective {n}", f"objective({n},{len(ranked) - k}).\n") for k, n in enumerate(ranked)]
+    parts.append(("objectives", objective_facts(ranked)))
     parts.append((name, text))
     prog = Program(parts, ["--opt-mode=opt", "--models=0"], files)
     warnings = query_warnings(prog, (name, text), names)

@@ -102,7 +102,7 @@ def fact_programs(grounding: Grounding) -> list[tuple[str, str]]:
         "problem": lambda: facts(
             problem, units=units, leave_out=g.leave_out, whole_kitchen=g.whole_kitchen, declare=g.declare
         ),
-        "objectives": lambda: "".join(f"objective({name},{len(ranked) - i}).\n" for i, name in enumerate(ranked)),
+        "objectives": lambda: objectives.objective_facts(ranked),
         "input_nodes": lambda: objectives.input_node_facts(problem, units),
         "motion_costs": lambda: objectives.motion_cost_facts(problem, options, units),
         "ranks": lambda: objectives.rank_facts(problem, str(options.heuristic), units),

@@ -24,6 +24,13 @@ def ranked(options) -> tuple[str, ...]:
     return objective if "units" in objective else (*objective, "units")
 
 
+def objective_facts(objective: Iterable[str]) -> str:
+    """``objective(Name,P).``: the objectives in order, most important first with the highest
+    priority P (n down to 1); the one place these facts are written."""
+    names = list(dict.fromkeys(objective))
+    return "".join(f"objective({name},{len(names) - i}).\n" for i, name in enumerate(names))
+
+
 def input_node_facts(problem: Problem, units: Iterable[int] | None = None) -> str:
     """``input_nodes(U,N).``: N input nodes as the FOON lists them."""
     ids = unit_ids(problem, units)

@@ -59,8 +59,7 @@ def tree_parts(problem: Problem, meal: tuple[int, ...], inst: Instance, options:
     the goals ``meal`` over the units of ``inst``, and the user's programs, for joint scheduling."""
     ranked = check_options(options)
     units = list(inst.units)
-    n = len(ranked)
-    parts = [("objective", "".join(f"objective({o},{n - i}).\n" for i, o in enumerate(ranked)))]
+    parts = [("objective", objectives.objective_facts(ranked))]
     if "inputs" in ranked:
         parts.append(("input nodes", objectives.input_node_facts(problem, units)))
     parts.append(("goal", "".join(f"goal({g}).\n" for g in meal)))
