@@ -171,7 +171,7 @@ def test_options_turn_the_shortcuts_off_and_load_the_encoding():
         AspOptions(substitutes=subs, objective=("depth",)),
         AspOptions(substitutes=subs, heuristic="h1"),
     ):
-        with pytest.raises(InputError, match="substitutes cannot be combined"):
+        with pytest.raises(InputError, match="cannot use substitutes"):
             Session(problem, options)
 
 

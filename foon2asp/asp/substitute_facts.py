@@ -13,7 +13,6 @@ import clingo
 from foon2asp.asp import encoding_files
 from foon2asp.asp.control import Control
 from foon2asp.asp.facts import OPTIONAL, fact_objects, facts, unit_ids
-from foon2asp.errors import InputError
 from foon2asp.foon.model import FoonObject
 from foon2asp.foon.problem import Problem
 from foon2asp.foon.substitutes import StandIn, Substitute, candidates, with_substitutes
@@ -53,11 +52,9 @@ def applies(options) -> bool:
 
 def prepare(problem: Problem, options) -> Problem:
     """The problem a session with ``options`` solves: with substitutes, the one whose viability
-    counts what they stand in for (InputError with depth rounds or greedy retrieval)."""
+    counts what they stand in for (which options combine with them: foon2asp.methods.plan.check)."""
     if not applies(options):
         return problem
-    if options.heuristic or options.max_depth is not None or "depth" in options.objective:
-        raise InputError("substitutes cannot be combined with depth bounds, the depth objective or greedy retrieval")
     return with_substitutes(problem, options.substitutes)
 
 

@@ -43,7 +43,7 @@ from foon2asp.bounds.lower import supports as bounds_supports
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem, least_fixpoint
 from foon2asp.methods.parts import GROUNDINGS, Parts
-from foon2asp.methods.registry import check_substitutes, effective_options, get
+from foon2asp.methods.registry import effective_options, get
 from foon2asp.tree.tasktree import Goals, meal_of
 from foon2asp.tree.weights import UNIT_WEIGHTS
 
@@ -155,6 +155,23 @@ class Request:
         return grounding(self.problem, replace(self.options, units=tuple(units)))
 
 
+def check(name: str, kind: str, options: AspOptions) -> None:
+    """The one check of which options combine, for method ``name`` of ``kind`` (``asp`` or
+    ``search``): a one-line InputError when the method cannot honour them."""
+    if not options.substitutes:
+        return  # substitutes are the one setting some methods cannot honour
+    if kind != "asp":
+        raise InputError(f"method {name!r} is a search baseline and cannot use substitutes; use an ASP method (asp)")
+    effective = effective_options(name, options)
+    if effective.heuristic:
+        raise InputError(f"method {name!r} is greedy retrieval and cannot use substitutes; use an ASP method (asp)")
+    if effective.max_depth is not None or "depth" in effective.objective:
+        raise InputError(
+            f"method {name!r} with depth rounds or the depth objective cannot use substitutes;"
+            " use another objective and no --max-depth"
+        )
+
+
 def request(
     name: str,
     problem: Problem,
@@ -170,7 +187,7 @@ def request(
     if grounding not in GROUNDINGS:
         raise ValueError(f"unknown grounding {grounding!r}")
     method = get(name)
-    check_substitutes(name, options)
+    check(name, method.kind, options)
     if method.kind == "asp":
         options = effective_options(name, options)
     solved = substitute_facts.prepare(problem, options)
@@ -489,4 +506,5 @@ def session_of(
     """A session of ``options`` over ``problem`` as :func:`grounding` grounds it: every viable
     (or ``options.units``) unit for any goal, or for ``goal`` alone, or ``prepared``'s part."""
     options = options or AspOptions()
+    check("asp", "asp", options)
     return Session(grounding(substitute_facts.prepare(problem, options), options, goal=goal, prepared=prepared))

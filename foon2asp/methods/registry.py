@@ -60,23 +60,6 @@ def effective_options(name: str, options: AspOptions) -> AspOptions:
     return adjust(options) if adjust is not None else options
 
 
-def check_substitutes(name: str, options: AspOptions) -> None:
-    """A one-line error when method ``name`` cannot honour ``options.substitutes`` (a search
-    baseline, greedy retrieval, depth rounds or the depth objective: none minimises substitutions)."""
-    if not options.substitutes:
-        return
-    if get(name).kind != "asp":
-        raise InputError(f"method {name!r} is a search baseline and cannot use substitutes; use an ASP method (asp)")
-    effective = effective_options(name, options)
-    if effective.heuristic:
-        raise InputError(f"method {name!r} is greedy retrieval and cannot use substitutes; use an ASP method (asp)")
-    if effective.max_depth is not None or "depth" in effective.objective:
-        raise InputError(
-            f"method {name!r} with depth rounds or the depth objective cannot use substitutes;"
-            " use another objective and no --max-depth"
-        )
-
-
 def get(name: str) -> Method:
     try:
         return METHODS[name]
