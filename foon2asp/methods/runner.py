@@ -91,6 +91,7 @@ class GoalRunner:
             tree = self._settled(how, t0)
         else:
             tree = self._solve(how, t0)
+            tree.stats.setdefault("plan", how.describe())  # what was grounded and how clingo ran
         if how.explain and tree.status == "unreachable" and all(g in self.problem.derivable for g in how.goal):
             self._infeasible(tree)
         for answer in (tree, *tree.alternatives):
