@@ -42,7 +42,7 @@ HAS_SHARED = (SHARED / "foon" / "FOON.txt").is_file()
 SLOW = os.environ.get("FOON2ASP_DOCS_SLOW") == "1"
 PAGES = [REPO / "README.md", *sorted((REPO / "docs").glob("*.md"))]
 #: what the working folder of a page links in from the repository
-LINKED = ("data", "docs", "foon2asp", "bench")
+LINKED = ("data", "docs", "encodings", "foon2asp", "bench")
 COMMAND_TIMEOUT_S = 600
 CHECKER = doctest.OutputChecker()
 NO_SHARED = "../shared/foon is not beside the checkout"
