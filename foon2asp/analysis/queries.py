@@ -234,7 +234,8 @@ def query_warnings(prog: Program, program: tuple[str, str], loaded: Iterable[str
                 continue
             line, column = where
             message = f"{escape(part)}:{line}:{column}: {signature_text(sig)} occurs in no rule head and no fact"
-            by = sorted((enc for enc, p in shipped.items() if sig in p.defined), key=lambda enc: (enc != "tree", enc))
+            defines = [enc for enc, p in shipped.items() if sig in p.defined and sig not in p.declared]
+            by = sorted(defines, key=lambda enc: (enc != "tree", enc))
             if by:
                 also = f" (or {', '.join(by[1:])})" if by[1:] else ""
                 message += f"; load the encoding {by[0]}{also}, which defines it"

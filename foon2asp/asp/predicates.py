@@ -53,6 +53,8 @@ class Predicates:
     used: dict[Signature, tuple[int, int]] = field(default_factory=dict)
     #: the program holds ``#minimize``, ``#heuristic``, ``#external``, ``#edge`` or a weak constraint
     changes_search: bool = False
+    #: predicates only declared by ``#defined`` (optional inputs: they may have no facts)
+    declared: set[Signature] = field(default_factory=set)
 
     def define(self, sigs: Iterable[Signature]) -> None:
         self.defined.update(sigs)
@@ -74,6 +76,7 @@ class Predicates:
             self.visit(stm.body)
         elif kind == T.Defined:
             self.define([(stm.name, stm.arity)])
+            self.declared.add((stm.name, stm.arity))
         elif kind in (T.ShowSignature, T.ProjectSignature):
             if stm.name:
                 self.use([(stm.name, stm.arity)], stm.location)

@@ -294,8 +294,8 @@ def facts(data, goals, goal, output, options):
     opt.option("--goal", "Also add goal(O) for this goal. " + opt.GOAL_HELP, metavar="TEXT"),
     opt.option(
         "--encoding encoding_names",
-        "Also load a shipped encoding (tree, units, success, inputs, reachable, missing) and what it needs;"
-        " repeatable.",
+        "Also load a part of encodings/parts/ by name (tree, units, success, inputs, cost, reachable,"
+        " missing, ...), over tree.lp when it reads a tree; repeatable.",
         multiple=True,
     ),
     opt.option("--models", "Models to print (0 = all); with an objective, the optimum.", type=opt.int32(), default=1),

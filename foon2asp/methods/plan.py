@@ -15,7 +15,7 @@ route      when                                                              pro
 search     a search baseline (IDS, GBFS)                                     nothing
 fixpoint   the goal cannot be made from the kitchen, or is a kitchen item    fixpoint
 only-tree  every object of the relevant part has one producer                only-tree
-bounds     the landmarks alone are a tree: the landmark bound meets it       bounds
+bounds     the landmarks and landmark sets weigh what the bounds tree weighs  bounds
 prepared   clingo on the goal's prepared part                                clingo
 clingo     clingo on the whole grounding or the goal's part (meals, depth,   clingo
            alternatives, human steps, greedy retrieval, substitutes, ...)
