@@ -72,7 +72,7 @@ def test_readme_and_benchmarks_stay_short():
     lines = {
         name: len((REPO / name).read_text(encoding="utf-8").splitlines()) for name in ("README.md", "BENCHMARKS.md")
     }
-    assert lines["README.md"] <= 250 and lines["BENCHMARKS.md"] <= 300, lines
+    assert lines["README.md"] <= 250 and lines["BENCHMARKS.md"] <= 320, lines
 
 
 def test_api_modules_import_one_way():
