@@ -42,6 +42,7 @@ now is a difference.
 from __future__ import annotations
 
 import argparse
+import hashlib
 import json
 import os
 import resource
@@ -314,6 +315,7 @@ def run_one(
         )
         header = {
             "answers": 1,
+            "inputs_sha256": inputs_sha256(SETS[name].folder(inputs), goals),
             "set": name,
             "objective": objective,
             "command": batch_command(
@@ -340,6 +342,15 @@ def run_one(
         with open(side.out / f"{name}.{objective}.jsonl", "w", encoding="utf-8") as fh:
             fh.write(json.dumps(header) + "\n")
             fh.writelines(json.dumps(r) + "\n" for r in side.answers[0])
+
+
+def inputs_sha256(folder: Path, goals: list[str]) -> str:
+    """One hash of the data set's files and the goals asked (a goals file by its content)."""
+    h = hashlib.sha256()
+    for path in sorted(p for p in folder.iterdir() if p.is_file() and p.name != "ready"):
+        h.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+    h.update(Path(goals[1]).read_bytes() if goals[1] != "all-objects" else b"all-objects")
+    return h.hexdigest()
 
 
 def version(foon2asp: str) -> str:
@@ -415,8 +426,14 @@ def compare_cell(old_h: dict, old: dict, new_h: dict, new: dict) -> tuple[dict, 
     """Counts of one (data set, objective) and lines describing each difference."""
     c = {k: 0 for k in ("status", "cost", "units", "proven_by", "to_bounds", "newly_proven", "unproven_both")}
     notes: list[str] = []
-    if old_h["batch_header"]["config"].get("input_sha256") != new_h["batch_header"]["config"].get("input_sha256"):
-        notes.append("the inputs differ (input_sha256): the answers are not comparable")
+    if old_h.get("inputs_sha256") != new_h.get("inputs_sha256"):
+        notes.append("the inputs differ (another inputs folder or goals): the answers are not comparable")
+    old_config, new_config = old_h["batch_header"]["config"], new_h["batch_header"]["config"]
+    if old_config.get("input_sha256") != new_config.get("input_sha256"):
+        notes.append("note: the batch headers' input_sha256 differ (the same files, the facts hashed differently)")
+    keys = sorted(k for k in old_config.keys() | new_config.keys() if k != "input_sha256")
+    if changed := [k for k in keys if old_config.get(k) != new_config.get(k)]:
+        notes.append(f"the configurations differ in: {', '.join(changed)}")
     missing, added = old.keys() - new.keys(), new.keys() - old.keys()
     if missing or added:
         notes.append(f"goals only before: {len(missing)}, only now: {len(added)}")
@@ -467,7 +484,7 @@ def cmd_compare(a: argparse.Namespace) -> int:
         cpu = new_h["cpu_median_s"] / old_h["cpu_median_s"]
         sampled = f" (every {nth(old_h['sampled_step'])})" if old_h.get("sampled_step") else ""
         bad = any(c[k] for k in ("status", "cost", "units", "proven_by", "goals_only_one_side")) or any(
-            n.startswith("the inputs differ") for n in notes
+            n.startswith(("the inputs differ", "the configurations differ")) for n in notes
         )
         failed |= bad
         ratio = wall if a.time == "wall" else cpu
