@@ -52,7 +52,7 @@ def run(problem: Problem, goals: list[int], options: AspOptions) -> dict:
         t = time.perf_counter()
         tree = session.solve(g)
         times.append(time.perf_counter() - t)
-        costs.append(tuple(tree.extra.get("asp_cost", ())))
+        costs.append(tuple(tree.asp_cost or ()))
         proven += tree.status in ("optimal", "unreachable", "found")
     return {
         "ground": ground,

@@ -65,7 +65,7 @@ def main() -> None:
             tree = run(goal)
             took = time.perf_counter() - t0
             times.setdefault(route, []).append(took)
-            cost = tree.extra.get("asp_cost")
+            cost = tree.asp_cost
             if tree.status not in ("optimal", "unreachable"):
                 open_goals.setdefault(route, []).append(f"{goal} ({tree.status}, {cost}, bound {tree.bound})")
             if (objective, goal) in reference and reference[(objective, goal)] != (tree.status, cost):

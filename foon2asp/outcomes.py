@@ -113,7 +113,7 @@ class Consolidation:
 
 @dataclass
 class Row:
-    """One goal: the tree of each method (``extra["valid"]`` set on each)."""
+    """One goal: the tree of each method (``valid`` set on each)."""
 
     goal: int
     trees: dict[str, TaskTree]

@@ -141,7 +141,7 @@ def test_shared_foon_sample_equals_the_solver_without_shortcuts(shared_problem, 
     for goal in goals:
         a, b = fast(goal), slow(goal)
         assert a.status == b.status, goal
-        assert a.extra.get("asp_cost") == b.extra.get("asp_cost"), goal
+        assert a.asp_cost == b.asp_cost, goal
         assert sorted(a.units) == sorted(b.units), goal  # the canonical tree, either way
         if a.status == "optimal":
             assert validate(problem, goal, a.units).valid

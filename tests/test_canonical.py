@@ -161,7 +161,7 @@ def test_the_tree_is_the_same_from_every_path_when_the_budget_runs_out(small, ob
     want = sorted(fresh.units)
     # the optimum, against the reference search written without the solver
     opt = reference(problem, goal, objective)
-    assert opt is not None and fresh.extra["asp_cost"][0] == round(opt)
+    assert opt is not None and fresh.asp_cost[0] == round(opt)
     # a session for many goals that solved others first hands the goal to its canonical session
     others = sorted(problem.derivable - problem.kitchen)[:5]
     shared = Session(problem, replace_units(options, problem.units_for([*others, goal])))
@@ -175,9 +175,9 @@ def test_the_tree_is_the_same_from_every_path_when_the_budget_runs_out(small, ob
     bounds = Bounds(problem, ranked(options))
     best = bounds.tree(goal)
     first = GoalRunner("asp", problem, options)(goal)
-    assert first.extra["asp_cost"] == fresh.extra["asp_cost"] and validate(problem, goal, first.units).valid
+    assert first.asp_cost == fresh.asp_cost and validate(problem, goal, first.units).valid
     want = sorted(first.units)
-    if best is not None and bounds.cost(best) == fresh.extra["asp_cost"]:
+    if best is not None and bounds.cost(best) == fresh.asp_cost:
         assert want == sorted(best)
     trees = [
         t for order in (1, -1) for t in solve_goals(problem, [*others, goal][::order], "asp", options) if t.goal == goal
@@ -186,7 +186,7 @@ def test_the_tree_is_the_same_from_every_path_when_the_budget_runs_out(small, ob
         for shortcuts in (True, False):
             trees.append(GoalRunner("asp", problem, options, grounding, shortcuts=shortcuts)(goal))
     for tree in trees:
-        assert tree.status == "optimal" and tree.extra["asp_cost"] == fresh.extra["asp_cost"]
+        assert tree.status == "optimal" and tree.asp_cost == fresh.asp_cost
         assert sorted(tree.units) == want
 
 
@@ -205,7 +205,7 @@ def test_a_larger_budget_ends_at_a_smaller_or_equal_tree(small, monkeypatch):
     bounded = canonical_session(problem, options, goal).solve(goal)
     monkeypatch.setattr(canonical, "CONFLICTS", 4 * canonical.CONFLICTS)
     tree = canonical_session(problem, options, goal).solve(goal)
-    assert tree.extra["asp_cost"] == bounded.extra["asp_cost"]
+    assert tree.asp_cost == bounded.asp_cost
     n = len(problem.units)
 
     def key(units):

@@ -40,9 +40,9 @@ def test_rows_mark_validity():
     assert list(row.trees) == list(DEFAULT_METHODS)
     for name, tree in row.trees.items():
         assert tree.method == name
-        assert tree.extra["valid"] == (tree.has_tree and validate(p, g, tree.units).valid)
-    assert row.trees["gbfs-h1"].extra["valid"] is False
-    assert "circular support" in row.trees["gbfs-h1"].extra["problem"]
+        assert tree.valid == (tree.has_tree and validate(p, g, tree.units).valid)
+    assert row.trees["gbfs-h1"].valid is False
+    assert "circular support" in row.trees["gbfs-h1"].problem
     assert row.trees["ids"].units == [3, 2]
     assert row.trees["asp"].status == "optimal" and len(row.trees["asp"].units) == 2
 
@@ -63,11 +63,11 @@ def test_asp_column_is_the_brute_force_optimum(seed):
     smallest, _ = best(p, g, lambda m: m["units"])
     asp = row.trees["asp"]
     if smallest == float("inf"):
-        assert asp.status == "unreachable" and asp.extra["valid"] is False
+        assert asp.status == "unreachable" and asp.valid is False
         return
-    assert asp.status == "optimal" and len(asp.units) == smallest and asp.extra["valid"]
+    assert asp.status == "optimal" and len(asp.units) == smallest and asp.valid
     for _name, tree in row.trees.items():
-        if tree.extra["valid"]:
+        if tree.valid:
             assert len(tree.units) >= smallest
 
 
@@ -80,7 +80,7 @@ def test_later_registered_methods_just_work():
         p = trap()
         (row,) = compare_iter(p, [goal_id(p, "g")], ["ids", "test-nothing"])
         assert list(row.trees) == ["ids", "test-nothing"]
-        assert row.trees["test-nothing"].extra["valid"] is False
+        assert row.trees["test-nothing"].valid is False
         assert "not-found" in render("compare", "text", p, [row])
     finally:
         del methods.METHODS["test-nothing"]

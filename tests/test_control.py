@@ -205,7 +205,7 @@ def test_plain_and_driven_solves_read_the_same_trees(demo_problem, small, object
             meal = goal if isinstance(goal, tuple) else (goal,)
             one, two = plain.solve(goal), driven.solve(goal)
             assert one.status == two.status == _expected_status(problem, meal)
-            assert one.extra.get("asp_cost") == two.extra.get("asp_cost")
+            assert one.asp_cost == two.asp_cost
             if not one.has_tree:
                 continue
             assert all(validate(problem, g, one.units).valid for g in meal)
@@ -213,7 +213,7 @@ def test_plain_and_driven_solves_read_the_same_trees(demo_problem, small, object
             if "canonical_search" not in one.stats and "canonical_search" not in two.stats:
                 assert sorted(one.units) == sorted(two.units)
             if objective in ("units", "success") and len(meal) == 1 and problem is p:
-                assert one.extra["asp_cost"][0] == round(reference(problem, meal[0], objective))
+                assert one.asp_cost[0] == round(reference(problem, meal[0], objective))
             if objective == "depth":
                 assert one.cost["depth"] == max(problem.derivation_levels()[0].get(g, 0) for g in meal)
 
@@ -243,10 +243,10 @@ def test_alternatives_are_a_field_ranked_by_one_status(demo_problem):
             assert tree.alternatives == []
             continue
         found = alternatives(tree)
-        assert found == [tree, *tree.alternatives] and "_alternatives" not in tree.extra
+        assert found == [tree, *tree.alternatives] and not hasattr(tree, "extra")
         assert all(t.alternatives == [] for t in found[1:])
-        assert [t.extra["rank"] for t in found] == list(range(1, len(found) + 1))
-        costs = [tuple(t.extra["asp_cost"]) for t in found]
+        assert [t.rank for t in found] == list(range(1, len(found) + 1))
+        costs = [tuple(t.asp_cost) for t in found]
         assert costs == sorted(costs)
         assert [t.status for t in found] == ["optimal" if c == costs[0] else "ranked" for c in costs]
         assert len({frozenset(t.units) for t in found}) == len(found)

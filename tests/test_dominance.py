@@ -164,7 +164,7 @@ def test_the_same_answers_as_without_dominance(name, tiny, small):
             with_ = Session(p, AspOptions(objective=objective, units=units)).solve(g)
             without = Session(p, AspOptions(objective=objective, units=units, programs=[NOOP])).solve(g)
             assert with_.status == without.status, (objective, g)
-            assert with_.extra.get("asp_cost") == without.extra.get("asp_cost"), (objective, g)
+            assert with_.asp_cost == without.asp_cost, (objective, g)
             if "canonical_search" not in with_.stats and "canonical_search" not in without.stats:
                 # both searches for the smallest optimal tree ended within their budget
                 assert sorted(with_.units) == sorted(without.units), (objective, g)

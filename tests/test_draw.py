@@ -166,9 +166,9 @@ def test_human_steps_are_marked(demo_problem):
     data, problem = demo_problem
     g = goals.resolve_label(data, problem, "tomato salad")
     tree = Session(problem, AspOptions(objective=("success",), human_steps=1)).solve(g)
-    assert tree.extra.get("human_steps")
+    assert tree.human_steps
     counts = svg_nodes(draw.tree_svg(problem, tree))
-    assert counts["human"] == len(tree.extra["human_steps"])
+    assert counts["human"] == len(tree.human_steps)
 
 
 @pytest.fixture(scope="module")

@@ -169,7 +169,7 @@ def test_values_levels_and_text():
     assert gap_of([65], None, floor=8) == pytest.approx(57 / 65, abs=1e-6)
     assert gap_of([3, 10], [2, 10], first=1) is None  # the level above is not closed
     assert gap_of([0], None) == 0.0
-    tree = TaskTree(1, "asp-units", "feasible", list(range(65)), {"units": 65}, extra={"asp_cost": [65]})
+    tree = TaskTree(1, "asp-units", "feasible", list(range(65)), {"units": 65}, asp_cost=[65])
     settle_problem = None
     settle(settle_problem, tree, ("units",), [54])  # type: ignore[arg-type]
     assert tree.bound == {"units": 54} and tree.gap == pytest.approx(0.169231)
@@ -181,7 +181,7 @@ def test_a_bound_that_meets_the_answer_proves_it(hard):
     goal = goals[2]
     (tree,) = solve_goals(problem, [goal], "asp", AspOptions())
     assert tree.status == "optimal"
-    copy = TaskTree(goal, tree.method, "feasible", list(tree.units), dict(tree.cost), extra=dict(tree.extra))
+    copy = TaskTree(goal, tree.method, "feasible", list(tree.units), dict(tree.cost), **tree.optional())
     settle(problem, copy, ("units",), [len(tree.units)])
     assert copy.status == "optimal" and copy.gap == 0.0 and copy.stats["proof"] == "lower bound"
     # a lexicographic level below an open level has only the trivial bound
@@ -203,7 +203,7 @@ def test_batch_rows_and_compare_carry_the_bound(tmp_path, hard):
 
     problem, goals = hard
     (short,) = solve_goals(problem, [goals[16]], "asp", AspOptions(time_limit=0.05))
-    short.extra["valid"] = True
+    short.valid = True
     if short.status == "feasible":
         assert units_cell(short) == f"{len(short.units)} feasible (>= {short.bound['units']})"
 

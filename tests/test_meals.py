@@ -77,7 +77,7 @@ def test_meal_tree_is_the_brute_force_optimum(seed, objective):
     tree = session.solve(meal)
     if not trees:
         assert tree.status == "unreachable"
-        assert "reason" in tree.extra
+        assert tree.reason is not None
         return
     assert tree.status == "optimal", tree
     assert tree.goals == meal and tree.goal == meal[0]
@@ -125,8 +125,8 @@ def test_meal_with_depth_bound_and_models(demo_problem):
     assert deep.cost["depth"] == 4
     bounded = Session(p, AspOptions(max_depth=3)).solve(meal)
     assert bounded.status == "unreachable"  # the salad needs 4 rounds
-    assert "depth <= 3" in bounded.extra["reason"] and "tomato salad" in bounded.extra["reason"]
-    assert "scrambled egg" not in bounded.extra["reason"]
+    assert "depth <= 3" in bounded.reason and "tomato salad" in bounded.reason
+    assert "scrambled egg" not in bounded.reason
     assert Session(p, AspOptions(max_depth=4)).solve(meal).cost["units"] == 8
     two = Session(p, AspOptions(models=2)).solve(meal)
     alts = [two] + two.alternatives
@@ -139,8 +139,8 @@ def test_unreachable_goal_is_named(demo_problem):
     meal = (goals_mod.resolve_label(data, p, "tomato salad"), goals_mod.resolve_label(data, p, "whipped cream"))
     tree = Session(p).solve(meal)
     assert tree.status == "unreachable"
-    assert "whipped cream" in tree.extra["reason"] and "tomato" not in tree.extra["reason"]
-    assert [o["label"] for o in tree.extra["unreachable_goals"]] == ["whipped cream"]
+    assert "whipped cream" in tree.reason and "tomato" not in tree.reason
+    assert [o["label"] for o in tree.unreachable_goals] == ["whipped cream"]
 
 
 def test_batch_runner_per_goal_grounding_takes_meals(demo_problem):
@@ -166,7 +166,7 @@ def test_shared_foon_pairs(shared_problem, pair, together, apart):
     assert all(validate(p, g, tree.units).valid for g in meal)
     assert sum(session.solve(g).cost["units"] for g in meal) == apart
     row = compare_meal(p, list(meal))
-    assert row.total()["units"] == apart and row.meal.cost["units"] == together and row.meal.extra["valid"]
+    assert row.total()["units"] == apart and row.meal.cost["units"] == together and row.meal.valid
 
 
 def test_cli_solve_together_json_and_text(shared_foon_dir):

@@ -136,17 +136,17 @@ def test_max_depth(disagree):
     assert sorted(solve(problem, goal, max_depth=2).units) == list(WIDE)
     assert sorted(solve(problem, goal, objective=("success",), max_depth=4).units) == list(CHAIN)
     tree = solve(problem, goal, max_depth=1)
-    assert tree.status == "unreachable" and "depth <= 1" in tree.extra["reason"]
+    assert tree.status == "unreachable" and "depth <= 1" in tree.reason
     assert solve(problem, goal, objective=("depth",), max_depth=1).status == "unreachable"
 
 
 def test_depth_loop_reports_bound_and_proof(disagree):
     problem, goal = disagree
     tree = solve(problem, goal, objective=("depth",))
-    assert tree.extra["depth_bound"] == tree.cost["depth"] == 2
+    assert tree.depth_bound == tree.cost["depth"] == 2
     # bound 1 was refuted (by the grounder: nothing makes the goal in one round)
-    assert sum(tree.extra["depth_refuted"].values()) == 1
-    assert tree.extra["asp_cost"][0] == 2
+    assert sum(tree.depth_refuted.values()) == 1
+    assert tree.asp_cost[0] == 2
 
 
 def test_depth_bound_raised_past_the_level_under_a_constraint(disagree):
@@ -158,8 +158,8 @@ def test_depth_bound_raised_past_the_level_under_a_constraint(disagree):
     trees = [t for t in brute_force(problem, goal) if not any(problem.units[u].motion == "mix" for u in t)]
     top, best = brute_best(problem, goal, ("depth",), trees)
     assert tree.status == "optimal" and [tuple(sorted(tree.units))] == best == [CHAIN]
-    assert tree.cost["depth"] == top[0] == tree.extra["depth_bound"] == 3
-    assert tree.extra["depth_refuted"] == {"grounder": 1, "solver": 1}
+    assert tree.cost["depth"] == top[0] == tree.depth_bound == 3
+    assert tree.depth_refuted == {"grounder": 1, "solver": 1}
     # with a --max-depth below what is left, nothing remains
     assert solve(problem, goal, objective=("depth",), programs=[forbid], max_depth=2).status == "unreachable"
 
@@ -193,7 +193,7 @@ def test_human_steps(disagree):
     problem, goal = disagree
     for m in (0, 1, 2, 3):
         tree = solve(problem, goal, objective=("success",), human_steps=m)
-        human = tree.extra["human_steps"]
+        human = tree.human_steps
         assert len(human) <= m and set(human) <= set(tree.units)
         # brute force: every tree, a person does its m least likely units
         best = max(math.prod(sorted(problem.rates[u] for u in t)[m:]) for t in brute_force(problem, goal))
@@ -202,7 +202,7 @@ def test_human_steps(disagree):
     # with 2 human steps the safe tree still wins (0.9**3 > 0.5), with 3 the chain does (1 > 0.81)
     assert sorted(solve(problem, goal, objective=("success",), human_steps=2).units) == list(SAFE)
     tree = solve(problem, goal, objective=("success",), human_steps=3)
-    assert sorted(tree.units) == list(CHAIN) and len(tree.extra["human_steps"]) == 3
+    assert sorted(tree.units) == list(CHAIN) and len(tree.human_steps) == 3
     assert tree.cost["success"] == 1.0
 
 
@@ -271,7 +271,7 @@ def test_brute_force_every_objective(seed):
             assert key_of(problem, g, tree.units, objective) == top, (seed, objective, g)
             if "depth" in objective:
                 # the ASP depth cost is the depth measures() reports
-                assert tree.extra["asp_cost"][objective.index("depth")] == tree.cost["depth"]
+                assert tree.asp_cost[objective.index("depth")] == tree.cost["depth"]
 
 
 @pytest.mark.parametrize("seed", range(10, 16))
@@ -307,8 +307,8 @@ def test_brute_force_human_steps(seed):
             # m human steps: the m least likely units of the tree are done by a person
             best = min(sum(sorted((neglog_weight(problem.rates[u]) for u in t), reverse=True)[m:]) for t in trees)
             assert tree.status == "optimal"
-            assert tree.extra["asp_cost"][0] == best
-            human = tree.extra["human_steps"]
+            assert tree.asp_cost[0] == best
+            human = tree.human_steps
             assert len(human) <= m and set(human) <= set(tree.units)
             assert neglog_sum(problem, tree.units, human) == best
 
@@ -319,7 +319,7 @@ def test_human_steps_without_success_objective(disagree):
     problem, goal = disagree
     tree = solve(problem, goal, objective=("units",), human_steps=2)
     assert tree.status == "optimal" and sorted(tree.units) == list(CHAIN)
-    assert tree.extra["human_steps"] == []
+    assert tree.human_steps == []
 
 
 def kept_in_order(problem, goal, trees, objective):
@@ -344,7 +344,7 @@ def test_models_k_best_first(seed, objective):
         assert keys == sorted(keys), "best first"
         ref = kept_in_order(problem, g, trees, objective)
         assert keys == [key_of(problem, g, t, objective) for t in ref[:4]]
-        assert [t.extra["rank"] for t in found] == list(range(1, len(found) + 1))
+        assert [t.rank for t in found] == list(range(1, len(found) + 1))
 
 
 @pytest.mark.parametrize("seed", range(40, 44))
@@ -371,7 +371,7 @@ def test_all_optimal_cap():
     tree = solve(problem, goal, all_optimal=True, all_optimal_cap=20)
     found = alternatives(tree)
     assert len(found) == 20 and len({tuple(sorted(t.units)) for t in found}) == 20
-    assert "more than 20" in tree.extra["note"]
+    assert "more than 20" in tree.note
     assert len(alternatives(solve(problem, goal, all_optimal=True, all_optimal_cap=200))) == 128
 
 
@@ -453,7 +453,7 @@ def test_shared_depth_optima(shared, depth_trees):
         assert validate(problem, g, tree.units).valid
         assert tree.cost == measures(problem, g, tree.units)
         # no tree is shallower than the goal's level in the fixpoint over all units
-        assert tree.cost["depth"] == levels[g] == tree.extra["depth_bound"] == tree.extra["asp_cost"][0]
+        assert tree.cost["depth"] == levels[g] == tree.depth_bound == tree.asp_cost[0]
     by_label = {problem.objects[g].label: t.cost for g, t in depth_trees.items()}
     assert by_label["greek salad"]["depth"] == 13 and by_label["cheese pizza"]["depth"] == 21
 
@@ -468,13 +468,13 @@ def test_shared_success_optima(shared, success_trees):
         assert tree.status == "optimal"
         assert validate(problem, g, tree.units).valid
         assert tree.cost == measures(problem, g, tree.units)
-        assert tree.extra["asp_cost"][0] == neglog_sum(problem, tree.units)
+        assert tree.asp_cost[0] == neglog_sum(problem, tree.units)
         assert tree.cost["success"] == pytest.approx(math.prod(problem.rates[u] for u in tree.units), rel=1e-5)
         # never worse than the fewest-units tree or a valid greedy tree
         others = [units_session.solve(g).units, gbfs(problem, g, h1, "gbfs-h1").units]
         for units in others:
             if validate(problem, g, units).valid:
-                assert tree.extra["asp_cost"][0] <= neglog_sum(problem, units)
+                assert tree.asp_cost[0] <= neglog_sum(problem, units)
 
 
 @pytest.mark.parametrize("objective, every", [(("depth",), 1), (("success",), 2), (("inputs", "depth"), 3)])
@@ -487,7 +487,7 @@ def test_shared_multishot_equals_fresh_control(shared, objective, every):
         tree = session.solve(g)
         fresh = Session(problem, AspOptions(objective=objective, units=tuple(problem.relevant_units(g)))).solve(g)
         assert tree.status == fresh.status
-        assert tree.extra.get("asp_cost") == fresh.extra.get("asp_cost"), problem.objects[g].label
+        assert tree.asp_cost == fresh.asp_cost, problem.objects[g].label
 
 
 def test_shared_greedy_matches_valid_gbfs(shared):
@@ -518,7 +518,7 @@ def test_shared_models_distinct(shared):
         sizes[problem.objects[g].label] = len(found)
         assert 1 <= len(found) <= 3 and len(set(sets)) == len(found)
         assert all(validate(problem, g, t.units).valid for t in found)
-        keys = [tuple(t.extra["asp_cost"]) for t in found]
+        keys = [tuple(t.asp_cost) for t in found]
         assert keys == sorted(keys)
         assert not any(a < b for a, b in itertools.permutations(sets, 2)), "no tree contains an earlier one"
     assert sizes["greek salad"] == sizes["macaroni"] == 3
@@ -587,8 +587,7 @@ def test_opt_strategies_agree(disagree):
     problem, goal = disagree
     for objective in (("success",), ("depth",), ("inputs", "units")):
         costs = {
-            s: solve(problem, goal, objective=objective, opt_strategy=s).extra["asp_cost"]
-            for s in ("bb", "usc", "usc,oll")
+            s: solve(problem, goal, objective=objective, opt_strategy=s).asp_cost for s in ("bb", "usc", "usc,oll")
         }
         assert len({tuple(c) for c in costs.values()}) == 1, costs
 
@@ -659,7 +658,7 @@ def test_cost_equals_brute_force(seed, table):
             assert cost_key_of(problem, g, tree.units, objective, table) == top, (seed, objective, g)
             # the solver's cost at the cost objective's priority is the exact sum in hundredths
             at = objective.index("cost")
-            assert Decimal(tree.extra["asp_cost"][at]) / 100 == top[at]
+            assert Decimal(tree.asp_cost[at]) / 100 == top[at]
 
 
 @pytest.mark.parametrize("seed", range(20, 24))
@@ -680,7 +679,7 @@ def test_zero_costs_keep_the_tree_irredundant(table):
     )
     g = problem.foon.object_ids[problem.objects[-1]]
     tree = Session(problem, options_for(problem, ("cost",), table)).solve(g)
-    assert tree.extra["asp_cost"] == [0, 3]
+    assert tree.asp_cost == [0, 3]
     assert sorted(tree.units) == [0, 1, 3]
 
 

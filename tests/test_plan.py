@@ -243,10 +243,10 @@ def test_a_plan_carried_out_answers_as_its_route_says(demo, row: Row):
 def test_the_bounds_route_answers_the_landmarks_and_names_them(demo):
     run = GoalRunner("asp", demo.problem, AspOptions())
     tree = run(demo.object_id(EGG))
-    assert tree.proven_by == "bounds" and tree.extra["landmarks"] == sorted(tree.units)
+    assert tree.proven_by == "bounds" and tree.landmarks == sorted(tree.units)
     free = GoalRunner("asp", demo.problem, AspOptions(), shortcuts=False)(demo.object_id(EGG))
     assert free.proven_by == "clingo" and sorted(free.units) == sorted(tree.units)
-    assert free.extra["asp_cost"] == tree.extra["asp_cost"]
+    assert free.asp_cost == tree.asp_cost
 
 
 # --- the bounds route: against brute force, its witness re-verified, forged witnesses refused ---
@@ -268,7 +268,7 @@ def test_the_bounds_route_against_brute_force_with_its_witness(objective):
             tree = run(goal)
             assert tree.status == "optimal" and tree.proven_by == "bounds", (seed, goal)
             assert score(problem, goal, tree.units, objective) == optimum(problem, goal, objective), (seed, goal)
-            marks, sets = tree.extra["landmarks"], tree.extra.get("landmark_sets", [])
+            marks, sets = tree.landmarks, tree.landmark_sets or []
             first = objective[0] if objective[0] in ("success", "inputs") else "units"
             assert bounds_proof(problem, goal, tree.units, marks, sets, first) is None, (seed, goal)
             # every landmark is in every tree, and every tree uses a unit of each set, by brute force

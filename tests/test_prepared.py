@@ -45,7 +45,7 @@ def both_encodings(problem: Problem, objective: tuple[str, ...], step: int) -> t
         free = replace(prep, known=None)
         recursive = Session(problem, replace(run.options, programs=[NOOP]), prepared=free).solve(g)
         assert closed.status == recursive.status == "optimal", g
-        assert closed.extra["asp_cost"] == recursive.extra["asp_cost"], g
+        assert closed.asp_cost == recursive.asp_cost, g
         assert validate(problem, g, list(closed.units)).valid, g
         cut += bool(closed.stats.get("loop_cuts"))
     return len(goals), cut
@@ -73,7 +73,7 @@ def test_a_search_that_meets_the_lower_bound_ends_there(shared_foon_dir):
     prep = replace(run.preparation(goal), candidates=tuple(units), known=None)
     assert prep.bound is None and prep.meets is not None
     tree = Session(problem, run.options, prepared=prep).solve(goal)
-    assert tree.status == "optimal" and prep.meets(tuple(tree.extra["asp_cost"]))
+    assert tree.status == "optimal" and prep.meets(tuple(tree.asp_cost))
     assert validate(problem, goal, list(tree.units)).valid
 
 
@@ -91,7 +91,7 @@ def test_a_goal_whose_hint_meets_the_bound_is_decided_at_the_hint(shared_foon_di
         tree = Session(problem, run.options, prepared=prep).solve(g)
         optimised = Session(problem, run.options, prepared=replace(prep, known=None)).solve(g)
         assert tree.status == optimised.status == "optimal", g
-        assert tuple(tree.extra["asp_cost"]) == prep.bound == tuple(optimised.extra["asp_cost"]), g
+        assert tuple(tree.asp_cost) == prep.bound == tuple(optimised.asp_cost), g
         assert sorted(tree.units) == sorted(prep.hint), g
     assert decided > 50
 

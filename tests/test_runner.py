@@ -97,7 +97,7 @@ def test_every_method_answers_every_goal_and_the_validator_agrees(case, trees):
             made = derivable(problem, tree.goal)
             checked = validate(problem, tree.goal, tree.units) if tree.has_tree else None
             # compare's and batch's "valid" is exactly what the validator says
-            assert judge(problem, tree).extra["valid"] == (checked is not None and checked.valid), (name, tree.goal)
+            assert judge(problem, tree).valid == (checked is not None and checked.valid), (name, tree.goal)
             if kind(name) == "search":
                 assert tree.status in ("found", "not-found"), (name, tree.goal)
                 assert tree.has_tree or not tree.units
@@ -268,7 +268,7 @@ def test_constraints_keep_the_optimum_exact_and_name_an_infeasible_goal(seed):
         want = optimum(problem, goal, ("units",), allowed)
         tree = run(goal)
         if want is None and optimum(problem, goal, ("units",)) is not None:
-            assert tree.status == "infeasible" and tree.extra["infeasible_by"] == ["--rule #1"], (seed, goal)
+            assert tree.status == "infeasible" and tree.infeasible_by == ["--rule #1"], (seed, goal)
             assert tree.proven_by == "clingo"
         elif want is None:
             assert tree.status == "unreachable" and tree.proven_by == "fixpoint", (seed, goal)
@@ -277,7 +277,7 @@ def test_constraints_keep_the_optimum_exact_and_name_an_infeasible_goal(seed):
             assert allowed(tree.units) and validate(problem, goal, list(tree.units)).valid
             assert score(problem, goal, tree.units, ("units",)) == want, (seed, goal)
             if allowed(plain(goal).units):  # the rule changes nothing here: the same optimum
-                assert tree.extra["asp_cost"] == plain(goal).extra["asp_cost"], (seed, goal)
+                assert tree.asp_cost == plain(goal).asp_cost, (seed, goal)
 
 
 def test_a_program_that_defines_what_the_encodings_define_goes_to_clingo_whole():
@@ -306,7 +306,7 @@ def test_a_rule_that_changes_nothing_keeps_every_route_and_tree(seed):
     for goal in made_objects(problem):
         assert ruled.route(goal) == plain.route(goal), (seed, goal)
         a, b = plain(goal), ruled(goal)
-        assert (a.status, a.extra.get("asp_cost")) == (b.status, b.extra.get("asp_cost")), (seed, goal)
+        assert (a.status, a.asp_cost) == (b.status, b.asp_cost), (seed, goal)
         if plain.route(goal) != "prepared":
             assert sorted(a.units) == sorted(b.units), (seed, goal)
 
@@ -361,7 +361,7 @@ def test_every_reference_goal_with_real_choice_is_proven_by_clingo_or_its_landma
         if goal not in kb.problem.derivable or goal in kb.problem.kitchen:
             assert tree.proven_by == "fixpoint", goal
         elif choice and tree.proven_by == "bounds":
-            marks, sets = tree.extra["landmarks"], tree.extra.get("landmark_sets", [])
+            marks, sets = tree.landmarks, tree.landmark_sets or []
             assert tree.status == "optimal" and bounds_proof(kb.problem, goal, tree.units, marks, sets) is None, goal
         elif choice:
             assert tree.status == "optimal" and tree.proven_by == "clingo", goal
@@ -405,6 +405,6 @@ def test_an_infeasible_goal_names_each_program_that_alone_rules_out_every_tree()
                 continue
             tree = run(goal)
             want = [name for (name, _), ok in zip(rules, avoids, strict=True) if not any(ok(t) for t in trees)]
-            assert tree.status == "infeasible" and tree.extra.get("infeasible_by", []) == want, (seed, goal, want)
+            assert tree.status == "infeasible" and (tree.infeasible_by or []) == want, (seed, goal, want)
             seen[min(len(want), 1)] += 1
     assert seen[0] > 0 and seen[1] > 0, seen

@@ -145,8 +145,8 @@ def test_a_time_out_still_reports_a_valid_tree():
     tree = Session(p, AspOptions(time_limit=1, units=p.units_for([g]))).solve(g)
     assert tree.status in ("feasible", "optimal")
     assert validate(p, g, tree.units).valid
-    if tree.status == "feasible" and "fallback" in tree.extra:
-        assert tree.extra["fallback"] == "cheapest-first" and "note" in tree.extra
+    if tree.status == "feasible" and tree.fallback is not None:
+        assert tree.fallback == "cheapest-first" and tree.note is not None
         assert len(tree.units) < 200
 
 
@@ -159,7 +159,7 @@ def test_no_fallback_under_user_constraints():
     user = ("user", "% a user program (it could forbid anything)\n")
     tree = Session(p, AspOptions(programs=[user], time_limit=1, units=p.units_for([g]))).solve(g)
     assert tree.status in ("unknown", "optimal", "feasible")
-    assert "fallback" not in tree.extra
+    assert tree.fallback is None
 
 
 def test_restricted_session_same_status_and_size(shared_problem):

@@ -135,13 +135,13 @@ def test_the_fewest_substitutions_rank_above_the_objective():
     [tree] = solve_goals(problem, [goal], options=AspOptions(substitutes=subs))
     # one substitution either way: the chopped red onion saves the chop
     assert tree.status == "optimal" and [problem.units[u].motion for u in tree.units] == ["cook"]
-    assert tree.extra["substitutions"] == [{"needed": "onion, chopped", "used": "red onion, chopped"}]
-    assert tree.extra["asp_cost"] == [1, 1]
+    assert tree.substitutions == [{"needed": "onion, chopped", "used": "red onion, chopped"}]
+    assert tree.asp_cost == [1, 1]
     # a kitchen that has the whole onion: no substitution, though it takes one unit more
     problem.kitchen_items.append(obj("onion", "whole"))
     problem = Problem(problem.foon, problem.kitchen_items)
     [tree] = solve_goals(problem, [goal], options=AspOptions(substitutes=subs))
-    assert len(tree.units) == 2 and tree.extra["substitutions"] == [] and tree.extra["asp_cost"] == [0, 2]
+    assert len(tree.units) == 2 and tree.substitutions == [] and tree.asp_cost == [0, 2]
     [tree] = solve_goals(problem, [goal], options=AspOptions(substitutes=subs, max_substitutions=0))
     assert len(tree.units) == 2
 
@@ -156,8 +156,8 @@ def test_max_substitutions_and_costs():
     problem = _soup(obj("shallot", "whole"))
     subs = parse_substitutes("onion: red onion=3, shallot\n")
     [tree] = solve_goals(problem, [goal_id(problem, obj("soup", "cooked"))], options=AspOptions(substitutes=subs))
-    assert len(tree.units) == 2 and tree.extra["asp_cost"][0] == 1
-    assert tree.extra["substitutions"] == [{"needed": "onion, whole", "used": "shallot, whole"}]
+    assert len(tree.units) == 2 and tree.asp_cost[0] == 1
+    assert tree.substitutions == [{"needed": "onion, whole", "used": "shallot, whole"}]
 
 
 def test_options_turn_the_shortcuts_off_and_load_the_encoding():
@@ -238,12 +238,12 @@ def test_against_brute_force():
                 assert tree.status == "unreachable", (trial, g)
                 continue
             assert tree.status == "optimal", (trial, g)
-            made = tree.extra["substitutions"]
+            made = tree.substitutions
             costs = {(problem.objects[c.needed].text, c.used.text): c.cost for c in candidates(problem, subs)}
             cost = sum(costs[(s["needed"], s["used"])] for s in made)
             assert (cost, len(tree.units)) == want, (trial, g)
             # the solver's cost vector: substitutions, then units (levels with nothing to count are absent)
-            asp = tree.extra["asp_cost"]
+            asp = tree.asp_cost
             assert asp in ([want[0], want[1]], [want[1]], []) and (len(asp) < 2 or asp[0] == cost)
             assert asp or want == (0, 0)
             assert limit is None or len(made) <= limit
@@ -285,8 +285,8 @@ def test_special_labels_stay_data(tmp_path, label):
     tree = Session(problem, options).solve(goal, on_model=on_model)
     assert seen == {label.lower(), "onion", "pan"}
     assert tree.status == "optimal" and len(tree.units) == 1
-    assert tree.extra["substitutions"] == [{"needed": "onion, chopped", "used": f"{label.lower()}, chopped"}]
-    assert report(problem, [goal], tree.units, subs) == tree.extra["substitutions"]
+    assert tree.substitutions == [{"needed": "onion, chopped", "used": f"{label.lower()}, chopped"}]
+    assert report(problem, [goal], tree.units, subs) == tree.substitutions
 
 
 def validate_with(problem, goal, units, substitutes):
@@ -330,4 +330,4 @@ def test_substitutes_at_a_level_with_normalised_labels():
     [tree] = solve_goals(level1, [goal], options=AspOptions(substitutes=subs))
     # at level 1 chopping passes the onion through: the red onion stands in for the onion
     assert [level1.units[u].motion for u in tree.units] == ["cook"]
-    assert tree.extra["substitutions"] == [{"needed": "onion", "used": "red onion"}]
+    assert tree.substitutions == [{"needed": "onion", "used": "red onion"}]

@@ -17,16 +17,16 @@ Methods = tuple[str, ...] | list[str]
 
 
 def judge(problem: Problem, tree: TaskTree, substitutes: Iterable[Substitute] = ()) -> TaskTree:
-    """Mark ``tree`` valid or invalid (``extra["valid"]``, ``extra["problem"]``); with
-    ``substitutes``, what they may stand in for counts as had."""
+    """Mark ``tree`` valid or invalid (its ``valid`` and ``problem``); with ``substitutes``, what
+    they may stand in for counts as had."""
     if not tree.has_tree:
-        tree.extra["valid"] = False
+        tree.valid = False
         return tree
     problem = judged_on(problem, substitutes, tree.meal)
     validation, finding = check_units(problem, tree.goal, tree.units)
-    tree.extra["valid"] = validation.valid
+    tree.valid = validation.valid
     if finding is not None:
-        tree.extra["problem"] = finding.message
+        tree.problem = finding.message
     return tree
 
 
@@ -51,6 +51,6 @@ def compare_meal(problem: Problem, goals: list[int], method: str = "asp", option
     trees = solve_goals(problem, [meal, *meal], method, options)
     tree = next(trees)
     seen = judged_on(problem, options.substitutes, meal) if tree.has_tree else problem
-    tree.extra["valid"] = tree.has_tree and all(validate(seen, g, tree.units).valid for g in meal)
+    tree.valid = tree.has_tree and all(validate(seen, g, tree.units).valid for g in meal)
     singles = [judge(problem, single, options.substitutes) for single in trees]
     return MealRow(meal, tree, singles)

@@ -279,7 +279,7 @@ class KnowledgeBase:
             for r in reports:
                 r.optimum = opt = best[key(r)]
                 if opt.proven_by == "bounds":  # its witness, checked without the solver
-                    marks, sets = opt.extra.get("landmarks", []), opt.extra.get("landmark_sets", [])
+                    marks, sets = opt.landmarks or [], opt.landmark_sets or []
                     first = solver.objective[0] if solver.objective[0] in ("success", "inputs") else "units"
                     why = bounds_proof(view(opt.meal), opt.goal, opt.units, marks, sets, first)
                     r.optimum_proof = {"proven_by": "bounds", "verified": why is None, "problem": why}

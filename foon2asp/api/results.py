@@ -86,11 +86,6 @@ def as_list(answer: Any, items: Iterable) -> list:
     return list(items)
 
 
-def extra(key: str) -> Callable[[Any, dict], Any]:
-    """A reader of ``key`` in a tree's ``extra`` (None when absent)."""
-    return lambda _, found: found.get(key)
-
-
 @dataclass(eq=False)
 class Answer:
     """An answer: its internal record ``raw``, read in the FOON of ``kb``."""
@@ -143,11 +138,9 @@ class Tree(Answer):
     time_s = Raw[float]()
     has_tree = Raw[bool]()
 
-    note = Raw[str | None]("What the solver says about the answer, if anything.", "extra", extra("note"))
-    substitutions = Raw[list[dict] | None]("With substitutes: the ones the tree uses.", "extra", extra("substitutions"))
-    valid = Raw[bool | None](
-        "The validator's verdict where it was judged (compare, batch, :meth:`judge`).", "extra", extra("valid")
-    )
+    note = Raw[str | None]("What the solver says about the answer, if anything.")
+    substitutions = Raw[list[dict] | None]("With substitutes: the ones the tree uses.")
+    valid = Raw[bool | None]("The validator's verdict where it was judged (compare, batch, :meth:`judge`).")
 
     @property
     def alternatives(self) -> list[Tree]:

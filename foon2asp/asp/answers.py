@@ -145,10 +145,10 @@ def task_tree(
         return tree
     units = tree.units = executable_order(problem, list(answer.units))
     tree.cost = measures(problem, goal, units)
-    tree.extra["asp_cost"] = list(answer.cost)
+    tree.asp_cost = list(answer.cost)
     if human_steps:
         human = set(answer.human)
         tree.cost["success"] = objectives.success_product(problem, units, answer.human)
-        tree.extra["human_steps"] = [u for u in units if u in human]
-        tree.extra["human_step_numbers"] = [i for i, u in enumerate(units, 1) if u in human]
+        tree.human_steps = [u for u in units if u in human]
+        tree.human_step_numbers = [i for i, u in enumerate(units, 1) if u in human]
     return tree

@@ -105,9 +105,7 @@ class Session:
         if tree.status == "unknown" and self.grounding.fallback:
             self._fallback(meal, tree)
         if "substitutes" in self.grounding.facts and tree.has_tree:
-            tree.extra["substitutions"] = substitute_facts.report(
-                self.problem, meal, tree.units, self.options.substitutes
-            )
+            tree.substitutions = substitute_facts.report(self.problem, meal, tree.units, self.options.substitutes)
         if self._lower:
             tree.stats["lower"] = list(self._lower)
         return settle(self.problem, tree, self.levels, self._lower, floor)
@@ -128,17 +126,17 @@ class Session:
         tree.status = "feasible"
         tree.cost = measures(self.problem, meal, tree.units)
         tree.time_s = round(tree.time_s + time.perf_counter() - t0, 6)
-        tree.extra["fallback"] = "cheapest-first"
-        tree.extra["note"] = "no tree from the solver within the time limit: a cheapest-first tree, not proven optimal"
+        tree.fallback = "cheapest-first"
+        tree.note = "no tree from the solver within the time limit: a cheapest-first tree, not proven optimal"
 
     def _explain(self, meal: tuple[int, ...], tree: TaskTree) -> None:
         """Which goals of an unreachable meal cannot be made (each solved alone)."""
         alone = [g for g in meal if self._solve((g,), None, None).status == "unreachable"]
         names = "; ".join(str(self.problem.objects[g]) for g in alone)
         why = f"unreachable goal(s): {names}" if alone else "each goal can be made alone, but not all in one tree"
-        earlier = tree.extra.get("reason")  # e.g. the depth bound
-        tree.extra["reason"] = f"{earlier}; {why}" if earlier else why
-        tree.extra["unreachable_goals"] = [self.problem.objects[g].to_json() for g in alone]
+        earlier = tree.reason  # e.g. the depth bound
+        tree.reason = f"{earlier}; {why}" if earlier else why
+        tree.unreachable_goals = [self.problem.objects[g].to_json() for g in alone]
 
     def _solve(
         self,

@@ -42,7 +42,7 @@ def safe_name(index: int, label: str) -> str:
 
 def written(trees: list) -> str:
     """What a file written by ``solve -o DIR`` holds: ``optimal``, ``found, INVALID``, ..."""
-    return "; ".join(t.status + (", INVALID" if t.has_tree and t.extra.get("valid") is False else "") for t in trees)
+    return "; ".join(t.status + (", INVALID" if t.has_tree and t.valid is False else "") for t in trees)
 
 
 #: --max-depth, --human-steps, --models, --all-optimal and :data:`~foon2asp.cli.flags.STRATEGY`
@@ -110,7 +110,7 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
                 tree.judge()  # "valid" for search baselines, as compare gives it
             ranked = tree.with_alternatives  # --models / --all-optimal: the further trees, best first
             found = [t.raw for t in ranked]
-            answers += [(t.status, t.extra.get("valid")) for t in found]
+            answers += [(t.status, t.valid) for t in found]
             warn_all(f"{t.goal.label}: {t.note}" for t in ranked if t.note is not None)
             if out_dir:
                 suffix = f"-{method}" if len(names) > 1 else ""
@@ -158,7 +158,7 @@ def compare(data, goal, goals, method_list, fmt, together, options, progress):
         asp = [n for n in names if not is_search(n)]
         meal = kb.compare_meal(goal_ids, (asp or ["asp"])[0], options=solver)
         click.echo(report.render("compare", fmt, kb.problem, meal), nl=False)
-        sys.exit(exit_code([(meal.meal.status, meal.meal.extra.get("valid"))]))
+        sys.exit(exit_code([(meal.meal.status, meal.meal.valid)]))
     rows = []
     for part in progress_bar(kb.compare_iter(goal_ids, names, solver), len(goal_ids), progress, "compare"):
         rows.extend(part.raw)
@@ -166,7 +166,7 @@ def compare(data, goal, goals, method_list, fmt, together, options, progress):
             echo_now(part.render(fmt))
     if fmt != "jsonl":
         click.echo(api.Comparison(kb, rows).render(fmt), nl=False)
-    sys.exit(exit_code((t.status, t.extra.get("valid")) for r in rows for t in r.trees.values()))
+    sys.exit(exit_code((t.status, t.valid) for r in rows for t in r.trees.values()))
 
 
 @goal_command(

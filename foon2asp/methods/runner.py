@@ -80,7 +80,7 @@ class GoalRunner:
             return self._search(how.goal[0])
         tree = self.carry_out(how, t0)
         if how.programs:
-            tree.extra["constraints"] = list(how.programs)
+            tree.constraints = list(how.programs)
         return tree
 
     def carry_out(self, how: Plan, t0: float) -> TaskTree:
@@ -112,11 +112,11 @@ class GoalRunner:
         cost = measures(self.problem, goal, order)
         asp_cost = [cost["depth"] or 0 if name == "depth" else total(self.problem, name, order) for name in how.ranked]
         tree = TaskTree(goal, how.method, "optimal", order, cost, round(time.perf_counter() - t0, 6))
-        tree.extra["asp_cost"] = asp_cost
+        tree.asp_cost = asp_cost
         if how.route == "bounds":
-            tree.extra["landmarks"] = list(how.landmarks)
+            tree.landmarks = list(how.landmarks)
             if how.landmark_sets:
-                tree.extra["landmark_sets"] = [list(s) for s in how.landmark_sets]
+                tree.landmark_sets = [list(s) for s in how.landmark_sets]
         return settle(self.problem, tree, how.ranked)
 
     def _solve(self, how: Plan, t0: float) -> TaskTree:
@@ -164,8 +164,8 @@ class GoalRunner:
         why = "trees exist, but the constraints rule them all out"
         if alone:
             why += f"; {alone[0]} alone does" if len(alone) == 1 else f"; each of {', '.join(alone)} alone does"
-            tree.extra["infeasible_by"] = alone
-        tree.extra["reason"] = why
+            tree.infeasible_by = alone
+        tree.reason = why
 
 
 def solve_goals(

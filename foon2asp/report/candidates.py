@@ -43,8 +43,8 @@ def consolidation_json(problem: Problem, c: Consolidation) -> dict:
         ],
         "missing": [problem.objects[o].to_json() for o in missing],
     }
-    if "substitutions" in c.tree.extra:
-        out["substitutions"] = c.tree.extra["substitutions"]
+    if c.tree.substitutions is not None:
+        out["substitutions"] = c.tree.substitutions
     return out
 
 

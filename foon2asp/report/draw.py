@@ -175,7 +175,7 @@ def tree_marks(problem: Problem, tree: TaskTree) -> Marks:
     title += ", INVALID" if finding else ""
     units = [problem.units[u] for u in tree.units]
     marks = checked_marks(problem, title, [problem.objects[g] for g in tree.meal], units, list(tree.units), finding)
-    human = set(tree.extra.get("human_steps", []))
+    human = set(tree.human_steps or ())
     marks.human = frozenset(k for k, u in enumerate(tree.units) if u in human)
     return marks
 

@@ -138,7 +138,7 @@ def compare_html(problem: Problem, rows: list[Row]) -> str:
         for n in names:
             t = r.trees[n]
             cls = ["num"]
-            if t.has_tree and not t.extra.get("valid"):
+            if t.has_tree and not t.valid:
                 cls.append("invalid")
             if n == "asp":
                 cls.append("optimum")
@@ -163,11 +163,9 @@ def compare_html(problem: Problem, rows: list[Row]) -> str:
                     f'<figure class="tree none"><figcaption><b>{esc(n)}</b>: {esc(t.status)}</figcaption></figure>'
                 )
                 continue
-            valid = bool(t.extra.get("valid"))
+            valid = bool(t.valid)
             svg = draw.svg_text(draw.trees_graph(problem, [t]))
-            body.append(
-                _tree_figure(svg, f"g{k}-{n}", n, len(t.units), valid, "", t.extra.get("problem") or "", f"goal-{k}")
-            )
+            body.append(_tree_figure(svg, f"g{k}-{n}", n, len(t.units), valid, "", t.problem or "", f"goal-{k}"))
         body.append("</div></section>")
     solving = {n: sum(r.trees[n].time_s for r in rows) for n in names}
     each = ", ".join(f"{method_header(n)} {seconds:.2f} s" for n, seconds in solving.items())

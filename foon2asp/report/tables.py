@@ -20,7 +20,7 @@ def units_cell(tree: TaskTree) -> str:
     if not tree.has_tree:
         return tree.status
     cell = str(len(tree.units))
-    if not tree.extra.get("valid"):
+    if not tree.valid:
         cell += " invalid"
     if tree.status == "feasible":
         cell += " feasible"
@@ -79,10 +79,10 @@ def summary(rows: list[Row]) -> list[str]:
     for n in names:
         trees = [r.trees[n] for r in rows]
         found = sum(t.has_tree for t in trees)
-        valid = sum(bool(t.extra.get("valid")) for t in trees)
-        total = sum(len(t.units) for t in trees if t.extra.get("valid"))
+        valid = sum(bool(t.valid) for t in trees)
+        total = sum(len(t.units) for t in trees if t.valid)
         lines.append(f"{n}: {found} of {len(trees)} goals with a tree, {valid} valid ({total} units in valid trees)")
-    constrained = sorted({c for r in rows if "asp" in r.trees for c in r.trees["asp"].extra.get("constraints", ())})
+    constrained = sorted({c for r in rows if "asp" in r.trees for c in r.trees["asp"].constraints or ()})
     if "asp" in names and constrained and len(names) > 1:
         lines.append(
             f"asp obeys the constraints ({', '.join(constrained)}); the other methods are unconstrained,"
@@ -93,7 +93,7 @@ def summary(rows: list[Row]) -> list[str]:
             (t, r.trees["asp"])
             for r in rows
             for n, t in r.trees.items()
-            if n != "asp" and t.extra.get("valid") and r.trees["asp"].status == "optimal"
+            if n != "asp" and t.valid and r.trees["asp"].status == "optimal"
         ]
         worse = sum(len(t.units) < len(best.units) for t, best in compared)
         if worse:
@@ -122,13 +122,13 @@ def render_csv(problem: Problem, rows: list[Row]) -> str:
                 str(problem.objects[r.goal]),
                 name,
                 t.status,
-                str(bool(t.extra.get("valid"))).lower(),
+                str(bool(t.valid)).lower(),
                 len(t.units) if t.has_tree else "",
                 t.cost.get("success", ""),
                 "" if t.cost.get("depth") is None else t.cost["depth"],
                 t.cost.get("inputs", ""),
                 round(t.time_s, 6),
-                t.extra.get("problem", ""),
+                t.problem or "",
             ]
             for r in rows
             for name, t in r.trees.items()
@@ -154,10 +154,10 @@ def render_meal(problem: Problem, row: MealRow, markdown: bool = False) -> str:
     out += grid(["", "units", "success", "inputs", "depth"], body, markdown, rule=False)
     if total and row.meal.has_tree:
         saved = total["units"] - row.meal.cost["units"]
-        valid = "valid" if row.meal.extra.get("valid") else "INVALID"
+        valid = "valid" if row.meal.valid else "INVALID"
         out += ["", f"{'- ' if markdown else ''}shared units counted once: {saved} unit(s) fewer together ({valid})"]
-    elif row.meal.extra.get("reason"):
-        out += ["", f"{'- ' if markdown else ''}{row.meal.extra['reason']}"]
+    elif row.meal.reason:
+        out += ["", f"{'- ' if markdown else ''}{row.meal.reason}"]
     return "\n".join(out) + "\n"
 
 

@@ -148,8 +148,8 @@ def report_json(problem: Problem, report: Report) -> dict:
         optimum["proven_by"] = report.optimum.proven_by
         if report.optimum_proof is not None:
             optimum["proof"] = report.optimum_proof
-        if "substitutions" in report.optimum.extra:
-            optimum["substitutions"] = report.optimum.extra["substitutions"]
+        if report.optimum.substitutions is not None:
+            optimum["substitutions"] = report.optimum.substitutions
         out["optimum"] = optimum
     return out
 

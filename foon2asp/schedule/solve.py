@@ -85,7 +85,7 @@ def schedule_fixed(
 
     if not tree.has_tree:
         missing = "unreachable" if tree.status in ("unreachable", "not-found") else "unknown"
-        return result(missing, reason=tree.extra.get("reason"))
+        return result(missing, reason=tree.reason)
     inst = instances.designate(instance(problem, tree.units, spec), first)
     bad = inst.incapable()
     if bad:

@@ -39,7 +39,7 @@ def value(name: str, weight: int) -> int | float:
 def weights(problem: Problem, tree: TaskTree, names: Sequence[str]) -> list[int] | None:
     """The solver's weight of ``tree`` on each level: its ``asp_cost`` when it has one for
     these levels, else computed from its units (None when a level cannot be)."""
-    cost = tree.extra.get("asp_cost")
+    cost = tree.asp_cost
     if cost is not None and len(cost) == len(names):
         return [int(c) for c in cost]
     out = []
@@ -86,7 +86,7 @@ def settle(
         return tree
     first = first_level(names)
     if tree.status in ("optimal", "ranked") and tree.has_tree:
-        used = sum(s.get("cost", 1) for s in tree.extra.get("substitutions", ()))  # the substitutions level
+        used = sum(s.get("cost", 1) for s in tree.substitutions or ())  # the substitutions level
         tree.bound = {n: tree.cost.get(n, used if n == SUBSTITUTIONS else 0) for n in shown}
         tree.gap = 0.0
         return tree
@@ -105,8 +105,7 @@ def settle(
         # the bound meets the answer on every level: it is optimal, proven by the bound
         tree.status = "optimal"
         tree.stats["proof"] = "lower bound"
-        for key in ("note", "fallback"):
-            tree.extra.pop(key, None)
+        tree.note = tree.fallback = None
         return settle(problem, tree, names)
     tree.bound = bound
     if upper is not None:

@@ -28,9 +28,7 @@ def tree_json(problem: Problem, tree: TaskTree) -> dict:
         out["gap"] = tree.gap
     if tree.stats:
         out["stats"] = tree.stats
-    for key, value in tree.extra.items():
-        if key not in out and not key.startswith("_"):
-            out[key] = value
+    out.update(tree.optional())
     return out
 
 
@@ -57,17 +55,17 @@ def tree_text(problem: Problem, tree: TaskTree) -> str:
     head = f"{goal_heading(problem, tree)}\nMethod: {tree.method}  Status: {status}"
     if tree.cost:
         head += "  (" + ", ".join(f"{k} {number(v)}" for k, v in tree.cost.items()) + ")"
-    if "rank" in tree.extra:
-        head += f"  Rank: {tree.extra['rank']}"
-    if tree.extra.get("human_steps"):
-        head += f"  Human steps: {len(tree.extra['human_steps'])}"
-    if tree.extra.get("reason"):
-        head += f"  ({tree.extra['reason']})"
+    if tree.rank is not None:
+        head += f"  Rank: {tree.rank}"
+    if tree.human_steps:
+        head += f"  Human steps: {len(tree.human_steps)}"
+    if tree.reason:
+        head += f"  ({tree.reason})"
     lines = [head]
-    if tree.extra.get("valid") is False:  # judged by the independent validator (search baselines)
-        lines.append(f"INVALID: {tree.extra.get('problem') or 'the tree is not derivable from the kitchen'}")
-    lines += [f"uses {s['used']} for {s['needed']}" for s in tree.extra.get("substitutions", ())]
-    human = set(tree.extra.get("human_steps", []))
+    if tree.valid is False:  # judged by the independent validator (search baselines)
+        lines.append(f"INVALID: {tree.problem or 'the tree is not derivable from the kitchen'}")
+    lines += [f"uses {s['used']} for {s['needed']}" for s in tree.substitutions or ()]
+    human = set(tree.human_steps or ())
     for step, u in enumerate(tree.units, 1):
         unit = problem.units[u]
         who = " [human]" if u in human else ""

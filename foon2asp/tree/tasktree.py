@@ -22,7 +22,8 @@ class TaskTree:
     feasible, unreachable, infeasible (the user's constraints rule out every tree), unknown,
     or found/not-found (the search baselines).  ``goals``: every goal of a meal
     (``goal`` the first), empty for one goal.  ``alternatives``: further trees found with
-    this one, best first, not part of its JSON.
+    this one, best first, not part of its JSON.  The optional fields after ``proven_by`` say
+    what else is known of the answer; None where it does not apply (left out of the JSON).
     """
 
     goal: int
@@ -32,7 +33,6 @@ class TaskTree:
     cost: dict = field(default_factory=dict)
     time_s: float = 0.0
     stats: dict = field(default_factory=dict)
-    extra: dict = field(default_factory=dict)
     goals: tuple[int, ...] = ()
     alternatives: list[TaskTree] = field(default_factory=list)
     #: the best proven lower bound per objective level, in the units of ``cost``
@@ -43,6 +43,44 @@ class TaskTree:
     #: what proved the answer: "clingo", "fixpoint", "only-tree", "bounds" (None: not proven,
     #: or a search baseline's answer; foon2asp.methods.runner)
     proven_by: str | None = None
+    #: the solver's cost vector, one integer weight per priority level, highest first
+    asp_cost: list[int] | None = None
+    #: the landmark units the bounds proof rests on (proven by "bounds"; foon2asp.bounds)
+    landmarks: list[int] | None = None
+    #: the landmark sets the bounds proof rests on: one unit of each set is in every tree
+    landmark_sets: list[list[int]] | None = None
+    #: the units a person does (``--human-steps``), in executable order
+    human_steps: list[int] | None = None
+    #: the positions (from 1) of :attr:`human_steps` in :attr:`units`
+    human_step_numbers: list[int] | None = None
+    #: the depth bound the tree was found within (the depth objective, searched depth first)
+    depth_bound: int | None = None
+    #: how many smaller depth bounds were refuted, by "grounder" (the fixpoint) and "solver"
+    depth_refuted: dict[str, int] | None = None
+    #: the tree's place among the trees found for its goal (``--models``, ``--all-optimal``), from 1
+    rank: int | None = None
+    #: how a tree was found when the solver gave none in time ("cheapest-first")
+    fallback: str | None = None
+    #: what the solver says about the answer (a fallback tree, a cut list of optimal trees)
+    note: str | None = None
+    #: with substitutes: the substitutions the tree uses, ``{"needed", "used"}`` texts
+    substitutions: list[dict] | None = None
+    #: an infeasible answer: the user's programs that alone rule out every tree
+    infeasible_by: list[str] | None = None
+    #: why there is no tree (a depth bound, the user's programs, unreachable goals of a meal)
+    reason: str | None = None
+    #: an unreachable meal: those of its goals that cannot be made alone, as JSON objects
+    unreachable_goals: list[dict] | None = None
+    #: the names of the user's programs the answer was sought under (``--rule``, ``--forbid-motion``, ...)
+    constraints: list[str] | None = None
+    #: the independent validator's verdict (foon2asp.analysis.compare.judge); None: not judged
+    valid: bool | None = None
+    #: why the validator rejects the tree
+    problem: str | None = None
+
+    def optional(self) -> dict:
+        """The optional fields that are set (not None), in the order of :data:`OPTIONAL`."""
+        return {name: value for name in OPTIONAL if (value := getattr(self, name)) is not None}
 
     @property
     def has_tree(self) -> bool:
@@ -57,6 +95,27 @@ class TaskTree:
     def is_meal(self) -> bool:
         return len(self.goals) > 1
 
+
+#: the optional fields of :class:`TaskTree`, in the order its JSON gives them
+OPTIONAL = (
+    "asp_cost",
+    "landmarks",
+    "landmark_sets",
+    "human_steps",
+    "human_step_numbers",
+    "depth_bound",
+    "depth_refuted",
+    "rank",
+    "fallback",
+    "note",
+    "substitutions",
+    "infeasible_by",
+    "reason",
+    "unreachable_goals",
+    "constraints",
+    "valid",
+    "problem",
+)
 
 Goals = int | tuple[int, ...]
 

@@ -157,19 +157,19 @@ class Driver:
         if not found:
             tree = self._tree(goal, None, status(None, first), t0)
             if tree.status == "unreachable" and options.max_depth is not None:
-                tree.extra["reason"] = f"no tree of depth <= {options.max_depth}"
+                tree.reason = f"no tree of depth <= {options.max_depth}"
             return tree
         best_cost = found[0][0].cost
         trees = []
         for rank, (answer, bound) in enumerate(found, 1):
             tree = self._tree(goal, answer, status(answer, first, best_cost), t0, bound)
             if options.models > 1 or options.all_optimal:
-                tree.extra["rank"] = rank
+                tree.rank = rank
             trees.append(tree)
         best, best.alternatives = trees[0], trees[1:]
         if capped:
             cap = options.all_optimal_cap
-            best.extra["note"] = f"more than {cap} optimal trees: only the first {cap} are given"
+            best.note = f"more than {cap} optimal trees: only the first {cap} are given"
         return best
 
     def _levels(self, goal: Goals, deadline, on_model) -> tuple[list[tuple[ModelRead, int | None]], Shot, bool]:
@@ -218,10 +218,8 @@ class Driver:
         tree = task_tree(self.problem, self.options.method, goal, status, answer, elapsed, stats, human)
         if answer is not None and bound is not None and self.depth_mode == "first":
             refuted = self.depth.refuted
-            tree.extra["depth_bound"] = bound
-            tree.extra["depth_refuted"] = {
-                how: sum(1 for _, h in refuted if h == how) for how in ("grounder", "solver")
-            }
+            tree.depth_bound = bound
+            tree.depth_refuted = {how: sum(1 for _, h in refuted if h == how) for how in ("grounder", "solver")}
         return tree
 
 
