@@ -314,3 +314,22 @@ def test_check_verifies_a_bounds_proof_and_refuses_a_forged_one(demo, tmp_path):
     bad.write_text(json.dumps([claimed]))
     res = run_cli("check", bad, "--data", "demo", "--format", "json")
     assert res.exit_code == 1 and "is no landmark" in json.loads(res.stdout)[0]["proof"]["problem"]
+
+
+def test_a_tree_from_the_library_has_its_bounds_proof_checked(demo):
+    tree = demo.solve(EGG)
+    report = demo.check(tree)
+    assert tree.proven_by == "bounds" and report.valid
+    assert report.proof == {"proven_by": "bounds", "verified": True, "problem": None}
+    clingo = demo.check(demo.solve(SALAD, objective="success"))
+    assert clingo.proof is None
+
+
+def test_a_depth_bound_that_alone_rules_out_every_tree_is_not_blamed_on_the_constraints(demo):
+    """Under --max-depth, trees exist but none is shallow enough: the answer is unreachable by the
+    depth bound, not infeasible by constraints that are not what rules the trees out."""
+    shallow = demo.solve(EGG, max_depth=1, forbid_motions=["mix", "fry"])
+    assert shallow.status == "unreachable" and "depth <= 1" in (shallow.raw.reason or "")
+    deep = demo.solve(EGG, max_depth=5, forbid_motions=["beat", "fry"])
+    assert deep.status == "infeasible"
+    assert deep.raw.infeasible_by == ["--forbid-motion beat", "--forbid-motion fry"]

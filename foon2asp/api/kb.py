@@ -264,7 +264,9 @@ class KnowledgeBase:
                 raise InputError("check a Tree against one goal (its own by default)")
             units = [TreeUnit(self.problem.units[u], i, None) for i, u in enumerate(tree.unit_ids, 1)]
             gid = tree.goal_id if goal is None else self.object_id(goal)
-            raw = check_mod.check_tree(view((gid,)), TreeFile("<tree>", units, tree.goal, tree.method), gid)
+            claim = TreeFile("<tree>", units, tree.goal, tree.method, proven_by=tree.raw.proven_by)
+            claim.landmarks, claim.landmark_sets = tree.raw.landmarks, tree.raw.landmark_sets or []
+            raw = check_mod.check_tree(view((gid,)), claim, gid)
             raw.goal_source = "the tree's goal" if goal is None else "given"
             reports = [raw]
         else:

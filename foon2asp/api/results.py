@@ -280,6 +280,9 @@ class CheckReport(Answer):
         return units_of(self, v.order) if v is not None else []
 
     optimum = Raw[Tree | None](read=lambda a, t: None if t is None else Tree(a.kb, t))
+    proof = Raw[dict | None](
+        "The proof the tree claims, checked again without the solver: ``{proven_by, verified, problem}`` (None: none)."
+    )
 
 
 class Comparison(Answer):

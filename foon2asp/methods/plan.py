@@ -27,6 +27,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, field, replace
 from functools import cached_property
+from typing import Literal, overload
 
 from foon2asp.asp import dominance, objectives, substitute_facts
 from foon2asp.asp.canonical import canonical_problem
@@ -382,11 +383,18 @@ def makes(problem: Problem, goal: int, units: Iterable[int]) -> bool:
     return goal in made
 
 
-def explanations(req: Request, meal: tuple[int, ...]) -> list[tuple[str, Grounding]]:
+@overload
+def explanations(req: Request, meal: tuple[int, ...]) -> list[tuple[str, Grounding]]: ...
+@overload
+def explanations(req: Request, meal: tuple[int, ...], alone: Literal[False]) -> Grounding: ...
+def explanations(req: Request, meal: tuple[int, ...], alone: bool = True) -> list[tuple[str, Grounding]] | Grounding:
     """For an infeasible answer: each user program alone on the meal's part (does it alone rule
-    out every tree?), as (program name, grounding)."""
+    out every tree?), as (program name, grounding); ``alone=False``: the part with ``req``'s
+    programs, as one grounding."""
     units, objects, _ = req.parts.relevant(meal)
     view = req.problem.with_kitchen(o for o in objects if o in req.problem.kitchen)
+    if not alone:
+        return grounding(view, replace(req.options, units=tuple(units)), goal=meal)
     return [
         (name, grounding(view, replace(req.options, programs=[(name, text)], units=tuple(units)), goal=meal))
         for name, text in req.options.programs

@@ -93,7 +93,8 @@ class GoalRunner:
             tree = self._solve(how, t0)
             tree.stats.setdefault("plan", how.describe())  # what was grounded and how clingo ran
         if how.explain and tree.status == "unreachable" and all(g in self.problem.derivable for g in how.goal):
-            self._infeasible(tree)
+            if self.options.max_depth is None or self._within_depth(how.goal):
+                self._infeasible(tree)
         for answer in (tree, *tree.alternatives):
             if answer.status in PROVEN and answer.proven_by is None:
                 answer.proven_by = how.proven_by
@@ -115,8 +116,7 @@ class GoalRunner:
         tree.asp_cost = asp_cost
         if how.route == "bounds":
             tree.landmarks = list(how.landmarks)
-            if how.landmark_sets:
-                tree.landmark_sets = [list(s) for s in how.landmark_sets]
+            tree.landmark_sets = [list(s) for s in how.landmark_sets]
         return settle(self.problem, tree, how.ranked)
 
     def _solve(self, how: Plan, t0: float) -> TaskTree:
@@ -140,6 +140,12 @@ class GoalRunner:
         tree.time_s = round(time.perf_counter() - t0, 6)
         tree.stats["candidates"] = len(prep.candidates)
         return tree
+
+    def _within_depth(self, meal: tuple[int, ...]) -> bool:
+        """Is there a tree for ``meal`` within the depth bound when the user's programs are left out?
+        (Without one the depth bound, not the programs, rules every tree out.)"""
+        free = explanations(self.request.free, meal, alone=False)
+        return Session(free).solve(meal if len(meal) > 1 else meal[0]).status != "unreachable"
 
     def _infeasible(self, tree: TaskTree) -> None:
         """Trees exist but the user's programs rule them all out: ``infeasible``, naming each program
