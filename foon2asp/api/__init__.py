@@ -34,6 +34,7 @@ from foon2asp.api.trees import (
     consolidate,
     draw_file,
 )
+from foon2asp.asp.interrupts import keep_interrupts_until_exit, kept_interrupts
 from foon2asp.asp.options import OBJECTIVES as _OBJECTIVES
 from foon2asp.batch.results_file import schedules_path
 from foon2asp.foon.goals import OBJECT_FILTERS
@@ -67,3 +68,4 @@ __all__ += ["verdicts_json", "check_tree", "TreeVerdict", "consolidate", "Consol
 __all__ += ["CandidateReport", "read_foons", "match_foon", "write_foon", "FOON_FORMATS", "read_program", "draw_file"]
 __all__ += ["writable_dir", "write_file", "methods", "method", "OBJECTIVES", "UTENSIL_RULES", "GROUNDINGS"]
 __all__ += ["COMPARE_METHODS", "OBJECT_FILTERS", "MOTION_COST_PRECISION", "WITH_TREE"]
+__all__ += ["kept_interrupts", "keep_interrupts_until_exit"]
