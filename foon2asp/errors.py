@@ -69,6 +69,13 @@ class InputError(Exception):
         return where + escape(self.message.replace("\r\n", " ").replace("\n", " "))
 
 
+def strict_error(warnings: list[str], strict: str = "strict") -> InputError:
+    """The error that warnings about a request are when ``strict`` (the option's name) is on: the
+    first warning, and how many more there are."""
+    more = f"; {len(warnings) - 1} more warning(s)" if len(warnings) > 1 else ""
+    return InputError(f"{warnings[0]} ({strict}: warnings are errors{more})")
+
+
 class Terminated(KeyboardInterrupt):
     """SIGTERM, raised like an interrupt so that the same clean-up runs (exit status 143)."""
 

@@ -14,7 +14,14 @@ import click
 from tqdm import tqdm
 
 from foon2asp import api
-from foon2asp.errors import InputError, Terminated, escape, forget_unhandled_interrupt, interrupt_behind
+from foon2asp.errors import (
+    InputError,
+    Terminated,
+    escape,
+    forget_unhandled_interrupt,
+    interrupt_behind,
+    strict_error,
+)
 
 #: exit codes, the same for every command (README "Exit codes")
 EXIT_CODES = """\b
@@ -39,10 +46,24 @@ def warn_all(warnings: Iterable[str]) -> None:
         click.echo(f"foon2asp: warning: {escape(warning)}", err=True)
 
 
-def solver_of(kb: api.KnowledgeBase, options: api.Options) -> Any:
-    """The solver options of the request ``options``, its warnings on stderr."""
-    solver, warnings = kb.options_and_warnings(options)
+#: where a command's context keeps its --strict (:func:`warn_request`)
+STRICT = "foon2asp.strict"
+
+
+def warn_request(warnings: Iterable[str]) -> None:
+    """Warnings about the request (misspelt predicates in rules, kinds no file names, options that
+    are ignored), one line each on stderr; with --strict the first is an error (exit status 2)."""
+    warnings = list(warnings)
+    ctx = click.get_current_context(silent=True)
+    if warnings and ctx is not None and ctx.meta.get(STRICT):
+        raise strict_error(warnings, "--strict")
     warn_all(warnings)
+
+
+def solver_of(kb: api.KnowledgeBase, options: api.Options) -> Any:
+    """The solver options of the request ``options``, its warnings on stderr (:func:`warn_request`)."""
+    solver, warnings = kb.options_and_warnings(options)
+    warn_request(warnings)
     return solver
 
 
