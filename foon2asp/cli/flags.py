@@ -20,7 +20,7 @@ import click
 from foon2asp import api, report
 from foon2asp.api.load import Reading
 from foon2asp.api.request import KEYWORDS, NOT_A_TIME_LIMIT, SPEC_KEYWORDS, jobs
-from foon2asp.cli.main import EXIT_CODES, STRICT, main, warn_all
+from foon2asp.cli.main import EXIT_CODES, STRICT, main, warn_all, warn_request
 from foon2asp.errors import InputError, escape
 
 # ---------------------------------------------------------------- checked option types
@@ -155,6 +155,7 @@ def _gather(func: Callable) -> Callable:
             raise click.UsageError(f"unexpected argument {(stray or extra)[0]!r}")
         if "spec" in wants:
             kw["spec"] = api.ScheduleSpec.from_files(**{k: kw.pop(k) for k in SPEC_KEYWORDS})
+            warn_request(kw["spec"].warnings)
         return func(**kw)
 
     return wrapper
