@@ -26,10 +26,10 @@ sys.path.insert(0, str(ROOT))
 import foon2asp  # noqa: E402
 from foon2asp.asp.options import AspOptions  # noqa: E402
 from foon2asp.methods.runner import GoalRunner  # noqa: E402
-from foon2asp.schedule import ScheduleSpec  # noqa: E402
 from foon2asp.schedule.baseline import known_schedule, list_schedule  # noqa: E402
 from foon2asp.schedule.instances import instance, makespan  # noqa: E402
 from foon2asp.schedule.lower_bounds import bounds  # noqa: E402
+from schedule import spec_of  # noqa: E402  (bench/schedule.py)
 from synth import preset  # noqa: E402
 
 TABLE = ROOT / "bench" / "durations.json"
@@ -72,7 +72,7 @@ def main() -> None:
     print("|---" * (3 + len(tries)) + "|")
     for agents in ("arm=2", "arm=3"):
         for label, durations in (("1 s", None), ("table", TABLE)):
-            spec = ScheduleSpec.from_files(agents, durations)
+            spec = spec_of(agents, durations)
             for source in dict.fromkeys(s for s, _, _ in found):
                 insts = [instance(p, u, spec) for s, p, u in found if s == source]
                 missed = [(i, bounds(i).lower) for i in insts if makespan(list_schedule(i)) > bounds(i).lower]

@@ -41,8 +41,9 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 import foon2asp  # noqa: E402
-from foon2asp.schedule import ScheduleSpec, schedule  # noqa: E402
+from foon2asp.schedule import ScheduleSpec, parse_agents, schedule  # noqa: E402
 from foon2asp.schedule.checker import check_schedule  # noqa: E402
+from foon2asp.schedule.spec import Durations, load_durations  # noqa: E402
 
 TABLE = ROOT / "bench" / "durations.json"
 TARGET = {"fixed": 1.0, "joint": 10.0}
@@ -101,11 +102,22 @@ def row(label: str, rs: list[dict], mode: str) -> str:
     )
 
 
+def spec_of(agents: str, durations: Path | None) -> ScheduleSpec:
+    """The spec of ``agents`` with the duration table ``durations``, less its tables of kinds the
+    agents do not have (one table serves every agent set; a spec names only the agents' kinds)."""
+    kinds = parse_agents(agents)
+    if durations is None:
+        return ScheduleSpec(kinds)
+    table = load_durations(durations)
+    have = {kind for kind, _ in kinds} | {"*"}
+    return ScheduleSpec(kinds, Durations(table.motions, {k: v for k, v in table.kinds.items() if k in have}))
+
+
 def settings(args):
     """Each measured setting of ``args``: (agents, durations label, spec, encoding, mode, time limit)."""
     for agents in [a for a in args.agents.split(";") if a]:
         for durations in (None, TABLE):
-            spec = ScheduleSpec.from_files(agents, durations)
+            spec = spec_of(agents, durations)
             dname = "1 s" if durations is None else "table"
             for encoding in args.encodings.split(","):
                 for mode in ("fixed",) if args.no_joint else ("fixed", "joint"):

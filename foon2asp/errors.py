@@ -96,5 +96,27 @@ class InputError(Exception):
         return where + one_line(self.message)
 
 
+def strict_error(warnings: list[str], strict: str = "strict") -> InputError:
+    """The error that warnings about a request are when ``strict`` (the option's name) is on: the
+    first warning, and how many more there are."""
+    more = f"; {len(warnings) - 1} more warning(s)" if len(warnings) > 1 else ""
+    return InputError(f"{warnings[0]} ({strict}: warnings are errors{more})")
+
+
 class Terminated(KeyboardInterrupt):
     """SIGTERM, raised like an interrupt so that the same clean-up runs (exit status 143)."""
+
+
+def forget_unhandled_interrupt() -> None:
+    """Clear CPython's note that a KeyboardInterrupt left code run from a string (``exec`` of a
+    string, as dataclasses and namedtuple run while a module is imported), which it keeps even
+    when the interrupt is caught later: at exit it would make the process kill itself with SIGINT
+    instead of exiting with the status the command chose. Running any string clears the note."""
+    exec("")
+
+
+def interrupt_behind(exc: BaseException) -> BaseException:
+    """The interrupt that ``exc`` wraps, else ``exc``: Python 3.11 turns an exception raised while a
+    class is made (in ``__set_name__``, as a dataclass's fields) into a RuntimeError caused by it."""
+    cause = exc.__cause__
+    return cause if isinstance(exc, RuntimeError) and isinstance(cause, KeyboardInterrupt) else exc

@@ -286,3 +286,39 @@ def test_a_clingo_with_python_scripting_runs_none_of_a_users_script(tmp_path):
         "<program>:1:1: #script (python) is refused: a program may not run host code",
     ]
     assert not (tmp_path / "RAN").exists()
+
+
+@pytest.mark.parametrize(
+    "command, extra, warning",
+    [
+        *[(name, ["--rule", TYPO], WARNED) for name in ("solve", "compare", "missing", "batch", "consolidate")],
+        ("schedule", ["--rule", TYPO], WARNED),
+        ("pddl", ["--forbid-motion", "fly"], "foon2asp: warning: no unit has motion 'fly'"),
+        ("query", [], "q.lp:1:9: kitchn/1 is defined nowhere; did you mean kitchen/1?"),
+        # an option that is ignored
+        ("compare", ["--method", "gbfs-h1", "--forbid-motion", "chop"], "constraints apply to ASP methods only"),
+    ],
+)
+def test_strict_makes_every_warning_about_the_request_an_error(command, extra, warning, tmp_path):
+    """Without --strict the warning is a line on stderr and the command answers; with it the warning
+    is a one-line error (exit 2) before any answer or file."""
+    (tmp_path / "q.lp").write_text("p(O) :- kitchn(O).\n#show p/1.\n")
+    salad = ["--data", "demo", "--goal", "tomato salad"]
+    more = {
+        "schedule": ["schedule", *salad, "--agents", "arm=2"],
+        "pddl": ["export", "pddl", *salad, "--output", tmp_path / "pddl"],
+        "query": ["query", tmp_path / "q.lp", "--data", "demo"],
+        # smoothie-3.json skips a unit (an error with --strict)
+        "consolidate": ["consolidate", *[path for path in SMOOTHIES if path.name != "smoothie-3.json"]],
+    }
+    args = [*{**commands(tmp_path / "r.jsonl"), **more}[command], *extra]
+    res = run(*args)
+    assert res.exit_code in (0, 1), res.output
+    assert any(warning in line and "warning" in line for line in res.stderr.splitlines()), res.stderr
+    (tmp_path / "r.jsonl").unlink(missing_ok=True)
+    res = run(*args, "--strict")
+    assert res.exit_code == 2, res.output
+    (line,) = res.stderr.splitlines()
+    assert line.startswith("foon2asp: error: ") and warning.removeprefix("foon2asp: warning: ") in line
+    assert line.endswith("(--strict: warnings are errors)") or line.endswith("(strict: warnings are errors)")
+    assert res.stdout == "" and not (tmp_path / "r.jsonl").exists()

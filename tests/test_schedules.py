@@ -144,8 +144,64 @@ def test_unschedulable_is_a_status_not_an_error(shared_foon_dir, tmp_path):
     (r,) = json.loads(res.stdout)
     assert r["status"] == "unschedulable" and r["makespan"] is None and "no agent can do" in r["reason"]
     assert res.exit_code == 0
-    text = run("schedule", "--data", shared_foon_dir, "--goal", "greek salad", "--capabilities", caps).stdout
-    assert "Status: optimal" in text  # a kind not listed (robot) can do every motion
+    both = ["--agents", "arm=1,robot=1", "--capabilities", caps]
+    res = run("schedule", "--data", shared_foon_dir, "--goal", "greek salad", *both)
+    assert "Status: optimal" in res.stdout  # a kind not listed (robot) can do every motion, with a note
+    assert res.stderr == (
+        "foon2asp: warning: agents 'arm=1,robot=1': no capabilities file names the kind \"robot\": it can do"
+        " every motion\n"
+    )
+
+
+def test_a_misspelt_kind_is_an_error_not_a_schedule_that_breaks_the_file(tmp_path):
+    """--agents arms=2 with a capabilities file keyed "arm": no schedule with the heat the file forbids."""
+    caps = tmp_path / "arm-only.json"
+    caps.write_text('{"arm": ["crack", "beat", "fry"]}')
+    base = ["schedule", "--data", "demo", "--goal", "scrambled egg", "--capabilities", caps]
+    assert "Status: unschedulable" in run(*base, "--agents", "arm=2").stdout
+    assert_one_line_error(
+        run(*base, "--agents", "arms=2", ok=False), f'{caps}:1: no agent has the kind "arm"', "did you mean arms?"
+    )
+    assert_one_line_error(run(*base, "--agents", "arm=2,humann=1", ok=False), '"humann"', "did you mean human?")
+    assert_one_line_error(
+        run("schedule", "--data", "demo", "--goal", "scrambled egg", "--agents", "humann=1", ok=False),
+        'agents \'humann=1\': the kind "humann" is named in no file and is not "human" (a person)',
+    )
+    # a kind no file names: the defaults, with a note; --strict makes it an error
+    res = run(*base, "--agents", "arm=2,human=1")
+    assert "Status: optimal" in res.stdout and res.stderr.count("\n") == 1
+    assert 'no capabilities file names the kind "human": it can do every motion' in res.stderr
+    assert_one_line_error(run(*base, "--agents", "arm=2,human=1", "--strict", ok=False), '"human"', "--strict")
+    # the same in check and batch --schedule
+    record = tmp_path / "s.json"
+    run(*base, "--agents", "arm=2", "--format", "json", "-o", record)
+    assert_one_line_error(
+        run("check", record, "--data", "demo", "--agents", "arms=2", "--capabilities", caps, ok=False),
+        "did you mean arms?",
+    )
+    out = tmp_path / "r.jsonl"
+    batch = ["batch", "--data", "demo", "--output", out, "--schedule", "--capabilities", caps, "--agents", "arms=2"]
+    assert_one_line_error(run(*batch, ok=False), f"{caps}:1", '"arm"')
+    assert not out.exists()  # refused before any work
+
+
+def test_the_library_refuses_a_misspelt_kind_as_the_command_line_does(tmp_path):
+    caps = tmp_path / "arm-only.json"
+    caps.write_text('{"arm": ["crack", "beat", "fry"]}')
+    kb = foon2asp.load("demo")
+    with pytest.raises(foon2asp.InputError) as err:
+        kb.schedule("scrambled egg", agents="arms=2", capabilities=caps)
+    assert str(err.value) == f'{caps}:1: no agent has the kind "arm" (the agents: arms=2); did you mean arms?'
+    with pytest.raises(foon2asp.InputError, match="did you mean human"):
+        kb.schedule("scrambled egg", agents={"humann": 1})
+    with pytest.raises(foon2asp.InputError, match="did you mean arms"):
+        kb.solve("scrambled egg").schedule(agents="arms=2", capabilities=caps)
+    with pytest.raises(foon2asp.InputError, match="^capabilities: no agent has the kind"):
+        kb.schedule("scrambled egg", api.ScheduleSpec((("arms", 2),), capabilities={"arm": frozenset({"fry"})}))
+    s = kb.schedule("scrambled egg", agents="arm=2,human=1", capabilities=caps)
+    assert s.status == "optimal" and s.spec.warnings == (
+        "agents 'arm=2,human=1': no capabilities file names the kind \"human\": it can do every motion",
+    )
 
 
 # ---------------------------------------------------------------- joint

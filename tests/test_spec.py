@@ -88,7 +88,7 @@ def test_bad_durations(tmp_path, text, words, line):
 def test_capabilities_and_resources(tmp_path):
     caps = load_capabilities(write(tmp_path, "c.json", {"arm": ["Pour", "chop  it"], "human": []}))
     assert caps == {"arm": frozenset({"pour", "chop it"}), "human": frozenset()}
-    spec = ScheduleSpec((("arm", 1), ("robot", 1)), capabilities=caps)
+    spec = ScheduleSpec((("arm", 1), ("robot", 1), ("human", 1)), capabilities=caps)
     assert spec.can("arm", "POUR") and not spec.can("arm", "mix") and spec.can("robot", "mix")
     res = load_resources(write(tmp_path, "r.json", {"Knife": 1, "stove": 2}))
     assert res == {"knife": 1, "stove": 2}
@@ -123,3 +123,49 @@ def test_missing_file_is_one_line(tmp_path, kind):
     text = str(err.value)
     assert "nope.json" in text and "\n" not in text
     assert f"{kind} file not found" in text and "file file" not in text
+
+
+def test_a_kind_a_file_names_that_no_agent_has_is_an_error_naming_the_file_and_the_kind(tmp_path):
+    caps = write(tmp_path, "caps.json", {"arm": ["crack", "beat", "fry"]})
+    with pytest.raises(InputError) as err:
+        ScheduleSpec.from_files("arms=2", capabilities=caps)
+    assert str(err.value) == f'{caps}:2: no agent has the kind "arm" (the agents: arms=2); did you mean arms?'
+    table = write(tmp_path, "d.json", {"*": 2, "human": {"peel": 3}})
+    with pytest.raises(InputError) as err:
+        ScheduleSpec.from_files("arm=2", durations=table)
+    assert str(err.value) == f'{table}:3: no agent has the kind "human" (the agents: arm=2)'
+    # a spec built in Python is checked as well
+    with pytest.raises(InputError, match=r'^capabilities: no agent has the kind "arm" .*did you mean arms\?$'):
+        ScheduleSpec((("arms", 2),), capabilities={"arm": frozenset({"fry"})})
+
+
+def test_a_misspelt_agent_kind_is_an_error_with_the_closest_kinds(tmp_path):
+    with pytest.raises(InputError) as err:
+        ScheduleSpec.from_files("arm=1,humann=1")
+    assert str(err.value) == (
+        'agents \'arm=1,humann=1\': the kind "humann" is named in no file and is not "human" (a person);'
+        " did you mean human?"
+    )
+    caps = write(tmp_path, "caps.json", {"gripper": ["pour"]})
+    with pytest.raises(InputError, match=r'the kind "grippers" is named in no file; did you mean gripper\?$'):
+        ScheduleSpec.from_files("gripper=1,grippers=1", capabilities=caps)
+    assert ScheduleSpec.from_files("robot=1,arm=2").warnings == ()  # no file: every kind takes the defaults
+
+
+def test_an_agent_kind_no_file_names_takes_the_defaults_with_a_note(tmp_path):
+    caps = write(tmp_path, "caps.json", {"arm": ["pour"]})
+    table = write(tmp_path, "d.json", {"pour": 2, "arm": {"pour": 1}})
+    spec = ScheduleSpec.from_files("arm=2,gripper=1", capabilities=caps)
+    assert spec.warnings == (
+        "agents 'arm=2,gripper=1': no capabilities file names the kind \"gripper\": it can do every motion",
+    )
+    assert spec.can("gripper", "mix") and not spec.can("arm", "mix")
+    both = ScheduleSpec.from_files("arm=2,gripper=1", durations=table, capabilities=caps)
+    assert both.warnings == (
+        "agents 'arm=2,gripper=1': no durations or capabilities file names the kind \"gripper\": it takes the"
+        " default durations and can do every motion",
+    )
+    assert both.durations.of("gripper", "pour") == 2000 and both.durations.of("arm", "pour") == 1000
+    # a durations file of motions only names no kind: every kind takes it, nothing to note
+    flat = write(tmp_path, "flat.json", {"pour": 2})
+    assert ScheduleSpec.from_files("arm=2,human=1", durations=flat).warnings == ()

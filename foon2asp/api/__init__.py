@@ -35,6 +35,7 @@ from foon2asp.api.trees import (
     draw_file,
 )
 from foon2asp.asp.control import option_names as clingo_option_names
+from foon2asp.asp.interrupts import keep_interrupts_until_exit, kept_interrupts
 from foon2asp.asp.options import OBJECTIVES as _OBJECTIVES
 from foon2asp.batch.results_file import schedules_path
 from foon2asp.foon.goals import OBJECT_FILTERS
@@ -71,3 +72,4 @@ __all__ += ["CandidateReport", "read_foons", "match_foon", "write_foon", "FOON_F
 __all__ += ["writable_dir", "write_file", "methods", "method", "OBJECTIVES", "UTENSIL_RULES", "GROUNDINGS"]
 __all__ += ["COMPARE_METHODS", "OBJECT_FILTERS", "MOTION_COST_PRECISION", "WITH_TREE", "clingo_option_names"]
 __all__ += ["SCHEDULE_TIME_LIMIT", "seconds_text"]
+__all__ += ["kept_interrupts", "keep_interrupts_until_exit"]

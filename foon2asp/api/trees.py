@@ -15,7 +15,7 @@ from foon2asp.api.kb import GoalLike, KnowledgeBase
 from foon2asp.api.load import Reading, knowledge_base
 from foon2asp.api.request import KEYWORDS, Options, check_keywords, jobs
 from foon2asp.api.results import Answer, Raw, Tree, as_list, object_of, objects_of, tree_of, units_of
-from foon2asp.errors import InputError
+from foon2asp.errors import InputError, strict_error
 from foon2asp.foon.loaders import Dataset, read_goals, read_kitchen, read_motion, read_utensils
 from foon2asp.foon.model import LEAVES, FoonObject, Unit, leaves
 from foon2asp.foon.treefiles import TreeUnit, read_trees
@@ -203,6 +203,8 @@ def consolidate(
     if not kb.projection.identity:
         candidates, sources = _projected(kb, candidates)
     solver, asked = kb.options_and_warnings(**keywords)
+    if how.strict and asked:  # warnings about the request are errors too
+        raise strict_error(asked)
     ids, source = _goals(kb, candidates, goal, goals)
     problem = kb.solving_problem(solver)
     raw = consolidate_mod.consolidate(

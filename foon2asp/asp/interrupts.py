@@ -1,19 +1,25 @@
 """Stopping clingo calls safely: signals deferred while a call runs, and the solve watchdog.
 
-Why a control is never left in the middle of a call: docs/proofs/solving.md, "The watchdog
-and signals".
+An interrupt that a finaliser would drop is kept and raised again (:func:`kept_interrupts`). Why
+a control is never left in the middle of a call, and why no interrupt is lost: docs/proofs/solving.md,
+"The watchdog and signals".
 """
 
 from __future__ import annotations
 
 import os
 import signal
+import sys
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 
-import clingo
+from foon2asp.errors import Terminated
+
+TYPE_CHECKING = False  # typing's, without importing typing (the command line imports this module first)
+if TYPE_CHECKING:
+    import clingo
 
 #: how often a waiting solve looks for a deferred signal (seconds)
 POLL_S = 0.05
@@ -102,6 +108,12 @@ _SIGNALS = (signal.SIGINT, signal.SIGTERM)
 class _Deferral:
     depth = 0
     pending: int | None = None
+    #: a signal whose exception Python dropped (raised in a finaliser): raised again at the next safe point
+    dropped: int | None = None
+    #: an interrupt came (under :func:`kept_interrupts`)
+    interrupted = False
+    #: the ``sys.unraisablehook`` that :func:`keep_interrupts_until_exit` replaced
+    hook: Callable | None = None
 
 
 _DEFER = _Deferral()
@@ -126,22 +138,94 @@ def _deliver(signum: int, handler) -> None:
         os.kill(os.getpid(), signum)
 
 
+def raise_dropped() -> None:
+    """Raise now the interrupt that a finaliser dropped (:func:`kept_interrupts`), if any: a safe point."""
+    signum, _DEFER.dropped = _DEFER.dropped, None
+    if signum is not None:
+        _deliver(signum, signal.getsignal(signum))
+
+
+class _Noted:
+    """A signal handler that notes that an interrupt came, then calls ``handler``."""
+
+    def __init__(self, handler) -> None:
+        self.handler = handler
+
+    def __call__(self, signum, frame) -> None:
+        _DEFER.interrupted = True
+        self.handler(signum, frame)
+
+
+def _unraisable(unraisable) -> None:
+    """``sys.unraisablehook`` of :func:`keep_interrupts_until_exit`."""
+    exc = unraisable.exc_value
+    if isinstance(exc, KeyboardInterrupt) and threading.current_thread() is threading.main_thread():
+        _DEFER.interrupted = True
+        if _DEFER.dropped is None:
+            _DEFER.dropped = signal.SIGTERM if isinstance(exc, Terminated) else signal.SIGINT
+    elif not _DEFER.interrupted and _DEFER.hook is not None:
+        _DEFER.hook(unraisable)
+
+
+def keep_interrupts_until_exit() -> None:
+    """From now until the process ends, an interrupt raised in a finaliser is kept (:func:`kept_interrupts`),
+    and once an interrupt has come, a finaliser that fails is not reported: its object was left half
+    built by the interrupt (clingo's objects are freed by finalisers that assume a whole object).
+    For a program's entry point, whose process ends with the command."""
+    if sys.unraisablehook is not _unraisable:
+        _DEFER.hook = sys.unraisablehook
+        sys.unraisablehook = _unraisable
+
+
+@contextmanager
+def kept_interrupts() -> Iterator[None]:
+    """Inside the body no interrupt is lost: one raised where Python can only drop it, in a
+    finaliser (clingo's ``Control.__del__`` freeing a control, a generator closed by the collector),
+    is kept and raised again at the next safe point: where a deferred section begins or ends
+    (every clingo call), or when the body is over. Once an interrupt has come, a finaliser that
+    fails is not reported (:func:`keep_interrupts_until_exit`, which goes on after the body)."""
+    installed = sys.unraisablehook is not _unraisable
+    keep_interrupts_until_exit()
+    noted: dict[signal.Signals, _Noted] = {}
+    for signum in _SIGNALS:
+        current = signal.getsignal(signum)
+        if callable(current) and not isinstance(current, _Noted):
+            noted[signum] = _Noted(current)
+            signal.signal(signum, noted[signum])
+    try:
+        yield
+        raise_dropped()
+    finally:
+        for signum, note in noted.items():
+            previous = note.handler
+            if signal.getsignal(signum) is note:  # (else the body set a handler of its own)
+                signal.signal(signum, previous)
+        _DEFER.dropped = None
+        if installed:
+            sys.unraisablehook, _DEFER.hook = _DEFER.hook or sys.__unraisablehook__, None
+            _DEFER.interrupted = False
+
+
 @contextmanager
 def deferred_signals() -> Iterator[None]:
-    """Run the body with SIGINT/SIGTERM recorded instead of raised; deliver the first one afterwards.
+    """Run the body with SIGINT/SIGTERM recorded instead of raised; deliver the first one afterwards
+    (or, before the body, one that a finaliser dropped: :func:`kept_interrupts`).
 
     Outside the main thread this does nothing; ignored signals stay ignored.
     """
     if _DEFER.depth or threading.current_thread() is not threading.main_thread():
         yield  # nested: the outer section delivers
         return
+    raise_dropped()
+    # cleared before the handlers change: a signal recorded as they change is this section's
+    _DEFER.pending = None
     saved = {}
     for signum in _SIGNALS:
         handler = signal.getsignal(signum)
         if handler is not signal.SIG_IGN and handler is not None:
             saved[signum] = handler
             signal.signal(signum, _record)
-    _DEFER.depth, _DEFER.pending = 1, None
+    _DEFER.depth = 1
     try:
         yield
     finally:
@@ -151,3 +235,5 @@ def deferred_signals() -> Iterator[None]:
         pending, _DEFER.pending = _DEFER.pending, None
         if pending is not None and pending in saved:
             _deliver(pending, saved[pending])
+        else:
+            raise_dropped()

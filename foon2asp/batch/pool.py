@@ -15,10 +15,11 @@ import threading
 import time
 import uuid
 from collections.abc import Callable, Generator, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 from foon2asp.analysis.compare import judge
-from foon2asp.asp.interrupts import SOLVE_WATCHDOG
+from foon2asp.asp.interrupts import SOLVE_WATCHDOG, deferred_signals
 from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
@@ -149,11 +150,34 @@ def _exit_with_parent() -> None:
     threading.Thread(target=watch, name="parent-watch", daemon=True).start()
 
 
+#: the signals a worker starts with blocked (:func:`_signals_blocked`)
+_WORKER_SIGNALS = {signal.SIGINT, signal.SIGTERM}
+
+
+@contextmanager
+def _signals_blocked() -> Iterator[None]:
+    """The body (which starts the pool's workers) runs with SIGINT and SIGTERM blocked in this
+    thread; a signal meanwhile comes once they are unblocked. A worker inherits the block (the
+    pool's threads too, and the workers they start later) and keeps it until :func:`_init_worker`
+    has set its own handlers: a SIGTERM of the pool then ends it at once, never in the parent's
+    handler."""
+    if not hasattr(signal, "pthread_sigmask"):  # pragma: no cover - not POSIX
+        yield
+        return
+    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, _WORKER_SIGNALS)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
+
+
 def _init_worker(spec: BatchSpec) -> None:
     global _WORKER
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # an interrupt is the parent's to handle
     # the pool ends its workers with SIGTERM: a forked worker must not run the parent's handler
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, _WORKER_SIGNALS)  # blocked since it started
     _exit_with_parent()
     _WORKER = Worker(spec)
 
@@ -193,14 +217,16 @@ class Execution:
                     break
                 yield worker.run(goal, method)
                 done += 1
-            del worker
+            with deferred_signals():  # its clingo controls are freed with no interrupt in the middle
+                del worker
             tasks, workers = tasks[done:], cores
         if not tasks:
             return
         self.workers = workers
         context = multiprocessing.get_context(start_method())
         _check_start(context)
-        pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec,))
+        with _signals_blocked():
+            pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec,))
         try:
             yield from pool.imap_unordered(_run_in_worker, tasks)
             pool.close()

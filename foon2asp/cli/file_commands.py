@@ -14,7 +14,7 @@ import click
 from foon2asp import api, report
 from foon2asp.cli import flags as opt
 from foon2asp.cli.flags import command
-from foon2asp.cli.main import EXIT_CODES, emit, exit_code, main, warn_all
+from foon2asp.cli.main import EXIT_CODES, emit, exit_code, main, solver_of, warn_all, warn_request
 from foon2asp.errors import InputError
 from foon2asp.report import draw as draw_mod
 from foon2asp.report import pddl
@@ -87,7 +87,7 @@ def check(trees, data, goal, goals, fmt, optimum, spec, options):
     else:
         kb = data.load(goals)
         among = kb.select_goals((), goals) if goals else None
-        strict, solver = data.reading.strict, kb.options(options)
+        strict, solver = data.reading.strict, solver_of(kb, options)
         judge = partial(
             kb.check_all, goal=list(goal) or None, optimum=optimum, goals=among, strict=strict, options=solver
         )
@@ -251,7 +251,7 @@ def export_pddl(data, goal, goals, pddl_objective, output, name, options):
     if options.substitutes is not None:
         raise InputError("export pddl cannot express --substitutes (a plan cannot count its substitutions)")
     kb, goal_ids = data.load_goals(goal, goals)
-    problem = kb.solving_problem(kb.options(options))  # with the motion costs, for --objective cost
+    problem = kb.solving_problem(solver_of(kb, options))  # with the motion costs, for --objective cost
     if not all(c.isalnum() or c in "-_" for c in name) or not name[:1].isalpha():
         raise InputError(f"--name must be a PDDL name (a letter, then letters, digits, - or _), not {name!r}")
     task = pddl.export(problem, goal_ids, pddl_objective, options.constraints, name)
@@ -320,7 +320,7 @@ def query(program, data, goals, goal, encoding_names, fmt, options):
     result = kb.query(
         text, goal=goal or None, encodings=encoding_names, name=program, goal_nodes=nodes, options=options
     )
-    warn_all(result.warnings)
+    warn_request(result.warnings)
     click.echo(report.render("query", fmt, kb.problem, result), nl=False)
     sys.exit(0 if result.status in ("satisfiable", "optimal") else 1)
 

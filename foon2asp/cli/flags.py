@@ -20,7 +20,7 @@ import click
 from foon2asp import api, report
 from foon2asp.api.load import Reading
 from foon2asp.api.request import KEYWORDS, NOT_A_TIME_LIMIT, SPEC_KEYWORDS, jobs
-from foon2asp.cli.main import EXIT_CODES, main, warn_all
+from foon2asp.cli.main import EXIT_CODES, STRICT, main, warn_all, warn_request
 from foon2asp.errors import InputError, escape
 
 # ---------------------------------------------------------------- checked option types
@@ -124,6 +124,7 @@ def _gather(func: Callable) -> Callable:
 
     @functools.wraps(func)
     def wrapper(**kw):
+        click.get_current_context().meta[STRICT] = bool(kw.get("strict"))  # warnings about the request are errors
         if kw.get("max_substitutions") is not None and kw.get("substitutes") is None:
             raise InputError("--max-substitutions needs --substitutes FILE")
         if kw.get("models", 1) > 1 and kw.get("all_optimal"):
@@ -154,6 +155,7 @@ def _gather(func: Callable) -> Callable:
             raise click.UsageError(f"unexpected argument {(stray or extra)[0]!r}")
         if "spec" in wants:
             kw["spec"] = api.ScheduleSpec.from_files(**{k: kw.pop(k) for k in SPEC_KEYWORDS})
+            warn_request(kw["spec"].warnings)
         return func(**kw)
 
     return wrapper
@@ -205,7 +207,10 @@ def output_option(help: str, file: bool = True, **more):
 
 # ---------------------------------------------------------------- the data
 
-STRICT_HELP = "Treat skipped units of FOON and tree files (warnings) as errors."
+STRICT_HELP = (
+    "Treat warnings as errors: skipped units of FOON and tree files, and every warning about the request"
+    " (misspelt predicates in rules, kinds no schedule file names, options that are ignored)."
+)
 KITCHEN_HELP = (
     "kitchen.json, or 'leaves': every object no unit of the FOON makes (merged generated trees have no kitchen)."
 )

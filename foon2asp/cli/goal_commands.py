@@ -10,7 +10,17 @@ import click
 from foon2asp import api, report
 from foon2asp.cli import flags as opt
 from foon2asp.cli.flags import Checked, command, goal_command
-from foon2asp.cli.main import EXIT_CODES, echo_now, emit, exit_code, goal_progress, progress_bar, solver_of, warn_all
+from foon2asp.cli.main import (
+    EXIT_CODES,
+    echo_now,
+    emit,
+    exit_code,
+    goal_progress,
+    progress_bar,
+    solver_of,
+    warn_all,
+    warn_request,
+)
 from foon2asp.errors import InputError
 from foon2asp.report import draw
 from foon2asp.report.tree_formats import render, render_bytes
@@ -152,7 +162,7 @@ def compare(data, goal, goals, method_list, fmt, together, options, progress):
     kb, goal_ids = data.load_goals(goal, goals)
     search = [n for n in names if is_search(n)]
     if options.constraints and search:
-        warn_all([f"constraints apply to ASP methods only; {', '.join(search)} ignore them"])
+        warn_request([f"constraints apply to ASP methods only; {', '.join(search)} ignore them"])
     solver = solver_of(kb, options)
     if together:
         asp = [n for n in names if not is_search(n)]

@@ -14,7 +14,14 @@ import click
 from tqdm import tqdm
 
 from foon2asp import api
-from foon2asp.errors import InputError, Terminated, one_line
+from foon2asp.errors import (
+    InputError,
+    Terminated,
+    forget_unhandled_interrupt,
+    interrupt_behind,
+    one_line,
+    strict_error,
+)
 
 #: exit codes, the same for every command (README "Exit codes")
 EXIT_CODES = """\b
@@ -39,10 +46,24 @@ def warn_all(warnings: Iterable[str]) -> None:
         click.echo(f"foon2asp: warning: {one_line(warning)}", err=True)
 
 
-def solver_of(kb: api.KnowledgeBase, options: api.Options) -> Any:
-    """The solver options of the request ``options``, its warnings on stderr."""
-    solver, warnings = kb.options_and_warnings(options)
+#: where a command's context keeps its --strict (:func:`warn_request`)
+STRICT = "foon2asp.strict"
+
+
+def warn_request(warnings: Iterable[str]) -> None:
+    """Warnings about the request (misspelt predicates in rules, kinds no file names, options that
+    are ignored), one line each on stderr; with --strict the first is an error (exit status 2)."""
+    warnings = list(warnings)
+    ctx = click.get_current_context(silent=True)
+    if warnings and ctx is not None and ctx.meta.get(STRICT):
+        raise strict_error(warnings, "--strict")
     warn_all(warnings)
+
+
+def solver_of(kb: api.KnowledgeBase, options: api.Options) -> Any:
+    """The solver options of the request ``options``, its warnings on stderr (:func:`warn_request`)."""
+    solver, warnings = kb.options_and_warnings(options)
+    warn_request(warnings)
     return solver
 
 
@@ -149,12 +170,12 @@ def _terminate(signum, frame) -> None:
 def report_exception(exc: BaseException, debug: bool = False) -> NoReturn:
     """Turn any exception of a command into one line on stderr and a documented exit status
     (``debug``: with the traceback of an internal error)."""
-    if isinstance(exc, Terminated):
-        click.echo("foon2asp: terminated", err=True)
-        sys.exit(EXIT_SIGTERM)
+    exc = interrupt_behind(exc)
     if isinstance(exc, KeyboardInterrupt):
-        click.echo("foon2asp: interrupted", err=True)
-        sys.exit(EXIT_SIGINT)
+        terminated = isinstance(exc, Terminated)
+        click.echo(f"foon2asp: {'terminated' if terminated else 'interrupted'}", err=True)
+        forget_unhandled_interrupt()  # the exit status is this one, not death by SIGINT
+        sys.exit(EXIT_SIGTERM if terminated else EXIT_SIGINT)
     if isinstance(exc, InputError):
         key, _, value = (exc.hint or "").partition("=")
         if value and f"{key}=" in FLAG_WORDING:
@@ -180,6 +201,12 @@ def report_exception(exc: BaseException, debug: bool = False) -> NoReturn:
 class Main(click.Group):
     """The command group: every error is one line on stderr with a documented exit status, never a traceback."""
 
+    def make_context(self, *args: Any, **kwargs: Any) -> click.Context:
+        try:
+            return super().make_context(*args, **kwargs)
+        except KeyboardInterrupt as exc:  # reported here: click would first print an empty line
+            report_exception(exc)
+
     def invoke(self, ctx: click.Context) -> Any:
         try:
             return super().invoke(ctx)
@@ -197,7 +224,8 @@ class Main(click.Group):
         except ValueError:  # not the main thread
             previous = None
         try:
-            rv = run(*args, standalone_mode=False, **kwargs)
+            with api.kept_interrupts():  # an interrupt that a finaliser drops is raised again
+                rv = run(*args, standalone_mode=False, **kwargs)
         except click.exceptions.Exit as exc:
             sys.exit(exc.exit_code)
         except click.ClickException as exc:
@@ -233,11 +261,21 @@ def main(debug):
     """
 
 
+def ignore_signals() -> None:
+    """SIGINT and SIGTERM are ignored from now on (the command is over, or its interrupt reported)."""
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def run(prog_name: str = "foon2asp") -> None:
-    """The process's entry point (the ``foon2asp`` script, ``python -m foon2asp``): the command
-    group; SIGINT and SIGTERM are ignored once it is over."""
+    """The command group as the process's entry point (:func:`foon2asp.__main__.run`); SIGINT and
+    SIGTERM are ignored once it is over, and one that comes as it ends is reported as any other."""
     try:
-        main(prog_name=prog_name)
-    finally:
-        signal.signal(signal.SIGTERM, signal.SIG_IGN)
-        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        try:
+            api.keep_interrupts_until_exit()
+            main(prog_name=prog_name)
+        finally:
+            ignore_signals()
+    except KeyboardInterrupt as exc:  # came after the command's own handling, before it ignored signals
+        ignore_signals()
+        report_exception(exc)

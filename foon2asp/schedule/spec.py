@@ -7,6 +7,7 @@ read as decimals and kept as whole milliseconds (:data:`TICKS` per second); ever
 
 from __future__ import annotations
 
+import difflib
 import json
 import re
 from collections.abc import Mapping
@@ -33,6 +34,9 @@ DEFAULT_AGENTS = (("robot", 1),)
 MAX_AGENTS = 64
 
 _KIND = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
+
+#: how alike two kinds must be (difflib's ratio) for one to be taken for a misspelling of the other
+CLOSE = 0.75
 
 
 def kind_of(agent: str) -> str:
@@ -173,6 +177,56 @@ def load_resources(path: str | Path) -> dict[str, int]:
     return out
 
 
+def _did_you_mean(kind: str, names: list[str]) -> list[str]:
+    """The names closest to ``kind`` (a misspelling of one of them), best first."""
+    return difflib.get_close_matches(kind, sorted(set(names) - {kind}), n=3, cutoff=CLOSE)
+
+
+def _suggestion(near: list[str]) -> str:
+    return f"; did you mean {' or '.join(near)}?" if near else ""
+
+
+def check_kinds(
+    agents: tuple[tuple[str, int], ...], named: Mapping[str, tuple[str | Path | None, list[str]]]
+) -> list[str]:
+    """Check the agents' kinds against the kinds the durations and capabilities name (``what ->
+    (its file or None, kinds)``): a kind they name that no agent has, or an agent kind that they do
+    not name but is a misspelling of one that is known (theirs, or ``human``), is an
+    :class:`InputError` naming the file (or the agents) and the kind, with the closest kinds.
+    Returns a note for each agent kind they do not name while they name some: it takes the default
+    durations, or can do every motion."""
+    have = [kind for kind, _ in agents]
+    given = ",".join(f"{kind}={n}" for kind, n in agents)
+    for what, (path, kinds) in named.items():
+        for kind in kinds:
+            if kind not in have:
+                hint = _suggestion(_did_you_mean(kind, have))
+                wrong = f"no agent has the kind {json.dumps(kind)} (the agents: {given}){hint}"
+                if path is None:
+                    raise InputError(f"{what}: {wrong}")
+                raise InputError(wrong, str(path), _line_of(reading.load(path, what)[0], kind))
+    mentioned = {kind for _, kinds in named.values() for kind in kinds}
+    notes = []
+    for kind in have:
+        if kind in mentioned:
+            continue
+        near = [] if kind == HUMAN else _did_you_mean(kind, [*mentioned, HUMAN])
+        if near:
+            person = f" and is not {json.dumps(HUMAN)} (a person)" if HUMAN in near else ""
+            raise InputError(
+                f"agents {given!r}: the kind {json.dumps(kind)} is named in no file{person}{_suggestion(near)}"
+            )
+        if mentioned:
+            notes.append(kind)
+    files = [what for what, (_, kinds) in named.items() if kinds]
+    takes = {"durations": "takes the default durations", "capabilities": "can do every motion"}
+    return [
+        f"agents {given!r}: no {' or '.join(files)} file names the kind {json.dumps(kind)}:"
+        f" it {' and '.join(takes[what] for what in files)}"
+        for kind in notes
+    ]
+
+
 @dataclass(frozen=True)
 class ScheduleSpec:
     """The agents (``((kind, n), ...)``), durations, capabilities and resources of a schedule."""
@@ -183,6 +237,16 @@ class ScheduleSpec:
     capabilities: Mapping[str, frozenset[str]] = field(default_factory=dict)
     #: object label -> capacity
     resources: Mapping[str, int] = field(default_factory=dict)
+    #: one-line notes about the request (:func:`check_kinds`: agent kinds no file names)
+    warnings: tuple[str, ...] = field(default=(), init=False, compare=False)
+
+    def __post_init__(self) -> None:
+        """The kinds the agents have and the durations and capabilities name, checked (:func:`check_kinds`)."""
+        named = {
+            "durations": (None, [kind for kind in self.durations.kinds if kind != "*"]),
+            "capabilities": (None, list(self.capabilities)),
+        }
+        object.__setattr__(self, "warnings", tuple(check_kinds(self.agents, named)))
 
     @classmethod
     def from_files(
@@ -192,13 +256,18 @@ class ScheduleSpec:
         capabilities: str | Path | None = None,
         resources: str | Path | None = None,
     ) -> ScheduleSpec:
-        """The spec of an ``--agents`` text and the three files (each optional)."""
-        return cls(
-            parse_agents(agents),
-            load_durations(durations) if durations is not None else Durations(),
-            load_capabilities(capabilities) if capabilities is not None else {},
-            load_resources(resources) if resources is not None else {},
-        )
+        """The spec of an ``--agents`` text and the three files (each optional), the kinds the
+        agents have and the files name checked against each other (:func:`check_kinds`; an error
+        names the file and line)."""
+        kinds = parse_agents(agents)
+        table = load_durations(durations) if durations is not None else Durations()
+        can = load_capabilities(capabilities) if capabilities is not None else {}
+        named = {
+            "durations": (durations, [kind for kind in table.kinds if kind != "*"]),
+            "capabilities": (capabilities, list(can)),
+        }
+        check_kinds(kinds, named)
+        return cls(kinds, table, can, load_resources(resources) if resources is not None else {})
 
     def agent_list(self) -> list[tuple[str, str]]:
         """``(name, kind)`` of every agent, numbered per kind: ``arm-1``, ``arm-2``, ``human-1``."""
