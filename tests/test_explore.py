@@ -34,6 +34,8 @@ CHROMIUM_ARGS = [
     "--disable-sync",
 ]
 DOCS = REPO / "docs"
+#: the schedule's tables the server is started with (data/schedule/)
+SCHEDULE_TABLES = ("durations", "capabilities", "resources")
 #: a rule whose search clingo cannot finish soon: 11 pigeons in 10 holes
 PIGEONS = "h(1..11). p(1..10). 1 { at(H,P) : p(P) } 1 :- h(H). :- at(H1,P), at(H2,P), H1 < H2."
 
@@ -159,7 +161,8 @@ class Server:
 def server(shared_foon_dir):
     if _missing_extra():
         pytest.skip(_missing_extra())
-    running = Server(shared_foon_dir)
+    tables = [(f"--{name}", str(REPO / "data" / "schedule" / f"{name}.json")) for name in SCHEDULE_TABLES]
+    running = Server(shared_foon_dir, *(a for pair in tables for a in pair))
     yield running
     running.stop()
     assert running.proc.returncode in (0, 143), running.errors()
@@ -229,9 +232,12 @@ def test_answers_of_the_page(http):
     by = {m["method"]: m for m in side["methods"]}
     assert by["gbfs-h1"]["distance"]["units"] == 10 and by["gbfs-h1"]["valid"] is True
     assert len(by["gbfs-h1"]["differs"]) >= 10 and side["optimum"]["cost"]["units"] == 25
-    plan = http.get("/api/schedule", params={"goal": "greek salad", "agents": "arm=2"}).json()
-    assert (plan["status"], plan["makespan"], plan["agents"]) == ("optimal", 15.0, ["arm-1", "arm-2"])
+    plan = http.get("/api/schedule", params={"goal": "greek salad", "agents": "arm=2,human=1"}).json()
+    assert (plan["status"], plan["makespan"], plan["baseline"]) == ("optimal", 60.0, 71.0)  # as docs/api.md has it
+    assert plan["agents"] == ["arm-1", "arm-2", "human-1"]
     assert sorted(r["step"] for r in plan["rows"]) == list(range(1, 26))
+    alone = http.get("/api/schedule", params={"goal": "greek salad", "agents": "arm=2"}).json()
+    assert alone["status"] == "unschedulable" and alone["rows"] == []
     assert error_of(http.get("/api/export/pddl-domain", params={"goal": "ice", "rule": "a."})).startswith(
         "--rule cannot be exported to PDDL"
     )
@@ -374,3 +380,281 @@ def test_a_thousand_random_requests_leave_it_alive_its_memory_flat(server, http)
     assert seen["error"] > 500 and seen["answer"] > 100 and seen["page"] > 50, seen
     assert http.get("/api/tree", params={"goal": "greek salad"}).json()["cost"]["units"] == 25  # alive
     assert abs(after - before) <= 0.10 * before, (before, after)
+
+
+# ---------------------------------------------------------------- the page in a real browser
+
+
+@pytest.fixture(scope="module")
+def browser(server):
+    if _no_browser():
+        pytest.skip(_no_browser())
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as driver:
+        launched = driver.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+        yield launched
+        launched.close()
+
+
+@pytest.fixture
+def page(browser):
+    context = browser.new_context(viewport={"width": 1400, "height": 1000}, accept_downloads=True)
+    opened = context.new_page()
+    opened.set_default_timeout(30_000)
+    failures: list[str] = []
+    opened.on("pageerror", lambda exc: failures.append(str(exc)))
+    yield opened
+    context.close()
+    assert failures == []
+
+
+def open_goal(page, server, query: str) -> None:
+    """Open the page at ``?query`` and wait for its answer."""
+    page.goto(server.url + "?" + query)
+    shown(page)
+
+
+def shown(page) -> None:
+    """Wait until the answer on screen is the one to the question in the address."""
+    page.wait_for_function("document.body.dataset.shown === location.search.replace(/^\\?/, '')")
+
+
+def status(page) -> str:
+    return page.inner_text("#status strong")
+
+
+def steps(page) -> list[str]:
+    return page.locator("#steps > li").all_inner_texts()
+
+
+#: the least rendered size (px) of the text in the drawing inside ``holder``
+SMALLEST_TEXT = """holder => Math.min(...[...document.querySelectorAll(holder + ' svg text')].map(
+  t => parseFloat(t.getAttribute('font-size')) * t.getScreenCTM().a))"""
+#: the least computed font size (px) of any element of the page that shows text outside a drawing
+SMALLEST_PAGE_TEXT = """() => Math.min(...[...document.querySelectorAll('body *')].filter(e =>
+  !e.closest('svg') && e.offsetParent !== null && [...e.childNodes].some(n => n.nodeType === 3 && n.textContent.trim())
+).map(e => parseFloat(getComputedStyle(e).fontSize)))"""
+
+
+def screenshot(page, name: str, selector: str | None = None) -> None:
+    """docs/NAME.png: the page (or the element ``selector``), the solving time hidden (it varies)."""
+    page.add_style_tag(content="#time { visibility: hidden; } #working { display: none !important; }")
+    target = page.locator(selector) if selector else page
+    target.screenshot(path=str(DOCS / f"{name}.png"))
+
+
+@needs_browser
+def test_search_a_goal_and_see_its_tree_beside_the_baselines_and_its_schedule(page, server, shared_foon_dir):
+    page.goto(server.url)
+    page.fill("#goal", "scrambld eg")
+    page.press("#goal", "Escape")
+    page.press("#goal", "Enter")
+    cli_error = cli("solve", "--data", str(shared_foon_dir), "--goal", "scrambld eg").stderr.strip()
+    shown(page)
+    assert page.inner_text("#error") == cli_error.replace("foon2asp: error: ", "error: ")
+
+    page.fill("#goal", "greek")
+    page.wait_for_selector("#suggestions li")
+    offered = page.locator("#suggestions li").all_inner_texts()
+    assert offered and all(t.startswith("greek salad") for t in offered)
+    page.locator("#suggestions li").first.dispatch_event("mousedown")
+    shown(page)
+    assert "goal=greek+salad%2C+mixed" in page.url
+    assert status(page) == "optimal (proven by clingo)"
+    assert page.inner_text("#costs").split("\n")[0].split("\t")[:2] == ["units", "25"]
+    assert len(steps(page)) == 25
+    assert page.evaluate(SMALLEST_TEXT, "#tree") >= 12 - 0.01  # the legend: 9 points = 12 px
+    assert page.locator("#motions input").count() == 13 and page.locator("#kitchen input").count() == 32
+
+    page.wait_for_selector("#baselines .card >> nth=2")
+    cards = {c.get_attribute("data-method"): c for c in page.locator("#baselines .card").all()}
+    assert list(cards) == ["ids", "gbfs-h1", "gbfs-h2"]
+    assert "distance to the optimum: units +10" in cards["gbfs-h1"].inner_text()
+    assert cards["gbfs-h1"].locator("g.node.differs").count() >= 10  # its steps the optimum does not take
+    assert page.evaluate(SMALLEST_TEXT, "#baselines .card") >= 12 - 0.01
+    page.wait_for_selector("#gantt svg")
+    assert page.locator("#durations tr").count() == 1 + 25
+    assert page.inner_text("#schedule-summary").startswith("optimal · makespan 199 s on robot-1")
+    assert page.evaluate(SMALLEST_TEXT, "#gantt") >= 12 - 0.01  # drawn larger than its own size
+    assert page.evaluate(SMALLEST_PAGE_TEXT) >= 12
+    screenshot(page, "explore-tree")
+
+    page.fill("#agents", "arm=2,human=1")
+    page.click("#schedule-form button")
+    shown(page)
+    page.wait_for_function("document.querySelector('#schedule-summary').textContent.includes('human-1')")
+    assert "agents=arm%3D2%2Chuman%3D1" in page.url
+    assert page.inner_text("#schedule-summary") == (
+        "optimal · makespan 60 s on arm-1, arm-2, human-1 · list scheduling 71 s · lower bound 55 s"
+    )
+    assert set(page.locator("#durations td:nth-child(3)").all_inner_texts()) == {"arm-1", "arm-2", "human-1"}
+    screenshot(page, "explore-schedule", "#schedule")
+
+
+@needs_browser
+def test_untick_a_motion_and_see_the_tree_change_or_infeasible_with_the_reason(page, server):
+    open_goal(page, server, "goal=macaroni")
+    before = steps(page)
+    assert len(before) == 5
+    page.wait_for_selector("#baselines .card >> nth=2")
+    h1 = page.locator("#baselines .card[data-method='gbfs-h1']")
+    assert (
+        h1.locator("strong.invalid").inner_text().startswith("INVALID: circular support: [pot, hot, contains {water}")
+    )
+    assert page.locator("#baselines .card[data-method='ids'] g.node.differs").count() == 0  # the optimum's steps
+    screenshot(page, "explore-baselines", "#baselines")
+    page.uncheck("#motions input[value='heat']")
+    shown(page)
+    assert len(steps(page)) == 6
+    assert "forbid-motion=heat" in page.url and status(page) == "optimal (proven by clingo)"
+    assert not any(s.startswith("heat") for s in steps(page))
+
+    page.check("#motions input[value='heat']")
+    shown(page)
+    page.uncheck("#motions input[value='boil']")
+    shown(page)
+    assert "forbid-motion=boil" in page.url and "heat" not in page.url
+    assert page.inner_text("#reason") == (
+        "infeasible: trees exist, but the constraints rule them all out; --forbid-motion boil alone does"
+    )
+    assert page.inner_text("#missing").startswith("missing: no item to buy gives a tree")
+    assert page.locator("#tree svg").count() == 0 and steps(page) == []
+    screenshot(page, "explore-infeasible")
+
+
+@needs_browser
+def test_untick_a_kitchen_item_and_see_what_to_buy(page, server):
+    open_goal(page, server, "goal=greek+salad")
+    page.uncheck("#kitchen input[value='mixing bowl, empty']")
+    shown(page)
+    assert status(page) == "unreachable (proven by fixpoint)"
+    assert "without=mixing+bowl%2C+empty" in page.url
+    assert page.inner_text("#missing") == "missing: buy mixing bowl, empty"
+    assert not page.is_checked("#kitchen input[value='mixing bowl, empty']")  # the item stays offered
+    page.uncheck("#kitchen input[value='spoon, empty']")
+    shown(page)
+    page.check("#kitchen input[value='mixing bowl, empty']")
+    shown(page)
+    assert status(page) == "optimal (proven by clingo)"
+    assert len(steps(page)) == 30  # without a spoon: five more steps
+
+
+@needs_browser
+def test_a_misspelt_rule_shows_its_warning_and_a_bad_one_its_error(page, server, shared_foon_dir):
+    open_goal(page, server, "goal=macaroni")
+    page.fill("#rule", ':- use(U), motoin(U,"fry").')
+    page.click("#question button[type=submit]")
+    shown(page)
+    assert page.inner_text("#rule-warnings") == (
+        "warning: --rule #1:1:12: motoin/2 is defined nowhere; did you mean motion/2?"
+    )
+    assert "rule=%3A-+use%28U%29%2C+motoin" in page.url and status(page) == "optimal (proven by clingo)"
+    page.fill("#rule", ":- use(U), motion(U,")
+    page.click("#question button[type=submit]")
+    shown(page)
+    res = cli("solve", "--data", str(shared_foon_dir), "--goal", "macaroni", "--rule", ":- use(U), motion(U,")
+    assert page.inner_text("#error") == res.stderr.strip().replace("foon2asp: error: ", "error: ")
+    page.fill("#rule", "#script (python)\nimport os\n#end.")
+    page.click("#question button[type=submit]")
+    shown(page)
+    assert page.inner_text("#error") == "error: --rule #1: #script is refused here: a rule may not run code"
+
+
+@needs_browser
+def test_reload_back_and_a_shared_link_show_the_same_page(page, server, browser):
+    open_goal(page, server, "goal=macaroni")
+    first_url, first_steps = page.url, steps(page)
+    page.select_option("#objective-1", "success")
+    shown(page)
+    page.select_option("#objective-2", "units")
+    shown(page)
+    assert "objective=success%2Cunits" in page.url
+    page.uncheck("#motions input[value='heat']")
+    shown(page)
+    assert "forbid-motion=heat" in page.url
+    seen = (page.url, status(page), steps(page), page.input_value("#objective-1"), page.input_value("#objective-2"))
+    assert seen[2] != first_steps
+
+    page.reload()
+    shown(page)
+    again = (page.url, status(page), steps(page), page.input_value("#objective-1"), page.input_value("#objective-2"))
+    assert again == seen and not page.is_checked("#motions input[value='heat']")
+
+    page.go_back()
+    shown(page)
+    assert "forbid-motion" not in page.url and page.is_checked("#motions input[value='heat']")
+    for _ in range(2):
+        page.go_back()
+        shown(page)
+    assert page.url == first_url and steps(page) == first_steps and page.input_value("#objective-1") == "units"
+
+    shared = browser.new_page()
+    shared.goto(seen[0])
+    shown(shared)
+    assert shared.locator("#steps > li").all_inner_texts() == seen[2]
+    shared.close()
+
+
+@needs_browser
+def test_each_export_downloads_and_the_foon_text_loads_back_with_check(page, server, shared_foon_dir, tmp_path):
+    open_goal(page, server, "goal=macaroni&forbid-motion=heat")
+    files = {}
+    for fmt in ("foon", "json", "pddl-domain", "pddl-problem", "svg"):
+        with page.expect_download() as caught:
+            page.click(f"[data-export='{fmt}']")
+        download = caught.value
+        files[fmt] = tmp_path / download.suggested_filename
+        download.save_as(files[fmt])
+    assert sorted(p.name for p in files.values()) == sorted(
+        f"macaroni-{n}" for n in ("task-tree.txt", "task-tree.json", "domain.pddl", "problem.pddl", "task-tree.svg")
+    )
+    res = cli("check", str(files["foon"]), "--data", str(shared_foon_dir))
+    assert res.returncode == 0, res.stdout + res.stderr
+    assert "Verdict: VALID" in res.stdout and "(asp-units, optimal, 6 units)" in files["foon"].read_text()
+    tree = json.loads(files["json"].read_text())[0]
+    assert (tree["status"], len(tree["units"])) == ("optimal", 6)
+    assert all(u["motion"] != "heat" for u in tree["units"])
+    parser = pytest.importorskip("pddl")
+    domain = parser.parse_domain(files["pddl-domain"])
+    assert domain.actions and not any(a.name.endswith("-heat") for a in domain.actions)  # forbidden: no action
+    assert "have" in str(parser.parse_problem(files["pddl-problem"]).goal)  # one goal: one atom
+    assert "<svg" in files["svg"].read_text() and "macaroni" in files["svg"].read_text()
+
+    open_goal(page, server, "goal=macaroni&objective=depth")
+    page.click("[data-export='pddl-domain']")
+    page.wait_for_selector("#export-error:not([hidden])")
+    assert (
+        page.inner_text("#export-error")
+        == "error: PDDL can state the objectives units, success, inputs, cost, not 'depth'"
+    )
+
+
+def wait_for(http, test, seconds: float = 30.0) -> dict:
+    """The workers' status once ``test(status)`` holds (polled)."""
+    deadline = time.monotonic() + seconds
+    while True:
+        found = http.get("/api/status").json()
+        if test(found) or time.monotonic() > deadline:
+            return found
+        time.sleep(0.05)
+
+
+@needs_browser
+def test_a_long_solve_shows_it_is_working_and_cancel_stops_it(page, server, http):
+    idle = wait_for(http, lambda s: s["ready"] == s["workers"] and s["busy"] == 0)
+    assert idle["workers"] == 2 and idle["busy"] == 0, idle
+    page.goto(server.url + "?" + urlencode({"goal": "macaroni", "rule": PIGEONS, "time-limit": "30"}))
+    page.wait_for_selector("#working:not([hidden])")
+    assert re.fullmatch(r"working… \d+\.\d s \(time limit 30 s\)", page.inner_text("#working-text"))
+    assert wait_for(http, lambda s: s["busy"] == 1)["busy"] == 1
+    before = server.workers()
+    page.click("#cancel")
+    assert page.inner_text("#error").startswith("error: cancelled")
+    deadline = time.monotonic() + 10
+    while server.workers() & before == before and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert server.workers() & before != before  # the worker was stopped (and another took its place)
+    assert wait_for(http, lambda s: s["busy"] == 0)["busy"] == 0
+    open_goal(page, server, "goal=ice")
+    assert status(page) == "optimal (proven by clingo)"

@@ -3,8 +3,8 @@ it asks for as JSON, each a one-line error when the question is bad.
 
 ``/`` is the page for any question in its address; ``/api/tree``, ``/api/baselines``,
 ``/api/schedule`` and ``/api/export/FORMAT`` answer the question of their query parameters
-(:mod:`foon2asp.explore.params`), ``/api/suggest?q=TEXT`` names the objects ``TEXT`` matches and
-``/api/info`` what the page offers.
+(:mod:`foon2asp.explore.params`), ``/api/suggest?q=TEXT`` names the objects ``TEXT`` matches,
+``/api/info`` what the page offers and ``/api/status`` how busy the workers are.
 """
 
 from __future__ import annotations
@@ -108,6 +108,10 @@ class Explorer:
             "goals": [{"id": g["id"], "text": g["text"], "label": g["label"]} for g in goals],
         }
 
+    async def status(self, request: Request) -> Response:
+        """The workers: how many, ready, busy; the jobs waiting and the answers cached."""
+        return JSONResponse(self.pool.status())
+
     async def suggest(self, request: Request) -> Response:
         """The objects the text ``q`` names, as ``--goal`` matches them (goals-file goals, then
         objects some unit makes, then the rest); an empty text: the goals file's goals."""
@@ -179,6 +183,7 @@ def make_app(setup: Setup, kb: api.KnowledgeBase | None = None, loopback: bool =
     routes = [
         Route("/", explorer.page),
         Route("/api/info", explorer.info),
+        Route("/api/status", explorer.status),
         Route("/api/suggest", explorer.suggest),
         Route("/api/export/{fmt}", explorer.export),
         Route("/api/{panel:str}", explorer.panel),

@@ -177,7 +177,7 @@ class Answers:
                 }
             )
         optimum = {"status": best.status, "cost": best.cost, "units": best.unit_ids}
-        return {"optimum": optimum, "constrained": question.constrained, "methods": methods}
+        return {"optimum": optimum, "methods": methods}
 
     def schedule(self, question: Question, goal: int) -> dict:
         """The schedule of the tree on screen: its agents, each step's agent and times, the Gantt chart."""

@@ -155,12 +155,6 @@ class Question:
         }
         return {**(shared or {}), **{k: v for k, v in given.items() if v not in (None, ())}}
 
-    @property
-    def constrained(self) -> bool:
-        """Does the question constrain the tree (a constraint, a bound on units or depth, human steps)?"""
-        bounds = (self.max_units, self.max_depth, self.human_steps)
-        return any(getattr(self, name) for name in LISTS.values() if name != "without") or bounds != (None,) * 3
-
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)
 

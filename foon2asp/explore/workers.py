@@ -67,10 +67,12 @@ class Worker:
         self.jobs = 0
         #: its memory (kB) once started, and after its last job
         self.memory = self.started_memory = 0
+        #: has it loaded the knowledge base; is it answering a job
+        self.ready = self.busy = False
 
     async def start(self) -> None:
         """Start the process and wait until it has loaded the knowledge base."""
-        self.jobs = 0
+        self.jobs, self.ready, self.busy = 0, False, False
         self.proc = await asyncio.create_subprocess_exec(
             sys.executable,
             "-m",
@@ -86,6 +88,7 @@ class Worker:
             await self.stop()
             raise InputError(first["error"])
         self.memory = self.started_memory = first.get("memory", 0)
+        self.ready = True
 
     async def ask(self, payload: dict) -> dict:
         """The worker's answer to one job."""
@@ -115,6 +118,7 @@ class Worker:
 
     async def stop(self) -> None:
         """End the process (killed: it may be in the middle of a solve)."""
+        self.ready = self.busy = False
         if self.proc is not None and self.proc.returncode is None:
             self.proc.kill()
             await self.proc.wait()
@@ -184,6 +188,18 @@ class Pool:
         await asyncio.gather(*self._runners, return_exceptions=True)
         await asyncio.gather(*(w.stop() for w in self._workers))
 
+    def status(self) -> dict[str, int]:
+        """How many workers there are, are ready and are busy; jobs waiting; answers cached."""
+        ready = sum(w.ready for w in self._workers)
+        busy = sum(w.busy for w in self._workers)
+        return {
+            "workers": len(self._workers),
+            "ready": ready,
+            "busy": busy,
+            "waiting": self._queue.qsize(),
+            "cached": len(self.cache),
+        }
+
     async def answer(self, key: str, payload: dict, seconds: float, gone: Callable[[], Awaitable[Any]]) -> Reply:
         """The reply to ``payload`` (cached under ``key``), solved within ``seconds`` plus a
         margin; given up (and the job stopped when no other page waits) once ``gone()`` is done."""
@@ -216,6 +232,7 @@ class Pool:
                 continue
             job.started = time.monotonic()
             asked = asyncio.ensure_future(worker.ask(job.payload))
+            worker.busy = True
             try:
                 answer = await self._watch(job, asked)
             except Stopped as why:
@@ -228,6 +245,7 @@ class Pool:
                 self._finish(job, failure(f"internal error: a worker failed ({type(exc).__name__})", 500), keep=False)
                 await self._restart(worker)
                 continue
+            worker.busy = False
             if "ok" in answer:
                 self._finish(job, reply(200, answer["ok"]), keep=True)
             else:

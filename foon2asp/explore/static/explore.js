@@ -8,6 +8,8 @@ const TEXT_LISTS = ["forbid-object", "require-object"];
 // parameters with no control of their own, kept as the address gives them
 const KEPT = ["require-motion", "max-depth"];
 const MEASURES = ["units", "success", "inputs", "depth", "cost"];
+// what the search baselines ignore
+const CONSTRAINTS = ["forbid-motion", "forbid-object", "require-motion", "require-object", "rule", "max-units", "max-depth", "human-steps"];
 
 let info = { objectives: ["units", "success", "inputs", "depth"], seconds: 10, agents: "robot=1" };
 let controller = null; // the answers being fetched for the page on screen
@@ -164,6 +166,7 @@ async function show() {
   document.title = goal ? `${goal} — foon2asp explore` : "foon2asp explore";
   if (!goal) {
     $("result").hidden = true;
+    document.body.dataset.shown = params.toString();
     return;
   }
   let tree;
@@ -173,12 +176,14 @@ async function show() {
     if (e.name === "AbortError") return;
     $("result").hidden = true;
     showError(e.message);
+    document.body.dataset.shown = params.toString();
     return;
   }
   part = { goal, motions: tree.part.motions, kitchen: tree.part.kitchen };
   drawChoices(params);
   $("result").hidden = false;
   drawTree(tree, params);
+  document.body.dataset.shown = params.toString(); // the question whose answer is on screen
   drawBaselines(null);
   $("schedule-summary").textContent = "";
   const later = [
@@ -215,8 +220,10 @@ function drawTree(tree, params) {
   );
   $("costs").replaceChildren(...rows);
   $("tree").innerHTML = tree.svg || "";
+  $("tree").hidden = !tree.svg;
   readable($("tree"));
   $("steps").replaceChildren(...stepItems(tree.steps, new Set()));
+  $("steps").parentElement.hidden = tree.steps.length === 0;
   const warnings = tree.warnings || [];
   $("rule-warnings").replaceChildren(...warnings.map((w) => el("li", {}, `warning: ${w}`)));
 }
@@ -260,7 +267,9 @@ function drawBaselines(answer) {
     $("baselines-note").textContent = "";
     return;
   }
-  $("baselines-note").textContent = answer.constrained
+  const asked = address();
+  const constrained = CONSTRAINTS.some((name) => asked.has(name));
+  $("baselines-note").textContent = constrained
     ? "Distances are to the proven optimum without your constraints (the search baselines ignore them)."
     : "Distances are to the proven tree above; steps it does not use are marked.";
   cards.replaceChildren(
@@ -305,21 +314,36 @@ function drawSchedule(answer) {
   readable($("gantt"));
 }
 
-// a drawing whose smallest text would be under 12 px is drawn larger (the tree's is not)
+// a drawing whose smallest text would be under 12 px is drawn larger (the tree's is not); a drawing
+// wider than its frame is shown from its middle, and a button fits it to the frame (smaller text)
 function readable(holder) {
   const svg = holder.querySelector("svg");
   if (!svg) return;
+  holder.classList.remove("fit");
+  if (!holder.previousElementSibling || !holder.previousElementSibling.classList.contains("fit-button")) {
+    const button = el("button", { type: "button", class: "fit-button" }, "fit to the frame");
+    button.addEventListener("click", () => {
+      holder.classList.toggle("fit");
+      button.textContent = holder.classList.contains("fit") ? "full size" : "fit to the frame";
+    });
+    holder.before(button);
+  } else {
+    holder.previousElementSibling.textContent = "fit to the frame";
+  }
   let least = Infinity;
   for (const text of svg.querySelectorAll("text")) {
     const ctm = text.getScreenCTM();
     const size = parseFloat(text.getAttribute("font-size"));
     if (ctm && size) least = Math.min(least, size * ctm.a);
   }
-  if (!(least < 12 && least > 0)) return;
-  for (const side of ["width", "height"]) {
-    const found = /^([0-9.]+)([a-z]*)$/.exec(svg.getAttribute(side) || "");
-    if (found) svg.setAttribute(side, `${(parseFloat(found[1]) * 12) / least}${found[2]}`);
+  if (least < 12 && least > 0) {
+    for (const side of ["width", "height"]) {
+      const found = /^([0-9.]+)([a-z]*)$/.exec(svg.getAttribute(side) || "");
+      if (found) svg.setAttribute(side, `${(parseFloat(found[1]) * 12) / least}${found[2]}`);
+    }
   }
+  holder.scrollLeft = Math.max(0, (holder.scrollWidth - holder.clientWidth) / 2);
+  holder.scrollTop = 0;
 }
 
 // ------------------------------------------------------------------ exports
