@@ -228,6 +228,9 @@ def test_answers_of_the_page(http):
         25,
     )
     assert tree["svg"].startswith("<svg") and "mixing bowl, empty" in [k["text"] for k in tree["part"]["kitchen"]]
+    bowl = {"goal": "greek salad", "without": "mixing bowl, empty"}
+    assert http.get("/api/tree", params=bowl).json()["status"] == "unreachable"
+    assert http.get("/api/missing", params=bowl).json() == {"status": "optimal", "items": ["mixing bowl, empty"]}
     side = http.get("/api/baselines", params={"goal": "greek salad"}).json()
     by = {m["method"]: m for m in side["methods"]}
     assert by["gbfs-h1"]["distance"]["units"] == 10 and by["gbfs-h1"]["valid"] is True
@@ -420,6 +423,11 @@ def shown(page) -> None:
     page.wait_for_function("document.body.dataset.shown === location.search.replace(/^\\?/, '')")
 
 
+def complete(page) -> None:
+    """Wait until every answer on screen (what to buy, the baselines, the schedule) is the address's."""
+    page.wait_for_function("document.body.dataset.complete === location.search.replace(/^\\?/, '')")
+
+
 def status(page) -> str:
     return page.inner_text("#status strong")
 
@@ -518,6 +526,7 @@ def test_untick_a_motion_and_see_the_tree_change_or_infeasible_with_the_reason(p
     assert page.inner_text("#reason") == (
         "infeasible: trees exist, but the constraints rule them all out; --forbid-motion boil alone does"
     )
+    complete(page)
     assert page.inner_text("#missing").startswith("missing: no item to buy gives a tree")
     assert page.locator("#tree svg").count() == 0 and steps(page) == []
     screenshot(page, "explore-infeasible")
@@ -530,6 +539,7 @@ def test_untick_a_kitchen_item_and_see_what_to_buy(page, server):
     shown(page)
     assert status(page) == "unreachable (proven by fixpoint)"
     assert "without=mixing+bowl%2C+empty" in page.url
+    complete(page)
     assert page.inner_text("#missing") == "missing: buy mixing bowl, empty"
     assert not page.is_checked("#kitchen input[value='mixing bowl, empty']")  # the item stays offered
     page.uncheck("#kitchen input[value='spoon, empty']")

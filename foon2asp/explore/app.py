@@ -1,8 +1,8 @@
 """The explorer as an ASGI application (Starlette): the page, its script and style, and the answers
 it asks for as JSON, each a one-line error when the question is bad.
 
-``/`` is the page for any question in its address; ``/api/tree``, ``/api/baselines``,
-``/api/schedule`` and ``/api/export/FORMAT`` answer the question of their query parameters
+``/`` is the page for any question in its address; ``/api/tree``, ``/api/missing``,
+``/api/baselines``, ``/api/schedule`` and ``/api/export/FORMAT`` answer the question of their query parameters
 (:mod:`foon2asp.explore.params`), ``/api/suggest?q=TEXT`` names the objects ``TEXT`` matches,
 ``/api/info`` what the page offers and ``/api/status`` how busy the workers are.
 """
@@ -36,7 +36,7 @@ from foon2asp.explore.workers import Pool, failure
 #: the page's files, shipped in the package
 STATIC = resources.files("foon2asp.explore") / "static"
 #: the answers ``/api/NAME`` gives
-PANELS = ("tree", "baselines", "schedule")
+PANELS = ("tree", "missing", "baselines", "schedule")
 #: the most objects a suggestion lists
 MAX_SUGGESTIONS = 30
 #: the host names a page on this machine is reached by (anything else, e.g. a rebound DNS name, is refused)
@@ -138,7 +138,7 @@ class Explorer:
         return {"count": len(ids), "objects": shown}
 
     async def panel(self, request: Request) -> Response:
-        """The answer ``tree``, ``baselines`` or ``schedule`` to the question of the address."""
+        """The answer ``tree``, ``missing``, ``baselines`` or ``schedule`` to the question of the address."""
         name = request.path_params["panel"]
         if name not in PANELS:
             return _reply(request, *failure(f"no such answer {name[:40]!r} (have {', '.join(PANELS)})", 404))

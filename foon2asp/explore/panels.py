@@ -1,5 +1,6 @@
 """The answers of the explorer page as JSON values, each from one library call on the knowledge
-base: the proven tree, the search baselines beside it, its schedule, and its exports."""
+base: the proven tree, what to buy when there is none, the search baselines beside it, its
+schedule, and its exports."""
 
 from __future__ import annotations
 
@@ -84,7 +85,7 @@ class Answers:
         self._kitchens: OrderedDict[frozenset[str], api.KnowledgeBase] = OrderedDict()
 
     def answer(self, panel: str, question: Question, fmt: str | None = None) -> dict:
-        """The answer ``panel`` (``tree``, ``baselines``, ``schedule`` or ``export``) to ``question``."""
+        """The answer ``panel`` (``tree``, ``missing``, ``baselines``, ``schedule`` or ``export``) to ``question``."""
         if question.goal is None:
             raise InputError("no goal given: name one in the goal box (goal=TEXT)")
         goal = self.kb.object_id(question.goal)  # one object, named as --goal names it
@@ -94,6 +95,8 @@ class Answers:
             return self.baselines(question, goal)
         if panel == "schedule":
             return self.schedule(question, goal)
+        if panel == "missing":
+            return self.missing(question, goal)
         if panel == "export" and fmt in EXPORTS:
             return self.export(question, goal, fmt)
         raise InputError(f"unknown answer {panel!r} {fmt or ''}".strip())
@@ -116,8 +119,8 @@ class Answers:
         return api.Options.of(**question.settings(self.setup.time_limit, self.setup.shared()))
 
     def tree(self, question: Question, goal: int) -> dict:
-        """The proven tree: status, what proved it, its measures, steps and drawing; the goal's
-        relevant part (the choices of the page); without a tree the fewest items to buy."""
+        """The proven tree: status, what proved it, its measures, steps and drawing, and the goal's
+        relevant part (the choices of the page)."""
         kb = self.knowledge(question)
         solver, warnings = kb.options_and_warnings(self.request(question))
         tree = next(kb.solve_iter([goal], options=solver))
@@ -137,17 +140,19 @@ class Answers:
             "steps": steps(tree),
             "svg": picture(tree, "tree-"),
             "warnings": warnings,
-            "missing": None,
             "part": {
                 "units": part.units,
                 "motions": list(part.motions),
                 "kitchen": [{"text": o.text, "label": o.label} for o in part.kitchen],
             },
         }
-        if tree.status in ("unreachable", "infeasible"):
-            bought = kb.missing(goal, options=solver)
-            out["missing"] = {"status": bought.status, "items": [o.text for o in bought.missing]}
         return out
+
+    def missing(self, question: Question, goal: int) -> dict:
+        """The fewest items to add to the question's kitchen so that the goal has a tree under its constraints."""
+        kb = self.knowledge(question)
+        bought = kb.missing(goal, options=kb.options(self.request(question)))
+        return {"status": bought.status, "items": [o.text for o in bought.missing]}
 
     def baselines(self, question: Question, goal: int) -> dict:
         """IDS, GBFS-h1 and GBFS-h2 on the question's kitchen, each judged valid or not and set

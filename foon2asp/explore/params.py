@@ -61,6 +61,7 @@ _CODE = re.compile(r'"(?:[^"\\]|\\.)*"|%.*$|(?P<code>"?[^"%]*)')
 #: what each answer of the page depends on (the other fields do not change it)
 PANEL_FIELDS = {
     "tree": ("goal", "objective", "time_limit", "max_units", "max_depth", "human_steps", *LISTS.values()),
+    "missing": ("goal", "objective", "time_limit", "max_units", "max_depth", "human_steps", *LISTS.values()),
     "baselines": ("goal", "objective", "time_limit", "without"),
     "schedule": ("goal", "objective", "time_limit", "max_units", "max_depth", "human_steps", "agents", *LISTS.values()),
 }

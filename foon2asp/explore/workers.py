@@ -27,7 +27,7 @@ from foon2asp.explore.settings import Setup
 #: a job left by every page is stopped once it has run this long (a shorter one finishes into the cache)
 GRACE_S = 1.0
 #: which jobs a free worker takes first (lower first): the tree before what is shown beside it
-PRIORITY = {"tree": 0, "export": 1, "baselines": 2, "schedule": 2}
+PRIORITY = {"tree": 0, "missing": 1, "export": 1, "baselines": 2, "schedule": 2}
 #: a job is stopped after twice its time limit and this margin: an answer may solve twice (the tree,
 #: then what is missing or its schedule), and grounding and drawing come on top
 DEADLINE_MARGIN_S = 5.0

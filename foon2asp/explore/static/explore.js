@@ -190,11 +190,17 @@ async function show() {
     ask("/api/baselines", params, signal).then(drawBaselines),
     ask("/api/schedule", params, signal).then(drawSchedule),
   ];
+  if (tree.status === "unreachable" || tree.status === "infeasible") {
+    $("missing").textContent = "missing: looking for what to buy…";
+    later.unshift(ask("/api/missing", params, signal).then(drawMissing));
+  }
   for (const answer of later) {
     answer.catch((e) => {
       if (e.name !== "AbortError") showError(e.message);
     });
   }
+  const settled = await Promise.allSettled(later);
+  if (!signal.aborted && settled.length) document.body.dataset.complete = params.toString();
 }
 
 function drawTree(tree, params) {
@@ -207,7 +213,7 @@ function drawTree(tree, params) {
     el("span", { id: "time" }, ` in ${number(tree.time_s)} s`)
   );
   $("reason").textContent = tree.reason ? `${tree.status}: ${tree.reason}` : tree.note || "";
-  $("missing").textContent = missingText(tree);
+  $("missing").textContent = "";
   const ranked = objectiveOf(params);
   const rows = MEASURES.filter((m) => m in tree.cost).map((m) =>
     el(
@@ -228,12 +234,11 @@ function drawTree(tree, params) {
   $("rule-warnings").replaceChildren(...warnings.map((w) => el("li", {}, `warning: ${w}`)));
 }
 
-function missingText(tree) {
-  const missing = tree.missing;
-  if (!missing) return "";
-  if (missing.items.length) return `missing: buy ${missing.items.join("; ")}`;
-  if (missing.status === "infeasible") return "missing: no item to buy gives a tree: the constraints rule out every tree";
-  return `missing: no items to buy make it (${missing.status})`;
+function drawMissing(missing) {
+  let text = `missing: no items to buy make it (${missing.status})`;
+  if (missing.items.length) text = `missing: buy ${missing.items.join("; ")}`;
+  else if (missing.status === "infeasible") text = "missing: no item to buy gives a tree: the constraints rule out every tree";
+  $("missing").textContent = text;
 }
 
 function stepItems(steps, differs) {
