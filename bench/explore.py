@@ -114,7 +114,7 @@ def main() -> None:
     ap.add_argument("--requests", type=int, default=1000)
     ap.add_argument("--chromium", default="/usr/bin/chromium")
     args = ap.parse_args()
-    import httpx
+    import httpx2 as httpx
 
     proc, url = start(Path(args.shared) / "foon")
     try:

@@ -41,11 +41,11 @@ PIGEONS = "h(1..11). p(1..10). 1 { at(H,P) : p(P) } 1 :- h(H). :- at(H1,P), at(H
 
 
 def _missing_extra() -> str | None:
-    for name in ("starlette", "uvicorn", "httpx"):
+    for name in ("starlette", "uvicorn", "httpx2"):
         try:
             __import__(name)
         except ImportError:
-            return f"the 'explore' extra is not installed ({name}): pip install 'foon2asp[explore]' httpx"
+            return f"the 'explore' extra is not installed ({name}): pip install 'foon2asp[explore]' httpx2"
     return None
 
 
@@ -171,7 +171,7 @@ def server(shared_foon_dir):
 
 @pytest.fixture(scope="module")
 def http(server):
-    import httpx
+    import httpx2 as httpx
 
     with httpx.Client(base_url=server.url, timeout=120) as client:
         yield client
