@@ -262,12 +262,17 @@ def test_two_pages_asking_at_once_get_their_own_answers(http):
 
 
 def test_a_long_solve_honours_the_time_limit(http):
+    """Answered unproven at the limit, or stopped past twice the limit and 5 s (the library's check of
+    the rules against the only tree takes no time limit)."""
     t0 = time.monotonic()
     asked = http.get("/api/tree", params={"goal": "macaroni", "rule": PIGEONS, "time-limit": "1"})
     took = time.monotonic() - t0
-    assert asked.status_code == 504 and error_of(asked) == "no answer within 7 s: stopped (time-limit 1 s)"
+    if asked.status_code == 200:
+        assert asked.json()["status"] in ("unknown", "feasible")
+    else:
+        assert asked.status_code == 504 and error_of(asked) == "no answer within 7 s: stopped (time-limit 1 s)"
     assert took < 7 + 3
-    assert http.get("/api/tree", params={"goal": "ice"}).json()["status"] == "optimal"  # a fresh worker answers
+    assert http.get("/api/tree", params={"goal": "ice"}).json()["status"] == "optimal"  # a worker answers
 
 
 def _random_text(rng: random.Random, longest: int) -> str:

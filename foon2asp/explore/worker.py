@@ -17,8 +17,9 @@ from foon2asp.explore.panels import Answers, error_line
 from foon2asp.explore.params import Question
 from foon2asp.explore.settings import Setup
 
-#: the most memory (address space, bytes) a worker may take: a rule that grounds without end stops there
-MEMORY_LIMIT = 4 * 2**30
+#: the most memory (address space, bytes) a worker may take beyond what it holds once loaded: a rule
+#: that grounds without end stops there
+MEMORY_LIMIT = 3 * 2**30
 
 
 def run(answers: Answers, job: dict) -> dict[str, Any]:
@@ -61,21 +62,29 @@ def warm(answers: Answers) -> None:
         run(answers, {"panel": "tree", "question": Question(goal=f"#{goals[0]}").to_dict()})
 
 
+def limit_memory() -> None:
+    """Let the process's address space grow by at most :data:`MEMORY_LIMIT` from now on."""
+    with open("/proc/self/status", encoding="ascii") as status:
+        size = next((int(line.split()[1]) * 1024 for line in status if line.startswith("VmSize:")), 0)
+    _, hard = resource.getrlimit(resource.RLIMIT_AS)
+    wanted = size + MEMORY_LIMIT
+    if hard == resource.RLIM_INFINITY or hard > wanted:
+        resource.setrlimit(resource.RLIMIT_AS, (wanted, hard))
+
+
 def main(argv: list[str]) -> int:
     """Load the setup's knowledge base, say ``ready`` (or the error), then answer jobs until stdin
     ends; each answer says the worker's ``memory`` (kB) then."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the server stops its workers itself
     out = os.fdopen(os.dup(1), "w", encoding="utf-8")
     os.dup2(2, 1)  # anything else printed goes to stderr, not into the answers
-    _, hard = resource.getrlimit(resource.RLIMIT_AS)
-    if hard == resource.RLIM_INFINITY or hard > MEMORY_LIMIT:
-        resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, hard))
     try:
         answers = Answers(Setup.from_json(argv[0]))
     except InputError as exc:
         send(out, {"error": error_line(exc), "kind": "input"})
         return 2
     warm(answers)
+    limit_memory()
     send(out, {"ready": True, "memory": resident()})
     for line in sys.stdin:
         send(out, {**run(answers, json.loads(line)), "memory": resident()})

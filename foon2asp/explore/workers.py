@@ -207,7 +207,7 @@ class Pool:
         if cached is not None:
             return cached
         job = self._jobs.get(key)
-        if job is None:
+        if job is None or job.left.is_set():  # a job being given up is not joined: it is asked again
             job = self._jobs[key] = Job(key, payload, seconds)
             self._queue.put_nowait((PRIORITY.get(payload["panel"], 3), next(self._order), job))
         job.waiting += 1

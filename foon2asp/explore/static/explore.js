@@ -422,14 +422,10 @@ function pick(text) {
 }
 
 function askGoal() {
-  const params = new URLSearchParams();
-  const goal = $("goal").value.trim();
-  if (goal) params.set("goal", goal);
-  // a new goal keeps the objective and the limits, not the choices of the old goal's part
-  const now = address();
-  for (const name of ["objective", "time-limit", "agents", "rule", "max-units", "max-depth"]) {
-    for (const value of now.getAll(name)) params.append(name, value);
-  }
+  // a new goal keeps the rest of the question
+  const params = new URLSearchParams([["goal", $("goal").value.trim()]]);
+  for (const [name, value] of address()) if (name !== "goal") params.append(name, value);
+  if (!params.get("goal")) params.delete("goal");
   listSuggestions([]);
   navigate(params);
 }
