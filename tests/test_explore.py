@@ -103,6 +103,34 @@ def test_a_host_other_than_loopback_is_warned_about_and_a_busy_port_is_one_line(
 
 
 @needs_extra
+def test_open_opens_the_printed_address_in_the_browser(tmp_path):
+    opener = tmp_path / "opener"
+    opener.write_text('#!/bin/sh\necho "$1" > "$(dirname "$0")/opened"\n')
+    opener.chmod(0o755)
+    env = dict(os.environ, BROWSER=f"{opener} %s")
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "foon2asp", "explore", "--data", "demo", "--open"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+        cwd=REPO,
+    )
+    try:
+        line = proc.stdout.readline() if proc.stdout else ""
+        url = re.match(r"foon2asp explore: (http://127\.0\.0\.1:\d+/) \(Ctrl\+C stops it\)$", line.strip())
+        assert url is not None, line
+        opened = tmp_path / "opened"
+        deadline = time.monotonic() + 30
+        while not (opened.exists() and opened.read_text().strip()) and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert opened.read_text().strip() == url.group(1)
+    finally:
+        proc.terminate()
+        proc.wait(timeout=30)
+
+
+@needs_extra
 def test_a_bad_data_folder_is_one_line_before_anything_is_served(tmp_path):
     res = cli("explore", "--data", str(tmp_path / "nowhere"), timeout=60)
     assert res.returncode == 2
@@ -220,7 +248,15 @@ def test_suggestions_match_as_goal_does(http):
 
 
 def test_answers_of_the_page(http):
+    cached = http.get("/api/status").json()["cached"]
+    t0 = time.monotonic()
     tree = http.get("/api/tree", params={"goal": "greek salad"}).json()
+    first = time.monotonic() - t0
+    t0 = time.monotonic()
+    assert (
+        http.get("/api/tree", params={"goal": "greek salad", "objective": "units"}).json() == tree
+    )  # the same question
+    assert time.monotonic() - t0 < first and http.get("/api/status").json()["cached"] == cached + 1
     assert (tree["status"], tree["proven_by"], tree["cost"]["units"], len(tree["steps"])) == (
         "optimal",
         "clingo",
@@ -574,6 +610,29 @@ def test_a_misspelt_rule_shows_its_warning_and_a_bad_one_its_error(page, server,
     page.click("#question button[type=submit]")
     shown(page)
     assert page.inner_text("#error") == "error: --rule #1: #script is refused here: a rule may not run code"
+
+
+@needs_browser
+def test_objects_and_human_steps_change_the_tree(page, server):
+    open_goal(page, server, "goal=macaroni")
+    page.fill("#forbid-object", "shaker")
+    page.press("#forbid-object", "Enter")
+    shown(page)
+    assert "forbid-object=shaker" in page.url and status(page) == "infeasible (proven by clingo)"
+    assert page.inner_text("#reason").endswith("--forbid-object shaker alone does")
+    page.fill("#forbid-object", "")
+    page.select_option("#objective-1", "success")
+    shown(page)
+    page.fill("#human-steps", "2")
+    page.press("#human-steps", "Enter")
+    shown(page)
+    assert "human-steps=2" in page.url and page.inner_text("#costs").split("\n")[1].split("\t")[:2] == [
+        "success",
+        "0.3645",
+    ]
+    marked = [k for k, step in enumerate(steps(page), 1) if "[human]" in step.split("\n")[0]]
+    assert marked == [4, 6]
+    assert page.locator("#tree g.node.human").count() == 2  # drawn orange, as draw marks them
 
 
 @needs_browser
