@@ -32,6 +32,7 @@ def test_wheel_contains_encodings_and_demo(tmp_path):
     assert {f"foon2asp/encodings/{n}" for n in encodings} <= names
     assert {f"foon2asp/demo/{n}" for n in ("FOON.txt", "kitchen.json", "goal_nodes.json")} <= names
     assert {"foon2asp/cli/main.py", "foon2asp/py.typed"} <= names
+    assert {f"foon2asp/explore/static/{n}" for n in ("index.html", "explore.js", "explore.css")} <= names
 
 
 def test_installed_package_finds_its_resources():
