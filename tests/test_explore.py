@@ -516,6 +516,7 @@ SMALLEST_PAGE_TEXT = """() => Math.min(...[...document.querySelectorAll('body *'
 def screenshot(page, name: str, selector: str | None = None) -> None:
     """docs/NAME.png: the page (or the element ``selector``), the solving time hidden (it varies)."""
     page.add_style_tag(content="#time { visibility: hidden; } #working { display: none !important; }")
+    page.evaluate("() => document.querySelectorAll('.drawing').forEach(centre)")  # as laid out now
     target = page.locator(selector) if selector else page
     target.screenshot(path=str(DOCS / f"{name}.png"))
 
