@@ -90,6 +90,7 @@ def page_times(url: str, goals: list[str], chromium: str) -> tuple[list[float], 
                 page.select_option("#objective-1", "success")
             page.wait_for_function(SHOWN, timeout=60_000)
             toggle.append(time.perf_counter() - t0)
+            page.wait_for_function(COMPLETE, timeout=60_000)  # the next goal is asked of idle workers
         browser.close()
     return first, toggle, kinds
 
@@ -113,6 +114,7 @@ def main() -> None:
     ap.add_argument("--shared", default="../shared")
     ap.add_argument("--requests", type=int, default=1000)
     ap.add_argument("--chromium", default="/usr/bin/chromium")
+    ap.add_argument("--per-goal", action="store_true", help="also print each goal's two times")
     args = ap.parse_args()
     import httpx2 as httpx
 
@@ -123,12 +125,15 @@ def main() -> None:
             offer = json.loads(re.search(r'type="application/json">(.*?)</script>', page).group(1))
             goals = [g["text"] for g in offer["goals"]]
             first, toggle, kinds = page_times(url, goals, args.chromium)
+            if args.per_goal:
+                for goal, a, b in zip(goals, first, toggle):
+                    print(f"{a:.3f} {b:.3f} {goal[:70]}")
             parts = {}
             for goal in goals:
                 found = client.get(url + "api/tree", params={"goal": goal})
                 parts[goal] = found.json()["part"]
             rng = random.Random(50)
-            before = after = 0
+            before = after = memory(proc.pid)
             t0 = time.perf_counter()
             for k in range(args.requests):
                 if k == 10:

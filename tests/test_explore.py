@@ -9,6 +9,7 @@ import os
 import random
 import re
 import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -132,6 +133,35 @@ def test_open_opens_the_printed_address_in_the_browser(tmp_path):
         proc.wait(timeout=30)
 
 
+def _children(pid: int) -> set[int]:
+    return {int(p) for task in Path(f"/proc/{pid}/task").iterdir() for p in (task / "children").read_text().split()}
+
+
+@needs_extra
+@pytest.mark.parametrize(
+    "signals, code, said", [((signal.SIGTERM,), 143, "terminated"), ((signal.SIGINT,) * 2, 130, "interrupted")]
+)
+def test_a_signal_stops_the_server_and_its_workers_in_one_line(signals, code, said):
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "foon2asp", "explore", "--data", "demo"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=REPO,
+    )
+    assert proc.stdout is not None and proc.stdout.readline().startswith("foon2asp explore: http://127.0.0.1:")
+    workers = _children(proc.pid)
+    assert len(workers) == 2
+    for sig in signals:  # Ctrl+C twice, or what timeout(1) sends: the process and then its group
+        proc.send_signal(sig)
+    assert proc.wait(timeout=30) == code
+    assert proc.stderr is not None and proc.stderr.read() == f"foon2asp: {said}\n"
+    deadline = time.monotonic() + 5  # killed; reaped once the server is gone
+    while any(Path(f"/proc/{pid}").exists() for pid in workers) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not any(Path(f"/proc/{pid}").exists() for pid in workers)
+
+
 @needs_extra
 def test_a_bad_data_folder_is_one_line_before_anything_is_served(tmp_path):
     res = cli("explore", "--data", str(tmp_path / "nowhere"), timeout=60)
@@ -163,10 +193,7 @@ class Server:
 
     def workers(self) -> set[int]:
         """The ids of the server's child processes."""
-        out: set[int] = set()
-        for task in Path(f"/proc/{self.proc.pid}/task").iterdir():
-            out |= {int(p) for p in (task / "children").read_text().split()}
-        return out
+        return _children(self.proc.pid)
 
     def memory(self, settled: bool = False) -> int:
         """The resident memory (kB) of the server and its workers (``settled``: once a worker
@@ -493,6 +520,7 @@ SMALLEST_PAGE_TEXT = """() => Math.min(...[...document.querySelectorAll('body *'
 def screenshot(page, name: str, selector: str | None = None) -> None:
     """docs/NAME.png: the page (or the element ``selector``), the solving time hidden (it varies)."""
     page.add_style_tag(content="#time { visibility: hidden; } #working { display: none !important; }")
+    page.evaluate("() => document.querySelectorAll('.drawing').forEach(centre)")  # as laid out now
     target = page.locator(selector) if selector else page
     target.screenshot(path=str(DOCS / f"{name}.png"))
 

@@ -167,6 +167,28 @@ class Explorer:
         seconds = question.time_limit or min(DEFAULT_SECONDS, self.setup.time_limit)
         return await self.pool.answer(key, payload, seconds, lambda: _gone(request))
 
+    def app(self, loopback: bool = True, lifespan: bool = True) -> Starlette:
+        """The application of these routes (``lifespan``: it starts and stops the workers; else
+        the caller does, with ``pool.start()`` and ``pool.close()``)."""
+        routes = [
+            Route("/", self.page),
+            Route("/api/info", self.info),
+            Route("/api/status", self.status),
+            Route("/api/suggest", self.suggest),
+            Route("/api/export/{fmt}", self.export),
+            Route("/api/{panel:str}", self.panel),
+            Mount("/static", StaticFiles(directory=str(STATIC)), name="static"),
+        ]
+        middleware = [Middleware(SizeLimit)]
+        if loopback:
+            middleware.append(Middleware(TrustedHostMiddleware, allowed_hosts=LOOPBACK))
+        return Starlette(
+            routes=routes,
+            middleware=middleware,
+            lifespan=self.lifespan if lifespan else None,
+            exception_handlers={Exception: _internal_error},
+        )
+
     @contextlib.asynccontextmanager
     async def lifespan(self, app: Starlette) -> AsyncIterator[None]:
         await self.pool.start()
@@ -177,23 +199,10 @@ class Explorer:
 
 
 def make_app(setup: Setup, kb: api.KnowledgeBase | None = None, loopback: bool = True) -> Starlette:
-    """The explorer of ``setup`` (``kb``: its knowledge base, loaded already); ``loopback``: only
-    requests addressed to this machine's loopback names are answered."""
-    explorer = Explorer(setup, kb)
-    routes = [
-        Route("/", explorer.page),
-        Route("/api/info", explorer.info),
-        Route("/api/status", explorer.status),
-        Route("/api/suggest", explorer.suggest),
-        Route("/api/export/{fmt}", explorer.export),
-        Route("/api/{panel:str}", explorer.panel),
-        Mount("/static", StaticFiles(directory=str(STATIC)), name="static"),
-    ]
-    middleware = [Middleware(SizeLimit)]
-    if loopback:
-        middleware.append(Middleware(TrustedHostMiddleware, allowed_hosts=LOOPBACK))
-    handlers = {Exception: _internal_error}
-    return Starlette(routes=routes, middleware=middleware, lifespan=explorer.lifespan, exception_handlers=handlers)
+    """The explorer of ``setup`` (``kb``: its knowledge base, loaded already), its workers started
+    and stopped with the application's lifespan; ``loopback``: only requests addressed to this
+    machine's loopback names are answered."""
+    return Explorer(setup, kb).app(loopback)
 
 
 async def _internal_error(request: Request, exc: Exception) -> Response:

@@ -15,7 +15,7 @@ import uvicorn
 
 from foon2asp import api
 from foon2asp.errors import InputError
-from foon2asp.explore.app import make_app
+from foon2asp.explore.app import Explorer
 from foon2asp.explore.settings import Setup
 
 #: the most bytes of a request's head uvicorn reads: a longer address than the explorer takes gets its
@@ -81,28 +81,31 @@ def serve(
         warn(f"listening on {host}: anyone who can reach this machine there can use the explorer (it has no login)")
     sock = listen(host, port)
     url = address(sock, host)
+    explorer = Explorer(setup, kb)
+    # the workers are started and stopped here, not in uvicorn's lifespan: a second Ctrl+C skips that
     config = uvicorn.Config(
-        make_app(setup, kb, loopback),
+        explorer.app(loopback, lifespan=False),
         log_level="warning",
         access_log=False,
-        lifespan="on",
+        lifespan="off",
         h11_max_incomplete_event_size=HEAD_BYTES,
     )
     server = uvicorn.Server(config)
 
     async def run() -> None:
-        serving = asyncio.ensure_future(server.serve(sockets=[sock]))
-        while not server.started and not serving.done():
-            await asyncio.sleep(0.05)
-        if server.started:
-            say(f"foon2asp explore: {url} (Ctrl+C stops it)")
+        await explorer.pool.start()
+        try:
+            say(f"foon2asp explore: {url} (Ctrl+C stops it)")  # the socket listens already
             if open_browser:
                 threading.Thread(target=webbrowser.open, args=(url,), daemon=True).start()
-        await serving
+            await server.serve(sockets=[sock])
+        finally:
+            await explorer.pool.close()
 
     try:
         asyncio.run(run())
     finally:
+        explorer.pool.kill()  # a second Ctrl+C may have cut their stop short
         sock.close()
     if not server.started:
         raise InputError("the explorer did not start (see the messages above)")

@@ -51,8 +51,16 @@ def resident() -> int:
         ctypes.CDLL("libc.so.6").malloc_trim(0)
     except (OSError, AttributeError):
         pass
-    with open("/proc/self/status", encoding="ascii") as status:
-        return next((int(line.split()[1]) for line in status if line.startswith("VmRSS:")), 0)
+    return _status("VmRSS:")
+
+
+def _status(field: str) -> int:
+    """A kB figure of /proc/self/status (0 where there is none)."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as status:
+            return next((int(line.split()[1]) for line in status if line.startswith(field)), 0)
+    except OSError:
+        return 0
 
 
 def warm(answers: Answers) -> None:
@@ -64,8 +72,9 @@ def warm(answers: Answers) -> None:
 
 def limit_memory() -> None:
     """Let the process's address space grow by at most :data:`MEMORY_LIMIT` from now on."""
-    with open("/proc/self/status", encoding="ascii") as status:
-        size = next((int(line.split()[1]) * 1024 for line in status if line.startswith("VmSize:")), 0)
+    size = _status("VmSize:") * 1024
+    if not size:
+        return  # not known here: no limit
     _, hard = resource.getrlimit(resource.RLIMIT_AS)
     wanted = size + MEMORY_LIMIT
     if hard == resource.RLIM_INFINITY or hard > wanted:

@@ -11,9 +11,12 @@ place; so is a worker after :data:`JOBS_PER_WORKER` jobs or once its memory has 
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import gzip
 import itertools
 import json
+import os
+import signal
 import sys
 import time
 from collections import OrderedDict
@@ -187,6 +190,13 @@ class Pool:
             task.cancel()
         await asyncio.gather(*self._runners, return_exceptions=True)
         await asyncio.gather(*(w.stop() for w in self._workers))
+
+    def kill(self) -> None:
+        """Kill every worker process now, without the event loop (what an interrupted close left)."""
+        for worker in self._workers:
+            if worker.proc is not None and worker.proc.returncode is None:
+                with contextlib.suppress(ProcessLookupError):
+                    os.kill(worker.proc.pid, signal.SIGKILL)
 
     def status(self) -> dict[str, int]:
         """How many workers there are, are ready and are busy; jobs waiting; answers cached."""

@@ -347,6 +347,11 @@ function readable(holder) {
       if (found) svg.setAttribute(side, `${(parseFloat(found[1]) * 12) / least}${found[2]}`);
     }
   }
+  centre(holder);
+  requestAnimationFrame(() => centre(holder)); // once the page around it is laid out
+}
+
+function centre(holder) {
   holder.scrollLeft = Math.max(0, (holder.scrollWidth - holder.clientWidth) / 2);
   holder.scrollTop = 0;
 }
