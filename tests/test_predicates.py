@@ -322,3 +322,23 @@ def test_strict_makes_every_warning_about_the_request_an_error(command, extra, w
     assert line.startswith("foon2asp: error: ") and warning.removeprefix("foon2asp: warning: ") in line
     assert line.endswith("(--strict: warnings are errors)") or line.endswith("(strict: warnings are errors)")
     assert res.stdout == "" and not (tmp_path / "r.jsonl").exists()
+
+
+@pytest.mark.parametrize(
+    "rule, column",
+    [('a("é', 4), ("a(é).", 3), ('ok :- use(U).\nb("x", é).', 8)],
+)
+def test_a_character_clingo_cannot_report_is_one_located_line(rule, column):
+    """Outside a closed string, a character that is not ASCII made clingo's parser echo a byte of
+    it, which ended in a traceback and clingo's PANIC; now it is one line naming the rule."""
+    res = run("solve", "--data", "demo", "--goal", "tomato salad", "--rule", rule)
+    line = rule.count("\n") + 1
+    assert res.exit_code == 2 and res.stderr.strip() == (
+        f"foon2asp: error: --rule #1:{line}:{column}: the character 'é' is not ASCII and stands outside a string"
+    )
+    assert "PANIC" not in res.output and "Traceback" not in res.output
+
+
+def test_a_character_that_is_not_ascii_in_a_string_or_a_comment_is_read():
+    res = run("solve", "--data", "demo", "--goal", "tomato salad", "--rule", ':- use(U), motion(U,"é"). % é\n%* é *%')
+    assert res.exit_code == 0, res.output

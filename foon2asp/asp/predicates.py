@@ -114,16 +114,46 @@ class Predicates:
             self.visit(node.elements, head)
 
 
-def predicates(text: str) -> Predicates:
-    """The predicates program ``text`` defines and uses (clingo's parser; RuntimeError on a syntax error)."""
+def outside_strings(name: str, text: str) -> None:
+    """Raise an InputError, located in program ``name``, at a character that is not ASCII outside a
+    closed string or a comment: clingo's parser would echo part of it in its message (a byte of a
+    character in UTF-8), which it cannot report."""
+    i, n, line, start = 0, len(text), 1, 0
+    while i < n:
+        c = text[i]
+        if c == "\n":
+            line, start = line + 1, i + 1
+        elif c == "%":
+            end = text.find("*%", i + 2) if text.startswith("%*", i) else text.find("\n", i)
+            end = n if end < 0 else end + (2 if text.startswith("%*", i) else 0)
+            line += text.count("\n", i, end)
+            start = text.rfind("\n", 0, end) + 1 if "\n" in text[i:end] else start
+            i = end
+            continue
+        elif c == '"':
+            j = i + 1
+            while j < n and text[j] not in '"\n':
+                j += 2 if text[j] == "\\" else 1
+            if j < n and text[j] == '"':
+                i = j + 1
+                continue
+        elif ord(c) > 127:
+            raise InputError(f"the character {c!r} is not ASCII and stands outside a string", name, line, i - start + 1)
+        i += 1
+
+
+def predicates(text: str, name: str = "program") -> Predicates:
+    """The predicates program ``text`` (called ``name`` in errors) defines and uses (clingo's
+    parser; RuntimeError on a syntax error)."""
+    outside_strings(name, text)
     found = Predicates()
     clingo.ast.parse_string(text, found.statement, logger=lambda code, msg: None)
     return found
 
 
-def _parsed(text: str) -> Predicates | None:
+def _parsed(text: str, name: str = "program") -> Predicates | None:
     try:
-        return predicates(text)
+        return predicates(text, name)
     except RuntimeError:
         return None  # a syntax error, reported as an error where the program is checked
 
@@ -150,11 +180,13 @@ def _external_calls(node: object) -> Iterator[clingo.ast.AST]:
 
 def refuse_host_code(name: str, text: str) -> None:
     """Raise an InputError, located in program ``name`` (or the file it includes), when ``text``
-    would run code of the host: a ``#script`` block of any language or an ``@``-function call.
+    would run code of the host: a ``#script`` block of any language or an ``@``-function call
+    (or holds a character clingo cannot report: :func:`outside_strings`).
 
     The program is read with clingo's parser, as clingo reads it: a comment or a string that
     mentions ``#script`` is no script, an included file is read too, and statements after a
     syntax error are still seen (clingo would run a script there before it reports the error)."""
+    outside_strings(name, text)
     found: list[tuple[clingo.ast.Location, str]] = []
 
     def statement(stm: clingo.ast.AST) -> None:
@@ -226,7 +258,7 @@ def undefined(name: str, sig: Signature, where: tuple[int, int], defined: Iterab
 def rule_warnings(programs: Iterable[tuple[str, str]], defined: Iterable[Signature] = ()) -> list[str]:
     """``NAME:LINE:COLUMN: motoin/2 is defined nowhere; did you mean motion/2?`` for each predicate a
     user program (name, text) uses that neither foon2asp, ``defined`` nor any of ``programs`` defines."""
-    parsed = [(name, found) for name, text in programs if (found := _parsed(text)) is not None]
+    parsed = [(name, found) for name, text in programs if (found := _parsed(text, name)) is not None]
     known = set(known_predicates()) | set(defined)
     for _, found in parsed:
         known |= found.defined
