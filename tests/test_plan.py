@@ -333,3 +333,14 @@ def test_a_depth_bound_that_alone_rules_out_every_tree_is_not_blamed_on_the_cons
     deep = demo.solve(EGG, max_depth=5, forbid_motions=["beat", "fry"])
     assert deep.status == "infeasible"
     assert deep.raw.infeasible_by == ["--forbid-motion beat", "--forbid-motion fry"]
+
+
+def test_a_tree_asked_of_programs_clingo_cannot_decide_in_time_is_not_allowed(demo):
+    """The check of a settled tree against the user's programs honours the time limit: a program
+    clingo cannot decide in time does not let the tree pass as satisfying it."""
+    from foon2asp.asp.programs_check import ProgramsCheck
+
+    pigeons = "h(1..11). p(1..10). 1 { at(H,P) : p(P) } 1 :- h(H). :- at(H1,P), at(H2,P), H1 < H2.\n"
+    tree = demo.solve(EGG).unit_ids
+    assert not ProgramsCheck(demo.problem, [("--rule #1", pigeons)], time_limit=0.5).allows(tree)
+    assert ProgramsCheck(demo.problem, [("--rule #1", ':- use(U), motion(U,"teleport").\n')]).allows(tree)

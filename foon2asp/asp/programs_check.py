@@ -32,7 +32,16 @@ class _Constraints(clingo.Observer):
 class ProgramsCheck:
     """The user's ``programs`` grounded once over ``problem``'s ``units`` (None: all), asked tree by tree."""
 
-    def __init__(self, problem: Problem, programs: Sequence[tuple[str, str]], units: Iterable[int] | None = None):
+    def __init__(
+        self,
+        problem: Problem,
+        programs: Sequence[tuple[str, str]],
+        units: Iterable[int] | None = None,
+        time_limit: float | None = None,
+    ):
+        """``time_limit``: seconds for each tree asked (None: no limit); a tree not decided by then
+        does not count as satisfying the programs."""
+        self.time_limit = time_limit
         self.control = Control(["--opt-mode=ignore"])
         ids = sorted(set(units)) if units is not None else None
         self.control.load(encoding_files.entry("check_trees"))
@@ -48,4 +57,5 @@ class ProgramsCheck:
             return True
         atoms = [clingo.Function("use", [clingo.Number(u)]) for u in tree]
         with self.control.switched(a for a in atoms if self.control.has_atom(a)):
-            return self.control.solve().satisfiable is True
+            result = self.control.solve(time_limit=self.time_limit)
+            return result.finished and result.satisfiable is True

@@ -141,7 +141,7 @@ class Request:
     @cached_property
     def programs_check(self) -> ProgramsCheck:
         """The user's programs grounded once, asked tree by tree."""
-        return ProgramsCheck(self.problem, self.options.programs, self.options.units)
+        return ProgramsCheck(self.problem, self.options.programs, self.options.units, self.options.time_limit)
 
     def allows(self, tree: Iterable[int]) -> bool:
         """Does ``tree`` satisfy the user's programs (no programs: yes; unchecked: no)?"""
