@@ -472,3 +472,28 @@ def test_a_pool_ends_without_a_traceback(shared_foon_dir, tmp_path):
     assert done.returncode == 0, done.stderr
     assert "Traceback" not in done.stderr and "Terminated" not in done.stderr, done.stderr
     assert len(out.read_text().splitlines()) > 25
+
+
+def test_a_command_that_starts_no_pool_never_imports_multiprocessing(tmp_path):
+    """Importing multiprocessing reads the kernel's randomness in the way that waits until the
+    kernel has gathered enough (a minute on a freshly started machine): only a pool imports it."""
+    probe = (
+        "import sys; from foon2asp.cli.main import main\n"
+        "try:\n    main(sys.argv[1:])\nexcept SystemExit:\n    pass\n"
+        "print('multiprocessing' in sys.modules, file=sys.stderr)\n"
+    )
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parent.parent))
+
+    def imports_it(*args: str) -> str:
+        done = subprocess.run([sys.executable, "-c", probe, *args], env=env, capture_output=True, text=True)
+        return done.stderr.splitlines()[-1]
+
+    assert imports_it("solve", "--data", "demo", "--goal", "tomato salad") == "False"
+    assert (
+        imports_it("merge", str(foon2asp.api.load("demo").data.paths["foon"]), "-o", str(tmp_path / "m.txt")) == "False"
+    )
+    one = ["batch", "--data", "demo", "--workers", "1", "--output", str(tmp_path / "r1.jsonl")]
+    assert imports_it(*one) == "False"
+    two = ["batch", "--data", "demo", "--workers", "2", "--output", str(tmp_path / "r2.jsonl")]
+    assert imports_it(*two) == "True"
+    assert len(read_results(tmp_path / "r2.jsonl")) == len(read_results(tmp_path / "r1.jsonl")) > 0

@@ -1,13 +1,15 @@
 """Where a batch's goals run: a pool of worker processes or a Dask cluster, runners built once per worker.
 
 How workers start, stop and exit with their parent, and how Dask is used: docs/batch.md, "Workers and Dask".
+``multiprocessing`` is imported only where a pool starts: importing it reads 32 bytes of the
+kernel's randomness in the way that waits until the kernel has gathered enough, which on a
+freshly started machine can take a minute, and most commands start no pool.
 """
 
 from __future__ import annotations
 
 import ctypes
 import json
-import multiprocessing
 import os
 import signal
 import sys
@@ -17,6 +19,7 @@ import uuid
 from collections.abc import Callable, Generator, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from foon2asp.analysis.compare import judge
 from foon2asp.asp.interrupts import SOLVE_WATCHDOG, deferred_signals
@@ -25,6 +28,9 @@ from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.runner import GoalRunner, Parts
 from foon2asp.tree.serialize import tree_json
+
+if TYPE_CHECKING:
+    from multiprocessing.context import BaseContext
 
 #: ``workers``: one process, then a pool on every usable core once the batch is long
 AUTO = 0
@@ -73,7 +79,10 @@ def start_method() -> str:
 def refuse_while_starting() -> None:
     """Stop a worker that is being started and has reached a batch while running the main
     script again (no ``if __name__ == "__main__":`` guard), before it opens any results file."""
-    process = multiprocessing.current_process()
+    started = sys.modules.get("multiprocessing")
+    if started is None:  # a worker being started has imported it
+        return
+    process = started.current_process()
     if not getattr(process, "_inheriting", False):  # Python's own mark of a worker being prepared
         return
     if process.name != _PROBE:
@@ -85,7 +94,7 @@ def _probe() -> None:
     """A worker that only starts (:func:`_check_start`)."""
 
 
-def _check_start(context: multiprocessing.context.BaseContext) -> None:
+def _check_start(context: BaseContext) -> None:
     """Raise :data:`NEEDS_GUARD` if a worker of ``context`` cannot start (checked only where it
     would run the main script again)."""
     if context.get_start_method() == "fork" or not reruns_main():
@@ -223,6 +232,8 @@ class Execution:
         if not tasks:
             return
         self.workers = workers
+        import multiprocessing  # here only (the module's docstring says why)
+
         context = multiprocessing.get_context(start_method())
         _check_start(context)
         with _signals_blocked():

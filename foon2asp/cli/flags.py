@@ -207,10 +207,7 @@ def output_option(help: str, file: bool = True, **more):
 
 # ---------------------------------------------------------------- the data
 
-STRICT_HELP = (
-    "Treat warnings as errors: skipped units of FOON and tree files, and every warning about the request"
-    " (misspelt predicates in rules, kinds no schedule file names, options that are ignored)."
-)
+STRICT_HELP = "Treat warnings as errors: units of FOON and tree files skipped, and every warning about the request."
 KITCHEN_HELP = (
     "kitchen.json, or 'leaves': every object no unit of the FOON makes (merged generated trees have no kitchen)."
 )

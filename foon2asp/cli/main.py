@@ -23,6 +23,11 @@ from foon2asp.errors import (
     strict_error,
 )
 
+# tqdm's bars share a lock, by default one of multiprocessing's too, whose import reads the
+# kernel's randomness in the way that waits until the kernel has gathered enough (a minute on a
+# freshly started machine); the command line writes its bars from its main thread only
+tqdm.set_lock(threading.RLock())
+
 #: exit codes, the same for every command (README "Exit codes")
 EXIT_CODES = """\b
 Exit codes: 0 every goal answered as asked (a tree, or proven unreachable);
@@ -82,7 +87,9 @@ def progress_bar(items: Iterable, total: int, enabled: bool | None, what: str) -
     """``items`` (``total`` goals) behind a progress bar on stderr: when it is a terminal
     and there is more than one goal (``enabled`` None), or as ``enabled`` says."""
     show = (sys.stderr.isatty() and total > 1) if enabled is None else enabled
-    return tqdm(items, total=total, desc=what, unit="goal", file=sys.stderr, disable=not show, leave=False)
+    if not show:
+        return items
+    return tqdm(items, total=total, desc=what, unit="goal", file=sys.stderr, leave=False)
 
 
 def solving_text(info: dict) -> str:
