@@ -176,7 +176,10 @@ def _interrupted_run(args: list[str], seed: int, span: float, results: Path | No
     """Start ``foon2asp ARGS``, send SIGINT at a random moment of its first ``span`` seconds once it has
     started (with ``results``: once that results file holds a result), and say how it ended."""
     rng = random.Random(seed)
-    proc = subprocess.Popen(_cli(*args), cwd=REPO, env=_env(), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    # every other run through the installed script, whose batch forks its workers (-m spawns them)
+    script = Path(sys.executable).with_name("foon2asp")
+    command = [str(script), *map(str, args)] if seed % 2 and script.exists() else _cli(*args)
+    proc = subprocess.Popen(command, cwd=REPO, env=_env(), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     deadline = time.monotonic() + 30
     while not _ready(proc.pid) and proc.poll() is None and time.monotonic() < deadline:
         time.sleep(0.002)

@@ -159,25 +159,28 @@ def _exit_with_parent() -> None:
     threading.Thread(target=watch, name="parent-watch", daemon=True).start()
 
 
-#: the signals a worker starts with blocked (:func:`_signals_blocked`)
+#: the signals a worker may start with blocked (:func:`_workers_starting`)
 _WORKER_SIGNALS = {signal.SIGINT, signal.SIGTERM}
 
 
 @contextmanager
-def _signals_blocked() -> Iterator[None]:
-    """The body (which starts the pool's workers) runs with SIGINT and SIGTERM blocked in this
-    thread; a signal meanwhile comes once they are unblocked. A worker inherits the block (the
-    pool's threads too, and the workers they start later) and keeps it until :func:`_init_worker`
-    has set its own handlers: a SIGTERM of the pool then ends it at once, never in the parent's
-    handler."""
-    if not hasattr(signal, "pthread_sigmask"):  # pragma: no cover - not POSIX
-        yield
-        return
-    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, _WORKER_SIGNALS)
-    try:
-        yield
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
+def _workers_starting(method: str) -> Iterator[None]:
+    """The body starts the pool's workers: a signal meanwhile waits until they are all started
+    (none is left with a half-sent start), and they start with SIGINT blocked, forked ones with
+    SIGTERM too, until :func:`_init_worker` has set their own handlers. So Ctrl-C on a terminal,
+    which reaches the workers as well, and the pool's SIGTERM never run a handler of the parent's
+    that a forked worker inherits; a spawned worker, a fresh interpreter, ends at once on SIGTERM.
+    The pool's threads inherit the block, and so do the workers they start later."""
+    blocked = {signal.SIGINT} | ({signal.SIGTERM} if method == "fork" else set())
+    with deferred_signals():
+        if not hasattr(signal, "pthread_sigmask"):  # pragma: no cover - not POSIX
+            yield
+            return
+        before = signal.pthread_sigmask(signal.SIG_BLOCK, blocked)
+        try:
+            yield
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, before)
 
 
 def _init_worker(spec: BatchSpec) -> None:
@@ -236,14 +239,16 @@ class Execution:
 
         context = multiprocessing.get_context(start_method())
         _check_start(context)
-        with _signals_blocked():
-            pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec,))
+        pool = None
         try:
+            with _workers_starting(context.get_start_method()):
+                pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec,))
             yield from pool.imap_unordered(_run_in_worker, tasks)
             pool.close()
         finally:
-            pool.terminate()
-            pool.join()
+            if pool is not None:  # (an interrupt while it started comes once it has)
+                pool.terminate()
+                pool.join()
 
 
 #: the runners of this thread of a Dask worker: ``token`` (the batch's) and ``worker``
