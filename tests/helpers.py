@@ -160,3 +160,17 @@ def demo_copy(tmp_path: Path, *leave_out: str) -> Path:
         if f.is_file() and f.name not in leave_out:
             (d / f.name).write_bytes(f.read_bytes())
     return d
+
+
+def real_choice(problem: Problem, goal: int, units) -> bool:
+    """Has ``goal`` more than one minimal tree? By the validator alone: some unit of its tree
+    ``units`` can be done without (every other unit of the FOON fired, the goal is still made),
+    so a minimal tree without it exists beside one with it."""
+    from foon2asp.tree.validate import validate
+
+    every = range(len(problem.units))
+    for u in set(units):
+        fired = validate(problem, goal, [v for v in every if v != u]).order
+        if validate(problem, goal, fired).valid:
+            return True
+    return False

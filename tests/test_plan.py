@@ -16,7 +16,7 @@ from foon2asp.foon.substitutes import Substitute
 from foon2asp.methods.plan import ROUTES, plan, request
 from foon2asp.methods.runner import GoalRunner
 from foon2asp.tree.validate import bounds_proof, validate
-from helpers import brute_force
+from helpers import brute_force, real_choice
 from test_runner import OBJECTIVES, made_objects, optimum, random_foon, score
 
 
@@ -55,7 +55,7 @@ PREFERS = [("--rule #1", '#minimize { 1@5,U : use(U), motion(U,"chop") }.\n')]
 SUBS = (Substitute("salt", "pepper"),)
 
 TABLE = [
-    Row("units: the landmarks and a landmark set weigh what the bounds tree weighs", SALAD, "bounds"),
+    Row("units: a real choice (chop, or slice and dice) is clingo's", SALAD, "prepared", entry="solve_closed"),
     Row("units: the landmarks alone are a tree", EGG, "bounds"),
     Row("units: no shortcuts, so clingo decides", EGG, "prepared", shortcuts=False, entry="solve_closed"),
     Row("a goal the kitchen cannot make", CREAM, "fixpoint"),
@@ -216,8 +216,8 @@ def test_the_plan_of_every_kind_of_request(demo, row: Row):
     else:
         assert g is None
     if row.route == "bounds":
-        sets = found.landmark_sets
-        assert found.tree and bounds_proof(demo.problem, goal, found.tree, found.landmarks, sets) is None
+        assert found.tree and bounds_proof(demo.problem, goal, found.tree, found.landmarks) is None
+        assert not real_choice(demo.problem, goal, found.tree)
     # the plan is a value: asked again, the same decisions
     again = plan(req, goal)
     assert again.describe() == found.describe()
@@ -262,26 +262,27 @@ def test_the_bounds_route_against_brute_force_with_its_witness(objective):
         problem = random_foon(seed)
         run = GoalRunner("asp", problem, AspOptions(objective=objective))
         for goal in made_objects(problem):
+            if run.route(goal) == "prepared":  # a goal with real choice is clingo's
+                tree = run(goal)
+                assert tree.proven_by == "clingo" and real_choice(problem, goal, tree.units), (seed, goal)
             if run.route(goal) != "bounds":
                 continue
             settled += 1
             tree = run(goal)
             assert tree.status == "optimal" and tree.proven_by == "bounds", (seed, goal)
             assert score(problem, goal, tree.units, objective) == optimum(problem, goal, objective), (seed, goal)
-            marks, sets = tree.landmarks, tree.landmark_sets or []
-            first = objective[0] if objective[0] in ("success", "inputs") else "units"
-            assert bounds_proof(problem, goal, tree.units, marks, sets, first) is None, (seed, goal)
-            # every landmark is in every tree, and every tree uses a unit of each set, by brute force
+            marks = tree.landmarks
+            assert bounds_proof(problem, goal, tree.units, marks) is None, (seed, goal)
+            # every landmark is in every tree, by brute force: the tree is the one minimal tree
             every = brute_force(problem, goal)
             assert all(set(marks) <= set(t) for t in every), (seed, goal)
-            assert all(not set(s).isdisjoint(t) for s in sets for t in every), (seed, goal)
+            assert min(every, key=len) == tuple(sorted(marks)) and not real_choice(problem, goal, marks)
             # forged: one landmark left out, or a unit that is no landmark claimed
             if marks:
-                assert bounds_proof(problem, goal, tree.units, marks[:-1], sets, first) is not None
+                assert bounds_proof(problem, goal, tree.units, marks[:-1]) is not None
             spare = [u for u in range(len(problem.units)) if u not in marks and u not in tree.units]
             if spare:
-                forged = bounds_proof(problem, goal, [*tree.units, spare[0]], [*marks, spare[0]], sets, first)
-                assert forged is not None
+                assert bounds_proof(problem, goal, [*tree.units, spare[0]], [*marks, spare[0]]) is not None
     assert (settled > 0) == ("depth" not in objective)
 
 

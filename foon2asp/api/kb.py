@@ -265,7 +265,7 @@ class KnowledgeBase:
             units = [TreeUnit(self.problem.units[u], i, None) for i, u in enumerate(tree.unit_ids, 1)]
             gid = tree.goal_id if goal is None else self.object_id(goal)
             claim = TreeFile("<tree>", units, tree.goal, tree.method, proven_by=tree.raw.proven_by)
-            claim.landmarks, claim.landmark_sets = tree.raw.landmarks, tree.raw.landmark_sets or []
+            claim.landmarks = tree.raw.landmarks
             raw = check_mod.check_tree(view((gid,)), claim, gid)
             raw.goal_source = "the tree's goal" if goal is None else "given"
             reports = [raw]
@@ -281,9 +281,7 @@ class KnowledgeBase:
             for r in reports:
                 r.optimum = opt = best[key(r)]
                 if opt.proven_by == "bounds":  # its witness, checked without the solver
-                    marks, sets = opt.landmarks or [], opt.landmark_sets or []
-                    first = solver.objective[0] if solver.objective[0] in ("success", "inputs") else "units"
-                    why = bounds_proof(view(opt.meal), opt.goal, opt.units, marks, sets, first)
+                    why = bounds_proof(view(opt.meal), opt.goal, opt.units, opt.landmarks or [])
                     r.optimum_proof = {"proven_by": "bounds", "verified": why is None, "problem": why}
         found = [results.CheckReport(self, r) for r in reports]
         return found[0] if len(found) == 1 else found

@@ -34,10 +34,6 @@ class Preparation:
     floor: int | None = None
     #: does a model of this cost vector meet the lower bound (so it is optimal)?
     meets: Callable[[tuple[int, ...]], bool] | None = None
-    #: the landmark sets of the checkable lower bound (foon2asp.bounds.lower.Bounds.witness)
-    landmark_sets: tuple[tuple[int, ...], ...] = ()
-    #: the checkable lower bound (the landmarks and one unit of each set) meets the hint's weight
-    settled: bool = False
 
     @property
     def bound(self) -> tuple[int, ...] | None:

@@ -223,14 +223,6 @@ class Bounds:
         weight = self.lower(goal)
         return weight if self.ranked[0] == "units" else weight // (len(self.problem.units) + 1)
 
-    def witness(self, goal: int) -> tuple[int, list[tuple[int, ...]]]:
-        """A lower bound on the weight of every tree for ``goal`` that anyone can check, and its
-        landmark sets: pairwise disjoint sets of units, not landmarks, of which every tree uses
-        one (the producers of an object the goal or a landmark requires); the bound is the
-        landmarks' weight and the lightest unit's of each set."""
-        LM = self.landmarks(goal)
-        return self._closure_groups(LM, {goal}, self._within(LM))
-
     def landmarks(self, goal: int) -> frozenset[int]:
         """The units every tree for ``goal`` uses."""
         return self.lm.get(goal, frozenset())

@@ -15,7 +15,7 @@ route      when                                                              pro
 search     a search baseline (IDS, GBFS)                                     nothing
 fixpoint   the goal cannot be made from the kitchen, or is a kitchen item    fixpoint
 only-tree  every object of the relevant part has one producer                only-tree
-bounds     the landmarks and landmark sets weigh what the bounds tree weighs  bounds
+bounds     the landmarks alone make the goal: its one minimal tree            bounds
 prepared   clingo on the goal's prepared part                                clingo
 clingo     clingo on the whole grounding or the goal's part (meals, depth,   clingo
            alternatives, human steps, greedy retrieval, substitutes, ...)
@@ -218,10 +218,8 @@ class Plan:
     shared: bool = False
     #: the answer settled without clingo: its units (only-tree, bounds)
     tree: tuple[int, ...] = ()
-    #: the landmarks of the goal: the witness of the bounds route, with the landmark sets
+    #: the landmarks of the goal: the witness of the bounds route
     landmarks: tuple[int, ...] = ()
-    #: pairwise disjoint sets of units of which every tree uses one (beside the landmarks)
-    landmark_sets: tuple[tuple[int, ...], ...] = ()
     #: first the optimum without the user's programs, kept when it satisfies them
     free_first: Plan | None = None
     #: when trees exist but the user's programs rule them all out, name each program that alone does
@@ -281,13 +279,11 @@ def plan(req: Request, goal: Goals) -> Plan:
         return replace(base, route="only-tree", tree=tuple(units))
     free = req.free if req.constrained else req
     bounded = _bounded(free, g) if free.bounded else None
-    if req.shortcuts and bounded is not None and bounded[1].settled and req.allows(bounded[1].hint):
-        # the landmarks and the landmark sets weigh what the bounds tree weighs: no tree costs less
-        prep = bounded[1]
-        return replace(base, route="bounds", tree=prep.hint, landmarks=prep.landmarks, landmark_sets=prep.landmark_sets)
-    if req.shortcuts and bounded is None:
-        marks = landmarks(free, g)
-        if makes(problem, g, marks) and req.allows(marks):  # the landmarks alone are a tree: no tree costs less
+    if req.shortcuts:
+        marks = bounded[1].landmarks if bounded is not None else landmarks(free, g)
+        # the landmarks alone make the goal: every tree holds them, so they are its one minimal tree
+        # (a goal whose landmarks do not make it has two minimal trees at least: real choice, clingo's)
+        if makes(problem, g, marks) and req.allows(marks):
             return replace(base, route="bounds", tree=marks, landmarks=marks)
     prepared = _pruned(free, *bounded) if bounded is not None else preparation(free, g)
     if req.checkable:
@@ -344,7 +340,6 @@ def _bounded(req: Request, goal: int) -> tuple[Bounds, Preparation]:
         weight = cost[0] if len(cost) == 1 else cost[0] * scale + cost[1]
         return weight <= lower
 
-    checkable, sets = bounds.witness(goal)
     return bounds, Preparation(
         goal,
         tuple(units),
@@ -353,8 +348,6 @@ def _bounded(req: Request, goal: int) -> tuple[Bounds, Preparation]:
         known=None if req.constrained else tuple(bounds.cost(tree)),
         floor=bounds.first_lower(goal),
         meets=meets if len(ranked) <= 2 else None,
-        landmark_sets=tuple(sets),
-        settled=bool(tree) and checkable >= bounds.weight(tree),
     )
 
 

@@ -116,7 +116,6 @@ class GoalRunner:
         tree.asp_cost = asp_cost
         if how.route == "bounds":
             tree.landmarks = list(how.landmarks)
-            tree.landmark_sets = [list(s) for s in how.landmark_sets]
         return settle(self.problem, tree, how.ranked)
 
     def _solve(self, how: Plan, t0: float) -> TaskTree:

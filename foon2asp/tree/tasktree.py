@@ -47,8 +47,6 @@ class TaskTree:
     asp_cost: list[int] | None = None
     #: the landmark units the bounds proof rests on (proven by "bounds"; foon2asp.bounds)
     landmarks: list[int] | None = None
-    #: the landmark sets the bounds proof rests on: one unit of each set is in every tree
-    landmark_sets: list[list[int]] | None = None
     #: the units a person does (``--human-steps``), in executable order
     human_steps: list[int] | None = None
     #: the positions (from 1) of :attr:`human_steps` in :attr:`units`
@@ -100,7 +98,6 @@ class TaskTree:
 OPTIONAL = (
     "asp_cost",
     "landmarks",
-    "landmark_sets",
     "human_steps",
     "human_step_numbers",
     "depth_bound",

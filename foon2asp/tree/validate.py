@@ -13,7 +13,6 @@ from typing import Any
 from foon2asp.foon.model import FoonObject, Unit, leaves
 from foon2asp.foon.problem import Problem, product_outputs, required_flags
 from foon2asp.foon.treefiles import TreeFile
-from foon2asp.tree.weights import lexicographic
 
 
 @dataclass
@@ -138,45 +137,28 @@ def validate(problem: Problem, goal: FoonObject | int, units: list[int]) -> Vali
     return Validation(True, None, order)
 
 
-def bounds_proof(
-    problem: Problem,
-    goal: int,
-    units: Iterable[int],
-    landmarks: Iterable[int],
-    sets: Iterable[Iterable[int]] = (),
-    objective: str = "units",
-) -> str | None:
+def bounds_proof(problem: Problem, goal: int, units: Iterable[int], landmarks: Iterable[int]) -> str | None:
     """Why the ``bounds`` proof of a tree fails, or None when it holds.
 
-    The proof: every landmark is needed, and every landmark set too (without its units, every
-    other unit of the FOON fired, the goal is not made), so every tree uses each landmark and
-    one unit of each set; the landmarks and the sets are pairwise disjoint, so every tree
-    weighs at least the landmarks' weight and the lightest unit's of each set under
-    ``objective`` (then the number of units); the tree weighs no more, so no tree costs less."""
-    marks = sorted(set(landmarks))
-    groups = [sorted(set(s)) for s in sets]
-    tree = sorted(set(units))
-    n = len(problem.units)
-    stray = [u for u in (*marks, *(u for s in groups for u in s)) if not 0 <= u < n]
+    The proof: every landmark is needed (without it, every other unit of the FOON fired, the
+    goal is not made), so every tree holds them all; the landmarks alone make the goal and are
+    the tree's units, so the tree is the one minimal tree, its cost the landmarks' cost sum, and
+    no tree costs less under any objective that sums unit weights."""
+    marks, tree = sorted(set(landmarks)), set(units)
+    stray = [u for u in marks if not 0 <= u < len(problem.units)]
     if stray:
         return f"landmark {stray[0]} is no unit of the FOON"
-    if any(not s for s in groups):
-        return "a landmark set is empty"
-    seen: set[int] = set(marks)
-    for s in groups:
-        if not seen.isdisjoint(s):
-            return f"the landmark set {s} shares units with the landmarks or another set"
-        seen.update(s)
-    w = lexicographic(problem, objective)
-    bound = sum(w[u] for u in marks) + sum(min(w[u] for u in s) for s in groups)
-    if bound != sum(w[u] for u in tree):
-        return f"the landmarks bound the cost by {bound}, not by the tree's {sum(w[u] for u in tree)} ({objective})"
-    every = range(n)
-    for removed in [[u] for u in marks] + groups:
-        fired = validate(problem, goal, [v for v in every if v not in removed]).order  # every other unit that can fire
+    if set(marks) != tree:
+        extra, lacking = sorted(tree - set(marks)), sorted(set(marks) - tree)
+        what = f"units {extra} of the tree are no landmarks" if extra else f"landmarks {lacking} are not in the tree"
+        return f"the landmarks are not the tree's units ({what}): their cost is not the tree's"
+    if not validate(problem, goal, marks).valid:
+        return "the landmarks alone do not make the goal"
+    every = range(len(problem.units))
+    for u in marks:
+        fired = validate(problem, goal, [v for v in every if v != u]).order  # every other unit that can fire
         if validate(problem, goal, fired).valid:
-            what = f"unit {removed[0]} ({problem.units[removed[0]].motion})" if len(removed) == 1 else f"set {removed}"
-            return f"{what} is no landmark: the goal can be made without it"
+            return f"unit {u} ({problem.units[u].motion}) is no landmark: the goal can be made without it"
     return None
 
 
