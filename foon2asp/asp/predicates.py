@@ -178,6 +178,10 @@ def _external_calls(node: object) -> Iterator[clingo.ast.AST]:
             stack.extend(item)
 
 
+#: the (name, text) programs :func:`refuse_host_code` found free of host code
+_NO_HOST_CODE: set[tuple[str, str]] = set()
+
+
 def refuse_host_code(name: str, text: str) -> None:
     """Raise an InputError, located in program ``name`` (or the file it includes), when ``text``
     would run code of the host: a ``#script`` block of any language or an ``@``-function call
@@ -186,6 +190,8 @@ def refuse_host_code(name: str, text: str) -> None:
     The program is read with clingo's parser, as clingo reads it: a comment or a string that
     mentions ``#script`` is no script, an included file is read too, and statements after a
     syntax error are still seen (clingo would run a script there before it reports the error)."""
+    if (name, text) in _NO_HOST_CODE:
+        return  # read before (each goal's control adds the programs again)
     outside_strings(name, text)
     found: list[tuple[clingo.ast.Location, str]] = []
 
@@ -207,6 +213,8 @@ def refuse_host_code(name: str, text: str) -> None:
         if path != "<string>":
             what += f" (in a file {escape(name)} includes)"
         raise InputError(what, name if path == "<string>" else path, where.begin.line, where.begin.column)
+    if "#include" not in text:  # an included file may change between two reads
+        _NO_HOST_CODE.add((name, text))
 
 
 @cache
@@ -295,8 +303,15 @@ def mentioned(programs: Iterable[tuple[str, str]]) -> set[str] | None:
     """The names of the predicates the ``programs`` define or use (None: one cannot be parsed)."""
     names: set[str] = set()
     for _, text in programs:
-        found = _parsed(text)
+        found = _names(text)
         if found is None:
             return None
-        names.update(name for name, _ in (*found.defined, *found.used))
+        names.update(found)
     return names
+
+
+@cache
+def _names(text: str) -> frozenset[str] | None:
+    """The predicate names program ``text`` defines or uses, parsed once (a grounding per goal asks)."""
+    found = _parsed(text)
+    return None if found is None else frozenset(name for name, _ in (*found.defined, *found.used))
