@@ -213,7 +213,7 @@ def refuse_host_code(name: str, text: str) -> None:
         if path != "<string>":
             what += f" (in a file {escape(name)} includes)"
         raise InputError(what, name if path == "<string>" else path, where.begin.line, where.begin.column)
-    if "#include" not in text:  # an included file may change between two reads
+    if "include" not in text:  # a program that may include a file is read again: the file may change
         _NO_HOST_CODE.add((name, text))
 
 
