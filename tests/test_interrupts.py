@@ -201,9 +201,10 @@ def _interrupted_run(args: list[str], seed: int, span: float, results: Path | No
 def test_sigint_at_random_moments_stops_every_command_promptly_with_one_line(shared_foon_dir, tmp_path):
     """120 commands (batch with one and two workers, solve, schedule; long and short ones) each get
     SIGINT at a random moment, two at a time: each ends within two seconds (one on a quiet
-    machine; the test runs beside others on two shared cores) with exit status 130 and the one line "foon2asp: interrupted" (or had ended before, with 0), whatever it was doing (starting,
-    loading, grounding, solving, freeing a control, writing results); a batch's results file holds
-    whole lines only, and its batch resumes to the full set of results."""
+    machine; the test runs beside others on two shared cores) with exit status 130 and the one
+    line "foon2asp: interrupted" (or had ended before, with 0), whatever it was doing (starting,
+    loading, grounding, solving, freeing a control, writing results); a batch's results file
+    holds whole lines only, and its batch resumes to the full set of results."""
     foon, demo = str(shared_foon_dir), str(REPO / "data")
     listed = subprocess.run(_cli("objects", "--data", foon, "--format", "json"), env=_env(), capture_output=True)
     goals = tmp_path / "goals.json"
