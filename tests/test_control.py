@@ -53,6 +53,24 @@ def test_control_grounds_named_parts_with_parameters():
     assert [s.arguments[0].number for s in control.facts_of("late", 1)] == [7]
 
 
+def test_control_stats_are_clingos_own_figures_of_the_last_solve():
+    """The four numbers read from clingo's statistics equal those of its converted dict."""
+    control = Control(["--models=0"])
+    control.add("choices", "{a(1..6)}. :- a(X), a(Y), X < Y, Y - X < 2. #maximize { 1,X : a(X) }.")
+    control.ground()
+    with control.solving("opt"):
+        result = control.solve()
+    assert result.finished and result.satisfiable
+    stats = control.stats()
+    full = control.ctl.statistics
+    assert stats["choices"] == int(full["solving"]["solvers"]["choices"]) > 0
+    assert stats["conflicts"] == int(full["solving"]["solvers"]["conflicts"])
+    assert stats["models"] == int(full["summary"]["models"]["enumerated"]) >= 1
+    assert stats["solve_s"] == round(full["summary"]["times"]["solve"], 6)
+    control.statistics = False
+    assert control.stats() == {}
+
+
 def test_control_grounding_error_is_one_line_about_what_was_grounded():
     control = Control()
     control.ground()

@@ -42,6 +42,26 @@ def test_units_for_matches_its_definition(shared_problem):
     assert set(expected) <= {u for u in relevant if u in unit_level}
 
 
+def test_units_for_on_a_fresh_view_equals_the_whole_foons_viability():
+    """A view with no viability computed finds the part on the goals' relevant units alone: the
+    same units as the FOON's viable producers give and as clingo grounds, for cut-down kitchens."""
+    problem = preset("small").problem()
+    rng = random.Random(7)
+    kitchen = sorted(problem.kitchen)
+    goals = sorted(problem.derivable - problem.kitchen)
+    checked = 0
+    for _ in range(40):
+        view = problem.with_kitchen(rng.sample(kitchen, k=len(kitchen) * 19 // 20))
+        goal = rng.choice(goals)
+        fast = view.units_for([goal])
+        assert "viable_units" not in vars(view)
+        assert fast == _units_for_by_definition(view, [goal])
+        _ = view.viable_units  # now by the whole FOON's fixpoint
+        assert view.units_for([goal]) == fast
+        checked += bool(fast)
+    assert checked >= 10
+
+
 def test_unit_id_finds_the_equal_unit(shared_problem):
     _, problem = shared_problem
     for uid in (0, len(problem.units) // 2, len(problem.units) - 1):

@@ -124,7 +124,6 @@ class Control:
         self.user_programs: list[tuple[str, str]] = []
         #: the encoding files loaded so far (with the files they include)
         self._loaded: set[str] = set()
-        self._last_stats: dict = {}
         self.theory = theory
         #: the mode set by :meth:`solving` is "first"; :meth:`stop_soon` was asked; an interrupt may be pending
         self._decision = self._stopping = self._absorb = False
@@ -268,9 +267,7 @@ class Control:
 
         stopped = False
         calls: dict[str, Any] = {"on_model": on_model, "on_unsat": on_unsat, "assumptions": list(assumptions)}
-        calls["on_statistics"] = self._record_stats if self.statistics else None
         with deferred_signals():
-            self._last_stats = {}
             if self._absorb:
                 # an interrupt of the last call may have come after its end: this call takes it
                 self._absorb = False
@@ -372,20 +369,26 @@ class Control:
         """Atoms of ``name/arity`` the grounder derived as facts."""
         return {a.symbol for a in self.ctl.symbolic_atoms.by_signature(name, arity) if a.is_fact}
 
-    def _record_stats(self, step, accumulated) -> None:
-        """Keep the few numbers :meth:`stats` reports."""
-        self._last_stats = _summary(step)
-
     def stats(self) -> dict:
         """Choices, conflicts, models and solve time of the last solve call (none without :attr:`statistics`)."""
         if not self.statistics:
             return {}
-        if self._last_stats:
-            return dict(self._last_stats)
         try:
-            return _summary(self.ctl.statistics)
+            return _summary(_statistics(self.ctl))
         except RuntimeError:
             return {}
+
+
+def _statistics(ctl: clingo.Control) -> Any:
+    """clingo's statistics of the last solve call, read lazily (``Control.statistics`` converts
+    the whole tree into dicts, where only four numbers are needed)."""
+    try:
+        from clingo._internal import _c_call, _lib
+        from clingo.statistics import StatisticsMap
+    except ImportError:  # pragma: no cover - another clingo layout
+        return ctl.statistics
+    stats = _c_call("clingo_statistics_t*", _lib.clingo_control_statistics, ctl._rep)
+    return StatisticsMap(stats, _c_call("uint64_t", _lib.clingo_statistics_root, stats))
 
 
 def _summary(stats) -> dict:

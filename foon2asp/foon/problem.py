@@ -188,6 +188,8 @@ class Problem:
         for u, prods in enumerate(self.products):
             for o in prods:
                 self.producers.setdefault(o, []).append(u)
+        # the FOON's own instances, so that looking an item up finds it by identity
+        self.kitchen_items = [self.foon.objects[oid[o]] if o in oid else o for o in self.kitchen_items]
         self.kitchen: frozenset[int] = frozenset(oid[o] for o in self.kitchen_items if o in oid)
         self.rates: list[float] = [self.motion_rates.get(u.motion, DEFAULT_RATE) for u in self.foon.units]
 
@@ -275,7 +277,16 @@ class Problem:
         """The units a tree for any of ``goals`` can use (sorted): :func:`walk_back` through
         the viable producers; exactly the encoding's candidate units
         (docs/proofs/preparation.md, "Relevance")."""
-        units, _, _ = walk_back(goals, self.kitchen, self.viable_producers, self.required)
+        goals = list(goals)
+        if "viable_units" in vars(self):
+            units, _, _ = walk_back(goals, self.kitchen, self.viable_producers, self.required)
+            return tuple(sorted(units))
+        # viability computed on the goals' relevant part alone: every unit that makes an input of a
+        # relevant unit is relevant, so a relevant unit fires there exactly when it fires in the FOON
+        relevant, objects, _ = walk_back(goals, self.kitchen, self.producers, self.required)
+        fires = self.derivation_levels(sorted(relevant))[1]
+        producers = {o: [u for u in self.producers.get(o, ()) if u in fires] for o in objects}
+        units, _, _ = walk_back(goals, self.kitchen, producers, self.required)
         return tuple(sorted(units))
 
     def relevant_units(self, goal: int) -> list[int]:
