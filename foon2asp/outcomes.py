@@ -7,10 +7,8 @@ rendering them needs neither.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 from decimal import Decimal
-from typing import Protocol
 
 import clingo
 
@@ -203,14 +201,14 @@ class MissingResult:
         return self.status in ("optimal", "feasible")
 
 
-class ShownModel(Protocol):
-    """What a query shows of one model (:class:`foon2asp.asp.control.ModelRead` is one)."""
+@dataclass
+class ShownModel:
+    """What a query shows of one model: its cost vector, whether its optimality is proven, and
+    its shown atoms (any atoms, not a tree)."""
 
-    @property
-    def cost(self) -> tuple[int, ...]: ...
-
-    @property
-    def symbols(self) -> list[clingo.Symbol]: ...
+    cost: tuple[int, ...]
+    proven: bool
+    symbols: list[clingo.Symbol]
 
 
 @dataclass
@@ -218,7 +216,7 @@ class QueryResult:
     """The models of the user's program (``query``)."""
 
     status: str
-    answers: Sequence[ShownModel]
+    answers: list[ShownModel]
     time_s: float
     #: clingo's info messages about the user's program (atoms no rule or fact defines)
     warnings: list[str] = field(default_factory=list)

@@ -10,7 +10,7 @@ import clingo.ast
 
 from foon2asp.asp import encoding_files
 from foon2asp.asp.constraints import check_syntax
-from foon2asp.asp.control import Control, ModelRead
+from foon2asp.asp.control import Control
 from foon2asp.asp.facts import facts
 from foon2asp.asp.objectives import input_node_facts, objective_facts
 from foon2asp.asp.options import OBJECTIVES, AspOptions, solver_args
@@ -24,7 +24,7 @@ from foon2asp.asp.predicates import (
 from foon2asp.errors import InputError, escape
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.runner import solve_goals
-from foon2asp.outcomes import MissingResult, QueryResult
+from foon2asp.outcomes import MissingResult, QueryResult, ShownModel
 from foon2asp.tree.tasktree import Goals, executable_order, meal_of, measures
 from foon2asp.tree.weights import unit_weight
 
@@ -46,12 +46,10 @@ class Program:
         """Solve: when optimising keep the best model, else stop after ``limit`` models (0 = all).
         The status is optimal, satisfiable (no objective), feasible (stopped early), unsatisfiable
         or unknown.  The control must run with ``--models=0``."""
-        answers: list[ModelRead] = []
+        answers: list[ShownModel] = []
 
         def on_model(model: clingo.Model) -> bool:
-            answer = ModelRead(
-                cost=tuple(model.cost), proven=model.optimality_proven, symbols=list(model.symbols(shown=True))
-            )
+            answer = ShownModel(tuple(model.cost), model.optimality_proven, list(model.symbols(shown=True)))
             if answer.cost:
                 answers[:] = [answer]
                 return True

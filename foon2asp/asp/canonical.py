@@ -12,8 +12,9 @@ from typing import Any
 
 import clingo
 
-from foon2asp.asp.control import Control, ModelRead, read_model, remaining
+from foon2asp.asp.control import Control, remaining
 from foon2asp.foon.problem import Problem
+from foon2asp.tree.tasktree import TaskTree
 
 LEX_ON = clingo.Function("lex_on", [])
 
@@ -49,26 +50,27 @@ def _cur(u: int) -> clingo.Symbol:
 
 
 def canonicalise(
-    control: Control, answer: ModelRead, deadline: float | None = None, conflicts: int | None = None
-) -> tuple[ModelRead, bool]:
-    """The smallest optimal tree (``answer`` has the proven optimum cost), and whether that is
-    proven within ``conflicts`` (None: :data:`CONFLICTS`) and the ``deadline``."""
-    if not answer.cost:
+    control: Control, answer: TaskTree, deadline: float | None = None, conflicts: int | None = None
+) -> tuple[TaskTree, bool]:
+    """The smallest optimal tree (``answer``, a tree read from a model, has the proven optimum
+    cost; the result is ``answer`` or another model's tree), and whether that is proven within
+    ``conflicts`` (None: :data:`CONFLICTS`) and the ``deadline``."""
+    if not answer.asp_cost:
         return answer, True
     if not control.has_atom(LEX_ON):
         return answer, False  # the session was grounded without encodings/canonical.lp
     best = answer
     complete = False
-    found: list[ModelRead] = []
+    found: list[TaskTree] = []
 
     def record(model: clingo.Model) -> None:
-        found[:] = [read_model(model, proven=True)]
+        found[:] = [TaskTree.from_model(model, proven=True)]
 
     if conflicts is None:
         conflicts = CONFLICTS
     on: set[int] = set()
     conf: Any = control.ctl.configuration.solve
-    enum = ",".join(["enum", *map(str, answer.cost)])
+    enum = ",".join(["enum", *map(str, answer.asp_cost)])
     try:
         with control.configured(opt_mode=enum, models="1", project="no", solve_limit=conf.solve_limit):
             while True:

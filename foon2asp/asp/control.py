@@ -10,7 +10,7 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cache, lru_cache
 from typing import Any
 
@@ -69,31 +69,6 @@ def _parsed_file(path: str) -> tuple[tuple[str, clingo.ast.AST], ...]:
 def remaining(deadline: float | None) -> float | None:
     """The seconds left until ``deadline`` (a ``time.perf_counter()`` value; None: no limit)."""
     return None if deadline is None else max(0.0, deadline - time.perf_counter())
-
-
-@dataclass
-class ModelRead:
-    """One model as foon2asp reads it: units (sorted), cost vector, proven, human steps, shown symbols."""
-
-    units: tuple[int, ...] = ()
-    cost: tuple[int, ...] = ()
-    proven: bool = False
-    human: tuple[int, ...] = ()
-    symbols: list[clingo.Symbol] = field(default_factory=list)
-
-
-def read_model(model: clingo.Model, proven: bool | None = None) -> ModelRead:
-    """The tree of ``model``: its ``use/1`` and ``human/1`` atoms, cost and optimality."""
-    units: list[int] = []
-    human: list[int] = []
-    for s in model.symbols(shown=True):
-        name = s.name
-        if name == "use" or name == "human":
-            args = s.arguments
-            if len(args) == 1:
-                (units if name == "use" else human).append(args[0].number)
-    done = model.optimality_proven if proven is None else proven
-    return ModelRead(tuple(sorted(units)), tuple(model.cost), done, tuple(sorted(human)))
 
 
 @dataclass

@@ -8,13 +8,14 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import clingo
 
-from foon2asp.asp.answers import Shot, Watch, solve_shot
-from foon2asp.asp.control import Control, ModelRead
+from foon2asp.asp.answers import Shot, Watch, cost_vector, solve_shot
+from foon2asp.asp.control import Control
 from foon2asp.foon.problem import Problem, least_fixpoint
+from foon2asp.tree.tasktree import TaskTree
 
 
 @dataclass(frozen=True)
@@ -77,41 +78,42 @@ def search(
     watch: Watch,
     on_model: Callable[[clingo.Model], bool | None] | None = None,
     renew: Callable[[], Control] | None = None,
-) -> tuple[Shot, ModelRead | None, tuple[int, ...] | None, int]:
+) -> tuple[Shot, TaskTree | None, tuple[int, ...] | None, int]:
     """clingo's optimisation over the prepared part on ``control`` (with ``closed``, in rounds of loop
     cuts), ended by a tree that meets the lower bound (``prep.meets``: that tree is proven);
     ``watch`` and ``on_model`` see each model that is a tree; ``renew``: a fresh grounding for each
     round after the first (``control`` solves once), which gets the cuts so far.
 
-    Returns the last round's shot, the answer (unproven when cut short), the best lower bound
-    proven, and the number of cuts."""
-    best: list[ModelRead] = []
+    Returns the last round's shot, the answer (a tree read from a model, not finished; unproven
+    when cut short), the best lower bound proven, and the number of cuts."""
+    best: list[TaskTree] = []
     cuts_of: dict[tuple[int, ...], tuple[list[int], list[int]] | None] = {}
 
-    def cut_of(units: tuple[int, ...]) -> tuple[list[int], list[int]] | None:
+    def cut_of(tree: TaskTree) -> tuple[list[int], list[int]] | None:
+        units = tuple(tree.units)
         if units not in cuts_of:
             cuts_of[units] = prep.cut(problem, units)
         return cuts_of[units]
 
     met = False
 
-    def seen(answer: ModelRead, model: clingo.Model) -> bool:
+    def seen(answer: TaskTree, model: clingo.Model) -> bool:
         nonlocal met
         if closed:
-            if cut_of(answer.units) is not None:
+            if cut_of(answer) is not None:
                 return True
             best[:] = [answer]
         watch.on_model(model)
         if on_model is not None:
             on_model(model)
-        if prep.meets is not None and prep.meets(answer.cost):
+        if prep.meets is not None and prep.meets(cost_vector(answer)):
             met = True
             return False
         return True
 
-    def done(shot: Shot, answer: ModelRead | None) -> tuple[Shot, ModelRead | None, tuple[int, ...] | None, int]:
+    def done(shot: Shot, answer: TaskTree | None) -> tuple[Shot, TaskTree | None, tuple[int, ...] | None, int]:
         if answer is not None and met:
-            answer = replace(answer, proven=True)
+            answer.status = "optimal"
             shot.finished = True
         return shot, answer, lower, cuts
 
@@ -131,15 +133,17 @@ def search(
             continue
         if not closed or answer is None or (best and best[0].units == answer.units):
             return done(shot, answer)
-        cut = cut_of(answer.units)
+        cut = cut_of(answer)
         if cut is None:
             return done(shot, answer)
         # an optimal closed set that is no tree: its cost bounds every tree from below
-        if bound is None and shot.finished and (lower is None or answer.cost > lower):
-            lower = answer.cost
+        if bound is None and shot.finished and (lower is None or cost_vector(answer) > lower):
+            lower = cost_vector(answer)
         if not shot.finished or (deadline is not None and time.perf_counter() >= deadline):
             shot.finished = False
-            return done(shot, replace(best[0], proven=False) if best else None)
+            if best:
+                best[0].status = "feasible"
+            return done(shot, best[0] if best else None)
         cuts += 1
         missing, outside = cut
         texts.append(

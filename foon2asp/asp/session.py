@@ -15,9 +15,9 @@ from collections.abc import Callable
 import clingo
 
 from foon2asp.asp import encoding_files, objectives, substitute_facts
-from foon2asp.asp.answers import Shot, Watch, solve_shot, status, task_tree
+from foon2asp.asp.answers import Shot, Watch, cost_vector, finish, solve_shot, status
 from foon2asp.asp.canonical import canonicalise
-from foon2asp.asp.control import Control, ModelRead
+from foon2asp.asp.control import Control
 from foon2asp.asp.facts import fact_objects
 from foon2asp.asp.grounding import Grounding, canonical_grounding, fact_programs
 from foon2asp.asp.multishot.driver import Driver
@@ -173,7 +173,7 @@ class Session:
             shot = solve_shot(self.control, mode, count, seen, time_limit or None, watch.on_lower, watch.stop)
             self._lower = shot.lower
             if shot.last is not None and shot.finished and shot.last.proven:
-                self._lower = shot.last.cost
+                self._lower = cost_vector(shot.last)
             stats = self.control.stats()
             answer, start = self._choose(shot)
             if start is not None and here:
@@ -206,39 +206,41 @@ class Session:
         shot, answer, lower, cuts = search(
             self.control, prep, self.problem, self.grounding.closed, deadline, watch, on_model, renew
         )
-        self._lower = answer.cost if answer is not None and answer.proven else lower
+        cost = None if answer is None else cost_vector(answer)
+        self._lower = cost if answer is not None and answer.proven else lower
         stats = self.control.stats()
         if cuts:
             stats["loop_cuts"] = cuts
-        if answer is not None and answer.proven and prep.known is not None and answer.cost == prep.known:
-            answer = ModelRead(tuple(sorted(prep.hint)), answer.cost, True, answer.human)
+        if answer is not None and answer.proven and prep.known is not None and cost == prep.known:
+            answer.units = sorted(prep.hint)  # the hint is an optimum: the tree answered for this cost
         elif answer is not None and answer.proven and self.grounding.canonical == "here":
             answer = self._canonicalise(answer, t0, time_limit, stats)
-        elif not shot.finished and prep.known is not None and (answer is None or prep.known < answer.cost):
-            answer = ModelRead(tuple(sorted(prep.hint)), prep.known, False)
+        elif not shot.finished and prep.known is not None and (cost is None or prep.known < cost):
+            answer = TaskTree(meal[0], self.options.method, "feasible", sorted(prep.hint), asp_cost=list(prep.known))
             stats["answer"] = "known"
         return self._tree(meal, answer, status(answer, shot), t0, stats)
 
-    def _tree(self, meal: tuple[int, ...], answer: ModelRead | None, status: str, t0: float, stats: dict) -> TaskTree:
-        return task_tree(self.problem, self.options.method, meal, status, answer, time.perf_counter() - t0, stats)
+    def _tree(self, meal: tuple[int, ...], answer: TaskTree | None, status: str, t0: float, stats: dict) -> TaskTree:
+        return finish(self.problem, self.options.method, meal, status, answer, time.perf_counter() - t0, stats)
 
-    def _choose(self, shot: Shot) -> tuple[ModelRead | None, ModelRead | None]:
+    def _choose(self, shot: Shot) -> tuple[TaskTree | None, TaskTree | None]:
         """The answer of ``shot``, and an optimal tree to search the canonical tree from (None: none)."""
         answer = shot.last
         if answer is None or not shot.finished:
             return answer, None
         if len(shot.answers) > 1:
-            smallest = shot.answers[0]
-            return answer, ModelRead(smallest.units, smallest.cost, True)
+            return answer, shot.answers[0]  # the distinct optimal trees are proven
         return answer, None
 
-    def _canonicalise(self, start: ModelRead, t0: float, time_limit: float | None, stats: dict) -> ModelRead:
-        """The smallest optimal tree, searched from ``start`` here; a search cut short is noted in ``stats``."""
+    def _canonicalise(self, start: TaskTree, t0: float, time_limit: float | None, stats: dict) -> TaskTree:
+        """The smallest optimal tree (proven), searched from ``start`` here; a search cut short is
+        noted in ``stats``."""
         deadline = None if not time_limit else t0 + time_limit
         answer, complete = canonicalise(self.control, start, deadline)
         if not complete:
             stats["canonical_search"] = "budget" if not deadline or time.perf_counter() < deadline else "time"
-        return ModelRead(answer.units, answer.cost, True, answer.human)
+        answer.status = "optimal"
+        return answer
 
     def _canonical_session(self, meal: tuple[int, ...], time_limit: float | None, t0: float) -> TaskTree:
         """Solve ``meal`` again in its canonical session (a fresh grounding of its part)."""

@@ -6,12 +6,22 @@ import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from decimal import Decimal
+from typing import TYPE_CHECKING
 
 from foon2asp.foon.motioncost import as_number
 from foon2asp.foon.problem import Problem
 
+if TYPE_CHECKING:
+    import clingo
+
 #: statuses of an answer with a tree (result records too)
 WITH_TREE = ("optimal", "ranked", "feasible", "found")
+
+#: statuses of an answer proven best (``ranked``: once the better trees are excluded)
+PROVEN = ("optimal", "ranked")
+
+#: the goal of a tree read from a model until it is finished for its goal
+NO_GOAL = -1
 
 
 @dataclass
@@ -24,6 +34,10 @@ class TaskTree:
     (``goal`` the first), empty for one goal.  ``alternatives``: further trees found with
     this one, best first, not part of its JSON.  The optional fields after ``proven_by`` say
     what else is known of the answer; None where it does not apply (left out of the JSON).
+
+    The solver's callback reads each model straight into a tree (:meth:`from_model`); once the
+    search is over, the answer's tree is finished in place for its goal
+    (:func:`foon2asp.asp.answers.finish`).
     """
 
     goal: int
@@ -75,6 +89,34 @@ class TaskTree:
     valid: bool | None = None
     #: why the validator rejects the tree
     problem: str | None = None
+
+    @classmethod
+    def from_model(cls, model: clingo.Model, proven: bool | None = None) -> TaskTree:
+        """The tree of a clingo ``model`` as the solver reports it: its ``use/1`` units (sorted by id),
+        its cost vector (:attr:`asp_cost`), its ``human/1`` units (:attr:`human_steps`, sorted by id;
+        None: none), status ``optimal`` when its optimality is proven (``proven``: the caller says)
+        and else ``feasible``.  Not finished: its goal is :data:`NO_GOAL`, its method empty, its
+        units not yet in executable order and it has no measures."""
+        units: list[int] = []
+        human: list[int] = []
+        for s in model.symbols(shown=True):
+            name = s.name
+            if name == "use" or name == "human":
+                args = s.arguments
+                if len(args) == 1:
+                    (units if name == "use" else human).append(args[0].number)
+        done = model.optimality_proven if proven is None else proven
+        units.sort()
+        human.sort()
+        return cls(
+            NO_GOAL, "", "optimal" if done else "feasible", units, asp_cost=list(model.cost), human_steps=human or None
+        )
+
+    @property
+    def proven(self) -> bool:
+        """Is the tree proven best (status ``optimal``, or ``ranked``)?  A tree read from a model is
+        ``optimal`` exactly when the solver proved it (:meth:`from_model`)."""
+        return self.status in PROVEN
 
     def optional(self) -> dict:
         """The optional fields that are set (not None), in the order of :data:`OPTIONAL`."""

@@ -14,11 +14,11 @@ from collections.abc import Callable, Sequence
 import clingo
 
 from foon2asp.asp import objectives
-from foon2asp.asp.answers import Shot, solve_shot, status, task_tree
+from foon2asp.asp.answers import Shot, cost_vector, finish, solve_shot, status
 from foon2asp.asp.canonical import canonicalise
-from foon2asp.asp.control import ModelRead, remaining
+from foon2asp.asp.control import remaining
 from foon2asp.asp.multishot import depth as depth_mod
-from foon2asp.tree.tasktree import Goals, TaskTree, meal_of, measures
+from foon2asp.tree.tasktree import Goals, TaskTree, goal_fields, meal_of, measures
 
 
 class Driver:
@@ -83,7 +83,7 @@ class Driver:
         if self.depth_mode == "none":
             return shot([]), None
 
-        def tree_depth(answer: ModelRead) -> int:
+        def tree_depth(answer: TaskTree) -> int:
             return measures(self.problem, goal, list(answer.units))["depth"] or 0
 
         if self.rounds is None:
@@ -104,10 +104,8 @@ class Driver:
             # no tree is shallower than the goal's level; the depth cost was off in that solve
             at = self.ranked.index("depth")
             levels = len(self.ranked) + ("human_limit" in self.grounding.facts)
-            first.answers = [
-                ModelRead(a.units, _with_depth(a.cost, at, tree_depth(a), levels), a.proven, a.human)
-                for a in first.answers
-            ]
+            for a in first.answers:
+                a.asp_cost = list(_with_depth(cost_vector(a), at, tree_depth(a), levels))
             return first, bound
         # depth first: raise the bound from the goal's level until the goal is derivable within it
         if state.bound is None:
@@ -147,7 +145,8 @@ class Driver:
         if any(g not in self.session.goal_atoms for g in meal):
             return self._tree(goal, None, "unreachable", t0)
         if all(g in self.problem.kitchen for g in meal):
-            return self._tree(goal, ModelRead((), (), True), "optimal", t0)
+            kitchen = TaskTree(status="optimal", method=options.method, asp_cost=[], **goal_fields(goal))
+            return self._tree(goal, kitchen, "optimal", t0)
         if not all(self.control.has_atom(clingo.Function("reach", [clingo.Number(g)])) for g in meal):
             return self._tree(goal, None, "unreachable", t0)  # the grounder's fixpoint never derives a goal
         if self.grounding.greedy:
@@ -159,7 +158,7 @@ class Driver:
             if tree.status == "unreachable" and options.max_depth is not None:
                 tree.reason = f"no tree of depth <= {options.max_depth}"
             return tree
-        best_cost = found[0][0].cost
+        best_cost = found[0][0].asp_cost
         trees = []
         for rank, (answer, bound) in enumerate(found, 1):
             tree = self._tree(goal, answer, status(answer, first, best_cost), t0, bound)
@@ -172,14 +171,14 @@ class Driver:
             best.note = f"more than {cap} optimal trees: only the first {cap} are given"
         return best
 
-    def _levels(self, goal: Goals, deadline, on_model) -> tuple[list[tuple[ModelRead, int | None]], Shot, bool]:
+    def _levels(self, goal: Goals, deadline, on_model) -> tuple[list[tuple[TaskTree, int | None]], Shot, bool]:
         """The trees (with their depth bounds) level by level, each level's trees excluded from the
         next; the first level's shot; whether --all-optimal's cap cut."""
         options = self.options
         want = max(1, int(options.models))
         cap = int(options.all_optimal_cap)
         guards: list[int] = []
-        found: list[tuple[ModelRead, int | None]] = []
+        found: list[tuple[TaskTree, int | None]] = []
         first: Shot | None = None
         capped = False
         try:
@@ -207,15 +206,14 @@ class Driver:
             return self._tree(goal, shot.answers[0], "found", t0)
         return self._tree(goal, None, status(None, shot), t0)
 
-    def _tree(
-        self, goal: Goals, answer: ModelRead | None, status: str, t0: float, bound: int | None = None
-    ) -> TaskTree:
+    def _tree(self, goal: Goals, answer: TaskTree | None, status: str, t0: float, bound: int | None = None) -> TaskTree:
+        """``answer`` (a tree read from a model; None: none) finished for ``goal``."""
         stats = dict(self.last_stats, solves=self.solves)
         if answer is not None and self.canonical_search:
             stats["canonical_search"] = self.canonical_search
         human = "human_limit" in self.grounding.facts
         elapsed = time.perf_counter() - t0
-        tree = task_tree(self.problem, self.options.method, goal, status, answer, elapsed, stats, human)
+        tree = finish(self.problem, self.options.method, goal, status, answer, elapsed, stats, human)
         if answer is not None and bound is not None and self.depth_mode == "first":
             refuted = self.depth.refuted
             tree.depth_bound = bound
