@@ -149,15 +149,9 @@ class Bounds:
         return units, frozenset(made), frozenset(need)
 
     def _closure(self, units: frozenset[int], need: set[int], within: Within | None = None) -> int:
-        """``closure(units)`` where the objects ``need`` must be had too."""
-        weight, _ = self._closure_groups(units, need, within)
-        return weight
-
-    def _closure_groups(
-        self, units: frozenset[int], need: set[int], within: Within | None = None
-    ) -> tuple[int, list[tuple[int, ...]]]:
-        """``closure(units)`` where the objects ``need`` must be had too, and the pairwise disjoint
-        producer groups it counts (each the producers of an object the units or ``need`` require)."""
+        """``closure(units)`` where the objects ``need`` must be had too: the units' weight and the
+        lightest weights of pairwise disjoint producer groups (each the producers of an object the
+        units or ``need`` require)."""
         problem = self.problem
         products, required = problem.products, problem.required
         sub, made_in, need_in = within if within is not None else (frozenset(), frozenset(), frozenset())
@@ -178,25 +172,21 @@ class Bounds:
                 group = tuple(u for u in group if u not in units)
             if group:
                 groups.add(group)
-        extra, chosen = self._packing(groups)
-        return self.weight(units) + extra, chosen
+        return self.weight(units) + self._packing(groups)
 
-    def _packing(self, groups: Iterable[tuple[int, ...]]) -> tuple[int, list[tuple[int, ...]]]:
-        """The summed lightest weights of pairwise disjoint producer groups, taken smallest first,
-        and those groups."""
+    def _packing(self, groups: Iterable[tuple[int, ...]]) -> int:
+        """The summed lightest weights of pairwise disjoint producer groups, taken smallest first."""
         lightest = self._lightest
         for g in groups:
             if g not in lightest:
                 lightest[g] = min(self.w[u] for u in g)
         used: set[int] = set()
         extra = 0
-        chosen = []
         for group in sorted(groups, key=lambda g: (len(g), lightest[g], g)):
             if used.isdisjoint(group):
                 used.update(group)
                 extra += lightest[group]
-                chosen.append(group)
-        return extra, chosen
+        return extra
 
     def lower(self, goal: int) -> int:
         """A lower bound on the weight of every tree for ``goal``."""
