@@ -1,11 +1,17 @@
-"""Where the time of answering goals goes: planning (preparation), writing facts, clingo parsing
-(``Control.add``/``load``), grounding and solving, summed over every goal of a data set.
+"""Where the time of answering goals goes: each clingo call by kind (creating a control,
+parsing programs, grounding, solving) and the Python around them, summed over every goal of a
+data set and per call.
 
     python bench/calls.py --shared ../shared [--data foon] [--preset hard-4k] [--objective units]
 
-Prints one markdown row per data set: goals, the routes taken, and the seconds of each phase.
-The phases are timed by wrapping the functions that do them, so the whole run is what
-``batch --workers 1`` does in one process, minus the results file.
+The calls are timed at clingo's own Python API (``clingo.Control`` and the program builder),
+so the script measures whichever foon2asp the interpreter running it imports: run it with
+another version's Python to compare two versions on the same machine, e.g.
+``../baseline/.venv/bin/python bench/calls.py``.  The goals are answered as ``batch
+--workers 1`` answers them, in one process, without the results file.
+
+Prints one markdown row per data set: the goals, the routes taken, then for each kind of call
+the seconds summed, the calls and the milliseconds per call, and the Python rest.
 """
 
 from __future__ import annotations
@@ -15,50 +21,53 @@ import collections
 import importlib
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
+
+import clingo
+import clingo.ast
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 import foon2asp  # noqa: E402
-from foon2asp.asp import control, grounding, session  # noqa: E402
 from foon2asp.asp.options import AspOptions  # noqa: E402
 
-plan_mod = importlib.import_module("foon2asp.methods.plan")
-runner_mod = importlib.import_module("foon2asp.methods.runner")
+#: kind of call -> the clingo API functions it is made of (the statements a program builder adds
+#: count as part of parsing, not as calls of their own)
+CALLS: dict[str, list[tuple[type, str]]] = {
+    "create": [(clingo.Control, "__init__")],
+    "parse": [(clingo.Control, "add"), (clingo.Control, "load"), (clingo.ast.ProgramBuilder, "add")],
+    "ground": [(clingo.Control, "ground")],
+    "solve": [(clingo.Control, "solve")],
+}
 
-PHASES = ("plan", "facts", "parse", "ground", "solve")
 
-
-def timed(spent: dict[str, float], phase: str, fn):
-    """``fn`` whose time is added to ``spent[phase]`` (not twice when it calls itself)."""
-    depth = [0]
+def timed(spent: dict[str, float], count: collections.Counter, kind: str, fn: Callable, counted: bool) -> Callable:
+    """``fn`` whose time is added to ``spent[kind]`` and, when ``counted``, whose calls are counted."""
 
     def wrapper(*args, **kwargs):
-        depth[0] += 1
         t0 = time.perf_counter()
         try:
             return fn(*args, **kwargs)
         finally:
-            depth[0] -= 1
-            if depth[0] == 0:
-                spent[phase] += time.perf_counter() - t0
+            spent[kind] += time.perf_counter() - t0
+            count[kind] += counted
 
     return wrapper
 
 
-def measure(problem, goals, objective: tuple[str, ...]) -> tuple[dict[str, float], dict[str, int], float]:
+def measure(problem, goals, objective: tuple[str, ...]) -> tuple[dict[str, float], collections.Counter, dict, float]:
+    """Answer ``goals``; the seconds and calls of each kind, the routes and the wall seconds."""
     spent: dict[str, float] = collections.defaultdict(float)
-    patches = [
-        (runner_mod, "plan", plan_mod.plan, "plan"),
-        (session, "fact_programs", grounding.fact_programs, "facts"),
-        (control.Control, "add", control.Control.add, "parse"),
-        (control.Control, "load", control.Control.load, "parse"),
-        (control.Control, "ground", control.Control.ground, "ground"),
-        (control.Control, "solve", control.Control.solve, "solve"),
-    ]
-    for owner, name, fn, phase in patches:
-        setattr(owner, name, timed(spent, phase, fn))
+    count: collections.Counter = collections.Counter()
+    originals = [(owner, name, getattr(owner, name)) for kinds in CALLS.values() for owner, name in kinds]
+    for kind, functions in CALLS.items():
+        for owner, name in functions:
+            # a statement handed to the program builder is part of one parse, not a call
+            counted = owner is not clingo.ast.ProgramBuilder
+            setattr(owner, name, timed(spent, count, kind, getattr(owner, name), counted))
+    runner_mod = importlib.import_module("foon2asp.methods.runner")
     try:
         run = runner_mod.GoalRunner("asp", problem, AspOptions(objective=objective))
         t0 = time.perf_counter()
@@ -66,9 +75,9 @@ def measure(problem, goals, objective: tuple[str, ...]) -> tuple[dict[str, float
             run(g)
         wall = time.perf_counter() - t0
     finally:
-        for owner, name, fn, _ in patches:
+        for owner, name, fn in originals:
             setattr(owner, name, fn)
-    return spent, dict(run.counts), wall
+    return spent, count, dict(run.counts), wall
 
 
 def main() -> None:
@@ -89,15 +98,19 @@ def main() -> None:
         syn = preset(name)
         problem = syn.problem()
         cases.append((name, problem, [problem.foon.object_ids[g] for g in syn.goals]))
-    print(f"objective {args.objective}; seconds summed over the goals")
+    version = Path(foon2asp.__file__).resolve().parent.parent
+    print(f"foon2asp from {version}; objective {args.objective}; s summed (calls, ms per call)")
     print()
-    print("| data | goals | routes | " + " | ".join(PHASES) + " | wall |")
-    print("|---|---:|---|" + "---:|" * (len(PHASES) + 1))
+    print("| data | goals | routes | " + " | ".join(CALLS) + " | Python | wall s |")
+    print("|---|---:|---|" + "---:|" * (len(CALLS) + 2))
     for name, problem, goals in cases:
-        spent, counts, wall = measure(problem, goals, objective)
-        routes = ", ".join(f"{k} {v}" for k, v in counts.items() if v)
-        cells = " | ".join(f"{spent[p]:.2f}" for p in PHASES)
-        print(f"| {name} | {len(goals)} | {routes} | {cells} | {wall:.2f} |")
+        spent, count, routes, wall = measure(problem, goals, objective)
+        taken = ", ".join(f"{k} {v}" for k, v in routes.items() if v)
+        cells = " | ".join(
+            f"{spent[k]:.2f} ({count[k]}, {1000 * spent[k] / count[k]:.2f})" if count[k] else "0" for k in CALLS
+        )
+        rest = wall - sum(spent.values())
+        print(f"| {name} | {len(goals)} | {taken} | {cells} | {rest:.2f} | {wall:.2f} |")
 
 
 if __name__ == "__main__":
