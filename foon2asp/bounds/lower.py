@@ -174,12 +174,14 @@ class Bounds:
                 groups.add(group)
         return self.weight(units) + self._packing(groups)
 
-    def _packing(self, groups: Iterable[tuple[int, ...]]) -> int:
+    def _packing(self, groups: set[tuple[int, ...]]) -> int:
         """The summed lightest weights of pairwise disjoint producer groups, taken smallest first."""
         lightest = self._lightest
         for g in groups:
             if g not in lightest:
                 lightest[g] = min(self.w[u] for u in g)
+        if len(groups) < 2:  # nothing to pack
+            return sum(lightest[g] for g in groups)
         used: set[int] = set()
         extra = 0
         for group in sorted(groups, key=lambda g: (len(g), lightest[g], g)):

@@ -419,14 +419,14 @@ def grounding(
     """The grounding of ``options`` over ``problem``: ``units`` (None: ``options.units``, else the
     viable units), for ``goal`` alone (None: any goal, or the prepared part's goal)."""
     ranked = objectives.ranked(options)
-    if units is None:
-        units = options.units if options.units is not None else sorted(problem.viable_units)
-    units = tuple(units)
     meal = meal_of(goal) if goal is not None else None
     whole = prepared is None
     if prepared is not None:
         meal = (prepared.goal,)
         units = prepared.candidates
+    elif units is None:
+        units = options.units if options.units is not None else sorted(problem.viable_units)
+    units = tuple(units)
     closed = prepared is not None and not (options.programs or options.threads > 1)
     if prepared is not None:
         entry = "solve_closed" if closed else "solve_prepared"
