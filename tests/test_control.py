@@ -7,11 +7,13 @@ from __future__ import annotations
 import dataclasses
 import os
 import signal
+import threading
 
+import clingo
 import pytest
 
 from foon2asp.asp.control import Control
-from foon2asp.asp.interrupts import signal_pending
+from foon2asp.asp.interrupts import SOLVE_THREADS, signal_pending
 from foon2asp.asp.multishot.depth import Rounds
 from foon2asp.asp.multishot.driver import Driver, alternatives
 from foon2asp.asp.options import AspOptions
@@ -69,6 +71,66 @@ def test_control_stats_are_clingos_own_figures_of_the_last_solve():
     assert stats["solve_s"] == round(full["summary"]["times"]["solve"], 6)
     control.statistics = False
     assert control.stats() == {}
+
+
+def _solved(program: str, args=("--models=0",)) -> Control:
+    control = Control(list(args))
+    control.add("program", program)
+    control.ground()
+    return control
+
+
+def _solve_threads() -> list:
+    return [t for t in threading.enumerate() if t.name == SOLVE_THREADS.NAME]
+
+
+def test_solve_calls_share_one_kept_thread_per_calling_thread():
+    """Searches run on a solve thread kept between calls: twenty solves in this thread start at
+    most one, and each call's answer is its own; another calling thread gets its own."""
+    before = len(_solve_threads())
+    for n in range(1, 21):
+        control = _solved(f"{{a(1..{n})}}. :- not a({n}). #minimize {{ 1,X : a(X) }}.")
+        found: list[int] = []
+        result = control.solve(lambda m: found.append(len(m.symbols(shown=True))))
+        assert result.finished and result.satisfiable and found[-1] == 1
+    assert len(_solve_threads()) <= max(before, 1)
+    seen: list[bool] = []
+    worker = threading.Thread(target=lambda: seen.append(bool(_solved("a.").solve().satisfiable)))
+    worker.start()
+    worker.join(30)
+    assert seen == [True]
+
+
+def test_an_error_in_a_model_callback_reaches_the_caller_and_the_next_call_is_whole():
+    control = _solved("{a;b}.")
+
+    def fail(model):
+        raise ValueError("from the callback")
+
+    with pytest.raises(ValueError, match="from the callback"):
+        control.solve(fail)
+    found: list[int] = []
+    result = _solved("{a;b}.").solve(lambda m: found.append(1))
+    assert result.finished and len(found) == 4
+
+
+def test_a_search_cut_by_its_time_limit_leaves_no_interrupt_for_the_next_call():
+    """A search stopped at its deadline, then searches on the same control: each runs to its end
+    (an interrupt that came after a call ended is taken by the next call, not by its search)."""
+    hard = "{p(1..40,1..39)}. :- p(I,H1), p(J,H1), I < J. :- I = 1..40, not p(I,H) : H = 1..39."
+    control = _solved(hard)
+    result = control.solve(time_limit=0.2)
+    assert not result.finished and result.interrupted and result.satisfiable is not True
+    # then the same control without a limit, under an assumption that ends it at once
+    done = control.solve(assumptions=[(clingo.Function("p", [clingo.Number(1), clingo.Number(0)]), True)])
+    assert done.finished and done.unsatisfiable
+    small = _solved("{a;b}. :- a, b.")
+    for limit in (1e-6, 1e-5, 1e-4, 1e-3, None):
+        found: list[int] = []
+        small.solve(lambda m: found.append(1), time_limit=limit)
+    found = []
+    result = small.solve(lambda m: found.append(1))
+    assert result.finished and not result.interrupted and len(found) == 3
 
 
 def test_control_grounding_error_is_one_line_about_what_was_grounded():

@@ -12,13 +12,13 @@ from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cache, lru_cache
-from typing import Any
+from typing import Any, cast
 
 import clingo
 import clingo.ast
 
 from foon2asp.asp.constraints import check_syntax, clingo_error
-from foon2asp.asp.interrupts import POLL_S, WATCHDOG, deferred_signals, signal_pending
+from foon2asp.asp.interrupts import POLL_S, SOLVE_THREADS, WATCHDOG, deferred_signals, signal_pending
 from foon2asp.asp.predicates import refuse_host_code
 from foon2asp.errors import InputError
 
@@ -255,21 +255,23 @@ class Control:
                 if not done.interrupted or self._stopping:
                     self._stopped(done)
                     return self._result(done, True, False, t0, lower)
-            with self.ctl.solve(**calls, async_=True) as handle:
-                finished = False
-                # wait in slices so that a deferred signal, the deadline or a stop is seen between them
-                while not signal_pending():
-                    if handle.wait(self._slice(deadline)):
-                        finished = True
-                        break
-                    if deadline is not None and time.perf_counter() >= deadline:
-                        break
-                    if stop is not None and stop():
-                        stopped = True
-                        break
-                if not finished:
-                    handle.cancel()
-                result = handle.get()
+            call = SOLVE_THREADS.submit(lambda: self.ctl.solve(**calls))
+            finished = False
+            # wait in slices so that a deferred signal, the deadline or a stop is seen between them
+            while not signal_pending():
+                if call.wait(self._slice(deadline)):
+                    finished = True
+                    break
+                if deadline is not None and time.perf_counter() >= deadline:
+                    break
+                if stop is not None and stop():
+                    stopped = True
+                    break
+            if not finished:
+                self.ctl.interrupt()
+            result = cast(clingo.SolveResult, call.result())
+            if not finished and not result.interrupted:
+                self._absorb = True  # it ended before the interrupt: the next call takes it
             self._stopped(result)
         return self._result(result, finished, stopped, t0, lower)
 
