@@ -14,8 +14,11 @@ from foon2asp.bounds.upper import cheapest_sets
 from foon2asp.foon.problem import Problem, least_fixpoint, walk_back
 from foon2asp.tree.weights import lexicographic, total
 
-#: a set of units with the objects they make and the objects they need
-Within = tuple[frozenset[int], frozenset[int], frozenset[int]]
+#: a set of units with the objects they make, the objects they need and do not have (and the
+#: producer group of each that has producers), and their weight
+Within = tuple[frozenset[int], frozenset[int], frozenset[int], tuple[tuple[int, tuple[int, ...]], ...], int]
+
+_NOTHING: Within = (frozenset(), frozenset(), frozenset(), (), 0)
 
 #: ranked objective lists (as :func:`foon2asp.asp.objectives.ranked` gives them) the bounds handle
 SUPPORTED = (("units",), ("success", "units"), ("inputs", "units"))
@@ -91,8 +94,8 @@ class Bounds:
             for o in problem.products[u]:
                 producers.setdefault(o, []).append(u)
         self._producers: dict[int, tuple[int, ...]] = {o: tuple(us) for o, us in producers.items()}
-        #: producer group -> its lightest weight
-        self._lightest: dict[tuple[int, ...], int] = {}
+        #: producer group -> its place in the packing order: (size, lightest weight, the group)
+        self._key: dict[tuple[int, ...], tuple[int, int, tuple[int, ...]]] = {}
         self._levels = problem.derivation_levels(pool)[0] if self.ranked == ("units",) else {}
         self._trees: dict[int, tuple[int, ...]] = {}
         self._lower: dict[int, int] = {}
@@ -133,61 +136,64 @@ class Bounds:
 
     def closure(self, units: frozenset[int], within: Within | None = None) -> int:
         """A lower bound on the weight of any tree that contains ``units``; ``within``: a subset of
-        them with the objects it makes and needs (:meth:`_within`), read instead of recomputed."""
+        them with what it makes, needs and weighs (:meth:`_within`), read instead of recomputed."""
         value = self._closures.get(units)
         if value is None:
-            value = self._closures[units] = self._closure(units, set(), within)
+            value = self._closures[units] = self._closure(units, (), within)
         return value
 
     def _within(self, units: frozenset[int]) -> Within:
-        """``units`` with the objects they make and the objects they need."""
+        """``units`` with the objects they make, the objects they need that are neither made by them
+        nor kitchen items (with the producer group of each that has producers), and their weight."""
         made: set[int] = set()
         need: set[int] = set()
         for u in units:
             made.update(self.problem.products[u])
             need.update(self.problem.required[u])
-        return units, frozenset(made), frozenset(need)
+        kitchen, producers = self.problem.kitchen, self._producers
+        open_ = frozenset(i for i in need if i not in kitchen and i not in made)
+        groups = tuple((i, producers[i]) for i in sorted(open_) if producers.get(i))
+        return units, frozenset(made), open_, groups, self.weight(units)
 
-    def _closure(self, units: frozenset[int], need: set[int], within: Within | None = None) -> int:
+    def _closure(self, units: frozenset[int], need: Iterable[int], within: Within | None = None) -> int:
         """``closure(units)`` where the objects ``need`` must be had too: the units' weight and the
         lightest weights of pairwise disjoint producer groups (each the producers of an object the
-        units or ``need`` require)."""
+        units or ``need`` require that the units do not make)."""
         problem = self.problem
-        products, required = problem.products, problem.required
-        sub, made_in, need_in = within if within is not None else (frozenset(), frozenset(), frozenset())
-        made = set(made_in)
-        need = need | need_in
-        for u in units:
-            if u not in sub:
-                made.update(products[u])
-                need.update(required[u])
+        products, required, w = problem.products, problem.required, self.w
+        sub, made_in, _, open_groups, weight = within if within is not None else _NOTHING
+        made: set[int] = set()
+        wanted = set(need)
+        for u in units - sub:
+            made.update(products[u])
+            wanted.update(required[u])
+            weight += w[u]
         kitchen, producers = problem.kitchen, self._producers
-        # identical groups count once: a second copy is never disjoint from the first
-        groups: set[tuple[int, ...]] = set()
-        for i in need:
-            if i in kitchen or i in made:
+        # identical groups count once: a second copy is never disjoint from the first; a unit of
+        # ``units`` is in no group (what it makes is made)
+        groups = {group for i, group in open_groups if i not in made}
+        for i in wanted:
+            if i in made or i in made_in or i in kitchen:
                 continue
             group = producers.get(i)
-            if group and not units.isdisjoint(group):
-                group = tuple(u for u in group if u not in units)
             if group:
                 groups.add(group)
-        return self.weight(units) + self._packing(groups)
+        return weight + self._packing(groups)
 
     def _packing(self, groups: set[tuple[int, ...]]) -> int:
         """The summed lightest weights of pairwise disjoint producer groups, taken smallest first."""
-        lightest = self._lightest
+        key = self._key
         for g in groups:
-            if g not in lightest:
-                lightest[g] = min(self.w[u] for u in g)
+            if g not in key:
+                key[g] = (len(g), min(self.w[u] for u in g), g)
         if len(groups) < 2:  # nothing to pack
-            return sum(lightest[g] for g in groups)
+            return sum(key[g][1] for g in groups)
         used: set[int] = set()
         extra = 0
-        for group in sorted(groups, key=lambda g: (len(g), lightest[g], g)):
+        for group in sorted(groups, key=key.__getitem__):
             if used.isdisjoint(group):
                 used.update(group)
-                extra += lightest[group]
+                extra += key[group][1]
         return extra
 
     def lower(self, goal: int) -> int:
@@ -197,9 +203,9 @@ class Bounds:
         kitchen = self.problem.kitchen
         LM = self.lm.get(goal, frozenset())
         within = self._within(LM)
-        _, made, need = within
-        lb = self._closure(LM, {goal}, within)
-        for i in sorted(need | {goal}):
+        _, made, open_, _, _ = within
+        lb = self._closure(LM, (goal,), within)
+        for i in sorted(open_ | {goal}):
             if i in kitchen or i in made:
                 continue
             prods = self._producers.get(i, ())
