@@ -14,6 +14,7 @@ from conftest import DEMO
 from foon2asp import methods
 from foon2asp.analysis.compare import judge
 from foon2asp.asp.objectives import motion_cost_weights, ranked
+from foon2asp.asp.grounding import fact_programs
 from foon2asp.asp.options import AspOptions
 from foon2asp.batch.pool import BatchSpec, Worker
 from foon2asp.errors import InputError
@@ -388,6 +389,32 @@ def test_loop_cuts_end_at_the_brute_force_optimum():
                 assert validate(problem, goal, list(tree.units)).valid, (seed, goal)
                 assert score(problem, goal, tree.units, objective) == optimum(problem, goal, objective), (seed, goal)
     assert cut >= 5
+
+
+def test_a_goal_searched_in_rounds_of_loop_cuts_writes_its_facts_once(monkeypatch):
+    """A single-shot session grounds its facts again for each round of loop cuts, but writes
+    them once."""
+    import foon2asp.asp.session as session_mod
+
+    written: list[int] = []
+
+    def counted(grounding):
+        written.append(id(grounding))
+        return fact_programs(grounding)
+
+    monkeypatch.setattr(session_mod, "fact_programs", counted)
+    single = 0
+    for seed in range(25):
+        problem = random_foon(seed)
+        for objective in OBJECTIVES[:3]:
+            run = GoalRunner("asp", problem, AspOptions(objective=objective), shortcuts=False)
+            for goal in made_objects(problem):
+                written.clear()
+                tree = run(goal)
+                if tree.stats.get("loop_cuts"):
+                    single += tree.stats["plan"]["args"][-1] == "--single-shot"
+                    assert len(written) == 1, (seed, goal, written)
+    assert single >= 2
 
 
 def test_an_infeasible_goal_names_each_program_that_alone_rules_out_every_tree():

@@ -46,6 +46,8 @@ class Session:
         self._driver: Driver | None = None
         #: the lower bound the last solve proved (solver weights per level)
         self._lower: tuple[int, ...] | None = None
+        #: the fact programs of the grounding (:func:`fact_programs`)
+        self._programs: list[tuple[str, str]] | None = None
         self.control = self._grounded()
         self.goal_atoms = self._goal_atoms()
 
@@ -54,7 +56,9 @@ class Session:
         g = self.grounding
         control = Control(list(g.args))
         control.statistics = g.prepared is None
-        programs = fact_programs(g)
+        if self._programs is None:  # written once: a single-shot session grounds them again for each round
+            self._programs = fact_programs(g)
+        programs = self._programs
         control.add_all(programs[:1])  # the problem's facts first, then the encodings that read them
         for name in g.files():
             control.load(encoding_files.entry(name))
