@@ -13,8 +13,8 @@ import pytest
 from conftest import DEMO
 from foon2asp import methods
 from foon2asp.analysis.compare import judge
-from foon2asp.asp.objectives import motion_cost_weights, ranked
 from foon2asp.asp.grounding import fact_programs
+from foon2asp.asp.objectives import motion_cost_weights, ranked
 from foon2asp.asp.options import AspOptions
 from foon2asp.batch.pool import BatchSpec, Worker
 from foon2asp.errors import InputError
