@@ -34,12 +34,12 @@ import foon2asp  # noqa: E402
 from foon2asp.asp.options import AspOptions  # noqa: E402
 
 #: kind of call -> the clingo API functions it is made of (the statements a program builder adds
-#: count as part of parsing, not as calls of their own)
+#: count as part of parsing, and a solve handle's waiting as part of its solve call)
 CALLS: dict[str, list[tuple[type, str]]] = {
     "create": [(clingo.Control, "__init__")],
     "parse": [(clingo.Control, "add"), (clingo.Control, "load"), (clingo.ast.ProgramBuilder, "add")],
     "ground": [(clingo.Control, "ground")],
-    "solve": [(clingo.Control, "solve")],
+    "solve": [(clingo.Control, "solve"), (clingo.SolveHandle, "wait"), (clingo.SolveHandle, "get")],
 }
 
 
@@ -64,8 +64,9 @@ def measure(problem, goals, objective: tuple[str, ...]) -> tuple[dict[str, float
     originals = [(owner, name, getattr(owner, name)) for kinds in CALLS.values() for owner, name in kinds]
     for kind, functions in CALLS.items():
         for owner, name in functions:
-            # a statement handed to the program builder is part of one parse, not a call
-            counted = owner is not clingo.ast.ProgramBuilder
+            # a statement handed to the program builder is part of one parse, and waiting on a
+            # solve handle part of its solve call, not calls of their own
+            counted = owner not in (clingo.ast.ProgramBuilder, clingo.SolveHandle)
             setattr(owner, name, timed(spent, count, kind, getattr(owner, name), counted))
     runner_mod = importlib.import_module("foon2asp.methods.runner")
     try:
