@@ -32,7 +32,7 @@ sys.path.insert(0, str(ROOT))
 
 from foon2asp import methods  # noqa: E402
 from foon2asp.asp.facts import facts  # noqa: E402
-from foon2asp.asp.session import AspOptions  # noqa: E402
+from foon2asp.asp.options import AspOptions  # noqa: E402
 from foon2asp.foon import goals as goals_mod  # noqa: E402
 from foon2asp.foon.loaders import Dataset  # noqa: E402
 from foon2asp.foon.problem import Problem  # noqa: E402

@@ -7,6 +7,8 @@ from __future__ import annotations
 import dataclasses
 import os
 import signal
+import subprocess
+import sys
 import threading
 
 import clingo
@@ -131,6 +133,35 @@ def test_a_search_cut_by_its_time_limit_leaves_no_interrupt_for_the_next_call():
     found = []
     result = small.solve(lambda m: found.append(1))
     assert result.finished and not result.interrupted and len(found) == 3
+
+
+_STOPPED_AT_LIMIT = """
+import sys, time
+from foon2asp.asp.control import Control
+hard = "{p(1..40,1..39)}. :- p(I,H), p(J,H), I < J. :- I = 1..40, not p(I,H) : H = 1..39. #minimize{1,I,H: p(I,H)}."
+control = Control([*sys.argv[1:], "--opt-mode=opt", "--opt-strategy=usc,oll,succinct,stratify"])
+control.add("pigeons", hard)
+control.ground()
+t0 = time.perf_counter()
+result = control.solve(time_limit=0.3)
+print(result.finished, result.interrupted, round(time.perf_counter() - t0, 2))
+"""
+
+
+@pytest.mark.parametrize(
+    "args",
+    [[], ["--single-shot"], ["--parallel-mode=2"], ["--single-shot", "--parallel-mode=2"]],
+    ids=["multi-shot", "single-shot", "threads", "single-shot-threads"],
+)
+def test_a_search_stops_at_its_time_limit_whatever_the_control(args):
+    """A search that cannot end (41 pigeons, 40 holes) stops at its time limit, on a multi-shot
+    control, a single-shot one (whose search only its solve handle reaches) and with threads; run
+    in a process of its own, ended after 30 s if it does not stop."""
+    ran = subprocess.run([sys.executable, "-c", _STOPPED_AT_LIMIT, *args], capture_output=True, text=True, timeout=30)
+    assert ran.returncode == 0, ran.stderr
+    finished, interrupted, seconds = ran.stdout.split()
+    assert finished == "False" and interrupted == "True"
+    assert 0.25 <= float(seconds) < 5
 
 
 def test_control_grounding_error_is_one_line_about_what_was_grounded():

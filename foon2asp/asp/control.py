@@ -100,6 +100,9 @@ class Control:
         #: the encoding files loaded so far (with the files they include)
         self._loaded: set[str] = set()
         self.theory = theory
+        #: clingo runs one solve call, prepared for it (``--single-shot``): stopped through its
+        #: solve handle, since interrupting the control does not reach its search
+        self.single_shot = "--single-shot" in args
         #: the mode set by :meth:`solving` is "first"; :meth:`stop_soon` was asked; an interrupt may be pending
         self._decision = self._stopping = self._absorb = False
         try:
@@ -248,18 +251,23 @@ class Control:
                 self._absorb = False
                 self.ctl.solve(assumptions=[(_ABSORB, True)])
             self._stopping = False
-            if self._decision:
+            if self._decision and not self.single_shot:
                 # a decision is first tried in this thread, for one slice
                 with WATCHDOG.limit(self.ctl, self._slice(deadline)):
                     done = self.ctl.solve(**calls)
                 if not done.interrupted or self._stopping:
                     self._stopped(done)
                     return self._result(done, True, False, t0, lower)
-            call = SOLVE_THREADS.submit(lambda: self.ctl.solve(**calls))
+            if self.single_shot:  # only the solve handle stops a single-shot search
+                handle = self.ctl.solve(**calls, async_=True)
+                ended: Callable[[float], bool] = handle.wait
+            else:
+                call = SOLVE_THREADS.submit(lambda: self.ctl.solve(**calls))
+                ended = call.wait
             finished = False
             # wait in slices so that a deferred signal, the deadline or a stop is seen between them
             while not signal_pending():
-                if call.wait(self._slice(deadline)):
+                if ended(self._slice(deadline)):
                     finished = True
                     break
                 if deadline is not None and time.perf_counter() >= deadline:
@@ -267,11 +275,17 @@ class Control:
                 if stop is not None and stop():
                     stopped = True
                     break
-            if not finished:
-                self.ctl.interrupt()
-            result = cast(clingo.SolveResult, call.result())
-            if not finished and not result.interrupted:
-                self._absorb = True  # it ended before the interrupt: the next call takes it
+            if self.single_shot:
+                with handle:
+                    if not finished:
+                        handle.cancel()
+                    result = handle.get()
+            else:
+                if not finished:
+                    self.ctl.interrupt()
+                result = cast(clingo.SolveResult, call.result())
+                if not finished and not result.interrupted:
+                    self._absorb = True  # it ended before the interrupt: the next call takes it
             self._stopped(result)
         return self._result(result, finished, stopped, t0, lower)
 
