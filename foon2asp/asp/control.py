@@ -12,13 +12,13 @@ from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cache, lru_cache
-from typing import Any, cast
+from typing import Any
 
 import clingo
 import clingo.ast
 
 from foon2asp.asp.constraints import check_syntax, clingo_error
-from foon2asp.asp.interrupts import POLL_S, SOLVE_THREADS, WATCHDOG, deferred_signals, signal_pending
+from foon2asp.asp.interrupts import POLL_S, WATCHDOG, deferred_signals, signal_pending
 from foon2asp.asp.predicates import refuse_host_code
 from foon2asp.errors import InputError
 
@@ -100,8 +100,8 @@ class Control:
         #: the encoding files loaded so far (with the files they include)
         self._loaded: set[str] = set()
         self.theory = theory
-        #: clingo runs one solve call, prepared for it (``--single-shot``): stopped through its
-        #: solve handle, since interrupting the control does not reach its search
+        #: clingo runs one solve call, prepared for it (``--single-shot``): interrupting the
+        #: control does not reach a search run in the calling thread, so a decision is not tried there
         self.single_shot = "--single-shot" in args
         #: the mode set by :meth:`solving` is "first"; :meth:`stop_soon` was asked; an interrupt may be pending
         self._decision = self._stopping = self._absorb = False
@@ -258,34 +258,21 @@ class Control:
                 if not done.interrupted or self._stopping:
                     self._stopped(done)
                     return self._result(done, True, False, t0, lower)
-            if self.single_shot:  # only the solve handle stops a single-shot search
-                handle = self.ctl.solve(**calls, async_=True)
-                ended: Callable[[float], bool] = handle.wait
-            else:
-                call = SOLVE_THREADS.submit(lambda: self.ctl.solve(**calls))
-                ended = call.wait
-            finished = False
-            # wait in slices so that a deferred signal, the deadline or a stop is seen between them
-            while not signal_pending():
-                if ended(self._slice(deadline)):
-                    finished = True
-                    break
-                if deadline is not None and time.perf_counter() >= deadline:
-                    break
-                if stop is not None and stop():
-                    stopped = True
-                    break
-            if self.single_shot:
-                with handle:
-                    if not finished:
-                        handle.cancel()
-                    result = handle.get()
-            else:
+            with self.ctl.solve(**calls, async_=True) as handle:
+                finished = False
+                # wait in slices so that a deferred signal, the deadline or a stop is seen between them
+                while not signal_pending():
+                    if handle.wait(self._slice(deadline)):
+                        finished = True
+                        break
+                    if deadline is not None and time.perf_counter() >= deadline:
+                        break
+                    if stop is not None and stop():
+                        stopped = True
+                        break
                 if not finished:
-                    self.ctl.interrupt()
-                result = cast(clingo.SolveResult, call.result())
-                if not finished and not result.interrupted:
-                    self._absorb = True  # it ended before the interrupt: the next call takes it
+                    handle.cancel()
+                result = handle.get()
             self._stopped(result)
         return self._result(result, finished, stopped, t0, lower)
 

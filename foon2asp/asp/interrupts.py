@@ -8,7 +8,6 @@ a control is never left in the middle of a call, and why no interrupt is lost: d
 from __future__ import annotations
 
 import os
-import queue
 import signal
 import sys
 import threading
@@ -99,81 +98,6 @@ class _Watchdog:
 
 #: the watchdog of this process
 WATCHDOG = _Watchdog()
-
-
-class SolveCall:
-    """One clingo call run on a solve thread (:data:`SOLVE_THREADS`); its caller waits for it in slices."""
-
-    def __init__(self, fn: Callable[[], object]) -> None:
-        self._fn = fn
-        self._done = threading.Event()
-        self._value: object = None
-        self._error: BaseException | None = None
-
-    def run(self) -> None:
-        try:
-            self._value = self._fn()
-        except BaseException as exc:  # handed to the caller by result()
-            self._error = exc
-        finally:
-            self._done.set()
-
-    def wait(self, timeout: float | None = None) -> bool:
-        """Has the call ended (waiting at most ``timeout`` seconds)?"""
-        return self._done.wait(timeout)
-
-    def result(self) -> object:
-        """The call's value, or its exception raised here, once it has ended."""
-        self._done.wait()
-        if self._error is not None:
-            raise self._error
-        return self._value
-
-
-class _SolveThreads:
-    """For each thread that solves, one thread that runs its solve calls, kept between calls
-    (starting a thread for each call costs more than the search on a small part) and ended after
-    a minute without calls."""
-
-    NAME = "foon2asp-solve"
-    IDLE_S = 60.0
-
-    def __init__(self) -> None:
-        self.reset()
-        os.register_at_fork(after_in_child=self.reset)
-
-    def reset(self) -> None:
-        self._lock = threading.Lock()
-        self._queues: dict[int, queue.SimpleQueue] = {}
-
-    def submit(self, fn: Callable[[], object]) -> SolveCall:
-        """Run ``fn`` on the calling thread's solve thread."""
-        call = SolveCall(fn)
-        owner = threading.get_ident()
-        with self._lock:
-            calls = self._queues.get(owner)
-            if calls is None:
-                calls = self._queues[owner] = queue.SimpleQueue()
-                threading.Thread(target=self._serve, args=(owner, calls), name=self.NAME, daemon=True).start()
-            calls.put(call)
-        return call
-
-    def _serve(self, owner: int, calls: queue.SimpleQueue) -> None:
-        while True:
-            try:
-                call = calls.get(timeout=self.IDLE_S)
-            except queue.Empty:
-                with self._lock:  # no call comes in between: submit puts under the same lock
-                    if calls.empty():
-                        if self._queues.get(owner) is calls:
-                            del self._queues[owner]
-                        return
-                continue
-            call.run()
-
-
-#: the solve threads of this process
-SOLVE_THREADS = _SolveThreads()
 #: the name of the watchdog's thread
 SOLVE_WATCHDOG = _Watchdog.NAME
 
