@@ -51,21 +51,19 @@ def test_to_dict_is_the_cli_json(kb, shared_foon_dir):
 
 
 def test_tree_proven_by_says_who_proved_each_reference_goal(kb):
-    """``tree.proven_by`` is the JSON field; every reference goal with real choice (more than one
-    minimal tree) is clingo's; a goal whose landmarks alone make it (one minimal tree) is the
-    bounds route's, the landmarks in the JSON."""
+    """``tree.proven_by`` is the JSON field; every reference goal with a choice in its part is
+    clingo's, also one whose landmarks alone make it (one minimal tree, verified beside)."""
     trees = kb.solve("all")
     assert all(t.proven_by == t.to_dict()["proven_by"] for t in trees)
     counts: dict[str | None, int] = {}
     for t in trees:
         counts[t.proven_by] = counts.get(t.proven_by, 0) + 1
-    bounds = counts.get("bounds", 0)
-    assert counts == {"clingo": 21 - bounds, "only-tree": 2, "fixpoint": 2, **({"bounds": bounds} if bounds else {})}
+    assert counts == {"clingo": 21, "only-tree": 2, "fixpoint": 2}
     for t in trees:
-        if t.proven_by in ("clingo", "bounds"):
-            assert real_choice(kb.problem, t.goal_id, t.unit_ids) == (t.proven_by == "clingo"), t.goal_id
-        if t.proven_by == "bounds":
-            assert bounds_proof(kb.problem, t.goal_id, t.unit_ids, t.to_dict()["landmarks"]) is None
+        if t.proven_by == "clingo":
+            assert "landmarks" not in t.to_dict(), t.goal_id
+            if not real_choice(kb.problem, t.goal_id, t.unit_ids):  # one minimal tree: its landmarks
+                assert bounds_proof(kb.problem, t.goal_id, t.unit_ids, t.unit_ids) is None
     assert {t.status for t in trees if t.proven_by == "fixpoint"} == {"unreachable"}
 
 

@@ -13,7 +13,7 @@ import foon2asp
 from foon2asp.asp.constraints import ConstraintSpec
 from foon2asp.asp.options import AspOptions
 from foon2asp.foon.substitutes import Substitute
-from foon2asp.methods.plan import ROUTES, plan, request
+from foon2asp.methods.plan import ROUTES, landmarks, plan, request
 from foon2asp.methods.runner import GoalRunner
 from foon2asp.tree.validate import bounds_proof, validate
 from helpers import brute_force, real_choice
@@ -56,7 +56,7 @@ SUBS = (Substitute("salt", "pepper"),)
 
 TABLE = [
     Row("units: a real choice (chop, or slice and dice) is clingo's", SALAD, "prepared", entry="solve_closed"),
-    Row("units: the landmarks alone are a tree", EGG, "bounds"),
+    Row("units: the landmarks alone make it, a choice in its part: clingo's", EGG, "prepared", entry="solve_closed"),
     Row("units: no shortcuts, so clingo decides", EGG, "prepared", shortcuts=False, entry="solve_closed"),
     Row("a goal the kitchen cannot make", CREAM, "fixpoint"),
     Row(
@@ -215,9 +215,6 @@ def test_the_plan_of_every_kind_of_request(demo, row: Row):
         assert found.describe()["entry"] == f"encodings/{g.entry}.lp"
     else:
         assert g is None
-    if row.route == "bounds":
-        assert found.tree and bounds_proof(demo.problem, goal, found.tree, found.landmarks) is None
-        assert not real_choice(demo.problem, goal, found.tree)
     # the plan is a value: asked again, the same decisions
     again = plan(req, goal)
     assert again.describe() == found.describe()
@@ -237,14 +234,20 @@ def test_a_plan_carried_out_answers_as_its_route_says(demo, row: Row):
     for g in goals:
         assert validate(demo.problem, g, list(tree.units)).valid
     if row.route != "search" and row.method == "asp":
-        assert tree.status == "optimal" and tree.proven_by in ("clingo", "bounds", "only-tree")
+        assert tree.status == "optimal" and tree.proven_by in ("clingo", "only-tree")
 
 
-def test_the_bounds_route_answers_the_landmarks_and_names_them(demo):
+def test_a_goal_whose_landmarks_alone_make_it_is_still_clingos(demo):
+    """The egg has a choice in its part, though its landmarks alone make it (its one minimal
+    tree): clingo answers it, with the landmarks, and no landmark witness is claimed."""
     run = GoalRunner("asp", demo.problem, AspOptions())
-    tree = run(demo.object_id(EGG))
-    assert tree.proven_by == "bounds" and tree.landmarks == sorted(tree.units)
-    free = GoalRunner("asp", demo.problem, AspOptions(), shortcuts=False)(demo.object_id(EGG))
+    egg = demo.object_id(EGG)
+    tree = run(egg)
+    marks = landmarks(run.request, egg)
+    assert run.parts.relevant(egg)[2] and run.route(egg) == "prepared"
+    assert tree.proven_by == "clingo" and tree.landmarks is None and sorted(tree.units) == list(marks)
+    assert bounds_proof(demo.problem, egg, tree.units, marks) is None
+    free = GoalRunner("asp", demo.problem, AspOptions(), shortcuts=False)(egg)
     assert free.proven_by == "clingo" and sorted(free.units) == sorted(tree.units)
     assert free.asp_cost == tree.asp_cost
 
@@ -253,25 +256,28 @@ def test_the_bounds_route_answers_the_landmarks_and_names_them(demo):
 
 
 @pytest.mark.parametrize("objective", [*OBJECTIVES, ("inputs", "success")], ids=",".join)
-def test_the_bounds_route_against_brute_force_with_its_witness(objective):
-    """Over random small FOONs with real choice: every goal the bounds route settles has the
-    brute-force optimum, its landmarks verified by the checker; some goal takes the route unless
-    depth is an objective (a tree's depth is no sum of unit weights: more units may be shallower)."""
+def test_landmark_proofs_against_brute_force(objective):
+    """Over random small FOONs with real choice: every goal with a choice in its part is clingo's,
+    those whose landmarks alone make them too (their one minimal tree, the brute-force optimum);
+    the checker verifies the landmarks of such a tree and refuses forged ones. Some goal is one
+    unless depth is an objective (a tree's depth is no sum of unit weights: more units may be shallower)."""
     settled = 0
     for seed in range(25):
         problem = random_foon(seed)
         run = GoalRunner("asp", problem, AspOptions(objective=objective))
         for goal in made_objects(problem):
-            if run.route(goal) == "prepared":  # a goal with real choice is clingo's
+            if run.route(goal) in ("prepared", "clingo"):  # a goal with a choice is clingo's
                 tree = run(goal)
-                assert tree.proven_by == "clingo" and real_choice(problem, goal, tree.units), (seed, goal)
-            if run.route(goal) != "bounds":
+                assert tree.proven_by == "clingo", (seed, goal)
+            if run.route(goal) != "prepared" or "depth" in objective:
+                continue
+            marks = list(landmarks(run.request, goal))
+            if sorted(tree.units) != marks:
+                assert real_choice(problem, goal, tree.units), (seed, goal)
                 continue
             settled += 1
-            tree = run(goal)
-            assert tree.status == "optimal" and tree.proven_by == "bounds", (seed, goal)
+            assert tree.status == "optimal", (seed, goal)
             assert score(problem, goal, tree.units, objective) == optimum(problem, goal, objective), (seed, goal)
-            marks = tree.landmarks
             assert bounds_proof(problem, goal, tree.units, marks) is None, (seed, goal)
             # every landmark is in every tree, by brute force: the tree is the one minimal tree
             every = brute_force(problem, goal)
@@ -291,15 +297,17 @@ def test_check_verifies_a_bounds_proof_and_refuses_a_forged_one(demo, tmp_path):
 
     res = run_cli("solve", "--data", "demo", "--goal", EGG, "--format", "json")
     assert res.exit_code == 0, res.output
-    (answer,) = json.loads(res.stdout)
-    assert answer["proven_by"] == "bounds" and sorted(answer["landmarks"]) == sorted(demo.solve(EGG).unit_ids)
+    (solved,) = json.loads(res.stdout)
+    assert solved["proven_by"] == "clingo" and "landmarks" not in solved
+    # the same tree claimed as settled by its landmarks (they alone make the egg)
+    answer = dict(solved, proven_by="bounds", landmarks=sorted(demo.solve(EGG).unit_ids))
     good = tmp_path / "egg.json"
     good.write_text(json.dumps([answer]))
     res = run_cli("check", good, "--data", "demo", "--format", "json")
     assert res.exit_code == 0, res.output
     (verdict,) = json.loads(res.stdout)
     assert verdict["proof"] == {"proven_by": "bounds", "verified": True, "problem": None}
-    assert verdict["optimum"]["proof"]["verified"] is True
+    assert verdict["optimum"]["proven_by"] == "clingo" and "proof" not in verdict["optimum"]
     for forged in (answer["landmarks"][:-1], [*answer["landmarks"], 0]):
         bad = tmp_path / "forged.json"
         bad.write_text(json.dumps([dict(answer, landmarks=forged)]))
@@ -317,11 +325,11 @@ def test_check_verifies_a_bounds_proof_and_refuses_a_forged_one(demo, tmp_path):
     assert res.exit_code == 1 and "is no landmark" in json.loads(res.stdout)[0]["proof"]["problem"]
 
 
-def test_a_tree_from_the_library_has_its_bounds_proof_checked(demo):
+def test_a_tree_from_the_library_claims_no_landmark_proof(demo):
+    """Every tree with a choice is clingo's: the library's check finds no landmark proof to verify."""
     tree = demo.solve(EGG)
     report = demo.check(tree)
-    assert tree.proven_by == "bounds" and report.valid
-    assert report.proof == {"proven_by": "bounds", "verified": True, "problem": None}
+    assert tree.proven_by == "clingo" and report.valid and report.proof is None
     clingo = demo.check(demo.solve(SALAD, objective="success"))
     assert clingo.proof is None
 

@@ -15,8 +15,7 @@ route      when                                                              pro
 search     a search baseline (IDS, GBFS)                                     nothing
 fixpoint   the goal cannot be made from the kitchen, or is a kitchen item    fixpoint
 only-tree  every object of the relevant part has one producer                only-tree
-bounds     the landmarks alone make the goal: its one minimal tree            bounds
-prepared   clingo on the goal's prepared part                                clingo
+prepared   clingo on the goal's prepared part (every goal with a choice)      clingo
 clingo     clingo on the whole grounding or the goal's part (meals, depth,   clingo
            alternatives, human steps, greedy retrieval, substitutes, ...)
 ========== ================================================================= ============
@@ -42,7 +41,7 @@ from foon2asp.asp.session import Session
 from foon2asp.bounds.lower import Bounds
 from foon2asp.bounds.lower import supports as bounds_supports
 from foon2asp.errors import InputError
-from foon2asp.foon.problem import Problem, least_fixpoint
+from foon2asp.foon.problem import Problem
 from foon2asp.methods.parts import GROUNDINGS, Parts
 from foon2asp.methods.registry import effective_options, get
 from foon2asp.tree.tasktree import Goals, meal_of
@@ -56,7 +55,6 @@ ROUTES: dict[str, str | None] = {
     "search": None,
     "fixpoint": "fixpoint",
     "only-tree": "only-tree",
-    "bounds": "bounds",
     "prepared": "clingo",
     "clingo": "clingo",
 }
@@ -88,7 +86,7 @@ class Request:
     parts: Parts
     #: ``whole`` (one grounding for every goal) or ``per-goal``
     grounding: str = "whole"
-    #: goals without real choice are settled without clingo (``only-tree``, ``bounds``)
+    #: goals without real choice are settled without clingo (``only-tree``)
     shortcuts: bool = True
 
     @property
@@ -216,10 +214,8 @@ class Plan:
     grounding: Grounding | None = None
     #: the grounding is the request's one whole grounding, grounded once for every goal
     shared: bool = False
-    #: the answer settled without clingo: its units (only-tree, bounds)
+    #: the answer settled without clingo: its units (only-tree)
     tree: tuple[int, ...] = ()
-    #: the landmarks of the goal: the witness of the bounds route
-    landmarks: tuple[int, ...] = ()
     #: first the optimum without the user's programs, kept when it satisfies them
     free_first: Plan | None = None
     #: when trees exist but the user's programs rule them all out, name each program that alone does
@@ -277,15 +273,10 @@ def plan(req: Request, goal: Goals) -> Plan:
         return _clingo(req, base, explain)
     if req.shortcuts and not choice and req.allows(units):
         return replace(base, route="only-tree", tree=tuple(units))
+    # a goal with a choice in its part is clingo's, even when its landmarks alone make it: clingo
+    # then decides with the bounds tree as the bound
     free = req.free if req.constrained else req
-    bounded = _bounded(free, g) if free.bounded else None
-    if req.shortcuts:
-        marks = bounded[1].landmarks if bounded is not None else landmarks(free, g)
-        # the landmarks alone make the goal: every tree holds them, so they are its one minimal tree
-        # (a goal whose landmarks do not make it has two minimal trees at least: real choice, clingo's)
-        if makes(problem, g, marks) and req.allows(marks):
-            return replace(base, route="bounds", tree=marks, landmarks=marks)
-    prepared = _pruned(free, *bounded) if bounded is not None else preparation(free, g)
+    prepared = preparation(free, g)
     if req.checkable:
         first = replace(base, route="prepared", programs=(), grounding=_grounding(free, prepared))
         return replace(
@@ -368,12 +359,6 @@ def landmarks(req: Request, goal: int) -> tuple[int, ...]:
     """The units every tree for ``goal`` uses (sorted)."""
     units, _, _ = req.parts.relevant(goal)
     return tuple(sorted(req.parts.bounds_for(("units",), units).landmarks(goal)))
-
-
-def makes(problem: Problem, goal: int, units: Iterable[int]) -> bool:
-    """Do ``units`` alone make ``goal`` from the kitchen?"""
-    made, _ = least_fixpoint(problem.kitchen, problem.required, problem.products, units)
-    return goal in made
 
 
 @overload

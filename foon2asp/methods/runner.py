@@ -34,7 +34,7 @@ class GoalRunner:
 
     ``options``: the caller's (the method adjusts them); ``goals``: the goals it will be
     asked, if known (the ``clingo`` route grounds only their units); ``parts``: the caller's
-    :class:`Parts` of ``problem``; ``shortcuts=False``: no ``only-tree`` or ``bounds`` route.
+    :class:`Parts` of ``problem``; ``shortcuts=False``: no ``only-tree`` route.
     """
 
     def __init__(
@@ -87,7 +87,7 @@ class GoalRunner:
         """The answer ``how`` names, with what proved it."""
         if how.route == "fixpoint":
             tree = self._fixpoint(how.goal[0], t0)
-        elif how.route in ("only-tree", "bounds"):
+        elif how.route == "only-tree":
             tree = self._settled(how, t0)
         else:
             tree = self._solve(how, t0)
@@ -114,8 +114,6 @@ class GoalRunner:
         asp_cost = [cost["depth"] or 0 if name == "depth" else total(self.problem, name, order) for name in how.ranked]
         tree = TaskTree(goal, how.method, "optimal", order, cost, round(time.perf_counter() - t0, 6))
         tree.asp_cost = asp_cost
-        if how.route == "bounds":
-            tree.landmarks = list(how.landmarks)
         return settle(self.problem, tree, how.ranked)
 
     def _solve(self, how: Plan, t0: float) -> TaskTree:
