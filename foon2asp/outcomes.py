@@ -39,6 +39,8 @@ class Report:
     substitutions: list[dict] | None = None
     #: the proof the tree's file claims, re-verified: ``{"proven_by", "verified", "problem"}`` (None: none claimed)
     proof: dict | None = None
+    #: the optimum's ``bounds`` proof, re-verified the same way (None: the optimum is proven otherwise)
+    optimum_proof: dict | None = None
 
     @property
     def meal(self) -> tuple[int, ...]:

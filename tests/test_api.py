@@ -10,8 +10,7 @@ from click.testing import CliRunner
 
 import foon2asp
 from foon2asp.cli.main import main
-from foon2asp.tree.validate import bounds_proof
-from helpers import real_choice
+from helpers import witness_problem
 
 
 @pytest.fixture(scope="module")
@@ -51,19 +50,19 @@ def test_to_dict_is_the_cli_json(kb, shared_foon_dir):
 
 
 def test_tree_proven_by_says_who_proved_each_reference_goal(kb):
-    """``tree.proven_by`` is the JSON field; every reference goal with a choice in its part is
-    clingo's, also one whose landmarks alone make it (one minimal tree, verified beside)."""
+    """``tree.proven_by`` is the JSON field; every reference goal with real choice is clingo's,
+    unless its bounds tree weighs what its landmarks and landmark sets make every tree weigh
+    (``bounds``, the witness in the JSON)."""
     trees = kb.solve("all")
     assert all(t.proven_by == t.to_dict()["proven_by"] for t in trees)
     counts: dict[str | None, int] = {}
     for t in trees:
         counts[t.proven_by] = counts.get(t.proven_by, 0) + 1
-    assert counts == {"clingo": 21, "only-tree": 2, "fixpoint": 2}
+    assert counts["clingo"] + counts.get("bounds", 0) == 21 and counts["clingo"] >= 1
+    assert {k: v for k, v in counts.items() if k not in ("clingo", "bounds")} == {"only-tree": 2, "fixpoint": 2}
     for t in trees:
-        if t.proven_by == "clingo":
-            assert "landmarks" not in t.to_dict(), t.goal_id
-            if not real_choice(kb.problem, t.goal_id, t.unit_ids):  # one minimal tree: its landmarks
-                assert bounds_proof(kb.problem, t.goal_id, t.unit_ids, t.unit_ids) is None
+        if t.proven_by == "bounds":
+            assert witness_problem(kb.problem, t.raw) is None
     assert {t.status for t in trees if t.proven_by == "fixpoint"} == {"unreachable"}
 
 
@@ -120,3 +119,15 @@ def test_every_answer_renders_or_says_it_cannot(kb, tmp_path):
         kb.compare("greek salad").to_dict()
     with pytest.raises(TypeError, match="consolidate\\(\\): .*did you mean 'level'"):
         foon2asp.consolidate([tmp_path / "absent.json"], levle=2)
+
+
+def test_solve_honours_shortcuts_false_with_the_same_trees():
+    """``shortcuts=False`` (a keyword or in ``Options``): clingo answers the goals that polynomial
+    reasoning would settle, and proves the same trees."""
+    demo = foon2asp.load("demo")
+    settled = demo.solve("all")
+    assert {t.raw.proven_by for t in settled} >= {"bounds"}
+    for free in (demo.solve("all", shortcuts=False), demo.solve("all", options=foon2asp.Options(shortcuts=False))):
+        assert [t.raw.proven_by for t in free] == ["clingo" if t.has_tree else t.raw.proven_by for t in settled]
+        assert [sorted(t.unit_ids) for t in free] == [sorted(t.unit_ids) for t in settled]
+        assert [t.raw.asp_cost for t in free] == [t.raw.asp_cost for t in settled]

@@ -13,10 +13,10 @@ import foon2asp
 from foon2asp.asp.constraints import ConstraintSpec
 from foon2asp.asp.options import AspOptions
 from foon2asp.foon.substitutes import Substitute
-from foon2asp.methods.plan import ROUTES, landmarks, plan, request
+from foon2asp.methods.plan import ROUTES, plan, request
 from foon2asp.methods.runner import GoalRunner
 from foon2asp.tree.validate import bounds_proof, validate
-from helpers import brute_force, real_choice
+from helpers import brute_force, witness_problem
 from test_runner import OBJECTIVES, made_objects, optimum, random_foon, score
 
 
@@ -55,14 +55,21 @@ PREFERS = [("--rule #1", '#minimize { 1@5,U : use(U), motion(U,"chop") }.\n')]
 SUBS = (Substitute("salt", "pepper"),)
 
 TABLE = [
-    Row("units: a real choice (chop, or slice and dice) is clingo's", SALAD, "prepared", entry="solve_closed"),
-    Row("units: the landmarks alone make it, a choice in its part: clingo's", EGG, "prepared", entry="solve_closed"),
+    Row("units: the landmarks and a landmark set weigh what the bounds tree weighs", SALAD, "bounds"),
+    Row("units: the landmarks alone are a tree", EGG, "bounds"),
     Row("units: no shortcuts, so clingo decides", EGG, "prepared", shortcuts=False, entry="solve_closed"),
     Row("a goal the kitchen cannot make", CREAM, "fixpoint"),
     Row(
-        "success: the bounds tree meets the lower bound, clingo decides",
+        "success: a case split over the producers weighs what the bounds tree weighs",
+        SALAD,
+        "bounds",
+        options={"objective": ("success",)},
+    ),
+    Row(
+        "success, no shortcuts: the bounds tree meets the lower bound, clingo decides",
         SALAD,
         "prepared",
+        shortcuts=False,
         options={"objective": ("success",)},
         entry="solve_closed",
         facts={"problem", "preparation", "goal"},
@@ -173,6 +180,7 @@ TABLE = [
         "two threads",
         SALAD,
         "prepared",
+        shortcuts=False,
         options={"objective": ("success",), "threads": 2},
         entry="solve_prepared",
         facts={"chain"},
@@ -215,6 +223,11 @@ def test_the_plan_of_every_kind_of_request(demo, row: Row):
         assert found.describe()["entry"] == f"encodings/{g.entry}.lp"
     else:
         assert g is None
+    if row.route == "bounds":
+        w = found.witness.fields()
+        first = found.ranked[0] if found.ranked[0] in ("success", "inputs") else "units"
+        args = (w["landmarks"], w["landmark_sets"], first, w["landmark_cases"], w["derivation_level"])
+        assert found.tree and bounds_proof(demo.problem, goal, found.tree, *args) is None
     # the plan is a value: asked again, the same decisions
     again = plan(req, goal)
     assert again.describe() == found.describe()
@@ -234,20 +247,14 @@ def test_a_plan_carried_out_answers_as_its_route_says(demo, row: Row):
     for g in goals:
         assert validate(demo.problem, g, list(tree.units)).valid
     if row.route != "search" and row.method == "asp":
-        assert tree.status == "optimal" and tree.proven_by in ("clingo", "only-tree")
+        assert tree.status == "optimal" and tree.proven_by in ("clingo", "bounds", "only-tree")
 
 
-def test_a_goal_whose_landmarks_alone_make_it_is_still_clingos(demo):
-    """The egg has a choice in its part, though its landmarks alone make it (its one minimal
-    tree): clingo answers it, with the landmarks, and no landmark witness is claimed."""
+def test_the_bounds_route_answers_the_landmarks_and_names_them(demo):
     run = GoalRunner("asp", demo.problem, AspOptions())
-    egg = demo.object_id(EGG)
-    tree = run(egg)
-    marks = landmarks(run.request, egg)
-    assert run.parts.relevant(egg)[2] and run.route(egg) == "prepared"
-    assert tree.proven_by == "clingo" and tree.landmarks is None and sorted(tree.units) == list(marks)
-    assert bounds_proof(demo.problem, egg, tree.units, marks) is None
-    free = GoalRunner("asp", demo.problem, AspOptions(), shortcuts=False)(egg)
+    tree = run(demo.object_id(EGG))
+    assert tree.proven_by == "bounds" and tree.landmarks == sorted(tree.units)
+    free = GoalRunner("asp", demo.problem, AspOptions(), shortcuts=False)(demo.object_id(EGG))
     assert free.proven_by == "clingo" and sorted(free.units) == sorted(tree.units)
     assert free.asp_cost == tree.asp_cost
 
@@ -256,40 +263,56 @@ def test_a_goal_whose_landmarks_alone_make_it_is_still_clingos(demo):
 
 
 @pytest.mark.parametrize("objective", [*OBJECTIVES, ("inputs", "success")], ids=",".join)
-def test_landmark_proofs_against_brute_force(objective):
-    """Over random small FOONs with real choice: every goal with a choice in its part is clingo's,
-    those whose landmarks alone make them too (their one minimal tree, the brute-force optimum);
-    the checker verifies the landmarks of such a tree and refuses forged ones. Some goal is one
-    unless depth is an objective (a tree's depth is no sum of unit weights: more units may be shallower)."""
+def test_the_bounds_route_against_brute_force_with_its_witness(objective):
+    """Over random small FOONs with real choice: every goal the bounds route settles has the
+    brute-force optimum, its landmarks verified by the checker; some goal takes the route unless
+    depth is an objective (a tree's depth is no sum of unit weights: more units may be shallower)."""
     settled = 0
+    kinds = {"cases": 0, "level": 0}
     for seed in range(25):
         problem = random_foon(seed)
         run = GoalRunner("asp", problem, AspOptions(objective=objective))
         for goal in made_objects(problem):
-            if run.route(goal) in ("prepared", "clingo"):  # a goal with a choice is clingo's
-                tree = run(goal)
-                assert tree.proven_by == "clingo", (seed, goal)
-            if run.route(goal) != "prepared" or "depth" in objective:
-                continue
-            marks = list(landmarks(run.request, goal))
-            if sorted(tree.units) != marks:
-                assert real_choice(problem, goal, tree.units), (seed, goal)
+            if run.route(goal) != "bounds":
                 continue
             settled += 1
-            assert tree.status == "optimal", (seed, goal)
+            tree = run(goal)
+            assert tree.status == "optimal" and tree.proven_by == "bounds", (seed, goal)
             assert score(problem, goal, tree.units, objective) == optimum(problem, goal, objective), (seed, goal)
-            assert bounds_proof(problem, goal, tree.units, marks) is None, (seed, goal)
-            # every landmark is in every tree, by brute force: the tree is the one minimal tree
+            marks, sets = tree.landmarks, tree.landmark_sets or []
+            first = objective[0] if objective[0] in ("success", "inputs") else "units"
+            assert witness_problem(problem, tree, first) is None, (seed, goal)
+            # every landmark is in every tree, and every tree uses a unit of each set, by brute force
             every = brute_force(problem, goal)
             assert all(set(marks) <= set(t) for t in every), (seed, goal)
-            assert min(every, key=len) == tuple(sorted(marks)) and not real_choice(problem, goal, marks)
+            assert all(not set(s).isdisjoint(t) for s in sets for t in every), (seed, goal)
             # forged: one landmark left out, or a unit that is no landmark claimed
             if marks:
-                assert bounds_proof(problem, goal, tree.units, marks[:-1]) is not None
+                assert witness_problem(problem, tree, first, landmarks=marks[:-1]) is not None
             spare = [u for u in range(len(problem.units)) if u not in marks and u not in tree.units]
             if spare:
-                assert bounds_proof(problem, goal, [*tree.units, spare[0]], [*marks, spare[0]]) is not None
+                forged = witness_problem(problem, tree, first, [*marks, spare[0]], [*tree.units, spare[0]])
+                assert forged is not None
+            split = tree.landmark_cases
+            if split is not None:  # every tree uses a case's unit, and with it the case's units and sets
+                kinds["cases"] += 1
+                cases = split["cases"]
+                assert all(any(c["unit"] in t for c in cases) for t in every), (seed, goal)
+                for c in cases:
+                    using = [t for t in every if c["unit"] in t]
+                    assert all(set(c["landmarks"]) <= set(t) for t in using), (seed, goal, c)
+                    assert all(not set(s).isdisjoint(t) for s in c["landmark_sets"] for t in using), (seed, goal, c)
+                tree.landmark_cases = dict(split, cases=cases[1:])  # forged: a unit that makes the object left out
+                assert witness_problem(problem, tree, first) is not None, (seed, goal)
+                tree.landmark_cases = split
+            if tree.derivation_level is not None:
+                kinds["level"] += 1
+                assert min(len(t) for t in every) >= tree.derivation_level, (seed, goal)
+                tree.derivation_level += 1  # forged: a level the FOON does not have
+                assert witness_problem(problem, tree, first) is not None, (seed, goal)
     assert (settled > 0) == ("depth" not in objective)
+    if objective in (("units",), ("success",), ("inputs",)):  # the case split settles goals, levels with units
+        assert kinds["cases"] > 0 and (kinds["level"] > 0) == (objective == ("units",)), kinds
 
 
 def test_check_verifies_a_bounds_proof_and_refuses_a_forged_one(demo, tmp_path):
@@ -297,17 +320,15 @@ def test_check_verifies_a_bounds_proof_and_refuses_a_forged_one(demo, tmp_path):
 
     res = run_cli("solve", "--data", "demo", "--goal", EGG, "--format", "json")
     assert res.exit_code == 0, res.output
-    (solved,) = json.loads(res.stdout)
-    assert solved["proven_by"] == "clingo" and "landmarks" not in solved
-    # the same tree claimed as settled by its landmarks (they alone make the egg)
-    answer = dict(solved, proven_by="bounds", landmarks=sorted(demo.solve(EGG).unit_ids))
+    (answer,) = json.loads(res.stdout)
+    assert answer["proven_by"] == "bounds" and sorted(answer["landmarks"]) == sorted(demo.solve(EGG).unit_ids)
     good = tmp_path / "egg.json"
     good.write_text(json.dumps([answer]))
     res = run_cli("check", good, "--data", "demo", "--format", "json")
     assert res.exit_code == 0, res.output
     (verdict,) = json.loads(res.stdout)
     assert verdict["proof"] == {"proven_by": "bounds", "verified": True, "problem": None}
-    assert verdict["optimum"]["proven_by"] == "clingo" and "proof" not in verdict["optimum"]
+    assert verdict["optimum"]["proof"]["verified"] is True
     for forged in (answer["landmarks"][:-1], [*answer["landmarks"], 0]):
         bad = tmp_path / "forged.json"
         bad.write_text(json.dumps([dict(answer, landmarks=forged)]))
@@ -316,21 +337,21 @@ def test_check_verifies_a_bounds_proof_and_refuses_a_forged_one(demo, tmp_path):
         (verdict,) = json.loads(res.stdout)
         assert verdict["valid"] is True and verdict["proof"]["verified"] is False and verdict["proof"]["problem"]
     # a tree clingo proved, passed off as settled by its landmarks: one of its units is no landmark
-    res = run_cli("solve", "--data", "demo", "--goal", SALAD, "--objective", "success", "--format", "json")
+    res = run_cli("solve", "--data", "demo", "--goal", SALAD, "--objective", "success,inputs", "--format", "json")
     (salad,) = json.loads(res.stdout)
     assert salad["proven_by"] == "clingo"
-    claimed = dict(salad, proven_by="bounds", landmarks=sorted(demo.solve(SALAD, objective="success").unit_ids))
+    claimed = dict(salad, proven_by="bounds", landmarks=sorted(demo.solve(SALAD, objective="success,inputs").unit_ids))
     bad.write_text(json.dumps([claimed]))
     res = run_cli("check", bad, "--data", "demo", "--format", "json")
     assert res.exit_code == 1 and "is no landmark" in json.loads(res.stdout)[0]["proof"]["problem"]
 
 
-def test_a_tree_from_the_library_claims_no_landmark_proof(demo):
-    """Every tree with a choice is clingo's: the library's check finds no landmark proof to verify."""
+def test_a_tree_from_the_library_has_its_bounds_proof_checked(demo):
     tree = demo.solve(EGG)
     report = demo.check(tree)
-    assert tree.proven_by == "clingo" and report.valid and report.proof is None
-    clingo = demo.check(demo.solve(SALAD, objective="success"))
+    assert tree.proven_by == "bounds" and report.valid
+    assert report.proof == {"proven_by": "bounds", "verified": True, "problem": None}
+    clingo = demo.check(demo.solve(SALAD, objective="success,inputs"))
     assert clingo.proof is None
 
 

@@ -164,7 +164,18 @@ def check_tree(problem: Problem, tree: TreeFile, goal: Goals, derivable: Derivab
     valid = validation.valid and not unknown
     found_report = Report(tree, goal, ids, valid, found, validation, order_problem, measures(problem, goal, known))
     if tree.proven_by == "bounds":
-        why = bounds_proof(problem, goal, known, tree.landmarks or [])
+        objective = (tree.method or "").removeprefix("asp-").split(",")[0]
+        objective = objective if objective in ("success", "inputs") else "units"
+        why = bounds_proof(
+            problem,
+            goal,
+            known,
+            tree.landmarks or [],
+            tree.landmark_sets,
+            objective,
+            tree.landmark_cases,
+            tree.derivation_level,
+        )
         if tree.landmarks is None:
             why = "a bounds proof without its landmarks"
         found_report.proof = {"proven_by": "bounds", "verified": why is None, "problem": why}

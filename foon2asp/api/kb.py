@@ -40,6 +40,7 @@ from foon2asp.methods.runner import solve_goals
 from foon2asp.outcomes import MealRow, QueryResult
 from foon2asp.schedule import DEFAULT_ENCODING, ScheduleSpec
 from foon2asp.tree.tasktree import meal_of
+from foon2asp.tree.validate import bounds_proof
 
 #: a goal as the API takes it: a label, an object's text, ``"#ID"``, an object id or a FoonObject
 GoalLike = str | int | FoonObject
@@ -228,12 +229,17 @@ class KnowledgeBase:
             made[skip] = substituted_kitchen(problem, [n for n in needed if n not in skip])
         return made[skip]
 
-    def solve_iter(self, goal_ids: Jobs, method: str = "asp", options: Request = None) -> Iterator[results.Tree]:
-        """Trees for ``goal_ids`` one after another (a tuple of ids: a meal)."""
+    def solve_iter(
+        self, goal_ids: Jobs, method: str = "asp", options: Request = None, shortcuts: bool | None = None
+    ) -> Iterator[results.Tree]:
+        """Trees for ``goal_ids`` one after another (a tuple of ids: a meal); ``shortcuts``: as
+        ``Options.shortcuts`` (None: the request's, else True)."""
+        if shortcuts is None:
+            shortcuts = options.shortcuts if isinstance(options, Options) else True
         solver = self.options(options)
         if methods.get(method).kind != "asp" and solver.programs:
             raise InputError(f"constraints apply to ASP methods only; {method!r} is a search baseline")
-        for raw in solve_goals(self.solving_problem(solver), goal_ids, method, solver):
+        for raw in solve_goals(self.solving_problem(solver), goal_ids, method, solver, shortcuts=shortcuts):
             yield results.Tree(self, raw)
 
     def solve(
@@ -241,8 +247,9 @@ class KnowledgeBase:
     ) -> results.Tree | list[results.Tree]:
         """The best task tree for a goal, or a list for several (also ``"all"``, ``"all-objects"``);
         ``together``: one tree that makes every goal (a meal; shared units count once)."""
-        solver = self.options(**settings)
-        trees = list(self.solve_iter(jobs(self.goal_ids(goals), together), method, solver))
+        given = settings.pop("options", None)
+        request = self.options(given, **settings) if isinstance(given, AspOptions) else Options.of(given, **settings)
+        trees = list(self.solve_iter(jobs(self.goal_ids(goals), together), method, request))
         return trees[0] if together or one_goal(goals) else trees
 
     def check(
@@ -264,7 +271,8 @@ class KnowledgeBase:
             units = [TreeUnit(self.problem.units[u], i, None) for i, u in enumerate(tree.unit_ids, 1)]
             gid = tree.goal_id if goal is None else self.object_id(goal)
             claim = TreeFile("<tree>", units, tree.goal, tree.method, proven_by=tree.raw.proven_by)
-            claim.landmarks = tree.raw.landmarks
+            claim.landmarks, claim.landmark_sets = tree.raw.landmarks, tree.raw.landmark_sets or []
+            claim.landmark_cases, claim.derivation_level = tree.raw.landmark_cases, tree.raw.derivation_level
             raw = check_mod.check_tree(view((gid,)), claim, gid)
             raw.goal_source = "the tree's goal" if goal is None else "given"
             reports = [raw]
@@ -278,7 +286,13 @@ class KnowledgeBase:
             meals = list(dict.fromkeys(key(r) for r in reports))
             best = dict(zip(meals, (t.raw for t in self.solve_iter(meals, "asp", solver))))
             for r in reports:
-                r.optimum = best[key(r)]
+                r.optimum = opt = best[key(r)]
+                if opt.proven_by == "bounds":  # its witness, checked without the solver
+                    marks, sets = opt.landmarks or [], opt.landmark_sets or []
+                    first = solver.objective[0] if solver.objective[0] in ("success", "inputs") else "units"
+                    cases, level = opt.landmark_cases, opt.derivation_level
+                    why = bounds_proof(view(opt.meal), opt.goal, opt.units, marks, sets, first, cases, level)
+                    r.optimum_proof = {"proven_by": "bounds", "verified": why is None, "problem": why}
         found = [results.CheckReport(self, r) for r in reports]
         return found[0] if len(found) == 1 else found
 

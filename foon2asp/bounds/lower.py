@@ -9,6 +9,7 @@ bounds: docs/proofs/preparation.md ("Weights", "The cheapest-set tree", "Landmar
 from __future__ import annotations
 
 from collections.abc import Iterable
+from dataclasses import dataclass, replace
 
 from foon2asp.bounds.upper import cheapest_sets
 from foon2asp.foon.problem import Problem, least_fixpoint, walk_back
@@ -22,6 +23,43 @@ _NOTHING: Within = (frozenset(), frozenset(), frozenset(), (), 0)
 
 #: ranked objective lists (as :func:`foon2asp.asp.objectives.ranked` gives them) the bounds handle
 SUPPORTED = (("units",), ("success", "units"), ("inputs", "units"))
+
+
+@dataclass(frozen=True)
+class Witness:
+    """A lower bound on the weight of every tree for one goal, with what proves it without the
+    solver (``foon2asp.tree.validate.bounds_proof`` checks it; docs/proofs/solving.md)."""
+
+    #: the bound: every tree weighs at least this much
+    bound: int
+    #: the units every tree uses
+    landmarks: tuple[int, ...]
+    #: pairwise disjoint sets of units, none a landmark, of which every tree uses one
+    sets: tuple[tuple[int, ...], ...] = ()
+    #: an object every tree makes, and for each unit that makes it: the unit with what every tree
+    #: using it uses beyond the landmarks, and landmark sets of the trees that use it
+    cases: tuple[int, tuple[tuple[int, tuple[int, ...], tuple[tuple[int, ...], ...]], ...]] | None = None
+    #: the goal's derivation level (``units``: every tree has at least that many units)
+    level: int | None = None
+
+    def fields(self) -> dict:
+        """The witness as an answer carries it (``foon2asp.tree.tasktree.TaskTree``, JSON):
+        ``landmarks``, ``landmark_sets``, ``landmark_cases``, ``derivation_level``."""
+        cases = None
+        if self.cases is not None:
+            made, split = self.cases
+            cases = {
+                "object": made,
+                "cases": [
+                    {"unit": u, "landmarks": list(m), "landmark_sets": [list(s) for s in ss]} for u, m, ss in split
+                ],
+            }
+        return {
+            "landmarks": list(self.landmarks),
+            "landmark_sets": [list(s) for s in self.sets],
+            "landmark_cases": cases,
+            "derivation_level": self.level,
+        }
 
 
 def supports(ranked: Iterable[str]) -> bool:
@@ -159,6 +197,14 @@ class Bounds:
         """``closure(units)`` where the objects ``need`` must be had too: the units' weight and the
         lightest weights of pairwise disjoint producer groups (each the producers of an object the
         units or ``need`` require that the units do not make)."""
+        weight, groups = self._open_groups(units, need, within)
+        return weight + self._packing(groups)
+
+    def _open_groups(
+        self, units: frozenset[int], need: Iterable[int], within: Within | None = None
+    ) -> tuple[int, set[tuple[int, ...]]]:
+        """The weight of ``units`` and the producer groups of the objects they or ``need`` require
+        that they do not make and the kitchen does not hold."""
         problem = self.problem
         products, required, w = problem.products, problem.required, self.w
         sub, made_in, _, open_groups, weight = within if within is not None else _NOTHING
@@ -178,23 +224,32 @@ class Bounds:
             group = producers.get(i)
             if group:
                 groups.add(group)
-        return weight + self._packing(groups)
+        return weight, groups
 
     def _packing(self, groups: set[tuple[int, ...]]) -> int:
         """The summed lightest weights of pairwise disjoint producer groups, taken smallest first."""
+        key = self._keyed(groups)
+        if len(groups) < 2:  # nothing to pack
+            return sum(key[g][1] for g in groups)
+        return sum(key[g][1] for g in self._packed(groups))
+
+    def _keyed(self, groups: Iterable[tuple[int, ...]]) -> dict[tuple[int, ...], tuple[int, int, tuple[int, ...]]]:
+        """The packing order, with ``groups`` in it."""
         key = self._key
         for g in groups:
             if g not in key:
                 key[g] = (len(g), min(self.w[u] for u in g), g)
-        if len(groups) < 2:  # nothing to pack
-            return sum(key[g][1] for g in groups)
+        return key
+
+    def _packed(self, groups: set[tuple[int, ...]]) -> list[tuple[int, ...]]:
+        """Pairwise disjoint groups of ``groups``, taken smallest first (their order is known)."""
         used: set[int] = set()
-        extra = 0
-        for group in sorted(groups, key=key.__getitem__):
+        packed = []
+        for group in sorted(groups, key=self._key.__getitem__):
             if used.isdisjoint(group):
                 used.update(group)
-                extra += key[group][1]
-        return extra
+                packed.append(group)
+        return packed
 
     def lower(self, goal: int) -> int:
         """A lower bound on the weight of every tree for ``goal``."""
@@ -220,6 +275,43 @@ class Bounds:
         """A lower bound on the first objective's solver weight of every tree for ``goal``."""
         weight = self.lower(goal)
         return weight if self.ranked[0] == "units" else weight // (len(self.problem.units) + 1)
+
+    def witness(self, goal: int, target: int | None = None) -> Witness:
+        """A lower bound on the weight of every tree for ``goal`` that anyone can check
+        (:class:`Witness`), the first of these that reaches ``target`` (None: the first): the
+        landmarks and landmark sets; a case split over the producers of an object every tree
+        needs; for ``units``, the goal's derivation level."""
+        LM = self.landmarks(goal)
+        within = self._within(LM)
+        _, made, open_, _, _ = within
+        bound, sets = self._packed_bound(*self._open_groups(LM, (goal,), within))
+        found = Witness(bound, tuple(sorted(LM)), tuple(sets))
+        if target is None or bound >= target:
+            return found
+        kitchen = self.problem.kitchen
+        for i in sorted(open_ | {goal}):
+            prods = self._producers.get(i, ())
+            if i in kitchen or i in made or not prods or self.lower(goal) < target:
+                continue
+            cases = []
+            for u in prods:
+                marks = self.ulm[u] | LM
+                weight, groups = self._open_groups(marks, (), within)
+                case, case_sets = self._packed_bound(weight, groups)
+                cases.append((case, (u, tuple(sorted(marks - LM)), tuple(case_sets))))
+            least = min(case for case, _ in cases)
+            if least >= target:
+                return replace(found, bound=least, cases=(i, tuple(c for _, c in cases)))
+        level = self._levels.get(goal)
+        if level is not None and level >= target:
+            return replace(found, bound=level, level=level)
+        return found
+
+    def _packed_bound(self, weight: int, groups: set[tuple[int, ...]]) -> tuple[int, list[tuple[int, ...]]]:
+        """``weight`` and the lightest weights of the pairwise disjoint groups packed from ``groups``, with them."""
+        key = self._keyed(groups)
+        sets = self._packed(groups)
+        return weight + sum(key[g][1] for g in sets), sets
 
     def landmarks(self, goal: int) -> frozenset[int]:
         """The units every tree for ``goal`` uses."""

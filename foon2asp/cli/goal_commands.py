@@ -73,6 +73,15 @@ SOLVER = [
 ]
 
 
+#: answers by polynomial reasoning, or clingo's for every goal that can be made
+SHORTCUTS = opt.option(
+    "--shortcuts/--no-shortcuts",
+    "Let preparation answer a goal it proves (one tree in the goal's part; a checkable lower bound met by"
+    " the bounds tree); --no-shortcuts: clingo answers every goal that can be made.",
+    default=True,
+)
+
+
 @goal_command(
     "trees",
     opt.output_option(
@@ -84,6 +93,7 @@ SOLVER = [
         "--together", "A meal: one tree that makes every goal, units shared between dishes counted once (ASP methods)."
     ),
     SOLVER,
+    SHORTCUTS,
     opt.PROGRESS,
     methods="asp",
 )
@@ -114,7 +124,7 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
     answers: list[tuple[str, object]] = []
     printed = 0
     for method in names:
-        trees = kb.solve_iter(jobs, method, solver)
+        trees = kb.solve_iter(jobs, method, solver, shortcuts=options.shortcuts)
         for index, tree in enumerate(progress_bar(trees, len(jobs), progress, f"solve {method}"), 1):
             if is_search(method):
                 tree.judge()  # "valid" for search baselines, as compare gives it
@@ -357,12 +367,7 @@ WORKERS, SCHEDULER = Checked("N|auto", _workers), Checked("address", _address)
         api.GROUNDINGS,
         default="auto",
     ),
-    opt.option(
-        "--shortcuts/--no-shortcuts",
-        "Let preparation answer a goal it proves (one tree in the goal's part; the landmark bound met by"
-        " the bounds tree); --no-shortcuts: clingo answers every goal that can be made.",
-        default=True,
-    ),
+    SHORTCUTS,
     opt.choice("--summary summary_fmt", "Format of the summary printed at the end.", report.names("summary")),
     opt.PROGRESS,
     opt.option(

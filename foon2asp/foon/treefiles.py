@@ -48,6 +48,9 @@ class TreeFile:
     #: what a foon2asp result says proved it (``proven_by``), and the witness of a ``bounds`` proof
     proven_by: str | None = None
     landmarks: list[int] | None = None
+    landmark_sets: list[list[int]] = field(default_factory=list)
+    landmark_cases: dict | None = None
+    derivation_level: int | None = None
 
     def where(self, tu: TreeUnit) -> str:
         return f"{self.path}:{tu.line}" if tu.line else f"{self.path} step {tu.step}"
@@ -155,6 +158,19 @@ def _result_tree(result: object, path: str, line: int, expected: str) -> TreeFil
         if not isinstance(marks, list) or not all(isinstance(u, int) and not isinstance(u, bool) for u in marks):
             raise InputError("'landmarks' must be a list of unit ids (whole numbers)", path, line)
         found.landmarks = marks
+    sets = result.get("landmark_sets", [])
+    ids = lambda s: isinstance(s, list) and all(isinstance(u, int) and not isinstance(u, bool) for u in s)  # noqa: E731
+    if not isinstance(sets, list) or not all(ids(s) for s in sets):
+        raise InputError("'landmark_sets' must be a list of lists of unit ids (whole numbers)", path, line)
+    found.landmark_sets = sets
+    cases = result.get("landmark_cases")
+    if cases is not None and not isinstance(cases, dict):
+        raise InputError("'landmark_cases' must be an object with 'object' and 'cases'", path, line)
+    found.landmark_cases = cases
+    level = result.get("derivation_level")
+    if level is not None and (not isinstance(level, int) or isinstance(level, bool)):
+        raise InputError("'derivation_level' must be a whole number", path, line)
+    found.derivation_level = level
     return found
 
 

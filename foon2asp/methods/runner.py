@@ -34,7 +34,7 @@ class GoalRunner:
 
     ``options``: the caller's (the method adjusts them); ``goals``: the goals it will be
     asked, if known (the ``clingo`` route grounds only their units); ``parts``: the caller's
-    :class:`Parts` of ``problem``; ``shortcuts=False``: no ``only-tree`` route.
+    :class:`Parts` of ``problem``; ``shortcuts=False``: no ``only-tree`` or ``bounds`` route.
     """
 
     def __init__(
@@ -87,7 +87,7 @@ class GoalRunner:
         """The answer ``how`` names, with what proved it."""
         if how.route == "fixpoint":
             tree = self._fixpoint(how.goal[0], t0)
-        elif how.route == "only-tree":
+        elif how.route in ("only-tree", "bounds"):
             tree = self._settled(how, t0)
         else:
             tree = self._solve(how, t0)
@@ -114,6 +114,10 @@ class GoalRunner:
         asp_cost = [cost["depth"] or 0 if name == "depth" else total(self.problem, name, order) for name in how.ranked]
         tree = TaskTree(goal, how.method, "optimal", order, cost, round(time.perf_counter() - t0, 6))
         tree.asp_cost = asp_cost
+        if how.witness is not None:  # the bounds route's witness, as check reads it
+            fields = how.witness.fields()
+            tree.landmarks, tree.landmark_sets = fields["landmarks"], fields["landmark_sets"]
+            tree.landmark_cases, tree.derivation_level = fields["landmark_cases"], fields["derivation_level"]
         return settle(self.problem, tree, how.ranked)
 
     def _solve(self, how: Plan, t0: float) -> TaskTree:

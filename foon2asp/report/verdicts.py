@@ -102,8 +102,11 @@ def report_text(problem: Problem, report: Report) -> str:
         if opt.has_tree:
             diff = report.cost["units"] - opt.cost["units"]
             rel = "the optimum" if report.valid and diff == 0 else f"{diff:+d} units vs optimum" if report.valid else ""
+            by = ""
+            if report.optimum_proof is not None:  # proven by its landmarks, checked here again
+                by = ", proven by bounds: " + ("landmarks verified" if report.optimum_proof["verified"] else "refused")
             lines.append(
-                f"ASP optimum: {_cost_text(opt.cost)} ({opt.status})" + (f"; this tree is {rel}" if rel else "")
+                f"ASP optimum: {_cost_text(opt.cost)} ({opt.status}{by})" + (f"; this tree is {rel}" if rel else "")
             )
         else:
             why = ": no well-founded tree exists for this goal" if opt.status == "unreachable" else ""
@@ -143,6 +146,8 @@ def report_json(problem: Problem, report: Report) -> dict:
     if report.optimum is not None:
         optimum: dict = {"status": report.optimum.status, "cost": report.optimum.cost}
         optimum["proven_by"] = report.optimum.proven_by
+        if report.optimum_proof is not None:
+            optimum["proof"] = report.optimum_proof
         if report.optimum.substitutions is not None:
             optimum["substitutions"] = report.optimum.substitutions
         out["optimum"] = optimum

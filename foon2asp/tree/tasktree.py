@@ -61,6 +61,13 @@ class TaskTree:
     asp_cost: list[int] | None = None
     #: the landmark units the bounds proof rests on (proven by "bounds"; foon2asp.bounds)
     landmarks: list[int] | None = None
+    #: the landmark sets the bounds proof rests on: one unit of each set is in every tree
+    landmark_sets: list[list[int]] | None = None
+    #: the case split the bounds proof rests on: ``{"object": O, "cases": [{"unit", "landmarks",
+    #: "landmark_sets"}, ...]}``, one case per unit that makes O, an object every tree makes
+    landmark_cases: dict | None = None
+    #: the goal's derivation level the bounds proof rests on (``units``: no tree has fewer units)
+    derivation_level: int | None = None
     #: the units a person does (``--human-steps``), in executable order
     human_steps: list[int] | None = None
     #: the positions (from 1) of :attr:`human_steps` in :attr:`units`
@@ -140,6 +147,9 @@ class TaskTree:
 OPTIONAL = (
     "asp_cost",
     "landmarks",
+    "landmark_sets",
+    "landmark_cases",
+    "derivation_level",
     "human_steps",
     "human_step_numbers",
     "depth_bound",

@@ -13,6 +13,7 @@ from typing import Any
 from foon2asp.foon.model import FoonObject, Unit, leaves
 from foon2asp.foon.problem import Problem, product_outputs, required_flags
 from foon2asp.foon.treefiles import TreeFile
+from foon2asp.tree.weights import lexicographic
 
 
 @dataclass
@@ -137,29 +138,167 @@ def validate(problem: Problem, goal: FoonObject | int, units: list[int]) -> Vali
     return Validation(True, None, order)
 
 
-def bounds_proof(problem: Problem, goal: int, units: Iterable[int], landmarks: Iterable[int]) -> str | None:
-    """Why the ``bounds`` proof of a tree fails, or None when it holds.
+def bounds_proof(
+    problem: Problem,
+    goal: int,
+    units: Iterable[int],
+    landmarks: Iterable[int],
+    sets: Iterable[Iterable[int]] = (),
+    objective: str = "units",
+    cases: dict | None = None,
+    level: int | None = None,
+) -> str | None:
+    """Why the ``bounds`` proof of a tree fails, or None when it holds (docs/proofs/solving.md).
 
-    The proof: every landmark is needed (without it, every other unit of the FOON fired, the
-    goal is not made), so every tree holds them all; the landmarks alone make the goal and are
-    the tree's units, so the tree is the one minimal tree, its cost the landmarks' cost sum, and
-    no tree costs less under any objective that sums unit weights."""
-    marks, tree = sorted(set(landmarks)), set(units)
-    stray = [u for u in marks if not 0 <= u < len(problem.units)]
+    The proof: every landmark is needed, and every landmark set too (without its units, every
+    other unit of the FOON fired, the goal is not made), so every tree uses each landmark and
+    one unit of each set; the landmarks and the sets are pairwise disjoint, so every tree
+    weighs at least the landmarks' weight and the lightest unit's of each set under
+    ``objective`` (then the number of units).  ``cases``: an object every tree makes (the goal,
+    or a required input of a landmark, not in the kitchen) and, for every unit of the FOON that
+    makes it and can fire, what every tree using that unit uses (units, and disjoint sets of
+    which it uses one: without them that unit cannot fire or the goal is not made); every tree
+    weighs at least the lightest case.  ``level``: with ``units``, the goal's derivation level
+    (rounds of firing every unit that can fire); a tree of n units makes the goal within n
+    rounds.  The tree weighs the largest of these bounds, so no tree costs less."""
+    marks = sorted(set(landmarks))
+    groups = [sorted(set(s)) for s in sets]
+    tree = sorted(set(units))
+    n = len(problem.units)
+    split = _cases(cases)
+    if isinstance(split, str):
+        return split
+    claimed = [*marks, *(u for s in groups for u in s)]
+    claimed += [u for c, m, ss in split[1] for u in (c, *m, *(v for s in ss for v in s))] if split else []
+    stray = [u for u in claimed if not 0 <= u < n]
     if stray:
         return f"landmark {stray[0]} is no unit of the FOON"
-    if set(marks) != tree:
-        extra, lacking = sorted(tree - set(marks)), sorted(set(marks) - tree)
-        what = f"units {extra} of the tree are no landmarks" if extra else f"landmarks {lacking} are not in the tree"
-        return f"the landmarks are not the tree's units ({what}): their cost is not the tree's"
-    if not validate(problem, goal, marks).valid:
-        return "the landmarks alone do not make the goal"
-    every = range(len(problem.units))
-    for u in marks:
-        fired = validate(problem, goal, [v for v in every if v != u]).order  # every other unit that can fire
-        if validate(problem, goal, fired).valid:
-            return f"unit {u} ({problem.units[u].motion}) is no landmark: the goal can be made without it"
+    why = _disjoint(set(marks), groups)
+    if why:
+        return why
+    w = lexicographic(problem, objective)
+    weight = sum(w[u] for u in tree)
+    bound = sum(w[u] for u in marks) + sum(min(w[u] for u in s) for s in groups)
+    if split:
+        for c, m, ss in split[1]:
+            why = _disjoint({*marks, c, *m}, ss)
+            if why:
+                return f"the case of unit {c}: {why}"
+        bound = max(bound, min(_weighs(w, {*marks, c, *m}, ss) for c, m, ss in split[1]))
+    if level is not None:
+        if objective != "units":
+            return f"a derivation level bounds the number of units, not {objective}"
+        bound = max(bound, level)
+    if bound != weight:
+        return f"the landmarks bound the cost by {bound}, not by the tree's {weight} ({objective})"
+    every = range(n)
+
+    def fires(removed: Iterable[int]) -> list[int]:
+        """The units that fire when every unit of the FOON but ``removed`` may."""
+        out = set(removed)
+        return validate(problem, goal, [v for v in every if v not in out]).order
+
+    for removed in [[u] for u in marks] + groups:
+        if validate(problem, goal, fires(removed)).valid:
+            what = f"unit {removed[0]} ({problem.units[removed[0]].motion})" if len(removed) == 1 else f"set {removed}"
+            return f"{what} is no landmark: the goal can be made without it"
+    if split:
+        why = _check_cases(problem, goal, marks, split, fires)
+        if why:
+            return why
+    if level is not None:
+        found = derivation_level(problem, goal)
+        if found != level:
+            return f"the goal's derivation level is {found}, not {level}"
     return None
+
+
+def _cases(cases: dict | None) -> tuple[int, list[tuple[int, list[int], list[list[int]]]]] | None | str:
+    """The case split of a bounds proof as (object, [(unit, units, sets)]), or why it is malformed."""
+    if cases is None:
+        return None
+    try:
+        made = cases["object"]
+        split = [
+            (c["unit"], sorted(set(c.get("landmarks", []))), [sorted(set(s)) for s in c.get("landmark_sets", [])])
+            for c in cases["cases"]
+        ]
+    except (KeyError, TypeError):
+        return "the landmark cases are not an object with its cases (unit, landmarks, landmark_sets)"
+    ids = [made, *(u for c, m, ss in split for u in (c, *m, *(v for s in ss for v in s)))]
+    if not all(isinstance(u, int) and not isinstance(u, bool) for u in ids):
+        return "the landmark cases name something that is no id"
+    if not split:
+        return "the landmark cases have no case"
+    return made, split
+
+
+def _disjoint(taken: set[int], groups: list[list[int]]) -> str | None:
+    """Why ``groups`` are not non-empty, pairwise disjoint and disjoint from ``taken`` (None: they are)."""
+    seen = set(taken)
+    for s in groups:
+        if not s:
+            return "a landmark set is empty"
+        if not seen.isdisjoint(s):
+            return f"the landmark set {s} shares units with the landmarks or another set"
+        seen.update(s)
+    return None
+
+
+def _weighs(w: list[int], units: set[int], groups: list[list[int]]) -> int:
+    """The weight of ``units`` and of the lightest unit of each group."""
+    return sum(w[u] for u in units) + sum(min(w[u] for u in s) for s in groups)
+
+
+def _check_cases(
+    problem: Problem,
+    goal: int,
+    marks: list[int],
+    split: tuple[int, list[tuple[int, list[int], list[list[int]]]]],
+    fires: Callable[[Iterable[int]], list[int]],
+) -> str | None:
+    """Why a case split does not hold (None: it does): its object is needed by every tree, every
+    unit that makes it and can fire has a case, and each case's units and sets are needed by
+    every tree that uses the case's unit."""
+    made, cases = split
+    if not 0 <= made < len(problem.objects):
+        return f"object {made} of the landmark cases is no object of the FOON"
+    obj = problem.objects[made]
+    if obj in problem.kitchen_set:
+        return f"object {made} of the landmark cases is in the kitchen"
+    if made != goal and not any(obj in _required(problem, u) for u in marks):
+        return f"object {made} of the landmark cases is neither the goal nor needed by a landmark"
+    fired = fires(())
+    cased = {c for c, _, _ in cases}
+    for v in fired:
+        if v not in cased and obj in product_outputs(problem.units[v]):
+            return f"unit {v} ({problem.units[v].motion}) makes object {made} but has no case"
+    for c, m, ss in cases:
+        for removed in [[u] for u in m if u != c] + ss:
+            left = fires(removed)
+            if c in left and validate(problem, goal, left).valid:
+                what = f"unit {removed[0]}" if len(removed) == 1 else f"set {removed}"
+                return f"{what} is not needed by the trees that use unit {c}: unit {c} fires and the goal is made without it"
+    return None
+
+
+def derivation_level(problem: Problem, goal: int) -> int | None:
+    """The rounds of firing every unit that can fire (all at once each round) until ``goal`` is
+    had (0: a kitchen item; None: never)."""
+    target = problem.objects[goal]
+    have = _Had(problem.kitchen_set)
+    pending = list(range(len(problem.units)))
+    rounds = 0
+    while target not in have:
+        ready = [u for u in pending if all(o in have for o in _required(problem, u))]
+        if not ready:
+            return None
+        for u in ready:
+            have.update(product_outputs(problem.units[u]))
+        fired = set(ready)
+        pending = [u for u in pending if u not in fired]
+        rounds += 1
+    return rounds
 
 
 @dataclass
