@@ -67,6 +67,9 @@ class Grounding:
     args: tuple[str, ...] = ()
     #: one solve call per grounding (``--single-shot``): a second solve grounds afresh
     single_shot: bool = False
+    #: clingo's arguments for the rounds after a loop cut of a single-shot grounding: one
+    #: multi-shot control, grounded afresh once, to which each further cut is added
+    cut_args: tuple[str, ...] = ()
     #: the prepared part of the goal (candidates, landmarks, the bounds tree), for the prepared route
     prepared: Preparation | None = None
     #: the prepared part is searched as closed sets with loop cuts (``solve_closed.lp``)

@@ -81,8 +81,9 @@ def search(
 ) -> tuple[Shot, TaskTree | None, tuple[int, ...] | None, int]:
     """clingo's optimisation over the prepared part on ``control`` (with ``closed``, in rounds of loop
     cuts), ended by a tree that meets the lower bound (``prep.meets``: that tree is proven);
-    ``watch`` and ``on_model`` see each model that is a tree; ``renew``: a fresh grounding for each
-    round after the first (``control`` solves once), which gets the cuts so far.
+    ``watch`` and ``on_model`` see each model that is a tree; ``renew``: a fresh multi-shot
+    grounding for the rounds after the first (``control`` solves once), which gets the first cut
+    and then each further one.
 
     Returns the last round's shot, the answer (a tree read from a model, not finished; unproven
     when cut short), the best lower bound proven, and the number of cuts."""
@@ -149,8 +150,9 @@ def search(
         texts.append(
             "".join(f"cut({cuts},{o}).\n" for o in missing) + "".join(f"outside({cuts},{u}).\n" for u in outside)
         )
+        fresh = renew is not None
         if renew is not None:
-            control = renew()
+            control, renew = renew(), None  # a multi-shot control from here on: later cuts are added to it
         for k, text in enumerate(texts, 1):
-            if renew is not None or k == cuts:
+            if fresh or k == cuts:
                 control.extend(f"cut {k}", text, [("cut", [k])], what="a loop cut")

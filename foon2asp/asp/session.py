@@ -51,10 +51,11 @@ class Session:
         self.control = self._grounded()
         self.goal_atoms = self._goal_atoms()
 
-    def _grounded(self) -> Control:
-        """A control with this session's encodings and facts, grounded."""
+    def _grounded(self, args: tuple[str, ...] | None = None) -> Control:
+        """A control with this session's encodings and facts, grounded (``args``: clingo's
+        arguments instead of the grounding's)."""
         g = self.grounding
-        control = Control(list(g.args))
+        control = Control(list(g.args if args is None else args))
         control.statistics = g.prepared is None
         if self._programs is None:  # written once: a single-shot session grounds them again for each round
             self._programs = fact_programs(g)
@@ -69,6 +70,12 @@ class Session:
     def _renew(self) -> Control:
         """A fresh grounding of this single-shot session for another solve call."""
         self.control = self._grounded()
+        return self.control
+
+    def _for_cuts(self) -> Control:
+        """A fresh grounding of this single-shot session as one multi-shot control, for the rounds
+        after a loop cut (the plan's ``cut_args``)."""
+        self.control = self._grounded(self.grounding.cut_args)
         return self.control
 
     def _goal_atoms(self) -> set[int]:
@@ -208,7 +215,14 @@ class Session:
         self._fresh = False
         watch = Watch(first_level(self.levels), self.options.gap, prep.floor, self.options.progress)
         shot, answer, lower, cuts = search(
-            self.control, prep, self.problem, self.grounding.closed, deadline, watch, on_model, renew
+            self.control,
+            prep,
+            self.problem,
+            self.grounding.closed,
+            deadline,
+            watch,
+            on_model,
+            self._for_cuts if renew else None,
         )
         cost = None if answer is None else cost_vector(answer)
         self._lower = cost if answer is not None and answer.proven else lower

@@ -454,6 +454,7 @@ def grounding(
         if prepared.bound is not None or (options.opt_strategy or "").startswith("bb"):
             own.append("--heuristic=Domain")  # the hint steers a decision or a search from above
     single = prepared is not None and prepared.bound is None and options.threads == 1
+    cut_args = tuple(options.args(own)) if single else ()  # after a loop cut: rounds on one multi-shot control
     if single:
         own.append("--single-shot")  # one solve call: clingo may preprocess as for one shot
     depth = "none" if options.max_depth is None else "bound"
@@ -471,6 +472,7 @@ def grounding(
         goal=meal,
         args=tuple(options.args(own)),
         single_shot=single,
+        cut_args=cut_args,
         prepared=prepared,
         closed=closed,
         driven=prepared is None and options.driven,
