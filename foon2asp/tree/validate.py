@@ -6,6 +6,7 @@ fixpoint (docs/proofs/preparation.md, "The independent validator").
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
@@ -66,6 +67,75 @@ def _fire_all(
         if len(left) == len(pending):
             return order, left
         pending = left
+
+
+class _Reach:
+    """The validator's view of a whole FOON for many fixpoints: each unit's required inputs and
+    products as numbered objects (the validator's own reading: the utensil rule, products)."""
+
+    def __init__(self, problem: Problem) -> None:
+        number: dict[FoonObject, int] = {}
+        key = lambda o: number.setdefault(o, len(number))  # noqa: E731
+        self.kitchen = {key(o) for o in problem.kitchen_set}
+        self.needs = [sorted({key(o) for o in _required(problem, u)}) for u in range(len(problem.units))]
+        self.makes = [[key(o) for o in product_outputs(problem.units[u])] for u in range(len(problem.units))]
+        self.users: dict[int, list[int]] = {}
+        for u, needs in enumerate(self.needs):
+            for o in needs:
+                self.users.setdefault(o, []).append(u)
+        self.number = number
+
+    def fixpoint(self, removed: Iterable[int] = ()) -> tuple[set[int], set[int]]:
+        """The units that fire, and the objects had, when every unit but ``removed`` may fire."""
+        out = set(removed)
+        had = set(self.kitchen)
+        missing = [sum(1 for o in needs if o not in had) for needs in self.needs]
+        ready = [u for u, m in enumerate(missing) if m == 0 and u not in out]
+        fired: set[int] = set()
+        while ready:
+            u = ready.pop()
+            fired.add(u)
+            for o in self.makes[u]:
+                if o in had:
+                    continue
+                had.add(o)
+                for v in self.users.get(o, ()):
+                    missing[v] -= 1
+                    if missing[v] == 0 and v not in out:
+                        ready.append(v)
+        return fired, had
+
+    def level(self, goal: int) -> int | None:
+        """The rounds of firing every unit that can fire, all at once each round, until object
+        ``goal`` is had (0: a kitchen item; None: never)."""
+        had = set(self.kitchen)
+        pending = set(range(len(self.needs)))
+        rounds = 0
+        while goal not in had:
+            ready = [u for u in pending if all(o in had for o in self.needs[u])]
+            if not ready:
+                return None
+            for u in ready:
+                had.update(self.makes[u])
+            pending.difference_update(ready)
+            rounds += 1
+        return rounds
+
+
+#: the views built, by the problem's id (with a weak reference that says the problem is alive)
+_REACH: dict[int, tuple[weakref.ref[Problem], _Reach]] = {}
+
+
+def _reach(problem: Problem) -> _Reach:
+    """The validator's view of ``problem`` (built once per problem)."""
+    kept = _REACH.get(id(problem))
+    if kept is not None and kept[0]() is problem:
+        return kept[1]
+    for key in [k for k, (ref, _) in _REACH.items() if ref() is None]:
+        del _REACH[key]
+    found = _Reach(problem)
+    _REACH[id(problem)] = (weakref.ref(problem), found)
+    return found
 
 
 def circular_support(cycle: Iterable[tuple[object, int]], name: Callable[[int], str]) -> str:
@@ -191,15 +261,16 @@ def bounds_proof(
         bound = max(bound, level)
     if bound != weight:
         return f"the landmarks bound the cost by {bound}, not by the tree's {weight} ({objective})"
-    every = range(n)
+    reach = _reach(problem)
+    target = reach.number.get(problem.objects[goal])
 
-    def fires(removed: Iterable[int]) -> list[int]:
-        """The units that fire when every unit of the FOON but ``removed`` may."""
-        out = set(removed)
-        return validate(problem, goal, [v for v in every if v not in out]).order
+    def fires(removed: Iterable[int]) -> tuple[set[int], bool]:
+        """The units that fire when every unit of the FOON but ``removed`` may, and is the goal made?"""
+        fired, had = reach.fixpoint(removed)
+        return fired, target is not None and target in had
 
     for removed in [[u] for u in marks] + groups:
-        if validate(problem, goal, fires(removed)).valid:
+        if fires(removed)[1]:
             what = f"unit {removed[0]} ({problem.units[removed[0]].motion})" if len(removed) == 1 else f"set {removed}"
             return f"{what} is no landmark: the goal can be made without it"
     if split:
@@ -207,7 +278,7 @@ def bounds_proof(
         if why:
             return why
     if level is not None:
-        found = derivation_level(problem, goal)
+        found = None if target is None else reach.level(target)
         if found != level:
             return f"the goal's derivation level is {found}, not {level}"
     return None
@@ -255,7 +326,7 @@ def _check_cases(
     goal: int,
     marks: list[int],
     split: tuple[int, list[tuple[int, list[int], list[list[int]]]]],
-    fires: Callable[[Iterable[int]], list[int]],
+    fires: Callable[[Iterable[int]], tuple[set[int], bool]],
 ) -> str | None:
     """Why a case split does not hold (None: it does): its object is needed by every tree, every
     unit that makes it and can fire has a case, and each case's units and sets are needed by
@@ -268,37 +339,18 @@ def _check_cases(
         return f"object {made} of the landmark cases is in the kitchen"
     if made != goal and not any(obj in _required(problem, u) for u in marks):
         return f"object {made} of the landmark cases is neither the goal nor needed by a landmark"
-    fired = fires(())
+    fired, _ = fires(())
     cased = {c for c, _, _ in cases}
-    for v in fired:
+    for v in sorted(fired):
         if v not in cased and obj in product_outputs(problem.units[v]):
             return f"unit {v} ({problem.units[v].motion}) makes object {made} but has no case"
     for c, m, ss in cases:
         for removed in [[u] for u in m if u != c] + ss:
-            left = fires(removed)
-            if c in left and validate(problem, goal, left).valid:
+            left, made = fires(removed)
+            if c in left and made:
                 what = f"unit {removed[0]}" if len(removed) == 1 else f"set {removed}"
                 return f"{what} is not needed by the trees that use unit {c}: unit {c} fires and the goal is made without it"
     return None
-
-
-def derivation_level(problem: Problem, goal: int) -> int | None:
-    """The rounds of firing every unit that can fire (all at once each round) until ``goal`` is
-    had (0: a kitchen item; None: never)."""
-    target = problem.objects[goal]
-    have = _Had(problem.kitchen_set)
-    pending = list(range(len(problem.units)))
-    rounds = 0
-    while target not in have:
-        ready = [u for u in pending if all(o in have for o in _required(problem, u))]
-        if not ready:
-            return None
-        for u in ready:
-            have.update(product_outputs(problem.units[u]))
-        fired = set(ready)
-        pending = [u for u in pending if u not in fired]
-        rounds += 1
-    return rounds
 
 
 @dataclass
