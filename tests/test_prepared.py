@@ -136,3 +136,42 @@ def test_a_prepared_session_answers_its_goal_again():
         first, again = session.solve(g), session.solve(g)
         assert first.status == again.status == "optimal"
         assert (again.units, again.cost) == (first.units, first.cost)
+
+
+def test_after_a_loop_cut_the_rounds_go_on_one_multi_shot_control(shared_foon_dir, monkeypatch):
+    """A single-shot search that needs loop cuts is grounded twice, whatever the number of cuts:
+    once single-shot, then once as a multi-shot control (the plan's ``cut_args``) to which every
+    further cut is added; its answers are the optima of positive recursion."""
+    from foon2asp.asp import session as session_mod
+
+    problem = shared_problem(shared_foon_dir)
+    run = GoalRunner("asp", problem, AspOptions(), shortcuts=False)
+    controls: list[tuple[str, ...]] = []
+    grounded = session_mod.Session._grounded
+
+    def counted(self, args=None):
+        controls.append(tuple(self.grounding.args if args is None else args))
+        return grounded(self, args)
+
+    monkeypatch.setattr(session_mod.Session, "_grounded", counted)
+    several = 0
+    for g in prepared_goals(run, 1):
+        grounding = run.plan(g).grounding
+        if not grounding.single_shot:  # a decision at the bounds tree's cost: one multi-shot control
+            continue
+        controls.clear()
+        tree = run(g)
+        cuts = tree.stats.get("loop_cuts", 0)
+        assert "--single-shot" in controls[0] and grounding.cut_args == controls[0][:-1], g
+        if not cuts:
+            assert len(controls) == 1, g
+            continue
+        assert len(controls) == 2 and "--single-shot" not in controls[1], (g, cuts, controls)
+        if cuts < 2:
+            continue
+        several += 1
+        prep = run.preparation(g)
+        recursive = Session(problem, replace(run.options, programs=[NOOP]), prepared=replace(prep, known=None)).solve(g)
+        assert tree.status == recursive.status == "optimal" and tree.asp_cost == recursive.asp_cost, g
+        assert validate(problem, g, list(tree.units)).valid, g
+    assert several >= 10
