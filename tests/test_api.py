@@ -131,3 +131,14 @@ def test_solve_honours_shortcuts_false_with_the_same_trees():
         assert [t.raw.proven_by for t in free] == ["clingo" if t.has_tree else t.raw.proven_by for t in settled]
         assert [sorted(t.unit_ids) for t in free] == [sorted(t.unit_ids) for t in settled]
         assert [t.raw.asp_cost for t in free] == [t.raw.asp_cost for t in settled]
+
+
+def test_solve_honours_the_grounding_asked():
+    """``grounding="per-goal"``: clingo's route grounds each goal's part (``stats.plan.shared``
+    false), ``whole`` and ``auto`` one grounding for the goals asked; the trees are the same."""
+    demo = foon2asp.load("demo")
+    trees = {g: demo.solve("all", objective="depth", grounding=g) for g in ("auto", "whole", "per-goal")}
+    shared = {g: {t.raw.stats["plan"]["shared"] for t in ts if t.has_tree} for g, ts in trees.items()}
+    assert shared == {"auto": {True}, "whole": {True}, "per-goal": {False}}
+    units = {g: [sorted(t.unit_ids) for t in ts] for g, ts in trees.items()}
+    assert units["per-goal"] == units["whole"] == units["auto"] and any(units["whole"])

@@ -236,10 +236,12 @@ class KnowledgeBase:
         ``Options.shortcuts`` (None: the request's, else True)."""
         if shortcuts is None:
             shortcuts = options.shortcuts if isinstance(options, Options) else True
+        given = options.grounding if isinstance(options, Options) else "auto"
+        grounding = "whole" if given == "auto" else given  # auto: one grounding for the goals asked
         solver = self.options(options)
         if methods.get(method).kind != "asp" and solver.programs:
             raise InputError(f"constraints apply to ASP methods only; {method!r} is a search baseline")
-        for raw in solve_goals(self.solving_problem(solver), goal_ids, method, solver, shortcuts=shortcuts):
+        for raw in solve_goals(self.solving_problem(solver), goal_ids, method, solver, grounding, shortcuts):
             yield results.Tree(self, raw)
 
     def solve(
