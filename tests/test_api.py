@@ -131,6 +131,10 @@ def test_solve_honours_shortcuts_false_with_the_same_trees():
         assert [t.raw.proven_by for t in free] == ["clingo" if t.has_tree else t.raw.proven_by for t in settled]
         assert [sorted(t.unit_ids) for t in free] == [sorted(t.unit_ids) for t in settled]
         assert [t.raw.asp_cost for t in free] == [t.raw.asp_cost for t in settled]
+    # every call that solves honours it: check's optimum too
+    egg = settled[1]
+    assert demo.check(egg).optimum.raw.proven_by == "bounds"
+    assert demo.check(egg, options=foon2asp.Options(shortcuts=False)).optimum.raw.proven_by == "clingo"
 
 
 def test_solve_honours_the_grounding_asked():

@@ -229,19 +229,14 @@ class KnowledgeBase:
             made[skip] = substituted_kitchen(problem, [n for n in needed if n not in skip])
         return made[skip]
 
-    def solve_iter(
-        self, goal_ids: Jobs, method: str = "asp", options: Request = None, shortcuts: bool | None = None
-    ) -> Iterator[results.Tree]:
-        """Trees for ``goal_ids`` one after another (a tuple of ids: a meal); ``shortcuts``: as
-        ``Options.shortcuts`` (None: the request's, else True)."""
-        if shortcuts is None:
-            shortcuts = options.shortcuts if isinstance(options, Options) else True
+    def solve_iter(self, goal_ids: Jobs, method: str = "asp", options: Request = None) -> Iterator[results.Tree]:
+        """Trees for ``goal_ids`` one after another (a tuple of ids: a meal)."""
         given = options.grounding if isinstance(options, Options) else "auto"
         grounding = "whole" if given == "auto" else given  # auto: one grounding for the goals asked
         solver = self.options(options)
         if methods.get(method).kind != "asp" and solver.programs:
             raise InputError(f"constraints apply to ASP methods only; {method!r} is a search baseline")
-        for raw in solve_goals(self.solving_problem(solver), goal_ids, method, solver, grounding, shortcuts):
+        for raw in solve_goals(self.solving_problem(solver), goal_ids, method, solver, grounding):
             yield results.Tree(self, raw)
 
     def solve(

@@ -193,6 +193,7 @@ class Options:
             raise InputError(f"the gap must be a number >= 0 (0.05 stops at 5 %), not {self.gap!r}", hint="gap")
         return AspOptions(
             objective=self.objective,
+            shortcuts=self.shortcuts,
             time_limit=self.time_limit,
             gap=self.gap or None,
             progress=self.on_progress,

@@ -186,6 +186,9 @@ class AspOptions:
     max_substitutions: int | None = None
     #: stop a goal once its gap (foon2asp.tree.gap) is at most this (0.05: 5 %); None: prove
     gap: float | None = None
+    #: goals polynomial reasoning proves are answered without clingo (``only-tree``, ``bounds``);
+    #: False: clingo answers every goal it can make
+    shortcuts: bool = True
     #: called with ``{"cost": [...], "lower": [...], "gap": g}`` at each model and proven lower bound
     progress: Callable[[dict], None] | None = field(default=None, compare=False, repr=False)
 

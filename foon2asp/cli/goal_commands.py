@@ -124,7 +124,7 @@ def solve(data, goal, goals, method_list, fmt, output, together, options, progre
     answers: list[tuple[str, object]] = []
     printed = 0
     for method in names:
-        trees = kb.solve_iter(jobs, method, solver, shortcuts=options.shortcuts)
+        trees = kb.solve_iter(jobs, method, solver)
         for index, tree in enumerate(progress_bar(trees, len(jobs), progress, f"solve {method}"), 1):
             if is_search(method):
                 tree.judge()  # "valid" for search baselines, as compare gives it

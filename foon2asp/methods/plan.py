@@ -199,7 +199,7 @@ def request(
         options = replace(options, units=solved.units_for({g for goal in goals for g in meal_of(goal)}))
     if parts is None or parts.problem is not solved:
         parts = Parts(solved)
-    return Request(name, method.kind, solved, options, parts, grounding, shortcuts)
+    return Request(name, method.kind, solved, options, parts, grounding, shortcuts and options.shortcuts)
 
 
 @dataclass(frozen=True, eq=False)
