@@ -262,13 +262,29 @@ def test_the_bounds_route_answers_the_landmarks_and_names_them(demo):
 # --- the bounds route: against brute force, its witness re-verified, forged witnesses refused ---
 
 
+def holds_for_every_tree(split: dict, every: list, using: tuple[int, ...]) -> int:
+    """Asserts by brute force that every tree using the units ``using`` uses a case's unit of
+    ``split``, and with it the case's units and a unit of each of its sets, its deeper splits
+    too; returns how many deeper splits there are."""
+    trees = [t for t in every if all(u in t for u in using)]
+    assert all(any(c["unit"] in t for c in split["cases"]) for t in trees), (split, using)
+    deeper = 0
+    for c in split["cases"]:
+        mine = [t for t in trees if c["unit"] in t]
+        assert all(set(c["landmarks"]) <= set(t) for t in mine), (c, using)
+        assert all(not set(s).isdisjoint(t) for s in c["landmark_sets"] for t in mine), (c, using)
+        if c.get("split"):
+            deeper += 1 + holds_for_every_tree(c["split"], every, (*using, c["unit"]))
+    return deeper
+
+
 @pytest.mark.parametrize("objective", [*OBJECTIVES, ("inputs", "success")], ids=",".join)
 def test_the_bounds_route_against_brute_force_with_its_witness(objective):
     """Over random small FOONs with real choice: every goal the bounds route settles has the
     brute-force optimum, its landmarks verified by the checker; some goal takes the route unless
     depth is an objective (a tree's depth is no sum of unit weights: more units may be shallower)."""
     settled = 0
-    kinds = {"cases": 0, "level": 0}
+    kinds = {"cases": 0, "nested": 0, "level": 0}
     for seed in range(25):
         problem = random_foon(seed)
         run = GoalRunner("asp", problem, AspOptions(objective=objective))
@@ -296,14 +312,15 @@ def test_the_bounds_route_against_brute_force_with_its_witness(objective):
             split = tree.landmark_cases
             if split is not None:  # every tree uses a case's unit, and with it the case's units and sets
                 kinds["cases"] += 1
-                cases = split["cases"]
-                assert all(any(c["unit"] in t for c in cases) for t in every), (seed, goal)
-                for c in cases:
-                    using = [t for t in every if c["unit"] in t]
-                    assert all(set(c["landmarks"]) <= set(t) for t in using), (seed, goal, c)
-                    assert all(not set(s).isdisjoint(t) for s in c["landmark_sets"] for t in using), (seed, goal, c)
-                tree.landmark_cases = dict(split, cases=cases[1:])  # forged: a unit that makes the object left out
+                kinds["nested"] += holds_for_every_tree(split, every, ())
+                tree.landmark_cases = dict(split, cases=split["cases"][1:])  # forged: a maker left out
                 assert witness_problem(problem, tree, first) is not None, (seed, goal)
+                for c in split["cases"]:
+                    if c.get("split"):  # forged: a maker left out one split deeper
+                        deeper = dict(c["split"], cases=c["split"]["cases"][1:])
+                        cases = [dict(c, split=deeper) if d is c else d for d in split["cases"]]
+                        tree.landmark_cases = dict(split, cases=cases)
+                        assert witness_problem(problem, tree, first) is not None, (seed, goal)
                 tree.landmark_cases = split
             if tree.derivation_level is not None:
                 kinds["level"] += 1
@@ -313,6 +330,8 @@ def test_the_bounds_route_against_brute_force_with_its_witness(objective):
     assert (settled > 0) == ("depth" not in objective)
     if objective in (("units",), ("success",), ("inputs",)):  # the case split settles goals, levels with units
         assert kinds["cases"] > 0 and (kinds["level"] > 0) == (objective == ("units",)), kinds
+    if objective == ("success",):  # cases split one deeper too
+        assert kinds["nested"] > 0, kinds
 
 
 def test_check_verifies_a_bounds_proof_and_refuses_a_forged_one(demo, tmp_path):
@@ -374,3 +393,28 @@ def test_a_tree_asked_of_programs_clingo_cannot_decide_in_time_is_not_allowed(de
     tree = demo.solve(EGG).unit_ids
     assert not ProgramsCheck(demo.problem, [("--rule #1", pigeons)], time_limit=0.5).allows(tree)
     assert ProgramsCheck(demo.problem, [("--rule #1", ':- use(U), motion(U,"teleport").\n')]).allows(tree)
+
+
+def test_a_split_one_deeper_is_verified_and_a_forged_one_refused(shared_foon_dir):
+    """On ../shared/foon some goals are settled by a split whose cases split again; check's
+    validator verifies each, and refuses it with a maker of a deeper split's object left out."""
+    import foon2asp
+
+    kb = foon2asp.load(str(shared_foon_dir))
+    run = GoalRunner("asp", kb.problem, AspOptions())
+    nested = 0
+    for goal in kb.goal_ids("all-objects")[::3]:
+        if run.route(goal) != "bounds":
+            continue
+        tree = run(goal)
+        split = tree.landmark_cases
+        deep = [c for c in (split or {}).get("cases", []) if c.get("split")]
+        if not deep:
+            continue
+        nested += 1
+        assert witness_problem(kb.problem, tree) is None, goal
+        c = deep[0]
+        cut = dict(c, split=dict(c["split"], cases=c["split"]["cases"][1:]))
+        tree.landmark_cases = dict(split, cases=[cut if d is c else d for d in split["cases"]])
+        assert witness_problem(kb.problem, tree) is not None, goal
+    assert nested >= 10

@@ -25,6 +25,29 @@ _NOTHING: Within = (frozenset(), frozenset(), frozenset(), (), 0)
 SUPPORTED = (("units",), ("success", "units"), ("inputs", "units"))
 
 
+#: one case of a split: a unit that makes the split's object, the units every tree using it (and
+#: the cases above it) uses beyond those above, landmark sets of those trees, and a split deeper
+Case = tuple[int, tuple[int, ...], tuple[tuple[int, ...], ...], "Split | None"]
+#: a split: an object every tree of the branch makes, and a case per unit that makes it
+Split = tuple[int, tuple[Case, ...]]
+
+#: how many splits deep a witness may nest
+SPLIT_DEPTH = 2
+
+
+def split_fields(split: Split) -> dict:
+    """A split as the answer's JSON carries it (``{"object", "cases": [{"unit", "landmarks",
+    "landmark_sets", "split"?}]}``)."""
+    made, cases = split
+    out = []
+    for u, marks, sets, deeper in cases:
+        case: dict = {"unit": u, "landmarks": list(marks), "landmark_sets": [list(s) for s in sets]}
+        if deeper is not None:
+            case["split"] = split_fields(deeper)
+        out.append(case)
+    return {"object": made, "cases": out}
+
+
 @dataclass(frozen=True)
 class Witness:
     """A lower bound on the weight of every tree for one goal, with what proves it without the
@@ -37,27 +60,19 @@ class Witness:
     #: pairwise disjoint sets of units, none a landmark, of which every tree uses one
     sets: tuple[tuple[int, ...], ...] = ()
     #: an object every tree makes, and for each unit that makes it: the unit with what every tree
-    #: using it uses beyond the landmarks, and landmark sets of the trees that use it
-    cases: tuple[int, tuple[tuple[int, tuple[int, ...], tuple[tuple[int, ...], ...]], ...]] | None = None
+    #: using it uses beyond the landmarks, landmark sets of the trees that use it, and perhaps a
+    #: split of those trees in turn
+    cases: Split | None = None
     #: the goal's derivation level (``units``: every tree has at least that many units)
     level: int | None = None
 
     def fields(self) -> dict:
         """The witness as an answer carries it (``foon2asp.tree.tasktree.TaskTree``, JSON):
         ``landmarks``, ``landmark_sets``, ``landmark_cases``, ``derivation_level``."""
-        cases = None
-        if self.cases is not None:
-            made, split = self.cases
-            cases = {
-                "object": made,
-                "cases": [
-                    {"unit": u, "landmarks": list(m), "landmark_sets": [list(s) for s in ss]} for u, m, ss in split
-                ],
-            }
         return {
             "landmarks": list(self.landmarks),
             "landmark_sets": [list(s) for s in self.sets],
-            "landmark_cases": cases,
+            "landmark_cases": None if self.cases is None else split_fields(self.cases),
             "derivation_level": self.level,
         }
 
@@ -279,8 +294,9 @@ class Bounds:
     def witness(self, goal: int, target: int | None = None) -> Witness:
         """A lower bound on the weight of every tree for ``goal`` that anyone can check
         (:class:`Witness`), the first of these that reaches ``target`` (None: the first): the
-        landmarks and landmark sets; a case split over the producers of an object every tree
-        needs; for ``units``, the goal's derivation level."""
+        landmarks and landmark sets; a split over the producers of an object every tree needs,
+        its cases split in turn (at most :data:`SPLIT_DEPTH` deep); for ``units``, the goal's
+        derivation level."""
         LM = self.landmarks(goal)
         within = self._within(LM)
         _, made, open_, _, _ = within
@@ -289,23 +305,45 @@ class Bounds:
         if target is None or bound >= target:
             return found
         kitchen = self.problem.kitchen
-        for i in sorted(open_ | {goal}):
-            prods = self._producers.get(i, ())
-            if i in kitchen or i in made or not prods or self.lower(goal) < target:
-                continue
-            cases = []
-            for u in prods:
-                marks = self.ulm[u] | LM
-                weight, groups = self._open_groups(marks, (), within)
-                case, case_sets = self._packed_bound(weight, groups)
-                cases.append((case, (u, tuple(sorted(marks - LM)), tuple(case_sets))))
-            least = min(case for case, _ in cases)
-            if least >= target:
-                return replace(found, bound=least, cases=(i, tuple(c for _, c in cases)))
+        objects = [i for i in sorted(open_ | {goal}) if i not in kitchen and i not in made and self._producers.get(i)]
+        for depth in range(SPLIT_DEPTH):
+            if depth == 0 and self.lower(goal) < target:
+                continue  # the lower bound holds every split one deep
+            for i in objects:
+                split = self._split(i, LM, within, target, depth)
+                if split is not None:
+                    return replace(found, bound=target, cases=split)
         level = self._levels.get(goal)
         if level is not None and level >= target:
             return replace(found, bound=level, level=level)
         return found
+
+    def _split(self, i: int, chain: frozenset[int], within: Within, target: int, depth: int) -> Split | None:
+        """The split over the producers of object ``i`` of the trees that use ``chain``, every case
+        weighing ``target`` at least, its cases split at most ``depth`` more deep; None: none."""
+        cases: list[Case] = []
+        for u in self._producers[i]:
+            marks = chain | self.ulm[u]
+            own, sets = self._packed_bound(*self._open_groups(marks, (), within))
+            deeper = None
+            if own < target:
+                deeper = self._deeper(marks, within, target, depth - 1) if depth > 0 else None
+                if deeper is None:
+                    return None
+            cases.append((u, tuple(sorted(marks - chain)), tuple(sets), deeper))
+        return i, tuple(cases)
+
+    def _deeper(self, marks: frozenset[int], within: Within, target: int, depth: int) -> Split | None:
+        """A split of the trees that use ``marks`` over an object they need and do not make."""
+        _, made, open_, _, _ = self._within(marks)
+        kitchen = self.problem.kitchen
+        for j in sorted(open_):
+            if j in kitchen or j in made or not self._producers.get(j):
+                continue
+            split = self._split(j, marks, within, target, depth)
+            if split is not None:
+                return split
+        return None
 
     def _packed_bound(self, weight: int, groups: set[tuple[int, ...]]) -> tuple[int, list[tuple[int, ...]]]:
         """``weight`` and the lightest weights of the pairwise disjoint groups packed from ``groups``, with them."""

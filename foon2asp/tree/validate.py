@@ -235,11 +235,10 @@ def bounds_proof(
     groups = [sorted(set(s)) for s in sets]
     tree = sorted(set(units))
     n = len(problem.units)
-    split = _cases(cases)
+    split = _split(cases)
     if isinstance(split, str):
         return split
-    claimed = [*marks, *(u for s in groups for u in s)]
-    claimed += [u for c, m, ss in split[1] for u in (c, *m, *(v for s in ss for v in s))] if split else []
+    claimed = [*marks, *(u for s in groups for u in s), *(_split_units(split) if split else ())]
     stray = [u for u in claimed if not 0 <= u < n]
     if stray:
         return f"landmark {stray[0]} is no unit of the FOON"
@@ -250,11 +249,10 @@ def bounds_proof(
     weight = sum(w[u] for u in tree)
     bound = sum(w[u] for u in marks) + sum(min(w[u] for u in s) for s in groups)
     if split:
-        for c, m, ss in split[1]:
-            why = _disjoint({*marks, c, *m}, ss)
-            if why:
-                return f"the case of unit {c}: {why}"
-        bound = max(bound, min(_weighs(w, {*marks, c, *m}, ss) for c, m, ss in split[1]))
+        least = _split_bound(w, set(marks), split)
+        if isinstance(least, str):
+            return least
+        bound = max(bound, least)
     if level is not None:
         if objective != "units":
             return f"a derivation level bounds the number of units, not {objective}"
@@ -274,7 +272,7 @@ def bounds_proof(
             what = f"unit {removed[0]} ({problem.units[removed[0]].motion})" if len(removed) == 1 else f"set {removed}"
             return f"{what} is no landmark: the goal can be made without it"
     if split:
-        why = _check_cases(problem, goal, marks, split, fires)
+        why = _check_split(problem, goal, set(marks), [], split, fires, fires(())[0])
         if why:
             return why
     if level is not None:
@@ -284,24 +282,64 @@ def bounds_proof(
     return None
 
 
-def _cases(cases: dict | None) -> tuple[int, list[tuple[int, list[int], list[list[int]]]]] | None | str:
-    """The case split of a bounds proof as (object, [(unit, units, sets)]), or why it is malformed."""
+#: a case of a split as the validator reads it: (unit, units, sets, a split deeper or None)
+_Case = tuple[int, list[int], list[list[int]], "_Split | None"]
+#: a split: (object, cases)
+_Split = tuple[int, list[_Case]]
+
+
+def _split(cases: dict | None) -> _Split | None | str:
+    """The case split of a bounds proof (``landmark_cases``, nested by ``split``), or why it is malformed."""
     if cases is None:
         return None
     try:
         made = cases["object"]
-        split = [
-            (c["unit"], sorted(set(c.get("landmarks", []))), [sorted(set(s)) for s in c.get("landmark_sets", [])])
-            for c in cases["cases"]
-        ]
-    except (KeyError, TypeError):
-        return "the landmark cases are not an object with its cases (unit, landmarks, landmark_sets)"
-    ids = [made, *(u for c, m, ss in split for u in (c, *m, *(v for s in ss for v in s)))]
+        split: list[_Case] = []
+        for c in cases["cases"]:
+            deeper = _split(c["split"]) if c.get("split") is not None else None
+            if isinstance(deeper, str):
+                return deeper
+            sets = [sorted(set(s)) for s in c.get("landmark_sets", [])]
+            split.append((c["unit"], sorted(set(c.get("landmarks", []))), sets, deeper))
+    except (KeyError, TypeError, AttributeError):
+        return "the landmark cases are not an object with its cases (unit, landmarks, landmark_sets, split)"
+    found: _Split = (made, split)
+    ids = [made, *_split_units(found)]
     if not all(isinstance(u, int) and not isinstance(u, bool) for u in ids):
         return "the landmark cases name something that is no id"
     if not split:
         return "the landmark cases have no case"
-    return made, split
+    return found
+
+
+def _split_units(split: _Split) -> list[int]:
+    """Every unit a split names, its deeper splits' too."""
+    out: list[int] = []
+    for c, m, ss, deeper in split[1]:
+        out += [c, *m, *(u for s in ss for u in s)]
+        if deeper is not None:
+            out += _split_units(deeper)
+    return out
+
+
+def _split_bound(w: list[int], chain: set[int], split: _Split) -> int | str:
+    """What every tree that uses ``chain`` weighs by ``split``: its lightest case (a case: its
+    units with ``chain`` and the lightest unit of each of its sets, or its own split's bound if
+    that is more), or why the sets are not disjoint."""
+    bounds = []
+    for c, m, ss, deeper in split[1]:
+        units = {*chain, c, *m}
+        why = _disjoint(units, ss)
+        if why:
+            return f"the case of unit {c}: {why}"
+        bound = _weighs(w, units, ss)
+        if deeper is not None:
+            below = _split_bound(w, units, deeper)
+            if isinstance(below, str):
+                return below
+            bound = max(bound, below)
+        bounds.append(bound)
+    return min(bounds)
 
 
 def _disjoint(taken: set[int], groups: list[list[int]]) -> str | None:
@@ -321,35 +359,44 @@ def _weighs(w: list[int], units: set[int], groups: list[list[int]]) -> int:
     return sum(w[u] for u in units) + sum(min(w[u] for u in s) for s in groups)
 
 
-def _check_cases(
+def _check_split(
     problem: Problem,
     goal: int,
-    marks: list[int],
-    split: tuple[int, list[tuple[int, list[int], list[list[int]]]]],
+    chain: set[int],
+    assumed: list[int],
+    split: _Split,
     fires: Callable[[Iterable[int]], tuple[set[int], bool]],
+    fired: set[int],
 ) -> str | None:
-    """Why a case split does not hold (None: it does): its object is needed by every tree, every
-    unit that makes it and can fire has a case, and each case's units and sets are needed by
-    every tree that uses the case's unit."""
+    """Why a split of the trees that use ``chain`` (among them the units ``assumed``) does not
+    hold (None: it does): its object is the goal or a required input of a unit of ``chain`` and
+    no kitchen item, so those trees make it; every unit that makes it and fires (``fired``) has
+    a case; each case's units and sets are needed by the trees that use ``assumed`` and the
+    case's unit (without them, one of those does not fire or the goal is not made); its deeper
+    split holds for those trees."""
     made, cases = split
     if not 0 <= made < len(problem.objects):
         return f"object {made} of the landmark cases is no object of the FOON"
     obj = problem.objects[made]
     if obj in problem.kitchen_set:
         return f"object {made} of the landmark cases is in the kitchen"
-    if made != goal and not any(obj in _required(problem, u) for u in marks):
+    if made != goal and not any(obj in _required(problem, u) for u in chain):
         return f"object {made} of the landmark cases is neither the goal nor needed by a landmark"
-    fired, _ = fires(())
-    cased = {c for c, _, _ in cases}
+    cased = {c for c, _, _, _ in cases}
     for v in sorted(fired):
         if v not in cased and obj in product_outputs(problem.units[v]):
             return f"unit {v} ({problem.units[v].motion}) makes object {made} but has no case"
-    for c, m, ss in cases:
+    for c, m, ss, deeper in cases:
+        using = [*assumed, c]
         for removed in [[u] for u in m if u != c] + ss:
-            left, made = fires(removed)
-            if c in left and made:
+            left, made_goal = fires(removed)
+            if made_goal and all(u in left for u in using):
                 what = f"unit {removed[0]}" if len(removed) == 1 else f"set {removed}"
                 return f"{what} is not needed by the trees that use unit {c}: unit {c} fires and the goal is made without it"
+        if deeper is not None:
+            why = _check_split(problem, goal, {*chain, c, *m}, using, deeper, fires, fired)
+            if why:
+                return why
     return None
 
 
