@@ -7,7 +7,7 @@ from synth import preset
 
 
 def test_calls_counts_every_clingo_call_of_the_goals_it_answers():
-    syn = preset("tiny")
+    syn = preset("small")
     problem = syn.problem()
     goals = [problem.foon.object_ids[g] for g in syn.goals]
     spent, count, routes, wall = calls.measure(problem, goals, ("units",))
