@@ -162,9 +162,24 @@ def demo_copy(tmp_path: Path, *leave_out: str) -> Path:
     return d
 
 
+def real_choice(problem: Problem, goal: int, units) -> bool:
+    """Has ``goal`` more than one minimal tree? By the validator alone: some unit of its tree
+    ``units`` can be done without (every other unit of the FOON fired, the goal is still made),
+    so a minimal tree without it exists beside one with it."""
+    from foon2asp.tree.validate import validate
+
+    every = range(len(problem.units))
+    for u in set(units):
+        fired = validate(problem, goal, [v for v in every if v != u]).order
+        if validate(problem, goal, fired).valid:
+            return True
+    return False
+
+
 def witness_problem(problem, tree, objective: str = "units", landmarks=None, units=None):
-    """``bounds_proof`` of a tree (a TaskTree) with its whole witness; ``landmarks``, ``units``:
-    claimed instead of the tree's (a forged witness)."""
+    """``bounds_proof`` of a tree (anything with ``goal``, ``units`` and the witness fields of a
+    TaskTree) with its whole witness; ``landmarks``, ``units``: claimed instead of the tree's
+    (a forged witness)."""
     from foon2asp.tree.validate import bounds_proof
 
     return bounds_proof(

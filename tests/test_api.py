@@ -10,7 +10,8 @@ from click.testing import CliRunner
 
 import foon2asp
 from foon2asp.cli.main import main
-from helpers import witness_problem
+from foon2asp.tree.validate import bounds_proof
+from helpers import real_choice
 
 
 @pytest.fixture(scope="module")
@@ -50,19 +51,19 @@ def test_to_dict_is_the_cli_json(kb, shared_foon_dir):
 
 
 def test_tree_proven_by_says_who_proved_each_reference_goal(kb):
-    """``tree.proven_by`` is the JSON field; every reference goal with real choice is clingo's,
-    unless its bounds tree weighs what its landmarks and landmark sets make every tree weigh
-    (``bounds``, the witness in the JSON)."""
+    """``tree.proven_by`` is the JSON field; every reference goal with a choice in its part is
+    clingo's, also one whose landmarks alone make it (one minimal tree, verified beside)."""
     trees = kb.solve("all")
     assert all(t.proven_by == t.to_dict()["proven_by"] for t in trees)
     counts: dict[str | None, int] = {}
     for t in trees:
         counts[t.proven_by] = counts.get(t.proven_by, 0) + 1
-    assert counts["clingo"] + counts.get("bounds", 0) == 21 and counts["clingo"] >= 1
-    assert {k: v for k, v in counts.items() if k not in ("clingo", "bounds")} == {"only-tree": 2, "fixpoint": 2}
+    assert counts == {"clingo": 21, "only-tree": 2, "fixpoint": 2}
     for t in trees:
-        if t.proven_by == "bounds":
-            assert witness_problem(kb.problem, t.raw) is None
+        if t.proven_by == "clingo":
+            assert "landmarks" not in t.to_dict(), t.goal_id
+            if not real_choice(kb.problem, t.goal_id, t.unit_ids):  # one minimal tree: its landmarks
+                assert bounds_proof(kb.problem, t.goal_id, t.unit_ids, t.unit_ids) is None
     assert {t.status for t in trees if t.proven_by == "fixpoint"} == {"unreachable"}
 
 
@@ -121,20 +122,18 @@ def test_every_answer_renders_or_says_it_cannot(kb, tmp_path):
         foon2asp.consolidate([tmp_path / "absent.json"], levle=2)
 
 
-def test_solve_honours_shortcuts_false_with_the_same_trees():
+def test_solve_honours_shortcuts_false_with_the_same_trees(kb):
     """``shortcuts=False`` (a keyword or in ``Options``): clingo answers the goals that polynomial
-    reasoning would settle, and proves the same trees."""
-    demo = foon2asp.load("demo")
-    settled = demo.solve("all")
-    assert {t.raw.proven_by for t in settled} >= {"bounds"}
-    for free in (demo.solve("all", shortcuts=False), demo.solve("all", options=foon2asp.Options(shortcuts=False))):
+    reasoning would settle (the only trees), and proves the same trees; check's optimum too."""
+    settled = kb.solve("all")
+    assert {t.raw.proven_by for t in settled} >= {"only-tree"}
+    for free in (kb.solve("all", shortcuts=False), kb.solve("all", options=foon2asp.Options(shortcuts=False))):
         assert [t.raw.proven_by for t in free] == ["clingo" if t.has_tree else t.raw.proven_by for t in settled]
         assert [sorted(t.unit_ids) for t in free] == [sorted(t.unit_ids) for t in settled]
         assert [t.raw.asp_cost for t in free] == [t.raw.asp_cost for t in settled]
-    # every call that solves honours it: check's optimum too
-    egg = settled[1]
-    assert demo.check(egg).optimum.raw.proven_by == "bounds"
-    assert demo.check(egg, options=foon2asp.Options(shortcuts=False)).optimum.raw.proven_by == "clingo"
+    only = next(t for t in settled if t.raw.proven_by == "only-tree")
+    assert kb.check(only).optimum.raw.proven_by == "only-tree"
+    assert kb.check(only, options=foon2asp.Options(shortcuts=False)).optimum.raw.proven_by == "clingo"
 
 
 def test_solve_honours_the_grounding_asked():

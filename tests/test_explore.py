@@ -289,7 +289,7 @@ def test_answers_of_the_page(http):
     assert time.monotonic() - t0 < first and http.get("/api/status").json()["cached"] == cached + 1
     assert (tree["status"], tree["proven_by"], tree["cost"]["units"], len(tree["steps"])) == (
         "optimal",
-        "bounds",  # what every tree must weigh, checked without the solver, meets the bounds tree
+        "clingo",
         25,
         25,
     )

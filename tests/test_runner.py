@@ -23,9 +23,9 @@ from foon2asp.foon.problem import Problem
 from foon2asp.methods.registry import effective_options
 from foon2asp.methods.runner import PROVEN_BY, GoalRunner, solve_goals
 from foon2asp.tree.tasktree import TaskTree, measures
-from foon2asp.tree.validate import validate
+from foon2asp.tree.validate import bounds_proof, validate
 from foon2asp.tree.weights import total
-from helpers import brute_force, build, witness_problem
+from helpers import brute_force, build, real_choice
 from synth import preset
 
 CASES = ("demo", "tiny", "small")
@@ -252,7 +252,7 @@ def test_the_routes_are_all_taken_and_named():
             seen.add(run.route(goal))
         run_depth = GoalRunner("asp", problem, AspOptions(objective=("depth",)))
         seen.update(run_depth.route(g) for g in made_objects(problem))
-    assert seen == {"fixpoint", "only-tree", "bounds", "prepared", "clingo"}
+    assert seen == {"fixpoint", "only-tree", "prepared", "clingo"}
 
 
 @pytest.mark.parametrize("seed", range(25))
@@ -313,12 +313,12 @@ def test_a_rule_that_changes_nothing_keeps_every_route_and_tree(seed):
 
 
 def test_a_settled_tree_that_breaks_a_rule_goes_to_clingo():
-    """The bounds tree (or the only tree) of a goal breaks the rule: clingo decides the goal."""
+    """The only tree of a goal breaks the rule: clingo decides the goal."""
     for seed in range(25):
         problem = random_foon(seed)
         plain = GoalRunner("asp", problem, AspOptions())
         for goal in made_objects(problem):
-            if plain.route(goal) not in ("bounds", "only-tree"):
+            if plain.route(goal) != "only-tree":
                 continue
             unit = plain(goal).units[0]
             rule = f":- use({unit}).\n"
@@ -347,10 +347,10 @@ def test_compare_with_constraints_draws_no_conclusion_from_the_baselines(shared_
     assert "asp optimum <= every valid tree: yes" in plain.output
 
 
-def test_every_reference_goal_with_real_choice_is_proven_by_clingo_or_its_landmarks(shared_foon_dir):
-    """The 25 goals of ../shared/foon: a goal with more than one tree is clingo's, unless its
-    landmarks alone are a tree (the bounds route, the landmarks its witness); only goals without
-    choice are settled by the only-tree route."""
+def test_every_reference_goal_with_real_choice_is_proven_by_clingo(shared_foon_dir):
+    """The 25 goals of ../shared/foon: a goal with a choice in its part (more than one tree) is
+    clingo's, also when its landmarks alone make it (their proof verified beside); only goals
+    without choice are settled by the only-tree route."""
     import foon2asp
 
     kb = foon2asp.load(str(shared_foon_dir))
@@ -361,14 +361,15 @@ def test_every_reference_goal_with_real_choice_is_proven_by_clingo_or_its_landma
         _, _, choice = run.parts.relevant(goal)
         if goal not in kb.problem.derivable or goal in kb.problem.kitchen:
             assert tree.proven_by == "fixpoint", goal
-        elif choice and tree.proven_by == "bounds":
-            assert tree.status == "optimal" and witness_problem(kb.problem, tree) is None, goal
-        elif choice:
+        elif choice and real_choice(kb.problem, goal, tree.units):
             assert tree.status == "optimal" and tree.proven_by == "clingo", goal
+        elif choice:  # one minimal tree: its landmarks, and still clingo's
+            assert tree.status == "optimal" and tree.proven_by == "clingo", goal
+            assert bounds_proof(kb.problem, goal, tree.units, sorted(tree.units)) is None, goal
         else:
             assert tree.proven_by == "only-tree", goal
         seen[tree.proven_by] = seen.get(tree.proven_by, 0) + 1
-    assert seen.get("clingo", 0) >= 1 and seen.get("clingo", 0) + seen.get("bounds", 0) >= 20, seen
+    assert seen == {"clingo": 21, "only-tree": 2, "fixpoint": 2}, seen
 
 
 def test_loop_cuts_end_at_the_brute_force_optimum():

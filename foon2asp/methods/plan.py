@@ -15,9 +15,7 @@ route      when                                                              pro
 search     a search baseline (IDS, GBFS)                                     nothing
 fixpoint   the goal cannot be made from the kitchen, or is a kitchen item    fixpoint
 only-tree  every object of the relevant part has one producer                only-tree
-bounds     a checkable lower bound (landmarks, landmark sets, a case split   bounds
-           over producers, the derivation level) meets the bounds tree
-prepared   clingo on the goal's prepared part                                clingo
+prepared   clingo on the goal's prepared part (every goal with a choice)      clingo
 clingo     clingo on the whole grounding or the goal's part (meals, depth,   clingo
            alternatives, human steps, greedy retrieval, substitutes, ...)
 ========== ================================================================= ============
@@ -40,10 +38,10 @@ from foon2asp.asp.predicates import checkable, mentioned, only_constraints
 from foon2asp.asp.prepared import Preparation
 from foon2asp.asp.programs_check import ProgramsCheck
 from foon2asp.asp.session import Session
-from foon2asp.bounds.lower import Bounds, Witness
+from foon2asp.bounds.lower import Bounds
 from foon2asp.bounds.lower import supports as bounds_supports
 from foon2asp.errors import InputError
-from foon2asp.foon.problem import Problem, least_fixpoint
+from foon2asp.foon.problem import Problem
 from foon2asp.methods.parts import GROUNDINGS, Parts
 from foon2asp.methods.registry import effective_options, get
 from foon2asp.tree.tasktree import Goals, meal_of
@@ -57,7 +55,6 @@ ROUTES: dict[str, str | None] = {
     "search": None,
     "fixpoint": "fixpoint",
     "only-tree": "only-tree",
-    "bounds": "bounds",
     "prepared": "clingo",
     "clingo": "clingo",
 }
@@ -89,7 +86,7 @@ class Request:
     parts: Parts
     #: ``whole`` (one grounding for every goal) or ``per-goal``
     grounding: str = "whole"
-    #: goals polynomial reasoning settles are answered without clingo (``only-tree``, ``bounds``)
+    #: goals without a choice are settled without clingo (``only-tree``)
     shortcuts: bool = True
 
     @property
@@ -219,8 +216,6 @@ class Plan:
     shared: bool = False
     #: the answer settled without clingo: its units (only-tree, bounds)
     tree: tuple[int, ...] = ()
-    #: the witness of the bounds route: why no tree weighs less than its tree
-    witness: Witness | None = None
     #: first the optimum without the user's programs, kept when it satisfies them
     free_first: Plan | None = None
     #: when trees exist but the user's programs rule them all out, name each program that alone does
@@ -279,16 +274,9 @@ def plan(req: Request, goal: Goals) -> Plan:
     if req.shortcuts and not choice and req.allows(units):
         return replace(base, route="only-tree", tree=tuple(units))
     free = req.free if req.constrained else req
+    # a goal with a choice in its part is clingo's, also one whose bounds tree meets the lower bound:
+    # clingo then decides with the bounds tree's cost as the bound
     bounded = _bounded(free, g) if free.bounded else None
-    if req.shortcuts and bounded is not None and bounded[1].hint and req.allows(bounded[1].hint):
-        bounds, hint = bounded[0], bounded[1].hint
-        proof = bounds.witness(g, bounds.weight(hint))
-        if proof.bound >= bounds.weight(hint):  # what every tree weighs, checkably: no tree costs less
-            return replace(base, route="bounds", tree=hint, witness=proof)
-    if req.shortcuts and bounded is None:
-        marks = landmarks(free, g)
-        if makes(problem, g, marks) and req.allows(marks):  # the landmarks alone are a tree: no tree costs less
-            return replace(base, route="bounds", tree=marks, witness=Witness(len(marks), marks))
     prepared = _pruned(free, *bounded) if bounded is not None else preparation(free, g)
     if req.checkable:
         first = replace(base, route="prepared", programs=(), grounding=_grounding(free, prepared))
@@ -338,6 +326,8 @@ def _bounded(req: Request, goal: int) -> tuple[Bounds, Preparation]:
     bounds = parts.bounds_for(ranked, units)
     tree = bounds.tree(goal) or ()
     lower = bounds.lower(goal)
+    if tree:  # the splits of the witness bound reach further than the lower bound's
+        lower = max(lower, bounds.witness(goal, bounds.weight(tree)).bound)
     scale = len(req.problem.units) + 1
 
     def meets(cost: tuple[int, ...]) -> bool:
@@ -372,12 +362,6 @@ def landmarks(req: Request, goal: int) -> tuple[int, ...]:
     """The units every tree for ``goal`` uses (sorted)."""
     units, _, _ = req.parts.relevant(goal)
     return tuple(sorted(req.parts.bounds_for(("units",), units).landmarks(goal)))
-
-
-def makes(problem: Problem, goal: int, units: Iterable[int]) -> bool:
-    """Do ``units`` alone make ``goal`` from the kitchen?"""
-    made, _ = least_fixpoint(problem.kitchen, problem.required, problem.products, units)
-    return goal in made
 
 
 @overload

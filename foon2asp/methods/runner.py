@@ -114,10 +114,6 @@ class GoalRunner:
         asp_cost = [cost["depth"] or 0 if name == "depth" else total(self.problem, name, order) for name in how.ranked]
         tree = TaskTree(goal, how.method, "optimal", order, cost, round(time.perf_counter() - t0, 6))
         tree.asp_cost = asp_cost
-        if how.witness is not None:  # the bounds route's witness, as check reads it
-            fields = how.witness.fields()
-            tree.landmarks, tree.landmark_sets = fields["landmarks"], fields["landmark_sets"]
-            tree.landmark_cases, tree.derivation_level = fields["landmark_cases"], fields["derivation_level"]
         return settle(self.problem, tree, how.ranked)
 
     def _solve(self, how: Plan, t0: float) -> TaskTree:
