@@ -381,6 +381,81 @@ def test_closed_goal_in_the_kitchen_needs_no_unit():
     check(solver(["solve_closed"], prepared({}, [1, 9], 9, []), args=ALL), models(1, atoms()))
 
 
+# --- decide_many.lp: many goals, each decided at its bound -------------------------------------
+
+
+def decide(units: Units, kitchen, goals: dict[int, tuple[int, Sequence[int], Sequence[int]]], extra: str = "") -> str:
+    """The facts of a grouped decision: goal K is ``(object, candidates, bound per level)``, the
+    units objective (weight 1 at level 1), the candidates' objects only, as the wrapper writes them."""
+    lines = []
+    used: set[int] = set()
+    for k, (goal, candidates, bounds) in goals.items():
+        used.update(candidates)
+        lines.append(f"decide({k},{goal}).")
+        lines += [f"candidate({k},{u})." for u in candidates]
+        lines += [f"bound({k},{level},{b})." for level, b in enumerate(bounds, 1)]
+    for u in sorted(used):
+        required, products = units[u]
+        lines += [f"required({u},{o})." for o in required]
+        lines += [f"product({u},{o})." for o in products]
+        lines.append(f"weight(1,{u},1).")
+    lines += [f"kitchen({o})." for o in kitchen]
+    return "\n".join(lines) + "\n" + extra
+
+
+def decided(*pairs: tuple[int, int]) -> list[str]:
+    return [f"use({k},{u})" for k, u in pairs]
+
+
+def test_decide_each_goal_gets_a_set_within_its_bound():
+    # goal 1 (object 9): 0 or 1 alone, or 2 and 3; goal 2 (object 3): 2 alone
+    facts = decide(ALTERNATIVES, [1], {1: (9, [0, 1, 2, 3], [1]), 2: (3, [2, 3], [1])})
+    sets = [decided((1, 0), (2, 2)), decided((1, 1), (2, 2))]
+    check(solver(["decide_many"], facts, args=ALL), models(2, a.Or(*(a.Equals(set(x)) for x in sets))))
+
+
+def test_decide_a_bound_below_every_set_leaves_no_model():
+    facts = decide(ALTERNATIVES, [1], {1: (9, [0, 1, 2, 3], [0]), 2: (3, [2, 3], [1])})
+    check(solver(["decide_many"], facts, args=ALL), unsat())
+
+
+def test_decide_a_looser_bound_admits_dearer_sets():
+    # 0 alone, 2 and 3, or 0 with 2 (whose 3 nothing needs); never all three
+    facts = decide(ALTERNATIVES, [1], {1: (9, [0, 2, 3], [2])})
+    sets = [decided((1, 0)), decided((1, 2), (1, 3)), decided((1, 0), (1, 2))]
+    check(solver(["decide_many"], facts, args=ALL), models(3, a.Or(*(a.Equals(set(x)) for x in sets))))
+
+
+def test_decide_admits_a_cycle_within_the_bound():
+    # the cycle 0, 1 is closed and costs 2, as the tree 2, 3, 4 costs 3: the wrapper checks trees
+    facts = decide(LOOP, [1], {1: (4, range(5), [2])})
+    check(solver(["decide_many"], facts, args=ALL), models(1, atoms(*decided((1, 0), (1, 1)))))
+
+
+def test_decide_landmark_forces_its_unit():
+    facts = decide(ALTERNATIVES, [1], {1: (9, [0, 2, 3], [2])}, "landmark(1,3).\n")
+    check(solver(["decide_many"], facts, args=ALL), models(1, atoms(*decided((1, 2), (1, 3)))))
+
+
+def test_decide_every_level_is_bounded():
+    # level 2 weighs unit 0 at 5: only 2, 3 (weight 0 there) fit the bound 1 at level 2
+    extra = "weight(2,0,5). weight(2,2,0). weight(2,3,0). bound(1,2,1).\n"
+    facts = decide(ALTERNATIVES, [1], {1: (9, [0, 2, 3], [2])}, extra)
+    check(solver(["decide_many"], facts, args=ALL), models(1, atoms(*decided((1, 2), (1, 3)))))
+
+
+def test_decide_hint_units_are_tried_first():
+    facts = decide(
+        ALTERNATIVES, [1], {1: (9, [0, 1, 2, 3], [3]), 2: (9, [0, 1], [1])}, "hint(1,2). hint(1,3). hint(2,1).\n"
+    )
+    check(solver(["decide_many"], facts, args=DOMAIN), first(decided((1, 2), (1, 3), (2, 1))))
+
+
+def test_decide_goal_in_the_kitchen_needs_no_unit():
+    facts = decide(ALTERNATIVES, [1, 9], {1: (9, [0, 1], [0])})
+    check(solver(["decide_many"], facts, args=ALL), models(1, atoms()))
+
+
 # --- core.lp, through tree.lp and prepared.lp ------------------------------------------------
 
 

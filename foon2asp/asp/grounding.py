@@ -15,7 +15,7 @@ from foon2asp.asp import dominance, objectives, substitute_facts
 from foon2asp.asp.canonical import canonical_problem, chain_facts
 from foon2asp.asp.facts import facts
 from foon2asp.asp.options import AspOptions
-from foon2asp.asp.prepared import Preparation
+from foon2asp.asp.prepared import Preparation, decision_facts
 from foon2asp.foon.problem import Problem
 
 #: the kinds of fact programs a grounding may name, in the order they are added
@@ -93,6 +93,40 @@ class Grounding:
     def files(self) -> list[str]:
         """The encoding files clingo loads: the entry, and ``any_goal`` without a fixed goal."""
         return [self.entry] if self.goal is not None else [self.entry, "any_goal"]
+
+
+@dataclass(frozen=True, eq=False)
+class Decisions:
+    """One clingo control for many goals: each goal's prepared part decided at its bound, the
+    cost of its bounds tree, which meets the goal's lower bound (decided by the plan)."""
+
+    #: the problem whose facts are written
+    problem: Problem
+    #: the objectives of the solver cost, most important first (a bound per objective)
+    ranked: tuple[str, ...]
+    #: the goals' prepared groundings, each with a bound (``prepared.bound``), in goal order
+    groundings: tuple[Grounding, ...]
+    #: the entry encoding (``encodings/NAME.lp``)
+    entry: str = "decide_many"
+    #: clingo's arguments
+    args: tuple[str, ...] = ("--heuristic=Domain",)
+    #: seconds the one search may take (None: no limit)
+    time_limit: float | None = None
+
+    @property
+    def preparations(self) -> list[Preparation]:
+        """The goals' prepared parts, in goal order (goal K is the K-th, from 1)."""
+        return [g.prepared for g in self.groundings if g.prepared is not None]
+
+    def describe(self) -> dict:
+        """How the goals were decided, for each goal's ``stats.plan``: the entry, clingo's arguments
+        and how many goals the one call was asked."""
+        return {"entry": f"encodings/{self.entry}.lp", "args": list(self.args), "decided_with": len(self.groundings)}
+
+    def facts(self) -> str:
+        """The facts ``decide_many.lp`` reads: per goal K its part and bounds, the candidates'
+        objects and weights, the kitchen items among them."""
+        return decision_facts(self.problem, self.ranked, self.preparations)
 
 
 def fact_programs(grounding: Grounding) -> list[tuple[str, str]]:

@@ -7,7 +7,7 @@ round (``encodings/prepared.lp``).  Why this keeps every optimum: docs/proofs/so
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 
 import clingo
@@ -16,6 +16,7 @@ from foon2asp.asp.answers import Shot, Watch, cost_vector, solve_shot
 from foon2asp.asp.control import Control
 from foon2asp.foon.problem import Problem, least_fixpoint
 from foon2asp.tree.tasktree import TaskTree
+from foon2asp.tree.weights import unit_weight
 
 
 @dataclass(frozen=True)
@@ -67,6 +68,36 @@ class Preparation:
             if not cut.isdisjoint(problem.products[p]) and cut.isdisjoint(problem.required[p])
         ]
         return missing, outside
+
+
+def decision_facts(problem: Problem, ranked: Sequence[str], preps: Sequence[Preparation]) -> str:
+    """The facts of ``decide_many.lp`` for ``preps`` (each with a bound), goal K the K-th from 1:
+    ``decide(K,G)``, ``candidate/2``, ``landmark/2``, ``hint/2``, ``bound(K,L,B)`` (its bound
+    at level L of ``ranked``); ``required/2``, ``product/2`` and ``weight(L,U,W)`` of every
+    candidate; ``kitchen/1`` of their objects."""
+    lines: list[str] = []
+    units: set[int] = set()
+    for k, prep in enumerate(preps, 1):
+        assert prep.bound is not None, f"goal {prep.goal} has no bound to decide at"
+        units.update(prep.candidates)
+        units.update(prep.landmarks)
+        lines.append(f"decide({k},{prep.goal}).")
+        lines += [f"candidate({k},{u})." for u in prep.candidates]
+        lines += [f"landmark({k},{u})." for u in prep.landmarks]
+        lines += [f"hint({k},{u})." for u in prep.hint]
+        lines += [f"bound({k},{level},{b})." for level, b in enumerate(prep.bound, 1)]
+    weights = [unit_weight(problem, name) for name in ranked]
+    objects: set[int] = set()
+    for u in sorted(units):
+        lines += [f"required({u},{i})." for i in problem.required[u]]
+        lines += [f"product({u},{o})." for o in problem.products[u]]
+        lines += [f"weight({level},{u},{weight(u)})." for level, weight in enumerate(weights, 1)]
+        objects.update(problem.required[u])
+        objects.update(problem.products[u])
+    objects.update(prep.goal for prep in preps)
+    kitchen = problem.kitchen
+    lines += [f"kitchen({o})." for o in sorted(objects) if o in kitchen]
+    return "\n".join(lines) + "\n"
 
 
 def search(

@@ -26,7 +26,7 @@ from foon2asp.asp.interrupts import SOLVE_WATCHDOG, deferred_signals
 from foon2asp.asp.options import AspOptions
 from foon2asp.errors import InputError
 from foon2asp.foon.problem import Problem
-from foon2asp.methods.runner import GoalRunner, Parts
+from foon2asp.methods.runner import AHEAD, GoalRunner, Parts
 from foon2asp.tree.serialize import tree_json
 
 if TYPE_CHECKING:
@@ -36,6 +36,8 @@ if TYPE_CHECKING:
 AUTO = 0
 #: seconds in this process before ``AUTO`` hands the remaining tasks to a pool
 SWITCH_S = 5.0
+#: how many tasks a pool's worker is handed at once, planned together (:meth:`Worker.run_block`)
+POOL_BLOCK = 16
 #: the start method of the pool's workers; None: :func:`start_method` chooses
 START_METHOD: str | None = None
 #: why a pool could not start: its workers ran the main script again and reached the batch
@@ -129,6 +131,17 @@ class Worker:
             for name in spec.methods
         }
 
+    def ahead(self, tasks: list[tuple[int, str]]) -> None:
+        """Plan ``tasks``, the next ones this worker runs, and decide their goals together where
+        the plan can (:meth:`GoalRunner.ahead`)."""
+        for name, runner in self.runners.items():
+            runner.ahead([goal for goal, method in tasks if method == name])
+
+    def run_block(self, tasks: list[tuple[int, str]]) -> list[str]:
+        """The results of ``tasks`` (:meth:`run`), planned together first (:meth:`ahead`)."""
+        self.ahead(tasks)
+        return [self.run(goal, method) for goal, method in tasks]
+
     def run(self, goal: int, method: str) -> str:
         """The result of ``method`` for ``goal`` as one JSON line (with newline)."""
         tree = judge(self.spec.problem, self.runners[method](goal), self.spec.options.substitutes)  # as compare
@@ -194,9 +207,9 @@ def _init_worker(spec: BatchSpec) -> None:
     _WORKER = Worker(spec)
 
 
-def _run_in_worker(task: tuple[int, str]) -> str:
+def _run_in_worker(tasks: list[tuple[int, str]]) -> list[str]:
     assert _WORKER is not None, "worker not initialised"
-    return _WORKER.run(*task)
+    return _WORKER.run_block(tasks)
 
 
 class Execution:
@@ -227,6 +240,8 @@ class Execution:
             for goal, method in tasks:
                 if cores > 1 and time.perf_counter() - t0 >= SWITCH_S:
                     break
+                if done % AHEAD == 0:
+                    worker.ahead(tasks[done : done + AHEAD])
                 yield worker.run(goal, method)
                 done += 1
             with deferred_signals():  # its clingo controls are freed with no interrupt in the middle
@@ -243,7 +258,9 @@ class Execution:
         try:
             with _workers_starting(context.get_start_method()):
                 pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec,))
-            yield from pool.imap_unordered(_run_in_worker, tasks)
+            blocks = [tasks[i : i + POOL_BLOCK] for i in range(0, len(tasks), POOL_BLOCK)]
+            for lines in pool.imap_unordered(_run_in_worker, blocks):
+                yield from lines
             pool.close()
         finally:
             if pool is not None:  # (an interrupt while it started comes once it has)
@@ -259,7 +276,7 @@ def _run_chunk(token: str, spec: BatchSpec, tasks: list[tuple[int, str]]) -> lis
     """On a Dask worker: the results of ``tasks`` (runners built once per thread and batch)."""
     if getattr(_LOCAL, "token", None) != token:
         _LOCAL.token, _LOCAL.worker = token, Worker(spec)
-    return [_LOCAL.worker.run(goal, method) for goal, method in tasks]
+    return _LOCAL.worker.run_block(tasks)
 
 
 #: runs a batch's (goal, method) pairs somewhere, yielding their JSON lines as they finish

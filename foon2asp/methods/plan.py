@@ -32,7 +32,7 @@ from foon2asp.asp import dominance, objectives, substitute_facts
 from foon2asp.asp.canonical import canonical_problem
 from foon2asp.asp.constraints import FLAG_READS
 from foon2asp.asp.facts import OPTIONAL
-from foon2asp.asp.grounding import Grounding
+from foon2asp.asp.grounding import Decisions, Grounding
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.predicates import checkable, mentioned, only_constraints
 from foon2asp.asp.prepared import Preparation
@@ -286,6 +286,38 @@ def plan(req: Request, goal: Goals) -> Plan:
     if req.constrained:
         prepared = preparation(req, g)
     return replace(base, route="prepared", grounding=_grounding(req, prepared), explain=explain)
+
+
+def decisions(req: Request, plans: Iterable[Plan]) -> Decisions | None:
+    """The goals of ``plans`` clingo decides together, in one call: those whose prepared part is
+    searched for a tree within its bounds tree's cost, which meets the goal's lower bound, and
+    whose answer is then that tree (the hint; no user programs, progress reports, alternatives or
+    steps after the solve); None when fewer than two are."""
+    chosen = []
+    for p in plans:
+        g = p.grounding
+        if p.route != "prepared" or p.free_first is not None or p.explain or p.programs or g is None:
+            continue
+        prep = g.prepared
+        if prep is None or prep.bound is None or not g.closed or g.canonical != "hint":
+            continue
+        if g.depth != "none" or len(g.facts) != len(_DECIDABLE_FACTS & set(g.facts)):
+            continue
+        chosen.append(g)
+    options = req.options
+    if len(chosen) < 2 or options.progress is not None or options.threads > 1:
+        return None
+    limit = DECIDE_S if options.time_limit is None else min(DECIDE_S, options.time_limit)
+    return Decisions(req.problem, req.ranked, tuple(chosen), time_limit=limit)
+
+
+#: seconds a grouped decision may take before its goals are left to their own searches (each
+#: goal's bounds tree is the domain heuristic's first try, so a model is found at once)
+DECIDE_S = 5.0
+
+#: the fact programs of a prepared grounding that a grouped decision writes as well (a grounding
+#: with others, e.g. substitutes or human steps, is decided on its own)
+_DECIDABLE_FACTS = frozenset({"problem", "objectives", "input_nodes", "goal", "preparation"})
 
 
 def _grounding(req: Request, prep: Preparation) -> Grounding:

@@ -10,13 +10,15 @@ from __future__ import annotations
 import time
 from collections.abc import Iterable, Iterator
 
+from foon2asp.asp.decisions import decide, decided
+from foon2asp.asp.grounding import Decisions
 from foon2asp.asp.interrupts import deferred_signals
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.prepared import Preparation
 from foon2asp.asp.session import Session
 from foon2asp.foon.problem import Problem
 from foon2asp.methods.parts import Parts
-from foon2asp.methods.plan import ROUTES, Plan, Request, explanations, plan, preparation, request
+from foon2asp.methods.plan import ROUTES, Plan, Request, decisions, explanations, plan, preparation, request
 from foon2asp.methods.registry import Runner, get
 from foon2asp.tree.gap import settle
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, measures
@@ -24,6 +26,9 @@ from foon2asp.tree.weights import total
 
 #: the routes and what proves their answers (None: nothing)
 PROVEN_BY = ROUTES
+
+#: how many goals :meth:`GoalRunner.each` plans ahead at a time (and decides together where it can)
+AHEAD = 256
 
 #: statuses that are proven answers
 PROVEN = ("optimal", "ranked", "unreachable", "infeasible")
@@ -55,6 +60,10 @@ class GoalRunner:
         #: how many goals took each route (:data:`PROVEN_BY`)
         self.counts = dict.fromkeys(PROVEN_BY, 0)
         self._shared: Session | None = None
+        #: the plans of the goals :meth:`ahead` looked at, until each is asked
+        self._planned: dict[int, Plan] = {}
+        #: goal -> (the grouped decision that decided it, its seconds per goal) (:meth:`ahead`)
+        self._decided: dict[int, tuple[Decisions, float]] = {}
         method = get(name)
         self._search = method.factory(self.problem, options) if method.factory is not None else None
 
@@ -70,10 +79,39 @@ class GoalRunner:
         """What Python hands clingo for ``goal`` (a derivable goal that is no kitchen item)."""
         return preparation(self.request, goal)
 
+    def ahead(self, goals: Iterable[Goals]) -> None:
+        """Plan ``goals``, the next ones this runner will be asked, and carry out their grouped
+        decision (:func:`~foon2asp.methods.plan.decisions`) now; each answer waits for its goal.
+        What an earlier call planned and was not asked is forgotten."""
+        self._planned.clear()
+        self._decided.clear()
+        for goal in goals:
+            if isinstance(goal, int) and goal not in self._planned:
+                self._planned[goal] = self.plan(goal)
+        group = decisions(self.request, self._planned.values())
+        if group is None:
+            return
+        t0 = time.perf_counter()
+        with deferred_signals():  # the control is freed with no interrupt in the middle
+            found = decide(group)
+        share = (time.perf_counter() - t0) / len(group.groundings)
+        for g in found:
+            self._decided[g] = (group, share)
+
+    def each(self, goals: Iterable[Goals]) -> Iterator[TaskTree]:
+        """The trees for ``goals``, in order, each answered when it is asked for; the goals are
+        planned :data:`AHEAD` at a time (:meth:`ahead`)."""
+        goals = list(goals)
+        for i, goal in enumerate(goals):
+            if i % AHEAD == 0:
+                self.ahead(goals[i : i + AHEAD])
+            yield self(goal)
+
     def __call__(self, goal: Goals) -> TaskTree:
         """The tree for ``goal``: an object id, or a tuple of them (a meal, one tree for all)."""
         t0 = time.perf_counter()
-        how = self.plan(goal)
+        planned = self._planned.pop(goal, None) if isinstance(goal, int) else None
+        how = planned if planned is not None else self.plan(goal)
         self.counts[how.route] += 1
         if how.route == "search":
             assert self._search is not None, f"search method {self.name!r} has no factory"
@@ -132,6 +170,12 @@ class GoalRunner:
         prep = grounding.prepared
         if prep is None:  # the goal's part, grounded for it
             return Session(grounding).solve(how.goal[0])
+        if prep.goal in self._decided:  # decided with other goals (:meth:`ahead`)
+            group, share = self._decided.pop(prep.goal)
+            tree = decided(grounding, time.perf_counter() - t0 + share)
+            tree.stats["candidates"] = len(prep.candidates)
+            tree.stats["plan"] = {**how.describe(), **group.describe()}
+            return tree
         with deferred_signals():  # one section for the grounding and the search
             tree = Session(grounding).solve(prep.goal, floor=prep.floor)
         tree.time_s = round(time.perf_counter() - t0, 6)
@@ -183,7 +227,7 @@ def solve_goals(
     each solved when it is asked for (a bad method or grounding fails at the call)."""
     goals = list(goals)
     run = GoalRunner(method, problem, options, grounding, shortcuts, goals=goals)
-    return map(run, goals)
+    return run.each(goals)
 
 
 def runner(name: str, problem: Problem, options: AspOptions) -> Runner:
