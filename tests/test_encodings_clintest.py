@@ -404,7 +404,8 @@ def decide(units: Units, kitchen, goals: dict[int, tuple[int, Sequence[int], Seq
 
 
 def decided(*pairs: tuple[int, int]) -> list[str]:
-    return [f"use({k},{u})" for k, u in pairs]
+    """What a model shows of sets that are not their goal's hinted tree: each unit, and the goal."""
+    return [f"use({k},{u})" for k, u in pairs] + [f"differs({k})" for k in sorted({k for k, _ in pairs})]
 
 
 def test_decide_each_goal_gets_a_set_within_its_bound():
@@ -444,11 +445,20 @@ def test_decide_every_level_is_bounded():
     check(solver(["decide_many"], facts, args=ALL), models(1, atoms(*decided((1, 2), (1, 3)))))
 
 
-def test_decide_hint_units_are_tried_first():
+def test_decide_hint_units_are_tried_first_and_a_hinted_set_shows_nothing():
     facts = decide(
         ALTERNATIVES, [1], {1: (9, [0, 1, 2, 3], [3]), 2: (9, [0, 1], [1])}, "hint(1,2). hint(1,3). hint(2,1).\n"
     )
-    check(solver(["decide_many"], facts, args=DOMAIN), first(decided((1, 2), (1, 3), (2, 1))))
+    check(solver(["decide_many"], facts, args=DOMAIN), first([]))
+    # of the two sets within the bound only the one that is not the hinted tree shows its units
+    facts = decide(ALTERNATIVES, [1], {1: (9, [0, 1], [1])}, "hint(1,1).\n")
+    check(solver(["decide_many"], facts, args=ALL), models(2, a.Or(a.Equals(set()), a.Equals(set(decided((1, 0)))))))
+
+
+def test_decide_a_hint_that_is_no_set_within_the_bound_is_left():
+    # the hint 2 alone does not make 9: the model holds another set, shown
+    facts = decide(ALTERNATIVES, [1], {1: (9, [0, 2], [1])}, "hint(1,2).\n")
+    check(solver(["decide_many"], facts, args=DOMAIN), first(decided((1, 0))))
 
 
 def test_decide_goal_in_the_kitchen_needs_no_unit():

@@ -28,20 +28,23 @@ def decide(group: Decisions) -> set[int]:
     control.add("decisions", group.facts())
     control.ground()
     preps = group.preparations
-    chosen: dict[int, list[int]] = {k: [] for k in range(1, len(preps) + 1)}
+    differ: dict[int, list[int]] = {}  # goal number -> its set, when that is not its hint
 
     def on_model(model: clingo.Model) -> None:
-        for values in chosen.values():
-            values.clear()
+        differ.clear()
         for atom in model.symbols(shown=True):
-            k, u = atom.arguments
-            chosen[k.number].append(u.number)
+            if atom.name == "differs":
+                differ.setdefault(atom.arguments[0].number, [])
+            else:
+                k, u = atom.arguments
+                differ.setdefault(k.number, []).append(u.number)
 
     with control.solving("first"):
         result = control.solve(on_model, group.time_limit)
     if not (result.finished and result.satisfiable):
         return set()
-    return {prep.goal for k, prep in enumerate(preps, 1) if prep.cut(group.problem, chosen[k]) is None}
+    # a set shown is not the hint; the others are: either is a tree when it derives the goal
+    return {prep.goal for k, prep in enumerate(preps, 1) if prep.cut(group.problem, differ.get(k, prep.hint)) is None}
 
 
 def decided(grounding: Grounding, time_s: float) -> TaskTree:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import difflib
 import functools
+import gc
 import inspect
 import math
 from collections.abc import Callable
@@ -100,6 +101,8 @@ class DataArgs:
         goals = goals_file if goals_file not in (None, "all", "all-objects") else None
         kb = api.load(self.data_dir, foon=list(self.foon) or None, goals=goals, **asdict(self.reading))
         warn_all(kb.warnings)
+        # the FOON lives as long as the command: the garbage collector need not look at it again
+        gc.freeze()
         return kb
 
     def load_goals(self, goal: tuple[str, ...], goals: str | None, together: bool = False) -> tuple:
