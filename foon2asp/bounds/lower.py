@@ -153,6 +153,8 @@ class Bounds:
         self._trees: dict[int, tuple[int, ...]] = {}
         self._lower: dict[int, int] = {}
         self._closures: dict[frozenset[int], int] = {}
+        #: unit -> what the units every tree using it uses make and need (:meth:`_unit_needs`)
+        self._needs: dict[int, tuple[set[int], list[int]]] = {}
 
     def weight(self, units: Iterable[int]) -> int:
         return sum(self.w[u] for u in units)
@@ -241,12 +243,52 @@ class Bounds:
                 groups.add(group)
         return weight, groups
 
+    def _unit_groups(self, u: int, within: Within) -> set[tuple[int, ...]]:
+        """The producer groups of :meth:`_open_groups` for the units every tree using ``u`` uses
+        joined with ``within`` (a goal's landmarks): what the two need and neither makes."""
+        made_u, open_u = self._unit_needs(u)
+        _, made_in, _, open_groups, _ = within
+        producers = self._producers
+        groups = {group for i, group in open_groups if i not in made_u}
+        groups.update(producers[i] for i in open_u if i not in made_in)
+        return groups
+
+    def _unit_needs(self, u: int) -> tuple[set[int], list[int]]:
+        """What the units every tree using ``u`` uses make, and the objects they need that they do
+        not make, the kitchen does not hold and some unit makes (computed once per unit)."""
+        found = self._needs.get(u)
+        if found is None:
+            problem = self.problem
+            made: set[int] = set()
+            wanted: set[int] = set()
+            for v in self.ulm[u]:
+                made.update(problem.products[v])
+                wanted.update(problem.required[v])
+            kitchen, producers = problem.kitchen, self._producers
+            found = self._needs[u] = (
+                made,
+                [i for i in wanted if i not in made and i not in kitchen and producers.get(i)],
+            )
+        return found
+
     def _packing(self, groups: set[tuple[int, ...]]) -> int:
         """The summed lightest weights of pairwise disjoint producer groups, taken smallest first."""
         key = self._keyed(groups)
         if len(groups) < 2:  # nothing to pack
             return sum(key[g][1] for g in groups)
         return sum(key[g][1] for g in self._packed(groups))
+
+    def _packs_within(self, groups: set[tuple[int, ...]], room: int) -> bool:
+        """Is :meth:`_packing` of ``groups`` at most ``room`` (stopped once it is above)?"""
+        key = self._keyed(groups)
+        used: set[int] = set()
+        for group in sorted(groups, key=key.__getitem__):
+            if used.isdisjoint(group):
+                used.update(group)
+                room -= key[group][1]
+                if room < 0:
+                    return False
+        return True
 
     def _keyed(self, groups: Iterable[tuple[int, ...]]) -> dict[tuple[int, ...], tuple[int, int, tuple[int, ...]]]:
         """The packing order, with ``groups`` in it."""
@@ -369,8 +411,9 @@ class Bounds:
         for u in units:
             if u in LM or u in tree:
                 keep.append(u)
-            elif u in self.ulm and base + self.weight(self.ulm[u] - LM) <= ub:
-                if self.closure(self.ulm[u] | LM, within) <= ub:
+            elif u in self.ulm:
+                weight = base + self.weight(self.ulm[u] - LM)
+                if weight <= ub and self._packs_within(self._unit_groups(u, within), ub - weight):
                     keep.append(u)
         # only units still relevant and viable through kept producers
         producers: dict[int, list[int]] = {}
