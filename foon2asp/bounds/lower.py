@@ -154,7 +154,8 @@ class Bounds:
         self._lower: dict[int, int] = {}
         self._closures: dict[frozenset[int], int] = {}
         #: unit -> what the units every tree using it uses make and need (:meth:`_unit_needs`)
-        self._needs: dict[int, tuple[set[int], list[int]]] = {}
+        self._needs: dict[int, tuple[set[int], list[tuple[int, int]], int]] = {}
+        self._gids: tuple[dict[int, int], list[tuple[int, ...]], list[tuple[int, int, tuple[int, ...]]]] | None = None
 
     def weight(self, units: Iterable[int]) -> int:
         return sum(self.w[u] for u in units)
@@ -243,19 +244,21 @@ class Bounds:
                 groups.add(group)
         return weight, groups
 
-    def _unit_groups(self, u: int, within: Within) -> set[tuple[int, ...]]:
-        """The producer groups of :meth:`_open_groups` for the units every tree using ``u`` uses
-        joined with ``within`` (a goal's landmarks): what the two need and neither makes."""
-        made_u, open_u = self._unit_needs(u)
-        _, made_in, _, open_groups, _ = within
-        producers = self._producers
-        groups = {group for i, group in open_groups if i not in made_u}
-        groups.update(producers[i] for i in open_u if i not in made_in)
-        return groups
+    def _group_ids(self) -> tuple[dict[int, int], list[tuple[int, ...]], list[tuple[int, int, tuple[int, ...]]]]:
+        """Each object's producer group as a number (identical groups one number), the groups by
+        number, and each group's place in the packing order (:meth:`_keyed`)."""
+        if self._gids is None:
+            number: dict[tuple[int, ...], int] = {}
+            gid = {o: number.setdefault(group, len(number)) for o, group in self._producers.items()}
+            groups = list(number)
+            key = self._keyed(groups)
+            self._gids = gid, groups, [key[g] for g in groups]
+        return self._gids
 
-    def _unit_needs(self, u: int) -> tuple[set[int], list[int]]:
-        """What the units every tree using ``u`` uses make, and the objects they need that they do
-        not make, the kitchen does not hold and some unit makes (computed once per unit)."""
+    def _unit_needs(self, u: int) -> tuple[set[int], list[tuple[int, int]], int]:
+        """What the units every tree using ``u`` uses make, the objects they need that they do not
+        make and the kitchen does not hold, with their producer groups' numbers (those some unit
+        makes), and their weight (computed once per unit)."""
         found = self._needs.get(u)
         if found is None:
             problem = self.problem
@@ -264,12 +267,26 @@ class Bounds:
             for v in self.ulm[u]:
                 made.update(problem.products[v])
                 wanted.update(problem.required[v])
-            kitchen, producers = problem.kitchen, self._producers
-            found = self._needs[u] = (
-                made,
-                [i for i in wanted if i not in made and i not in kitchen and producers.get(i)],
-            )
+            kitchen, gid = problem.kitchen, self._group_ids()[0]
+            open_ = [(i, gid[i]) for i in wanted if i not in made and i not in kitchen and i in gid]
+            found = self._needs[u] = (made, open_, self.weight(self.ulm[u]))
         return found
+
+    def _packs_within(self, groups: set[int], room: int) -> bool:
+        """Do the lightest weights of pairwise disjoint groups of ``groups`` (numbers), packed as
+        :meth:`_packed` packs them, sum to at most ``room`` (stopped once they are above)?"""
+        _, members, key = self._group_ids()
+        if sum(key[g][1] for g in groups) <= room:  # every group packed would still fit
+            return True
+        used: set[int] = set()
+        for g in sorted(groups, key=key.__getitem__):
+            group = members[g]
+            if used.isdisjoint(group):
+                used.update(group)
+                room -= key[g][1]
+                if room < 0:
+                    return False
+        return True
 
     def _packing(self, groups: set[tuple[int, ...]]) -> int:
         """The summed lightest weights of pairwise disjoint producer groups, taken smallest first."""
@@ -277,18 +294,6 @@ class Bounds:
         if len(groups) < 2:  # nothing to pack
             return sum(key[g][1] for g in groups)
         return sum(key[g][1] for g in self._packed(groups))
-
-    def _packs_within(self, groups: set[tuple[int, ...]], room: int) -> bool:
-        """Is :meth:`_packing` of ``groups`` at most ``room`` (stopped once it is above)?"""
-        key = self._keyed(groups)
-        used: set[int] = set()
-        for group in sorted(groups, key=key.__getitem__):
-            if used.isdisjoint(group):
-                used.update(group)
-                room -= key[group][1]
-                if room < 0:
-                    return False
-        return True
 
     def _keyed(self, groups: Iterable[tuple[int, ...]]) -> dict[tuple[int, ...], tuple[int, int, tuple[int, ...]]]:
         """The packing order, with ``groups`` in it."""
@@ -407,14 +412,29 @@ class Bounds:
         # the bounds tree holds what every tree using one of its units uses: those units stay
         tree = set(self.tree(goal) or ())
         within = self._within(LM)
+        _, made_in, _, open_groups, _ = within
+        # LM's open objects with their groups' numbers (:meth:`_group_ids`)
+        gid = self._group_ids()[0]
+        lm_open = [(i, gid[i]) for i, _ in open_groups]
+        ulm, w = self.ulm, self.w
         keep = []
         for u in units:
             if u in LM or u in tree:
                 keep.append(u)
-            elif u in self.ulm:
-                weight = base + self.weight(self.ulm[u] - LM)
-                if weight <= ub and self._packs_within(self._unit_groups(u, within), ub - weight):
-                    keep.append(u)
+                continue
+            marks = ulm.get(u)
+            if marks is None:
+                continue
+            made_u, open_u, weight_u = self._unit_needs(u)
+            shared = marks & LM
+            weight = base + weight_u - (sum(w[v] for v in shared) if shared else 0)  # base + weight(marks - LM)
+            if weight > ub:
+                continue
+            # the producer groups of what LM and the units every tree using u uses need and neither makes
+            groups = {g for i, g in lm_open if i not in made_u}
+            groups.update(g for i, g in open_u if i not in made_in)
+            if self._packs_within(groups, ub - weight):
+                keep.append(u)
         # only units still relevant and viable through kept producers
         producers: dict[int, list[int]] = {}
         for u in keep:
