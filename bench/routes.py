@@ -2,8 +2,8 @@
 """Where each goal's answer comes from: the goal runner's routes on one FOON, per objective.
 
 For every made object (or every ``--step``-th) of a data folder and each objective, the
-goal is answered as ``foon2asp solve`` does it (one :class:`GoalRunner`, one process) and
-its route (foon2asp.methods.runner.PROVEN_BY) timed.  Printed as a markdown table: goals
+goal is asked alone of one :class:`GoalRunner` in one process (``foon2asp solve --goal`` for each,
+without the planning ahead of many goals) and its route (foon2asp.methods.runner.PROVEN_BY) timed.  Printed as a markdown table: goals
 per route, their median and slowest time, and the goals not proven within the limit
 with their cost and bound.  ``--reference FILE`` (JSON lines of an earlier run of this
 script, ``--raw``) also counts the answers whose status or cost differ.

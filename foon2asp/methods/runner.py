@@ -60,8 +60,9 @@ class GoalRunner:
         #: how many goals took each route (:data:`PROVEN_BY`)
         self.counts = dict.fromkeys(PROVEN_BY, 0)
         self._shared: Session | None = None
-        #: the plans of the goals :meth:`ahead` looked at, until each is asked
-        self._planned: dict[int, Plan] = {}
+        #: the plans of the goals :meth:`ahead` looked at, until each is asked, with the seconds
+        #: each took (counted in the goal's time)
+        self._planned: dict[int, tuple[Plan, float]] = {}
         #: goal -> (the grouped decision that decided it, its seconds per goal) (:meth:`ahead`)
         self._decided: dict[int, tuple[Decisions, float]] = {}
         method = get(name)
@@ -87,8 +88,10 @@ class GoalRunner:
         self._decided.clear()
         for goal in goals:
             if isinstance(goal, int) and goal not in self._planned:
-                self._planned[goal] = self.plan(goal)
-        group = decisions(self.request, self._planned.values())
+                t0 = time.perf_counter()
+                how = self.plan(goal)
+                self._planned[goal] = (how, time.perf_counter() - t0)
+        group = decisions(self.request, [how for how, _ in self._planned.values()])
         if group is None:
             return
         t0 = time.perf_counter()
@@ -111,7 +114,11 @@ class GoalRunner:
         """The tree for ``goal``: an object id, or a tuple of them (a meal, one tree for all)."""
         t0 = time.perf_counter()
         planned = self._planned.pop(goal, None) if isinstance(goal, int) else None
-        how = planned if planned is not None else self.plan(goal)
+        if planned is not None:
+            how, spent = planned
+            t0 -= spent  # the goal's time holds its planning
+        else:
+            how = self.plan(goal)
         self.counts[how.route] += 1
         if how.route == "search":
             assert self._search is not None, f"search method {self.name!r} has no factory"
