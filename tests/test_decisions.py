@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import importlib
 import json
+import time
 from dataclasses import replace
 
 import pytest
@@ -138,3 +139,19 @@ def test_a_worker_block_answers_as_goal_by_goal(shared_foon_dir):
             r.pop("time_s", None)
             r.get("stats", {}).pop("plan", None)
         assert a == b
+
+
+def test_a_goal_planned_ahead_counts_its_planning_in_its_time(monkeypatch):
+    """Planned ahead, a goal's time still holds its planning (each plan here takes 20 ms)."""
+    problem = random_foon(5)
+    goals = made_objects(problem)
+    runner_mod = importlib.import_module("foon2asp.methods.runner")
+    slow = runner_mod.plan
+
+    def planned(req, goal):
+        time.sleep(0.02)
+        return slow(req, goal)
+
+    monkeypatch.setattr(runner_mod, "plan", planned)
+    trees = list(GoalRunner("asp", problem, AspOptions()).each(goals))
+    assert len(trees) == len(goals) and all(t.time_s >= 0.02 for t in trees)
