@@ -123,8 +123,8 @@ def test_a_decision_that_decides_nothing_leaves_every_goal_to_its_own_search(mon
 
 
 def test_a_worker_block_answers_as_goal_by_goal(shared_foon_dir):
-    """A batch worker handed a block of tasks (a pool's) decides its goals together and writes the
-    lines it writes goal by goal, but for the time and the plan."""
+    """A batch worker handed a block of tasks (a Dask chunk) decides its goals together and writes
+    the lines it writes goal by goal, but for the time and the plan."""
     kb = foon2asp.load(str(shared_foon_dir))
     goals = kb.goal_ids("all-objects")[:400]
     spec = BatchSpec(kb.problem, ["asp"], AspOptions(), "per-goal")
@@ -155,3 +155,27 @@ def test_a_goal_planned_ahead_counts_its_planning_in_its_time(monkeypatch):
     monkeypatch.setattr(runner_mod, "plan", planned)
     trees = list(GoalRunner("asp", problem, AspOptions()).each(goals))
     assert len(trees) == len(goals) and all(t.time_s >= 0.02 for t in trees)
+
+
+def test_planning_ahead_stops_at_its_budget_so_the_first_answer_does_not_wait(monkeypatch):
+    """With plans of 20 ms and 50 ms to plan ahead, the first answer comes after a few plans, not
+    after the plans of every goal; every goal is still answered, once, as alone."""
+    problem = random_foon(5)
+    goals = made_objects(problem)
+    runner_mod = importlib.import_module("foon2asp.methods.runner")
+    slow, calls = runner_mod.plan, []
+
+    def planned(req, goal):
+        calls.append(goal)
+        time.sleep(0.02)
+        return slow(req, goal)
+
+    monkeypatch.setattr(runner_mod, "plan", planned)
+    monkeypatch.setattr(runner_mod, "AHEAD_S", 0.05)
+    answers = GoalRunner("asp", problem, AspOptions()).each(goals)
+    first = next(answers)
+    assert 1 <= len(calls) <= 4 < len(goals)
+    trees = [first, *answers]
+    assert sorted(calls) == sorted(goals)  # each goal planned once
+    alone = GoalRunner("asp", problem, AspOptions())
+    assert [answer(problem, t) for t in trees] == [answer(problem, alone(g)) for g in goals]

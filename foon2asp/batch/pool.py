@@ -36,8 +36,6 @@ if TYPE_CHECKING:
 AUTO = 0
 #: seconds in this process before ``AUTO`` hands the remaining tasks to a pool
 SWITCH_S = 5.0
-#: how many tasks a pool's worker is handed at once, planned together (:meth:`Worker.run_block`)
-POOL_BLOCK = 16
 #: the start method of the pool's workers; None: :func:`start_method` chooses
 START_METHOD: str | None = None
 #: why a pool could not start: its workers ran the main script again and reached the batch
@@ -137,8 +135,13 @@ class Worker:
         for name, runner in self.runners.items():
             runner.ahead([goal for goal, method in tasks if method == name])
 
+    def planned(self, goal: int, method: str) -> bool:
+        """Was ``goal`` planned ahead for ``method`` (:meth:`ahead`) and not run yet?"""
+        return self.runners[method].planned(goal)
+
     def run_block(self, tasks: list[tuple[int, str]]) -> list[str]:
-        """The results of ``tasks`` (:meth:`run`), planned together first (:meth:`ahead`)."""
+        """The results of ``tasks`` (:meth:`run`), planned together first (:meth:`ahead`): a Dask
+        chunk's, whose results come back together."""
         self.ahead(tasks)
         return [self.run(goal, method) for goal, method in tasks]
 
@@ -207,9 +210,11 @@ def _init_worker(spec: BatchSpec) -> None:
     _WORKER = Worker(spec)
 
 
-def _run_in_worker(tasks: list[tuple[int, str]]) -> list[str]:
+def _run_in_worker(task: tuple[int, str]) -> str:
+    """One task in a pool's worker: goal by goal, so that each result is sent, and written, as soon
+    as it is found (a worker handed a block would hold the block's results until its end)."""
     assert _WORKER is not None, "worker not initialised"
-    return _WORKER.run_block(tasks)
+    return _WORKER.run(*task)
 
 
 class Execution:
@@ -240,7 +245,7 @@ class Execution:
             for goal, method in tasks:
                 if cores > 1 and time.perf_counter() - t0 >= SWITCH_S:
                     break
-                if done % AHEAD == 0:
+                if not worker.planned(goal, method):
                     worker.ahead(tasks[done : done + AHEAD])
                 yield worker.run(goal, method)
                 done += 1
@@ -258,9 +263,7 @@ class Execution:
         try:
             with _workers_starting(context.get_start_method()):
                 pool = context.Pool(workers, initializer=_init_worker, initargs=(self.spec,))
-            blocks = [tasks[i : i + POOL_BLOCK] for i in range(0, len(tasks), POOL_BLOCK)]
-            for lines in pool.imap_unordered(_run_in_worker, blocks):
-                yield from lines
+            yield from pool.imap_unordered(_run_in_worker, tasks)
             pool.close()
         finally:
             if pool is not None:  # (an interrupt while it started comes once it has)

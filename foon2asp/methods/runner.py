@@ -29,6 +29,8 @@ PROVEN_BY = ROUTES
 
 #: how many goals :meth:`GoalRunner.each` plans ahead at a time (and decides together where it can)
 AHEAD = 256
+#: seconds :meth:`GoalRunner.ahead` may plan before the first of its goals is answered
+AHEAD_S = 1.0
 
 #: statuses that are proven answers
 PROVEN = ("optimal", "ranked", "unreachable", "infeasible")
@@ -81,12 +83,16 @@ class GoalRunner:
         return preparation(self.request, goal)
 
     def ahead(self, goals: Iterable[Goals]) -> None:
-        """Plan ``goals``, the next ones this runner will be asked, and carry out their grouped
-        decision (:func:`~foon2asp.methods.plan.decisions`) now; each answer waits for its goal.
-        What an earlier call planned and was not asked is forgotten."""
+        """Plan ``goals``, the next ones this runner will be asked, in order until
+        :data:`AHEAD_S` seconds are spent (the rest are planned when asked), and carry out the
+        grouped decision of those planned (:func:`~foon2asp.methods.plan.decisions`) now; each
+        answer waits for its goal.  What an earlier call planned and was not asked is forgotten."""
         self._planned.clear()
         self._decided.clear()
+        start = time.perf_counter()
         for goal in goals:
+            if time.perf_counter() - start >= AHEAD_S and self._planned:
+                break  # the first answer waits no longer for the plans of the goals after it
             if isinstance(goal, int) and goal not in self._planned:
                 t0 = time.perf_counter()
                 how = self.plan(goal)
@@ -101,12 +107,16 @@ class GoalRunner:
         for g in found:
             self._decided[g] = (group, share)
 
+    def planned(self, goal: Goals) -> bool:
+        """Was ``goal`` planned ahead and not asked yet (a meal never is: nothing to plan ahead)?"""
+        return not isinstance(goal, int) or goal in self._planned
+
     def each(self, goals: Iterable[Goals]) -> Iterator[TaskTree]:
         """The trees for ``goals``, in order, each answered when it is asked for; the goals are
-        planned :data:`AHEAD` at a time (:meth:`ahead`)."""
+        planned ahead, up to :data:`AHEAD` at a time (:meth:`ahead`)."""
         goals = list(goals)
         for i, goal in enumerate(goals):
-            if i % AHEAD == 0:
+            if not self.planned(goal):
                 self.ahead(goals[i : i + AHEAD])
             yield self(goal)
 
