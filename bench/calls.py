@@ -57,8 +57,11 @@ def timed(spent: dict[str, float], count: collections.Counter, kind: str, fn: Ca
     return wrapper
 
 
-def measure(problem, goals, objective: tuple[str, ...]) -> tuple[dict[str, float], collections.Counter, dict, float]:
-    """Answer ``goals``; the seconds and calls of each kind, the routes and the wall seconds."""
+def measure(
+    problem, goals, objective: tuple[str, ...]
+) -> tuple[dict[str, float], collections.Counter, dict, float, int]:
+    """Answer ``goals``; the seconds and calls of each kind, the routes, the wall seconds and the
+    goals clingo decided together (one call for many)."""
     spent: dict[str, float] = collections.defaultdict(float)
     count: collections.Counter = collections.Counter()
     originals = [(owner, name, getattr(owner, name)) for kinds in CALLS.values() for owner, name in kinds]
@@ -73,13 +76,13 @@ def measure(problem, goals, objective: tuple[str, ...]) -> tuple[dict[str, float
         run = runner_mod.GoalRunner("asp", problem, AspOptions(objective=objective))
         t0 = time.perf_counter()
         each = getattr(run, "each", None)  # planned ahead, as batch plans them (where the version does)
-        for _ in each(goals) if each is not None else map(run, goals):
-            pass
+        trees = list(each(goals) if each is not None else map(run, goals))
         wall = time.perf_counter() - t0
     finally:
         for owner, name, fn in originals:
             setattr(owner, name, fn)
-    return spent, count, dict(run.counts), wall
+    together = sum(bool(t.stats.get("plan", {}).get("decided_with")) for t in trees)
+    return spent, count, dict(run.counts), wall, together
 
 
 def main() -> None:
@@ -106,7 +109,7 @@ def main() -> None:
     print("| data | goals | routes | " + " | ".join(CALLS) + " | Python | wall s |")
     print("|---|---:|---|" + "---:|" * (len(CALLS) + 2))
     for name, problem, goals in cases:
-        spent, count, routes, wall = measure(problem, goals, objective)
+        spent, count, routes, wall, _ = measure(problem, goals, objective)
         taken = ", ".join(f"{k} {v}" for k, v in routes.items() if v)
         cells = " | ".join(
             f"{spent[k]:.2f} ({count[k]}, {1000 * spent[k] / count[k]:.2f})" if count[k] else "0" for k in CALLS

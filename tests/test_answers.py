@@ -101,8 +101,12 @@ def test_the_library_tree_views_the_record_the_solver_read(monkeypatch, settings
         return tree
 
     monkeypatch.setattr(TaskTree, "from_model", classmethod(from_model))
-    trees = foon2asp.load("demo").solve("all", shortcuts=False, **settings)  # every goal with a choice: clingo's
+    kb = foon2asp.load("demo")
+    # every goal with a choice is clingo's; each asked alone, so none is decided with others (whose
+    # answer is its bounds tree, read from no model of its own: tests/test_decisions.py)
+    trees = [kb.solve(g, shortcuts=False, **settings) for g in kb.goal_ids("all")]
     solved = [t for t in trees if t.raw.stats.get("plan", {}).get("route") in ("clingo", "prepared") and t.has_tree]
+    assert not any(t.raw.stats["plan"].get("decided_with") for t in solved)
     assert solved, "no goal was answered by clingo"
     for tree in solved:
         for one in tree.with_alternatives:
