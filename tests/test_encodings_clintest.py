@@ -393,7 +393,7 @@ def decide(units: Units, kitchen, goals: dict[int, tuple[int, Sequence[int], Seq
         used.update(candidates)
         lines.append(f"decide({k},{goal}).")
         lines += [f"candidate({k},{u})." for u in candidates]
-        lines += [f"bound({k},{level},{b})." for level, b in enumerate(bounds, 1)]
+        lines += [f"budget({k},{level},{b})." for level, b in enumerate(bounds, 1)]
     for u in sorted(used):
         required, products = units[u]
         lines += [f"required({u},{o})." for o in required]
@@ -440,7 +440,7 @@ def test_decide_landmark_forces_its_unit():
 
 def test_decide_every_level_is_bounded():
     # level 2 weighs unit 0 at 5: only 2, 3 (weight 0 there) fit the bound 1 at level 2
-    extra = "weight(2,0,5). weight(2,2,0). weight(2,3,0). bound(1,2,1).\n"
+    extra = "weight(2,0,5). weight(2,2,0). weight(2,3,0). budget(1,2,1).\n"
     facts = decide(ALTERNATIVES, [1], {1: (9, [0, 2, 3], [2])}, extra)
     check(solver(["decide_many"], facts, args=ALL), models(1, atoms(*decided((1, 2), (1, 3)))))
 

@@ -72,7 +72,7 @@ class Preparation:
 
 def decision_facts(problem: Problem, ranked: Sequence[str], preps: Sequence[Preparation]) -> str:
     """The facts of ``decide_many.lp`` for ``preps`` (each with a bound), goal K the K-th from 1:
-    ``decide(K,G)``, ``candidate/2``, ``landmark/2``, ``hint/2``, ``bound(K,L,B)`` (its bound
+    ``decide(K,G)``, ``candidate/2``, ``landmark/2``, ``hint/2``, ``budget(K,L,B)`` (its bound
     at level L of ``ranked``); ``required/2``, ``product/2`` and ``weight(L,U,W)`` of every
     candidate; ``kitchen/1`` of their objects."""
     lines: list[str] = []
@@ -85,7 +85,7 @@ def decision_facts(problem: Problem, ranked: Sequence[str], preps: Sequence[Prep
         lines += [f"candidate({k},{u})." for u in prep.candidates]
         lines += [f"landmark({k},{u})." for u in prep.landmarks]
         lines += [f"hint({k},{u})." for u in prep.hint]
-        lines += [f"bound({k},{level},{b})." for level, b in enumerate(prep.bound, 1)]
+        lines += [f"budget({k},{level},{b})." for level, b in enumerate(prep.bound, 1)]
     weights = [unit_weight(problem, name) for name in ranked]
     objects: set[int] = set()
     for u in sorted(units):
