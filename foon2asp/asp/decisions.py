@@ -15,7 +15,7 @@ from foon2asp.asp import encoding_files
 from foon2asp.asp.answers import finish
 from foon2asp.asp.control import Control
 from foon2asp.asp.grounding import Decisions, Grounding
-from foon2asp.tree.gap import levels, settle
+from foon2asp.tree.gap import settle
 from foon2asp.tree.tasktree import TaskTree
 
 
@@ -55,5 +55,4 @@ def decided(grounding: Grounding, time_s: float) -> TaskTree:
     method, known = grounding.options.method, list(prep.known)
     answer = TaskTree(prep.goal, method, "optimal", sorted(prep.hint), asp_cost=known)
     tree = finish(grounding.problem, method, (prep.goal,), "optimal", answer, time_s, {"lower": known})
-    names = levels(grounding.ranked, "substitutes" in grounding.facts, "human_limit" in grounding.facts)
-    return settle(grounding.problem, tree, names, known, prep.floor)
+    return settle(grounding.problem, tree, grounding.levels, known, prep.floor)

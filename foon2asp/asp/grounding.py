@@ -17,6 +17,7 @@ from foon2asp.asp.facts import facts
 from foon2asp.asp.options import AspOptions
 from foon2asp.asp.prepared import Preparation, decision_facts
 from foon2asp.foon.problem import Problem
+from foon2asp.tree.gap import levels as level_names
 
 #: the kinds of fact programs a grounding may name, in the order they are added
 FACT_KINDS = (
@@ -89,6 +90,11 @@ class Grounding:
     def ranked(self) -> tuple[str, ...]:
         """The objectives the solver optimises, most important first."""
         return objectives.ranked(self.options)
+
+    @property
+    def levels(self) -> tuple[str, ...]:
+        """The names of the solver's priority levels, highest first."""
+        return level_names(self.ranked, "substitutes" in self.facts, "human_limit" in self.facts)
 
     def files(self) -> list[str]:
         """The encoding files clingo loads: the entry, and ``any_goal`` without a fixed goal."""

@@ -23,7 +23,7 @@ from foon2asp.asp.grounding import Grounding, canonical_grounding, fact_programs
 from foon2asp.asp.multishot.driver import Driver
 from foon2asp.asp.prepared import search
 from foon2asp.bounds.upper import cheapest_tree
-from foon2asp.tree.gap import first_level, levels, settle
+from foon2asp.tree.gap import first_level, settle
 from foon2asp.tree.tasktree import Goals, TaskTree, executable_order, meal_of, measures
 
 #: the statistics of a goal decided without a solve call
@@ -124,8 +124,7 @@ class Session:
     @property
     def levels(self) -> tuple[str, ...]:
         """The names of the solver's priority levels, highest first."""
-        g = self.grounding
-        return levels(g.ranked, "substitutes" in g.facts, "human_limit" in g.facts)
+        return self.grounding.levels
 
     def _fallback(self, meal: tuple[int, ...], tree: TaskTree) -> None:
         """No tree within the time limit: a cheapest-first tree as ``feasible``."""

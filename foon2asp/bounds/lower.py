@@ -290,10 +290,7 @@ class Bounds:
 
     def _packing(self, groups: set[tuple[int, ...]]) -> int:
         """The summed lightest weights of pairwise disjoint producer groups, taken smallest first."""
-        key = self._keyed(groups)
-        if len(groups) < 2:  # nothing to pack
-            return sum(key[g][1] for g in groups)
-        return sum(key[g][1] for g in self._packed(groups))
+        return self._packed_bound(0, groups)[0]
 
     def _keyed(self, groups: Iterable[tuple[int, ...]]) -> dict[tuple[int, ...], tuple[int, int, tuple[int, ...]]]:
         """The packing order, with ``groups`` in it."""
